@@ -1,0 +1,86 @@
+#pragma once
+// SkinLayout: where each taxel sits on the body and on an unwrapped 2-D map, which
+// channels it owns, and the groups (body parts, modules, sheets, layers) it belongs to.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tactile {
+
+struct Point2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+enum class TaxelShape { kRectangle, kHexagon, kStripe, kPolygon };
+
+struct Taxel {
+  int64_t id = 0;
+  std::string name;
+  std::string body_part;
+  Point2 position;            // centre on the unwrapped map, in map units (mm)
+  Point2 size;                // width and height on the map (mm); for hexagons, the flat-to-flat box
+  double area = 0.0;          // physical sensing area (mm^2)
+  TaxelShape shape = TaxelShape::kRectangle;
+  std::vector<Point2> outline;  // explicit outline on the map; empty -> derived from shape and size
+  // Channel indices into SkinLayout::channels, one per modality of the layout (in
+  // SkinLayout::modalities order). -1 where this taxel lacks that modality.
+  std::vector<int> channels;
+};
+
+struct Group {
+  std::string id;    // unique within the layout, e.g. "front", "module-07", "left-arm"
+  std::string kind;  // e.g. "side", "module", "sheet", "body-part", "layer"
+  std::string name;  // human-readable
+  std::vector<int64_t> taxels;  // taxel ids
+};
+
+struct Channel {
+  std::string name;      // column name in recordings, e.g. "c01.f2"
+  std::string unit;      // e.g. "N", "g", "mm", "degC", "counts"
+  std::string modality;  // e.g. "force", "accel", "proximity", "capacitance"
+};
+
+struct SkinLayout {
+  std::string id;    // "nao", "tsa", "fur", "robovie", "flux", "grid:4x4", "strip:8"
+  std::string name;  // human-readable
+  std::string description;
+  std::string map_unit = "mm";
+  double sample_rate_hz = 0.0;  // the device's native rate; 0 when unknown
+  std::vector<std::string> modalities;  // per-taxel channel slots, e.g. {"ax","ay",...}
+  std::string display_modality;         // modality a skin view colours by default
+  std::vector<Channel> channels;        // every channel, in recording column order
+  std::vector<Taxel> taxels;
+  std::vector<Group> groups;
+  std::vector<std::string> disjoint_kinds;  // group kinds whose groups may not share taxels
+  std::vector<std::string> classes;         // the paper's class vocabulary
+
+  int channel_index(const std::string& name) const;   // -1 when absent
+  int modality_index(const std::string& name) const;  // -1 when absent
+  const Taxel* find_taxel(int64_t id) const;
+  const Group* find_group(const std::string& id) const;
+  // Groups of the given kind that contain the taxel ("" kind: all groups).
+  std::vector<const Group*> groups_of(int64_t taxel_id, const std::string& kind = {}) const;
+  // Map bounding box over all taxel outlines: {min, max}.
+  std::pair<Point2, Point2> bounds() const;
+};
+
+// The outline of a taxel on the map (explicit, or derived from shape, position, size).
+std::vector<Point2> taxel_outline(const Taxel& taxel);
+
+// Loads assets/layouts/<id>.json, or builds a generic grid:RxC / strip:N layout.
+// Throws tactile::Error naming the file and the entry on any invalid content.
+SkinLayout load_layout(const std::string& id);
+SkinLayout load_layout_file(const std::string& path);
+SkinLayout parse_layout_json(const std::string& text, const std::string& where);
+// Checks ids, channels, positions and disjoint groups; throws tactile::Error.
+void validate_layout(const SkinLayout& layout, const std::string& where);
+// The directory holding layouts/ (TACTILE_ASSETS env var, else the build-time default).
+std::string asset_dir();
+// Ids of the five built-in skins.
+std::vector<std::string> builtin_layout_ids();
+
+}  // namespace tactile

@@ -1,0 +1,52 @@
+#pragma once
+// Off-screen Dear ImGui rendering through OSMesa (software OpenGL 3.3 core, no X).
+// Used by the render tests, the headless workbench and `--screenshot --headless`.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+struct osmesa_context;
+
+namespace tactile {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // top row first
+
+  // Colour of pixel (x, y), y counted from the top; {r, g, b, a}.
+  struct Rgba {
+    uint8_t r, g, b, a;
+  };
+  Rgba at(int x, int y) const;
+};
+
+// Writes an RGBA image to PNG; throws tactile::Error naming the path on failure.
+void write_png(const std::string& path, const Image& image);
+
+class OffscreenRenderer {
+ public:
+  // Creates the OSMesa context, an ImGui context (no .ini file) and the backend.
+  // Throws tactile::Error when OSMesa cannot give a 3.3 core context.
+  OffscreenRenderer(int width, int height);
+  ~OffscreenRenderer();
+  OffscreenRenderer(const OffscreenRenderer&) = delete;
+  OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
+
+  // Starts an ImGui frame of the renderer's size; `seconds` is the frame's delta time.
+  void new_frame(float seconds = 1.0f / 60.0f);
+  // Ends the frame, draws it and reads the pixels back.
+  Image render(float clear_r = 0.09f, float clear_g = 0.09f, float clear_b = 0.1f);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  int width_;
+  int height_;
+  osmesa_context* context_ = nullptr;
+  std::vector<uint8_t> buffer_;
+};
+
+}  // namespace tactile
