@@ -1,17 +1,28 @@
-// `tactile`: the command line for every headless job.
+// `tactile`: the command line for every headless job. Core only, no ImGui.
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 
+#include "commands.h"
 #include "tactile/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"tactile: headless jobs on touch recordings from robot skins"};
   app.require_subcommand(1);
+  app.failure_message(CLI::FailureMessage::help);
+  // Registration order is the order `tactile --help` lists the commands.
+  tactile::cli::register_info(app);
+  tactile::cli::register_import(app);
+  tactile::cli::register_export(app);
+  tactile::cli::register_labels(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   } catch (const tactile::Error& error) {
+    std::cerr << "tactile: " << error.what() << "\n";
+    return 1;
+  } catch (const std::exception& error) {
     std::cerr << "tactile: " << error.what() << "\n";
     return 1;
   }

@@ -52,6 +52,10 @@ struct SkinLayout {
   double sample_rate_hz = 0.0;  // the device's native rate; 0 when unknown
   std::vector<std::string> modalities;  // per-taxel channel slots, e.g. {"ax","ay",...}
   std::string display_modality;         // modality a skin view colours by default
+  // Value range a skin view maps to [0, 1] by default; min > max is allowed and
+  // reverses the scale (proximity: 200 mm dark, 0 mm bright).
+  double display_min = 0.0;
+  double display_max = 1.0;
   std::vector<Channel> channels;        // every channel, in recording column order
   std::vector<Taxel> taxels;
   std::vector<Group> groups;

@@ -1,0 +1,15 @@
+#pragma once
+// Each `tactile` subcommand lives in its own file and registers itself here.
+// A command's callback throws tactile::Error on bad input; main() prints it as
+// one line on stderr and exits non-zero.
+
+#include <CLI/CLI.hpp>
+
+namespace tactile::cli {
+
+void register_info(CLI::App& app);
+void register_import(CLI::App& app);
+void register_export(CLI::App& app);
+void register_labels(CLI::App& app);
+
+}  // namespace tactile::cli
