@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tactile {
@@ -15,15 +16,18 @@ struct Point2 {
   double y = 0.0;
 };
 
-enum class TaxelShape { kRectangle, kHexagon, kStripe, kPolygon };
+// JSON names: "rect", "hex", "stripe", "polygon", "circle". A hexagon is regular in its box
+// when the long side is 2/sqrt(3) of the short one; pointy-top when taller than wide, else
+// flat-top. A circle (or ellipse) fills its box.
+enum class TaxelShape { kRectangle, kHexagon, kStripe, kPolygon, kCircle };
 
 struct Taxel {
   int64_t id = 0;
   std::string name;
   std::string body_part;
-  Point2 position;            // centre on the unwrapped map, in map units (mm)
-  Point2 size;                // width and height on the map (mm); for hexagons, the flat-to-flat box
-  double area = 0.0;          // physical sensing area (mm^2)
+  Point2 position;    // centre on the unwrapped map, in map units (mm)
+  Point2 size;        // width and height on the map (mm); for hexagons, the flat-to-flat box
+  double area = 0.0;  // physical sensing area (mm^2)
   TaxelShape shape = TaxelShape::kRectangle;
   std::vector<Point2> outline;  // explicit outline on the map; empty -> derived from shape and size
   // Channel indices into SkinLayout::channels, one per modality of the layout (in
@@ -32,9 +36,9 @@ struct Taxel {
 };
 
 struct Group {
-  std::string id;    // unique within the layout, e.g. "front", "module-07", "left-arm"
-  std::string kind;  // e.g. "side", "module", "sheet", "body-part", "layer"
-  std::string name;  // human-readable
+  std::string id;               // unique within the layout, e.g. "front", "module-07", "left-arm"
+  std::string kind;             // e.g. "side", "module", "sheet", "body-part", "layer"
+  std::string name;             // human-readable
   std::vector<int64_t> taxels;  // taxel ids
 };
 
@@ -49,14 +53,14 @@ struct SkinLayout {
   std::string name;  // human-readable
   std::string description;
   std::string map_unit = "mm";
-  double sample_rate_hz = 0.0;  // the device's native rate; 0 when unknown
+  double sample_rate_hz = 0.0;          // the device's native rate; 0 when unknown
   std::vector<std::string> modalities;  // per-taxel channel slots, e.g. {"ax","ay",...}
   std::string display_modality;         // modality a skin view colours by default
   // Value range a skin view maps to [0, 1] by default; min > max is allowed and
   // reverses the scale (proximity: 200 mm dark, 0 mm bright).
   double display_min = 0.0;
   double display_max = 1.0;
-  std::vector<Channel> channels;        // every channel, in recording column order
+  std::vector<Channel> channels;  // every channel, in recording column order
   std::vector<Taxel> taxels;
   std::vector<Group> groups;
   std::vector<std::string> disjoint_kinds;  // group kinds whose groups may not share taxels
@@ -74,6 +78,18 @@ struct SkinLayout {
 
 // The outline of a taxel on the map (explicit, or derived from shape, position, size).
 std::vector<Point2> taxel_outline(const Taxel& taxel);
+
+// The JSON name of a shape ("rect", "hex", ...).
+const char* taxel_shape_name(TaxelShape shape);
+
+// Generic layouts built in code. grid: rows x columns taxels, r-major, ids 0..R*C-1, channels
+// ch0.., modality "value", 10 mm pitch, one group of kind "row" per row. strip: count taxels in
+// a row along x. Throw tactile::Error (naming `id`) when empty or over kMaxGenericTaxels.
+constexpr int64_t kMaxGenericTaxels = 65536;
+SkinLayout make_grid_layout(int64_t rows, int64_t columns, const std::string& id = {});
+SkinLayout make_strip_layout(int64_t count, const std::string& id = {});
+// True for ids of the form "grid:..." or "strip:..." (valid or not).
+bool is_generic_layout_id(const std::string& id);
 
 // Loads assets/layouts/<id>.json, or builds a generic grid:RxC / strip:N layout.
 // Throws tactile::Error naming the file and the entry on any invalid content.
