@@ -93,7 +93,9 @@ NAO_SIDE_MM = 14.0
 
 def make_nao():
     side = NAO_SIDE_MM
-    width = math.sqrt(3.0) * side  # flat-to-flat, pointy-top cells in offset rows
+    # Flat-to-flat, pointy-top cells in offset rows; rounded down to the micrometre so the
+    # rounded centres of neighbours are never closer than the rounded width.
+    width = math.floor(math.sqrt(3.0) * side * 1000.0) / 1000.0
     height = 2.0 * side  # corner-to-corner
     area = 1.5 * math.sqrt(3.0) * side * side  # regular hexagon: (3 sqrt 3 / 2) s^2
     row_pitch = 1.5 * side

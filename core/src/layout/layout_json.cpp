@@ -289,7 +289,14 @@ SkinLayout parse_layout_json(const std::string& text, const std::string& where) 
     channel.name = reader.text(reader.require(value, "name", entry), entry, "name");
     channel.unit = reader.text_or(value, "unit", entry, "");
     channel.modality = reader.text(reader.require(value, "modality", entry), entry, "modality");
-    channel_by_name.emplace(channel.name, static_cast<int>(index));  // duplicates: validation
+    // Checked here already: taxels look channels up by name.
+    const auto [previous, inserted] =
+        channel_by_name.emplace(channel.name, static_cast<int>(index));
+    if (!inserted) {
+      reader.fail("channel " + in_quotes(channel.name), "duplicate channel name (columns " +
+                                                            std::to_string(previous->second) +
+                                                            " and " + std::to_string(index) + ")");
+    }
     layout.channels.push_back(std::move(channel));
   }
 
