@@ -395,6 +395,7 @@ def make_robovie():
 FLUX_LENGTH_MM = 55.0
 FLUX_WIDTH_MM = 14.0
 FLUX_LAYER_GAP_MM = 15.0
+FLUX_STRIPE_GAP_MM = 1.0  # on the map only, so neighbouring stripes can be told apart
 
 
 def make_flux():
@@ -405,15 +406,17 @@ def make_flux():
                              "modality": "resistance"})
         channels.append({"name": f"{prefix}_sum", "unit": "counts", "modality": "resistance"})
     area = FLUX_LENGTH_MM * FLUX_WIDTH_MM
+    pitch = FLUX_WIDTH_MM + FLUX_STRIPE_GAP_MM
+    layer_span = 4 * pitch - FLUX_STRIPE_GAP_MM
     bottom_top = FLUX_LENGTH_MM + FLUX_LAYER_GAP_MM
     for stripe in range(1, 5):
-        x = (stripe - 0.5) * FLUX_WIDTH_MM
+        x = FLUX_WIDTH_MM / 2 + (stripe - 1) * pitch
         taxels.append(taxel(stripe, f"x{stripe}", "top layer", x, FLUX_LENGTH_MM / 2,
                             FLUX_WIDTH_MM, FLUX_LENGTH_MM, area, "stripe",
                             {"resistance": f"x{stripe}"}))
     for stripe in range(1, 5):
-        y = bottom_top + (stripe - 0.5) * FLUX_WIDTH_MM
-        taxels.append(taxel(4 + stripe, f"y{stripe}", "bottom layer", 2 * FLUX_WIDTH_MM, y,
+        y = bottom_top + FLUX_WIDTH_MM / 2 + (stripe - 1) * pitch
+        taxels.append(taxel(4 + stripe, f"y{stripe}", "bottom layer", layer_span / 2, y,
                             FLUX_LENGTH_MM, FLUX_WIDTH_MM, area, "stripe",
                             {"resistance": f"y{stripe}"}))
     assert_no_overlap(taxels, lambda entry: entry["body_part"])
@@ -425,7 +428,8 @@ def make_flux():
         "Soft silicone touch sensor with two orthogonal layers of 4 piezo-resistive serpentines "
         "(paper 004), 10-bit, 1 kHz. Each serpentine is 55 mm long and 14 mm wide (4 lines of 2 mm, "
         "2 mm apart); the top layer's stripes x1..x4 are zones 1..4 along x, the bottom layer's "
-        "y1..y4 run orthogonally. The map draws the top layer above the bottom layer. Channels "
+        "y1..y4 run orthogonally. The map draws the top layer above the bottom layer, stripes 1 mm "
+        "apart so they can be told apart. Channels "
         "per spec 5.4: x1..x4, x_sum, y1..y4, y_sum; the sums are virtual (sum of normalised "
         "deviations) and have no taxel. Classes: touch1..touch4 = touch on zone 1..4, "
         "caress14 = caress from zone 1 to 4, caress41 = caress from zone 4 to 1."
