@@ -364,8 +364,7 @@ def make_robovie():
         group("front", "side", "front view", side_members["front"]),
         group("back", "side", "back view", side_members["back"]),
     ]
-    counts = ", ".join(f"{name} {len(entry['taxels'])}"
-                       for entry, name in ((g, g["id"]) for g in part_groups))
+    counts = ", ".join(f"{part['id']} {len(part['taxels'])}" for part in part_groups)
     description = (
         "Robovie-IIF child-sized robot with 274 PVDF piezo films (3x3 or 5x5 cm) in soft silicone "
         "skin (paper 003), 16-bit, 100 Hz. The paper names sensors by body part but gives neither "

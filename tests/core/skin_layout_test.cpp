@@ -187,7 +187,8 @@ TEST(BuiltinLayouts, TsaHas21ModulesOfTwo4x4SheetsAt7mmPitch) {
     EXPECT_EQ(kind_coverage(tsa, kind), 672u);
   EXPECT_EQ(tsa.find_group("module-07")->taxels.size(), 32u);
   EXPECT_EQ(tsa.find_group("m07.s2")->taxels.size(), 16u);
-  // Pads 0 and 1 are row neighbours, 0 and 4 column neighbours: 7 mm apart.
+  // Pads 0 and 1 are row neighbours, 0 and 4 column neighbours: 7 mm apart. (tsa taxel ids
+  // are the channel indices.)
   const Taxel& pad0 = *tsa.find_taxel(tsa.channel_index("m05.s1.p00"));
   const Taxel& pad1 = *tsa.find_taxel(tsa.channel_index("m05.s1.p01"));
   const Taxel& pad4 = *tsa.find_taxel(tsa.channel_index("m05.s1.p04"));
