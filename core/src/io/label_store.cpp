@@ -1,7 +1,9 @@
 #include "tactile/io/label_store.h"
 
+#include <chrono>
 #include <filesystem>
 #include <set>
+#include <thread>
 #include <utility>
 
 #include "label_rows.h"
@@ -14,6 +16,9 @@ namespace {
 
 // Version 1: tables store_schema, labels, classes, journal.
 constexpr int64_t kSchemaVersion = 1;
+
+// How long a writer waits for another process's transaction before failing.
+constexpr std::chrono::milliseconds kBusyTimeout(5000);
 
 constexpr const char* kCreateSchema = R"sql(
 CREATE TABLE store_schema (version INTEGER NOT NULL);
@@ -57,6 +62,20 @@ int64_t single_integer(sqlite3* database, const std::string& where, const std::s
   sqlite::Statement select(database, where, sql);
   select.step();
   return select.integer(0);
+}
+
+// Switching a new database to WAL takes an exclusive lock without calling the
+// busy handler, so a second process opening the same new file at that moment
+// gets SQLITE_BUSY at once. Retry for as long as the busy timeout would wait.
+void enable_wal(sqlite3* database, const std::string& path) {
+  const auto deadline = std::chrono::steady_clock::now() + kBusyTimeout;
+  for (;;) {
+    const int code = sqlite3_exec(database, "PRAGMA journal_mode = WAL", nullptr, nullptr, nullptr);
+    if (code == SQLITE_OK) return;
+    if ((code & 0xff) != SQLITE_BUSY || std::chrono::steady_clock::now() > deadline)
+      sqlite::fail(database, path, "cannot switch to the WAL journal", code);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
 }
 
 // Creates the schema in an empty database, or checks the version of ours.
@@ -117,10 +136,9 @@ LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
     if (code != SQLITE_OK) sqlite::fail(database_, path_, "cannot open", code);
     sqlite3_extended_result_codes(database_, 1);
     // Another process writing waits up to 5 s for us, and we for it.
-    sqlite3_busy_timeout(database_, 5000);
+    sqlite3_busy_timeout(database_, static_cast<int>(kBusyTimeout.count()));
     // The first read of the file: a file that is not a database fails here.
-    sqlite::Statement journal_mode(database_, path_, "PRAGMA journal_mode = WAL");
-    journal_mode.run();
+    enable_wal(database_, path_);
     // WAL with synchronous=NORMAL survives a killed process but may lose the last
     // commits on power loss; FULL syncs the WAL at every commit, so an edit that
     // returned is on disk.

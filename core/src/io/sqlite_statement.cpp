@@ -60,7 +60,7 @@ bool Statement::step() {
   const int code = sqlite3_step(statement_);
   if (code == SQLITE_ROW) return true;
   if (code == SQLITE_DONE) return false;
-  fail(database_, where_, "query failed", code);
+  fail(database_, where_, std::string("query failed (") + sqlite3_sql(statement_) + ")", code);
 }
 
 void Statement::run() {
