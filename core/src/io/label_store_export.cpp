@@ -115,12 +115,17 @@ void LabelStore::export_csv(const std::string& path, const LabelFilter& filter) 
   file.commit();
 }
 
-void LabelStore::export_json(const std::string& path, const LabelFilter& filter) const {
+std::string labels_json(const std::vector<Label>& labels) {
   nlohmann::json array = nlohmann::json::array();
-  for (const Label& label : list(filter)) array.push_back(label_rows::to_json(label));
+  for (const Label& label : labels) array.push_back(label_rows::to_json(label));
   const nlohmann::json document{{"labels", std::move(array)}};
+  return document.dump(2) + "\n";
+}
+
+void LabelStore::export_json(const std::string& path, const LabelFilter& filter) const {
+  const std::string text = labels_json(list(filter));
   AtomicFile file(path);
-  file.write(document.dump(2) + "\n");
+  file.write(text);
   file.commit();
 }
 

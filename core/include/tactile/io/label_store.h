@@ -5,7 +5,8 @@
 // Every edit is one transaction that also writes its journal rows, so an edit
 // that returned survives a killed process or a power cut. Several processes may
 // share one database: writers wait for each other (busy timeout) instead of
-// failing.
+// failing. One LabelStore is one connection: use it from one thread at a time
+// (open one per thread for parallel work).
 
 #include <cstdint>
 #include <optional>
@@ -39,6 +40,9 @@ struct JournalEntry {
   bool undone = false;
   int64_t batch = 0;  // rows written by one call (add_many, remove_where, undo) share a batch
 };
+
+// The JSON export's document for these labels: {"labels": [...]}, indented.
+std::string labels_json(const std::vector<Label>& labels);
 
 class LabelStore {
  public:
@@ -89,7 +93,7 @@ class LabelStore {
   // undone (possible with per-annotator undo), leaving the store unchanged.
   bool undo(const std::string& annotator = {});
   bool redo(const std::string& annotator = {});
-  // The newest `limit` journal rows, newest first.
+  // The newest `limit` journal rows, newest first (a negative limit: all rows).
   std::vector<JournalEntry> journal(int64_t limit = 1000) const;
 
   // Both write a temporary file beside `path` and rename it into place, so a
