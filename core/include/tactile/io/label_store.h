@@ -1,0 +1,116 @@
+#pragma once
+// The LabelStore: every label edit saved at once in a SQLite database, with a
+// journal of who did what and when, undo and redo, and CSV / JSON export.
+//
+// Every edit is one transaction that also writes its journal rows, so an edit
+// that returned survives a killed process or a power cut. Several processes may
+// share one database: writers wait for each other (busy timeout) instead of
+// failing. One LabelStore is one connection: use it from one thread at a time
+// (open one per thread for parallel work).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/io/label.h"
+
+struct sqlite3;
+
+namespace tactile {
+
+// Which labels a query, an export or a bulk removal touches. Unset fields match
+// everything. The overlap bounds select labels whose [t0, t1) intersects
+// [overlapping_t0, overlapping_t1); either bound may be given alone.
+struct LabelFilter {
+  std::optional<std::string> recording, region, class_name;
+  std::optional<LabelSource> source;
+  std::optional<double> overlapping_t0, overlapping_t1;
+};
+
+// One row of the journal. Edits are "insert", "update", "delete"; "undo" and
+// "redo" rows record what an undo or redo changed. before_json / after_json
+// hold the label as JSON (the export's fields), or "" when it did not exist.
+// `undone` is true for an edit that is currently undone.
+struct JournalEntry {
+  int64_t sequence = 0;
+  std::string time, annotator, action;
+  int64_t label_id = 0;
+  std::string before_json, after_json;
+  bool undone = false;
+  int64_t batch = 0;  // rows written by one call (add_many, remove_where, undo) share a batch
+};
+
+// The JSON export's document for these labels: {"labels": [...]}, indented.
+std::string labels_json(const std::vector<Label>& labels);
+
+class LabelStore {
+ public:
+  enum class OpenMode {
+    kCreate,   // create the database file when it is missing
+    kExisting  // a missing file is an error (command-line readers must not create one)
+  };
+
+  // Opens or creates the database: WAL journal, synchronous=FULL, 5 s busy
+  // timeout, schema created or checked. Throws tactile::Error(path, ...) for a
+  // file that is not a SQLite database, a foreign database, or a newer schema.
+  explicit LabelStore(const std::string& path, OpenMode mode = OpenMode::kCreate);
+  ~LabelStore();
+  LabelStore(LabelStore&& other) noexcept;
+  LabelStore& operator=(LabelStore&& other) noexcept;
+  LabelStore(const LabelStore&) = delete;
+  LabelStore& operator=(const LabelStore&) = delete;
+
+  // The store assigns the id and the created / modified times; label.id,
+  // label.created and label.modified are ignored. Validates t0 < t1 (finite),
+  // confidence in [0, 1], non-empty recording, region and class.
+  int64_t add(const Label& label);
+  // Replaces the label with id label.id (keeping its created time); throws if absent.
+  void update(const Label& label);
+  // `annotator` is who removed it, for the journal; "" = the label's own annotator.
+  void remove(int64_t id, const std::string& annotator = {});
+  std::optional<Label> get(int64_t id) const;
+  // Ordered by recording, t0, id.
+  std::vector<Label> list(const LabelFilter& filter = {}) const;
+  // Labels of one recording; "" = all labels.
+  int64_t count(const std::string& recording = {}) const;
+  // All or nothing, in one transaction and one journal batch (undone together).
+  std::vector<int64_t> add_many(const std::vector<Label>& labels);
+  // Removes every label the filter matches, in one transaction; returns how many.
+  int64_t remove_where(const LabelFilter& filter, const std::string& annotator = {});
+
+  // Class vocabulary per skin (the papers' class names), in the given order.
+  // Names must be non-empty and distinct.
+  void set_classes(const std::string& skin, const std::vector<std::string>& classes);
+  // Empty when no vocabulary was set for the skin.
+  std::vector<std::string> classes(const std::string& skin) const;
+
+  // undo() reverts the newest edit batch that is not undone (only that
+  // annotator's when given) and returns false when there is none; redo()
+  // re-applies the most recently undone batch. Both are journalled and each is
+  // its own transaction; any new edit clears the redo chain. Throws
+  // tactile::Error when the label was changed since by an edit that is not
+  // undone (possible with per-annotator undo), leaving the store unchanged.
+  bool undo(const std::string& annotator = {});
+  bool redo(const std::string& annotator = {});
+  // The newest `limit` journal rows, newest first (a negative limit: all rows).
+  std::vector<JournalEntry> journal(int64_t limit = 1000) const;
+
+  // Both write a temporary file beside `path` and rename it into place, so a
+  // failed export leaves no partial file. CSV follows RFC 4180 (CRLF line
+  // ends, fields with commas, quotes or line breaks quoted).
+  void export_csv(const std::string& path, const LabelFilter& filter = {}) const;
+  // {"labels": [{"id", "recording", "t0", "t1", "region", "class", "annotator",
+  //  "source", "confidence", "note", "created", "modified"}]}
+  void export_json(const std::string& path, const LabelFilter& filter = {}) const;
+
+  // Result of PRAGMA integrity_check: "ok" for a sound database.
+  std::string integrity_check() const;
+  const std::string& path() const;
+
+ private:
+  sqlite3* database_ = nullptr;
+  std::string path_;
+};
+
+}  // namespace tactile

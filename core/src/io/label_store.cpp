@@ -1,0 +1,310 @@
+#include "tactile/io/label_store.h"
+
+#include <chrono>
+#include <filesystem>
+#include <set>
+#include <thread>
+#include <utility>
+
+#include "label_rows.h"
+#include "sqlite_statement.h"
+#include "tactile/error.h"
+
+namespace tactile {
+
+namespace {
+
+// Version 1: tables store_schema, labels, classes, journal.
+constexpr int64_t kSchemaVersion = 1;
+
+// How long a writer waits for another process's transaction before failing.
+constexpr std::chrono::milliseconds kBusyTimeout(5000);
+
+constexpr const char* kCreateSchema = R"sql(
+CREATE TABLE store_schema (version INTEGER NOT NULL);
+CREATE TABLE labels (
+  id INTEGER PRIMARY KEY AUTOINCREMENT,
+  recording TEXT NOT NULL,
+  t0 REAL NOT NULL,
+  t1 REAL NOT NULL,
+  region TEXT NOT NULL,
+  class TEXT NOT NULL,
+  annotator TEXT NOT NULL,
+  source TEXT NOT NULL,
+  confidence REAL NOT NULL,
+  note TEXT NOT NULL,
+  created TEXT NOT NULL,
+  modified TEXT NOT NULL,
+  CHECK (t0 < t1 AND confidence BETWEEN 0 AND 1));
+CREATE INDEX labels_by_time ON labels (recording, t0, id);
+CREATE TABLE classes (
+  skin TEXT NOT NULL,
+  position INTEGER NOT NULL,
+  name TEXT NOT NULL,
+  PRIMARY KEY (skin, position),
+  UNIQUE (skin, name));
+CREATE TABLE journal (
+  sequence INTEGER PRIMARY KEY AUTOINCREMENT,
+  batch INTEGER NOT NULL,
+  time TEXT NOT NULL,
+  annotator TEXT NOT NULL,
+  action TEXT NOT NULL,
+  label_id INTEGER NOT NULL,
+  before_json TEXT NOT NULL,
+  after_json TEXT NOT NULL,
+  undone INTEGER NOT NULL DEFAULT 0,
+  undone_by INTEGER);
+CREATE INDEX journal_by_batch ON journal (batch);
+CREATE INDEX journal_by_undo ON journal (undone_by);
+)sql";
+
+int64_t single_integer(sqlite3* database, const std::string& where, const std::string& sql) {
+  sqlite::Statement select(database, where, sql);
+  select.step();
+  return select.integer(0);
+}
+
+// Switching a new database to WAL takes an exclusive lock without calling the
+// busy handler, so a second process opening the same new file at that moment
+// gets SQLITE_BUSY at once. Retry for as long as the busy timeout would wait.
+void enable_wal(sqlite3* database, const std::string& path) {
+  const auto deadline = std::chrono::steady_clock::now() + kBusyTimeout;
+  for (;;) {
+    const int code = sqlite3_exec(database, "PRAGMA journal_mode = WAL", nullptr, nullptr, nullptr);
+    if (code == SQLITE_OK) return;
+    if ((code & 0xff) != SQLITE_BUSY || std::chrono::steady_clock::now() > deadline)
+      sqlite::fail(database, path, "cannot switch to the WAL journal", code);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+// Creates the schema in an empty database, or checks the version of ours.
+void prepare_schema(sqlite3* database, const std::string& path) {
+  sqlite::Transaction transaction(database, path);
+  const bool ours = single_integer(database, path,
+                                   "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' "
+                                   "AND name = 'store_schema'") > 0;
+  if (!ours) {
+    if (single_integer(database, path, "SELECT COUNT(*) FROM sqlite_master") > 0)
+      throw Error(path, "a SQLite database, but not a label store (no store_schema table)");
+    sqlite::execute(database, path, kCreateSchema);
+    sqlite::Statement insert(database, path, "INSERT INTO store_schema (version) VALUES (?)");
+    insert.bind(1, kSchemaVersion);
+    insert.run();
+  } else {
+    const int64_t version = single_integer(database, path, "SELECT MAX(version) FROM store_schema");
+    if (version > kSchemaVersion)
+      throw Error(path, "label store schema version " + std::to_string(version) +
+                            " is newer than this program reads (" + std::to_string(kSchemaVersion) +
+                            "); update tactile");
+    if (version < 1)
+      throw Error(path, "label store schema version " + std::to_string(version) + " is invalid");
+  }
+  transaction.commit();
+}
+
+// Inserts a new label (id and times assigned here) and journals it.
+int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch) {
+  label.id = 0;
+  label.created = label.modified = label_rows::now_utc();
+  label_rows::store(database, path, label);
+  label.id = sqlite3_last_insert_rowid(database);
+  label_rows::write_journal(database, path, batch, label.annotator, "insert", label.id, "",
+                            label_rows::state_json(label));
+  return label.id;
+}
+
+// Deletes an existing label and journals it.
+void delete_existing(sqlite3* database, const std::string& path, const Label& label,
+                     const std::string& annotator, int64_t batch) {
+  label_rows::erase(database, path, label.id);
+  label_rows::write_journal(database, path, batch, annotator.empty() ? label.annotator : annotator,
+                            "delete", label.id, label_rows::state_json(label), "");
+}
+
+}  // namespace
+
+//---- Opening
+
+LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
+  if (mode == OpenMode::kExisting && !std::filesystem::exists(path))
+    throw Error(path, "no such label database");
+  int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX;
+  if (mode == OpenMode::kCreate) flags |= SQLITE_OPEN_CREATE;
+  const int code = sqlite3_open_v2(path.c_str(), &database_, flags, nullptr);
+  try {
+    if (code != SQLITE_OK) sqlite::fail(database_, path_, "cannot open", code);
+    sqlite3_extended_result_codes(database_, 1);
+    // Another process writing waits up to 5 s for us, and we for it.
+    sqlite3_busy_timeout(database_, static_cast<int>(kBusyTimeout.count()));
+    // The first read of the file: a file that is not a database fails here.
+    enable_wal(database_, path_);
+    // WAL with synchronous=NORMAL survives a killed process but may lose the last
+    // commits on power loss; FULL syncs the WAL at every commit, so an edit that
+    // returned is on disk.
+    sqlite::execute(database_, path_, "PRAGMA synchronous = FULL");
+    prepare_schema(database_, path_);
+  } catch (...) {
+    sqlite3_close_v2(database_);
+    database_ = nullptr;
+    throw;
+  }
+}
+
+LabelStore::~LabelStore() { sqlite3_close_v2(database_); }
+
+LabelStore::LabelStore(LabelStore&& other) noexcept
+    : database_(std::exchange(other.database_, nullptr)), path_(std::move(other.path_)) {}
+
+LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
+  if (this != &other) {
+    sqlite3_close_v2(database_);
+    database_ = std::exchange(other.database_, nullptr);
+    path_ = std::move(other.path_);
+  }
+  return *this;
+}
+
+const std::string& LabelStore::path() const { return path_; }
+
+std::string LabelStore::integrity_check() const {
+  sqlite::Statement check(database_, path_, "PRAGMA integrity_check");
+  std::string report;
+  while (check.step()) {
+    if (!report.empty()) report += '\n';
+    report += check.text(0);
+  }
+  return report;
+}
+
+//---- Edits
+
+int64_t LabelStore::add(const Label& label) {
+  label_rows::validate(label, path_ + " new label");
+  sqlite::Transaction transaction(database_, path_);
+  const int64_t id = insert_new(database_, path_, label, label_rows::next_batch(database_, path_));
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+  return id;
+}
+
+std::vector<int64_t> LabelStore::add_many(const std::vector<Label>& labels) {
+  // Validate everything first: one bad label rejects the whole batch.
+  for (size_t i = 0; i < labels.size(); ++i)
+    label_rows::validate(labels[i], path_ + " new label " + std::to_string(i + 1) + " of " +
+                                        std::to_string(labels.size()));
+  std::vector<int64_t> ids;
+  if (labels.empty()) return ids;
+  ids.reserve(labels.size());
+  sqlite::Transaction transaction(database_, path_);
+  const int64_t batch = label_rows::next_batch(database_, path_);
+  for (const Label& label : labels) ids.push_back(insert_new(database_, path_, label, batch));
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+  return ids;
+}
+
+void LabelStore::update(const Label& label) {
+  const std::string where = label_rows::where_label(path_, label.id);
+  label_rows::validate(label, where);
+  sqlite::Transaction transaction(database_, path_);
+  const std::optional<Label> before = label_rows::load(database_, path_, label.id);
+  if (!before) throw Error(where, "no such label to update");
+  Label after = label;
+  after.created = before->created;
+  after.modified = label_rows::now_utc();
+  label_rows::store(database_, path_, after);
+  label_rows::write_journal(database_, path_, label_rows::next_batch(database_, path_),
+                            after.annotator, "update", after.id, label_rows::state_json(before),
+                            label_rows::state_json(after));
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+}
+
+void LabelStore::remove(int64_t id, const std::string& annotator) {
+  sqlite::Transaction transaction(database_, path_);
+  const std::optional<Label> before = label_rows::load(database_, path_, id);
+  if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
+  delete_existing(database_, path_, *before, annotator, label_rows::next_batch(database_, path_));
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+}
+
+int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& annotator) {
+  sqlite::Transaction transaction(database_, path_);
+  const label_rows::FilterClause clause = label_rows::filter_clause(filter);
+  std::vector<Label> doomed;
+  {
+    sqlite::Statement select(database_, path_,
+                             std::string("SELECT ") + label_rows::kColumns + " FROM labels" +
+                                 clause.sql + " ORDER BY recording, t0, id");
+    clause.bind(select);
+    while (select.step()) doomed.push_back(label_rows::read_label(select, path_));
+  }
+  if (doomed.empty()) return 0;
+  const int64_t batch = label_rows::next_batch(database_, path_);
+  for (const Label& label : doomed) delete_existing(database_, path_, label, annotator, batch);
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+  return static_cast<int64_t>(doomed.size());
+}
+
+//---- Queries
+
+std::optional<Label> LabelStore::get(int64_t id) const {
+  return label_rows::load(database_, path_, id);
+}
+
+std::vector<Label> LabelStore::list(const LabelFilter& filter) const {
+  const label_rows::FilterClause clause = label_rows::filter_clause(filter);
+  sqlite::Statement select(database_, path_,
+                           std::string("SELECT ") + label_rows::kColumns + " FROM labels" +
+                               clause.sql + " ORDER BY recording, t0, id");
+  clause.bind(select);
+  std::vector<Label> labels;
+  while (select.step()) labels.push_back(label_rows::read_label(select, path_));
+  return labels;
+}
+
+int64_t LabelStore::count(const std::string& recording) const {
+  if (recording.empty()) return single_integer(database_, path_, "SELECT COUNT(*) FROM labels");
+  sqlite::Statement select(database_, path_, "SELECT COUNT(*) FROM labels WHERE recording = ?");
+  select.bind(1, recording);
+  select.step();
+  return select.integer(0);
+}
+
+//---- Class vocabulary
+
+void LabelStore::set_classes(const std::string& skin, const std::vector<std::string>& classes) {
+  const std::string where = path_ + " classes of skin '" + skin + "'";
+  if (skin.empty()) throw Error(path_ + " classes", "skin name is empty");
+  std::set<std::string> seen;
+  for (const std::string& name : classes) {
+    if (name.empty()) throw Error(where, "a class name is empty");
+    if (!seen.insert(name).second) throw Error(where, "class '" + name + "' is listed twice");
+  }
+  sqlite::Transaction transaction(database_, where);
+  sqlite::Statement clear(database_, where, "DELETE FROM classes WHERE skin = ?");
+  clear.bind(1, skin);
+  clear.run();
+  sqlite::Statement insert(database_, where,
+                           "INSERT INTO classes (skin, position, name) VALUES (?, ?, ?)");
+  for (size_t position = 0; position < classes.size(); ++position) {
+    insert.reset();
+    insert.bind(1, skin).bind(2, static_cast<int64_t>(position)).bind(3, classes[position]);
+    insert.run();
+  }
+  transaction.commit();
+}
+
+std::vector<std::string> LabelStore::classes(const std::string& skin) const {
+  sqlite::Statement select(database_, path_,
+                           "SELECT name FROM classes WHERE skin = ? ORDER BY position");
+  select.bind(1, skin);
+  std::vector<std::string> names;
+  while (select.step()) names.push_back(select.text(0));
+  return names;
+}
+
+}  // namespace tactile

@@ -1,0 +1,146 @@
+// `tactile labels`: databases built with the core API, the binary run as a user would.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "tactile/io/label_store.h"
+
+namespace tactile {
+namespace {
+
+class LabelsCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (std::filesystem::temp_directory_path() / "labels_cli_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    directory_ = pattern;
+    database_ = (directory_ / "labels.db").string();
+    LabelStore store(database_);
+    Label label;
+    label.recording = "nao/s01";
+    label.t0 = 0.5;
+    label.t1 = 1.5;
+    label.region = "front";
+    label.class_name = "stroke";
+    label.annotator = "ana";
+    label.note = "comma, \"quote\"";
+    store.add(label);
+    label.t0 = 2.0;
+    label.t1 = 2.25;
+    label.class_name = "poke";
+    label.source = LabelSource::kSegmenter;
+    label.confidence = 0.6;
+    label.note.clear();
+    store.add(label);
+    label.recording = "nao/s02";
+    label.class_name = "pat";
+    store.add(label);
+    store.set_classes("nao", {"pat", "poke", "stroke"});
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  // Runs `tactile ARGUMENTS`, stdout to `output` in the test directory; returns the exit code.
+  int run(const std::string& arguments) {
+    const std::string command = std::string(TACTILE_BIN_DIR) + "/tactile " + arguments + " > '" +
+                                (directory_ / "stdout.txt").string() + "' 2> '" +
+                                (directory_ / "stderr.txt").string() + "'";
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  std::string text_of(const std::string& name) const {
+    std::ifstream stream(directory_ / name, std::ios::binary);
+    std::stringstream text;
+    text << stream.rdbuf();
+    return text.str();
+  }
+
+  std::filesystem::path directory_;
+  std::string database_;
+};
+
+TEST_F(LabelsCommandTest, ExportJsonWritesFilteredLabels) {
+  const std::string out = (directory_ / "out.json").string();
+  ASSERT_EQ(run("labels export '" + database_ + "' --json '" + out +
+                "' --recording nao/s01 --source segmenter"),
+            0)
+      << text_of("stderr.txt");
+  const nlohmann::json document = nlohmann::json::parse(text_of("out.json"));
+  ASSERT_EQ(document.at("labels").size(), 1u);
+  const nlohmann::json& label = document["labels"][0];
+  EXPECT_EQ(label.at("recording"), "nao/s01");
+  EXPECT_EQ(label.at("class"), "poke");
+  EXPECT_EQ(label.at("source"), "segmenter");
+  EXPECT_EQ(label.at("t0"), 2.0);
+  EXPECT_EQ(label.at("t1"), 2.25);
+  EXPECT_EQ(label.at("confidence"), 0.6);
+}
+
+TEST_F(LabelsCommandTest, ExportCsvQuotesNotes) {
+  ASSERT_EQ(run("labels export '" + database_ + "' --csv '" + (directory_ / "out.csv").string() +
+                "' --recording nao/s01"),
+            0)
+      << text_of("stderr.txt");
+  const std::string csv = text_of("out.csv");
+  EXPECT_NE(csv.find(",stroke,ana,manual,1,\"comma, \"\"quote\"\"\","), std::string::npos) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+}
+
+TEST_F(LabelsCommandTest, ExportNeedsExactlyOneFormat) {
+  const std::string out = (directory_ / "out.json").string();
+  EXPECT_NE(run("labels export '" + database_ + "'"), 0);
+  EXPECT_NE(text_of("stderr.txt").find("--csv"), std::string::npos);
+  EXPECT_NE(run("labels export '" + database_ + "' --json '" + out + "' --csv '" + out + "'"), 0);
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST_F(LabelsCommandTest, UnknownSourceIsNamed) {
+  EXPECT_EQ(run("labels export '" + database_ + "' --json '" + (directory_ / "o.json").string() +
+                "' --source oracle"),
+            1);
+  EXPECT_NE(text_of("stderr.txt").find("--source"), std::string::npos);
+}
+
+TEST_F(LabelsCommandTest, MissingDatabaseIsAnErrorAndIsNotCreated) {
+  const std::string missing = (directory_ / "missing.db").string();
+  EXPECT_EQ(
+      run("labels export '" + missing + "' --json '" + (directory_ / "o.json").string() + "'"), 1);
+  EXPECT_NE(text_of("stderr.txt").find(missing), std::string::npos);
+  EXPECT_EQ(run("labels list '" + missing + "'"), 1);
+  EXPECT_FALSE(std::filesystem::exists(missing));
+}
+
+TEST_F(LabelsCommandTest, ListPrintsATableAndJson) {
+  ASSERT_EQ(run("labels list '" + database_ + "' --recording nao/s02"), 0);
+  const std::string table = text_of("stdout.txt");
+  EXPECT_EQ(table.rfind("id", 0), 0u) << table;
+  EXPECT_NE(table.find("pat"), std::string::npos);
+  EXPECT_EQ(table.find("stroke"), std::string::npos);
+  EXPECT_NE(table.find("1 label\n"), std::string::npos);
+  ASSERT_EQ(run("labels list '" + database_ + "' --json"), 0);
+  EXPECT_EQ(nlohmann::json::parse(text_of("stdout.txt")).at("labels").size(), 3u);
+}
+
+TEST_F(LabelsCommandTest, ClassesPrintsTheVocabularyInOrder) {
+  ASSERT_EQ(run("labels classes '" + database_ + "' nao"), 0);
+  EXPECT_EQ(text_of("stdout.txt"), "pat\npoke\nstroke\n");
+  EXPECT_EQ(run("labels classes '" + database_ + "' fur"), 1);
+  EXPECT_NE(text_of("stderr.txt").find("fur"), std::string::npos);
+}
+
+TEST_F(LabelsCommandTest, NotADatabaseIsReported) {
+  std::ofstream(directory_ / "junk.db") << "this is not sqlite, just text that is long enough";
+  EXPECT_EQ(run("labels list '" + (directory_ / "junk.db").string() + "'"), 1);
+  EXPECT_NE(text_of("stderr.txt").find("not a SQLite database"), std::string::npos)
+      << text_of("stderr.txt");
+}
+
+}  // namespace
+}  // namespace tactile
