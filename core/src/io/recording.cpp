@@ -8,7 +8,8 @@ namespace tactile {
 double Stream::duration() const {
   const int64_t count = sample_count();
   if (count == 0) return 0.0;
-  if (!timestamps.empty()) return timestamps.back() - timestamps.front() + (rate_hz > 0 ? 1.0 / rate_hz : 0.0);
+  if (!timestamps.empty())
+    return timestamps.back() - timestamps.front() + (rate_hz > 0 ? 1.0 / rate_hz : 0.0);
   return rate_hz > 0 ? static_cast<double>(count) / rate_hz : 0.0;
 }
 
