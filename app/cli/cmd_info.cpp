@@ -42,7 +42,7 @@ void print_text(const RecordingFile& file, std::optional<int64_t> label_count,
   out << "file:      " << file.path() << "\n"
       << "recording: " << file.recording_id() << "\n"
       << "layout:    " << file.layout_id() << "\n"
-      << "metadata:  " << (file.metadata().empty() ? "(none)" : "") << "\n";
+      << "metadata:" << (file.metadata().empty() ? "  (none)" : "") << "\n";
   for (const auto& [key, value] : file.metadata()) out << "  " << key << " = " << value << "\n";
   out << "streams:   " << file.streams().size() << "\n";
   for (const StreamInfo& stream : file.streams()) {
