@@ -231,6 +231,16 @@ TEST_F(CsvWide, CapturesAreLaidEndToEndChannelMajorWithGroundTruthLabels) {
   EXPECT_EQ(second.annotator, "import");
 }
 
+TEST_F(CsvWide, ByteOrderMarkOfSpreadsheetsIsNotPartOfTheFirstNumber) {
+  write_text(captures,
+             "\xEF\xBB\xBF"
+             "1.5,2,3\r\n4,5,6\r\n");
+  const ImportedRecording imported =
+      import_csv_wide(captures, strip_layout(1), options("\xEF\xBB\xBFpat\r\npoke\r\n"));
+  EXPECT_EQ(imported.recording.streams[0].samples(0, 0), 1.5f);
+  EXPECT_EQ(imported.labels[0].class_name, "pat");
+}
+
 TEST_F(CsvWide, LayoutClassesAreTheDefaultVocabulary) {
   write_text(captures, "1,2,3\n4,5,6\n");
   CsvWideOptions wide = options("2\ntickle\n");

@@ -198,6 +198,25 @@ TEST(Hdf5File, OverviewHoldsTheMinAndMaxOfEachBlock) {
   }
 }
 
+TEST(Hdf5File, OverviewSkipsNanGaps) {
+  TemporaryDirectory directory;
+  const std::string path = directory.file("gaps.h5");
+  Recording recording;
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 100.0;
+  stream.channels = {"a"};
+  stream.samples = SampleMatrix::Constant(300, 1, std::nanf(""));
+  stream.samples(10, 0) = 2.0f;
+  stream.samples(20, 0) = -3.0f;
+  recording.streams = {stream};
+  write_recording(path, recording);
+  const auto [minima, maxima] = RecordingFile(path).read_overview("skin");
+  EXPECT_EQ(minima(0, 0), -3.0f);
+  EXPECT_EQ(maxima(0, 0), 2.0f);
+  EXPECT_TRUE(std::isnan(minima(1, 0)));  // a block with no number at all
+}
+
 TEST(Hdf5File, SamplesAreChunkedPerChannelAndCompressed) {
   TemporaryDirectory directory;
   const std::string path = directory.file("chunks.h5");

@@ -65,6 +65,8 @@ bool LineReader::next() {
   }
   ++number_;
   if (!line_.empty() && line_.back() == '\r') line_.pop_back();
+  // Spreadsheet programs start UTF-8 files with a byte order mark; it is not text.
+  if (number_ == 1 && line_.starts_with("\xEF\xBB\xBF")) line_.erase(0, 3);
   return true;
 }
 
