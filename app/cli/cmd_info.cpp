@@ -1,12 +1,89 @@
+// `tactile info FILE [--labels DB] [--json]`: what a recording holds, read from its
+// attributes and shapes only (no samples are loaded).
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
 #include "commands.h"
+#include "tactile/io/hdf5_file.h"
 
 namespace tactile::cli {
 
-// Placeholder until the command is written; it refuses to run.
+namespace {
+
+struct InfoOptions {
+  std::string file;
+  std::string labels;
+  bool json = false;
+};
+
+nlohmann::json info_json(const RecordingFile& file, std::optional<int64_t> label_count) {
+  nlohmann::json streams = nlohmann::json::array();
+  for (const StreamInfo& stream : file.streams())
+    streams.push_back({{"name", stream.name},
+                       {"rate_hz", stream.rate_hz},
+                       {"channels", stream.channels},
+                       {"samples", stream.sample_count},
+                       {"duration_s", stream.duration()}});
+  return {{"layout", file.layout_id()},
+          {"recording", file.recording_id()},
+          {"metadata", file.metadata()},
+          {"streams", streams},
+          {"labels", label_count ? nlohmann::json(*label_count) : nlohmann::json(nullptr)}};
+}
+
+void print_text(const RecordingFile& file, std::optional<int64_t> label_count,
+                const std::string& labels_database) {
+  std::ostringstream out;
+  out << "file:      " << file.path() << "\n"
+      << "recording: " << file.recording_id() << "\n"
+      << "layout:    " << file.layout_id() << "\n"
+      << "metadata:" << (file.metadata().empty() ? "  (none)" : "") << "\n";
+  for (const auto& [key, value] : file.metadata()) out << "  " << key << " = " << value << "\n";
+  out << "streams:   " << file.streams().size() << "\n";
+  for (const StreamInfo& stream : file.streams()) {
+    out << "  " << stream.name << ": " << stream.rate_hz << " Hz, " << stream.channels.size()
+        << " channels, " << stream.sample_count << " samples, " << std::fixed
+        << std::setprecision(3) << stream.duration() << " s"
+        << (stream.has_timestamps ? " (irregular, time stamped)" : "") << "\n";
+    out.unsetf(std::ios::fixed);
+  }
+  out << "labels:    ";
+  if (label_count)
+    out << *label_count << " in " << labels_database << "\n";
+  else
+    out << (labels_database.empty() ? "(no database given)" : "(label store not wired yet)")
+        << "\n";
+  std::cout << out.str();
+}
+
+void run_info(const InfoOptions& options) {
+  const RecordingFile file(options.file);
+  std::optional<int64_t> label_count;
+  // TODO(lead): if (!options.labels.empty()) label_count =
+  // LabelStore(options.labels).count(file.recording_id());
+  if (!options.labels.empty() && !label_count)
+    std::cerr << "tactile info: --labels is not wired to the label store yet\n";
+  if (options.json)
+    std::cout << info_json(file, label_count).dump(2) << "\n";
+  else
+    print_text(file, label_count, options.labels);
+}
+
+}  // namespace
+
 void register_info(CLI::App& app) {
-  app.add_subcommand("info", "(not yet available)")->callback([] {
-    throw CLI::RuntimeError("info: not yet available", 2);
-  });
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* command =
+      app.add_subcommand("info", "Show a recording's layout, metadata, streams and label count");
+  command->add_option("FILE", options->file, "Recording file (.h5)")->required();
+  command->add_option("--labels", options->labels, "Label database (SQLite) to count labels in");
+  command->add_flag("--json", options->json, "Print JSON instead of text");
+  command->callback([options] { run_info(*options); });
 }
 
 }  // namespace tactile::cli

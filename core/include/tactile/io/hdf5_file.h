@@ -1,0 +1,88 @@
+#pragma once
+// Recordings on disk: the native HDF5 file (layout described in docs/FILE_FORMAT.md).
+// RecordingFile opens a file and reads only its attributes and dataset shapes, so a
+// viewer can show an hour of data from the min/max overview and read the few chunks
+// of a time range on demand.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tactile/io/recording.h"
+
+namespace tactile {
+
+// Current value of the root attribute `format_version`.
+inline constexpr int kRecordingFormatVersion = 1;
+// Samples per block of the min/max overview written by write_recording.
+inline constexpr int64_t kOverviewBlock = 256;
+
+// Writes the whole recording to a temporary file beside `path`, then renames it over
+// `path`: readers see the old file or the new one, never half of one. Throws
+// tactile::Error (naming the file and the stream) on invalid content or I/O failure,
+// and leaves no temporary file behind.
+void write_recording(const std::string& path, const Recording& recording);
+
+// Reads everything. Throws tactile::Error naming the file and the dataset.
+Recording read_recording(const std::string& path);
+
+struct StreamInfo {
+  std::string name;
+  double rate_hz = 0.0;
+  double start_time = 0.0;
+  std::vector<std::string> channels;
+  std::vector<std::string> units;
+  int64_t sample_count = 0;
+  bool has_timestamps = false;
+  // Irregular streams need their time stamps for the duration; the first and last
+  // are read when the file is opened. Meaningful only when has_timestamps.
+  double first_timestamp = 0.0;
+  double last_timestamp = 0.0;
+  // Seconds covered, as Stream::duration() of the same stream.
+  double duration() const;
+};
+
+class RecordingFile {
+ public:
+  // Opens the file and checks its format, attributes and every dataset shape.
+  // Throws tactile::Error naming the file and the offending dataset.
+  explicit RecordingFile(const std::string& path);
+  ~RecordingFile();
+  RecordingFile(RecordingFile&&) noexcept;
+  RecordingFile& operator=(RecordingFile&&) noexcept;
+  RecordingFile(const RecordingFile&) = delete;
+  RecordingFile& operator=(const RecordingFile&) = delete;
+
+  const std::string& path() const { return path_; }
+  const std::string& layout_id() const { return layout_id_; }
+  const std::string& recording_id() const { return recording_id_; }
+  const Metadata& metadata() const { return metadata_; }
+  const std::vector<StreamInfo>& streams() const { return streams_; }
+  // Throws tactile::Error when the file has no such stream.
+  const StreamInfo& stream(const std::string& name) const;
+
+  // Samples [first, first + count) of every channel: rows = samples, cols = channels.
+  SampleMatrix read(const std::string& stream, int64_t first, int64_t count) const;
+  std::vector<float> read_channel(const std::string& stream, int channel, int64_t first,
+                                  int64_t count) const;
+  // Empty for a regularly sampled stream (as Stream::timestamps).
+  std::vector<double> read_timestamps(const std::string& stream) const;
+  // Per-block {min, max}: rows = blocks of overview_block() samples, cols = channels.
+  std::pair<SampleMatrix, SampleMatrix> read_overview(const std::string& stream) const;
+  int64_t overview_block() const { return overview_block_; }
+  Recording read_all() const;
+
+ private:
+  struct Handle;  // the open HDF5 file
+  std::string path_;
+  std::unique_ptr<Handle> file_;
+  std::string layout_id_;
+  std::string recording_id_;
+  Metadata metadata_;
+  std::vector<StreamInfo> streams_;
+  int64_t overview_block_ = kOverviewBlock;
+};
+
+}  // namespace tactile

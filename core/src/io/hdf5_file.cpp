@@ -1,0 +1,281 @@
+// Reading the native HDF5 file; the layout is documented in docs/FILE_FORMAT.md.
+#include "tactile/io/hdf5_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "hdf5_object.h"
+
+namespace tactile {
+
+using hdf5::checked;
+using hdf5::fail;
+using hdf5::Object;
+
+struct RecordingFile::Handle {
+  Object file;
+};
+
+namespace {
+
+std::string shape_text(const std::vector<hsize_t>& shape) {
+  std::string text;
+  for (hsize_t extent : shape) text += "[" + std::to_string(extent) + "]";
+  return text.empty() ? "scalar" : text;
+}
+
+// Opens a dataset and checks its element class and exact shape.
+Object open_checked(hid_t group, const std::string& name, const std::vector<hsize_t>& shape,
+                    const std::string& where) {
+  Object dataset = hdf5::open_dataset(group, name, where);
+  const H5T_class_t type_class = hdf5::dataset_class(dataset.id(), where);
+  if (type_class != H5T_FLOAT && type_class != H5T_INTEGER) throw Error(where, "expected numbers");
+  const std::vector<hsize_t> actual = hdf5::dataset_shape(dataset.id(), where);
+  if (actual != shape)
+    throw Error(where, "shape " + shape_text(actual) + ", expected " + shape_text(shape));
+  return dataset;
+}
+
+// Reads the [row_count][column_count] block at (row_first, column_first) of a 2-D or
+// 1-D (row arguments ignored) dataset into contiguous memory, converting to `memory_type`.
+void read_block(hid_t dataset, hid_t memory_type, int rank, hsize_t row_first, hsize_t row_count,
+                hsize_t column_first, hsize_t column_count, void* out, const std::string& where) {
+  if (row_count == 0 || column_count == 0) return;
+  Object file_space = checked(H5Dget_space(dataset), H5Sclose, where, "cannot read dataspace");
+  const hsize_t start[2] = {row_first, column_first};
+  const hsize_t count[2] = {row_count, column_count};
+  const hsize_t* start_of_rank = rank == 2 ? start : start + 1;
+  const hsize_t* count_of_rank = rank == 2 ? count : count + 1;
+  if (H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, start_of_rank, nullptr, count_of_rank,
+                          nullptr) < 0)
+    fail(where, "cannot select range");
+  Object memory_space = checked(H5Screate_simple(rank, count_of_rank, nullptr), H5Sclose, where,
+                                "cannot create dataspace");
+  if (H5Dread(dataset, memory_type, memory_space.id(), file_space.id(), H5P_DEFAULT, out) < 0)
+    fail(where, "cannot read");
+}
+
+herr_t collect_link_name(hid_t, const char* name, const H5L_info_t*, void* data) {
+  static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+  return 0;
+}
+
+// Stream names in the order they were written when the file tracks it (ours do),
+// else in name order (a file made by another tool).
+std::vector<std::string> stream_names(hid_t streams, const std::string& where) {
+  Object properties =
+      checked(H5Gget_create_plist(streams), H5Pclose, where, "cannot read group properties");
+  unsigned order_flags = 0;
+  H5Pget_link_creation_order(properties.id(), &order_flags);
+  const H5_index_t index_type =
+      (order_flags & H5P_CRT_ORDER_INDEXED) != 0 ? H5_INDEX_CRT_ORDER : H5_INDEX_NAME;
+  std::vector<std::string> names;
+  hsize_t index = 0;
+  if (H5Literate(streams, index_type, H5_ITER_INC, &index, collect_link_name, &names) < 0)
+    fail(where, "cannot list streams");
+  return names;
+}
+
+StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::string& path,
+                            int64_t& overview_block) {
+  const std::string where = path + ":/streams/" + name;
+  Object group = hdf5::open_group(streams, name, where);
+  StreamInfo info;
+  info.name = name;
+  info.rate_hz = hdf5::read_double_attribute(group.id(), "rate_hz", where);
+  info.start_time = hdf5::read_double_attribute(group.id(), "start_time", where);
+  if (!std::isfinite(info.rate_hz) || info.rate_hz < 0.0)
+    throw Error(where + " attribute rate_hz", "invalid rate " + std::to_string(info.rate_hz));
+  if (!std::isfinite(info.start_time))
+    throw Error(where + " attribute start_time", "not a finite time");
+  const int64_t block = hdf5::read_int_attribute(group.id(), "overview_block", where);
+  if (block <= 0) throw Error(where + " attribute overview_block", "must be positive");
+  if (overview_block > 0 && block != overview_block)
+    throw Error(where + " attribute overview_block", std::to_string(block) + " differs from " +
+                                                         std::to_string(overview_block) +
+                                                         " in an earlier stream");
+  overview_block = block;
+  info.channels = hdf5::read_strings(group.id(), "channels", where + "/channels");
+  info.units = hdf5::read_strings(group.id(), "units", where + "/units");
+  if (info.units.size() != info.channels.size())
+    throw Error(where + "/units", std::to_string(info.units.size()) + " units for " +
+                                      std::to_string(info.channels.size()) + " channels");
+
+  Object samples = hdf5::open_dataset(group.id(), "samples", where + "/samples");
+  const H5T_class_t samples_class = hdf5::dataset_class(samples.id(), where + "/samples");
+  if (samples_class != H5T_FLOAT && samples_class != H5T_INTEGER)
+    throw Error(where + "/samples", "expected numbers");
+  const std::vector<hsize_t> shape = hdf5::dataset_shape(samples.id(), where + "/samples");
+  if (shape.size() != 2 || shape[0] != info.channels.size())
+    throw Error(where + "/samples", "shape " + shape_text(shape) + ", expected [" +
+                                        std::to_string(info.channels.size()) +
+                                        "][samples] for the channels listed");
+  info.sample_count = static_cast<int64_t>(shape[1]);
+  const auto channels = static_cast<hsize_t>(info.channels.size());
+  const auto samples_count = static_cast<hsize_t>(info.sample_count);
+
+  info.has_timestamps = hdf5::has_link(group.id(), "timestamps");
+  if (info.has_timestamps) {
+    const std::string place = where + "/timestamps";
+    Object timestamps = open_checked(group.id(), "timestamps", {samples_count}, place);
+    if (samples_count > 0) {
+      read_block(timestamps.id(), H5T_NATIVE_DOUBLE, 1, 0, 1, 0, 1, &info.first_timestamp, place);
+      read_block(timestamps.id(), H5T_NATIVE_DOUBLE, 1, 0, 1, samples_count - 1, 1,
+                 &info.last_timestamp, place);
+    }
+  }
+  const auto block_size = static_cast<hsize_t>(block);
+  const hsize_t blocks = (samples_count + block_size - 1) / block_size;
+  open_checked(group.id(), "overview_min", {channels, blocks}, where + "/overview_min");
+  open_checked(group.id(), "overview_max", {channels, blocks}, where + "/overview_max");
+  return info;
+}
+
+}  // namespace
+
+double StreamInfo::duration() const {
+  if (sample_count == 0) return 0.0;
+  if (has_timestamps) return last_timestamp - first_timestamp + (rate_hz > 0 ? 1.0 / rate_hz : 0.0);
+  return rate_hz > 0 ? static_cast<double>(sample_count) / rate_hz : 0.0;
+}
+
+RecordingFile::RecordingFile(const std::string& path)
+    : path_(path), file_(std::make_unique<Handle>()) {
+  hdf5::silence_errors();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "no such file");
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
+    hdf5::last_error();
+    throw Error(path, "not an HDF5 file");
+  }
+  file_->file = checked(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, path,
+                        "cannot open HDF5 file");
+  const hid_t file = file_->file.id();
+  const std::string root = path + ":/";
+  const std::string format = hdf5::read_string_attribute(file, "format", root);
+  if (format != hdf5::kFormatName)
+    throw Error(root + " attribute format",
+                "'" + format + "' is not a " + hdf5::kFormatName + " file");
+  const int64_t version = hdf5::read_int_attribute(file, "format_version", root);
+  if (version != kRecordingFormatVersion)
+    throw Error(root + " attribute format_version",
+                "version " + std::to_string(version) + " is not supported (this program reads " +
+                    std::to_string(kRecordingFormatVersion) + ")");
+  layout_id_ = hdf5::read_string_attribute(file, "layout", root);
+  recording_id_ = hdf5::read_string_attribute(file, "recording_id", root);
+
+  Object metadata = hdf5::open_group(file, "metadata", path + ":/metadata");
+  for (const std::string& key : hdf5::attribute_names(metadata.id(), path + ":/metadata"))
+    metadata_[key] = hdf5::read_string_attribute(metadata.id(), key, path + ":/metadata");
+
+  Object streams = hdf5::open_group(file, "streams", path + ":/streams");
+  int64_t block = 0;
+  for (const std::string& name : stream_names(streams.id(), path + ":/streams"))
+    streams_.push_back(read_stream_info(streams.id(), name, path, block));
+  if (block > 0) overview_block_ = block;
+}
+
+RecordingFile::~RecordingFile() = default;
+RecordingFile::RecordingFile(RecordingFile&&) noexcept = default;
+RecordingFile& RecordingFile::operator=(RecordingFile&&) noexcept = default;
+
+const StreamInfo& RecordingFile::stream(const std::string& name) const {
+  for (const StreamInfo& info : streams_)
+    if (info.name == name) return info;
+  throw Error(path_ + ":/streams/" + name, "no such stream");
+}
+
+namespace {
+
+void check_range(const StreamInfo& info, int64_t first, int64_t count, const std::string& where) {
+  if (first < 0 || count < 0 || first > info.sample_count - count)
+    throw Error(where, "samples [" + std::to_string(first) + ", " + std::to_string(first + count) +
+                           ") outside [0, " + std::to_string(info.sample_count) + ")");
+}
+
+}  // namespace
+
+SampleMatrix RecordingFile::read(const std::string& stream, int64_t first, int64_t count) const {
+  hdf5::silence_errors();
+  const StreamInfo& info = this->stream(stream);
+  const std::string where = path_ + ":/streams/" + stream + "/samples";
+  check_range(info, first, count, where);
+  const auto channels = static_cast<hsize_t>(info.channels.size());
+  SampleMatrix samples(count, static_cast<Eigen::Index>(channels));
+  Object dataset = hdf5::open_dataset(file_->file.id(), "streams/" + stream + "/samples", where);
+  // [channels][count] row after row is Eigen's column-major count x channels.
+  read_block(dataset.id(), H5T_NATIVE_FLOAT, 2, 0, channels, static_cast<hsize_t>(first),
+             static_cast<hsize_t>(count), samples.data(), where);
+  return samples;
+}
+
+std::vector<float> RecordingFile::read_channel(const std::string& stream, int channel,
+                                               int64_t first, int64_t count) const {
+  hdf5::silence_errors();
+  const StreamInfo& info = this->stream(stream);
+  const std::string where = path_ + ":/streams/" + stream + "/samples";
+  if (channel < 0 || channel >= static_cast<int>(info.channels.size()))
+    throw Error(where, "channel " + std::to_string(channel) + " outside [0, " +
+                           std::to_string(info.channels.size()) + ")");
+  check_range(info, first, count, where);
+  std::vector<float> values(static_cast<size_t>(count));
+  Object dataset = hdf5::open_dataset(file_->file.id(), "streams/" + stream + "/samples", where);
+  read_block(dataset.id(), H5T_NATIVE_FLOAT, 2, static_cast<hsize_t>(channel), 1,
+             static_cast<hsize_t>(first), static_cast<hsize_t>(count), values.data(), where);
+  return values;
+}
+
+std::vector<double> RecordingFile::read_timestamps(const std::string& stream) const {
+  hdf5::silence_errors();
+  const StreamInfo& info = this->stream(stream);
+  if (!info.has_timestamps) return {};
+  const std::string where = path_ + ":/streams/" + stream + "/timestamps";
+  std::vector<double> timestamps(static_cast<size_t>(info.sample_count));
+  Object dataset = hdf5::open_dataset(file_->file.id(), "streams/" + stream + "/timestamps", where);
+  read_block(dataset.id(), H5T_NATIVE_DOUBLE, 1, 0, 1, 0, timestamps.size(), timestamps.data(),
+             where);
+  return timestamps;
+}
+
+std::pair<SampleMatrix, SampleMatrix> RecordingFile::read_overview(
+    const std::string& stream) const {
+  hdf5::silence_errors();
+  const StreamInfo& info = this->stream(stream);
+  const auto channels = static_cast<hsize_t>(info.channels.size());
+  const auto blocks =
+      static_cast<hsize_t>((info.sample_count + overview_block_ - 1) / overview_block_);
+  std::pair<SampleMatrix, SampleMatrix> overview{
+      SampleMatrix(static_cast<Eigen::Index>(blocks), static_cast<Eigen::Index>(channels)),
+      SampleMatrix(static_cast<Eigen::Index>(blocks), static_cast<Eigen::Index>(channels))};
+  for (const auto& [name, matrix] :
+       {std::pair{"overview_min", &overview.first}, std::pair{"overview_max", &overview.second}}) {
+    const std::string where = path_ + ":/streams/" + stream + "/" + name;
+    Object dataset = hdf5::open_dataset(file_->file.id(), "streams/" + stream + "/" + name, where);
+    read_block(dataset.id(), H5T_NATIVE_FLOAT, 2, 0, channels, 0, blocks, matrix->data(), where);
+  }
+  return overview;
+}
+
+Recording RecordingFile::read_all() const {
+  Recording recording;
+  recording.id = recording_id_;
+  recording.layout_id = layout_id_;
+  recording.metadata = metadata_;
+  for (const StreamInfo& info : streams_) {
+    Stream stream;
+    stream.name = info.name;
+    stream.rate_hz = info.rate_hz;
+    stream.start_time = info.start_time;
+    stream.channels = info.channels;
+    stream.units = info.units;
+    stream.samples = read(info.name, 0, info.sample_count);
+    stream.timestamps = read_timestamps(info.name);
+    recording.streams.push_back(std::move(stream));
+  }
+  return recording;
+}
+
+Recording read_recording(const std::string& path) { return RecordingFile(path).read_all(); }
+
+}  // namespace tactile

@@ -1,0 +1,102 @@
+#pragma once
+// Internal to core/src/io: RAII ownership of HDF5 identifiers and the few typed
+// reads and writes the recording file needs. Every failure becomes a tactile::Error
+// whose `where` is "file.h5:/object/path", with HDF5's own innermost message.
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tactile/error.h"
+
+namespace tactile::hdf5 {
+
+// Value of the root attribute `format`, so a reader can tell our files from others.
+inline constexpr const char* kFormatName = "tactile-workbench";
+
+// Turns off HDF5's automatic printing of its error stack. The library is built
+// thread-safe here, where the setting is per thread, so every entry point calls it.
+void silence_errors();
+
+// The most specific message on HDF5's error stack (then clears the stack), or "" .
+std::string last_error();
+
+// Throws tactile::Error(where, what + ": " + HDF5's message).
+[[noreturn]] void fail(const std::string& where, const std::string& what);
+
+// Owns one hid_t and closes it with the function that matches its kind.
+class Object {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Object() = default;
+  Object(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  ~Object() { reset(); }
+  Object(Object&& other) noexcept
+      : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
+  Object& operator=(Object&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, H5I_INVALID_HID);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  Object(const Object&) = delete;
+  Object& operator=(const Object&) = delete;
+
+  hid_t id() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  // Closes now and reports failure (closing a file flushes it: errors matter).
+  void close(const std::string& where);
+  void reset() {
+    if (id_ >= 0 && closer_ != nullptr) closer_(id_);
+    id_ = H5I_INVALID_HID;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+// Each checks the returned id and throws tactile::Error(where, ...) when it is invalid.
+Object checked(hid_t id, Object::Closer closer, const std::string& where, const std::string& what);
+Object open_group(hid_t location, const std::string& name, const std::string& where);
+Object open_dataset(hid_t location, const std::string& name, const std::string& where);
+Object create_group(hid_t location, const std::string& name, bool track_order,
+                    const std::string& where);
+// A variable-length UTF-8 string type.
+Object string_type();
+
+bool has_link(hid_t location, const std::string& name);
+bool has_attribute(hid_t location, const std::string& name);
+
+//---- Attributes
+
+void write_string_attribute(hid_t location, const std::string& name, const std::string& value,
+                            const std::string& where);
+void write_double_attribute(hid_t location, const std::string& name, double value,
+                            const std::string& where);
+void write_int_attribute(hid_t location, const std::string& name, int64_t value,
+                         const std::string& where);
+// Missing or mistyped attributes throw tactile::Error naming `where` and the attribute.
+std::string read_string_attribute(hid_t location, const std::string& name,
+                                  const std::string& where);
+double read_double_attribute(hid_t location, const std::string& name, const std::string& where);
+int64_t read_int_attribute(hid_t location, const std::string& name, const std::string& where);
+std::vector<std::string> attribute_names(hid_t location, const std::string& where);
+
+//---- Datasets
+
+// Dimensions of a dataset's extent.
+std::vector<hsize_t> dataset_shape(hid_t dataset, const std::string& where);
+H5T_class_t dataset_class(hid_t dataset, const std::string& where);
+void write_strings(hid_t location, const std::string& name, const std::vector<std::string>& values,
+                   const std::string& where);
+// Reads a 1-D dataset of fixed- or variable-length strings.
+std::vector<std::string> read_strings(hid_t location, const std::string& name,
+                                      const std::string& where);
+
+}  // namespace tactile::hdf5

@@ -1,0 +1,180 @@
+// Writing the native HDF5 file; the layout is documented in docs/FILE_FORMAT.md.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "hdf5_object.h"
+#include "tactile/io/hdf5_file.h"
+
+namespace tactile {
+
+namespace {
+
+using hdf5::checked;
+using hdf5::fail;
+using hdf5::Object;
+
+// Samples per chunk along time: 65536 float32 = 256 KiB, so a short time range of a
+// few channels touches a few chunks and a whole channel is still few reads.
+constexpr hsize_t kChunkSamples = 65536;
+constexpr unsigned kDeflateLevel = 4;
+
+void check_recording(const std::string& path, const Recording& recording) {
+  std::set<std::string> names;
+  for (const auto& [key, value] : recording.metadata)
+    if (key.empty()) throw Error(path, "metadata has an empty key");
+  for (const Stream& stream : recording.streams) {
+    const std::string where = path + ":/streams/" + stream.name;
+    // A stream name is one HDF5 link name: no separator, not a relative path.
+    if (stream.name.empty() || stream.name == "." || stream.name.find('/') != std::string::npos)
+      throw Error(where, "invalid stream name '" + stream.name + "'");
+    if (!names.insert(stream.name).second) throw Error(where, "duplicate stream name");
+    if (static_cast<int64_t>(stream.channels.size()) != stream.channel_count())
+      throw Error(where, std::to_string(stream.channels.size()) + " channel names for " +
+                             std::to_string(stream.channel_count()) + " sample columns");
+    if (!stream.units.empty() && stream.units.size() != stream.channels.size())
+      throw Error(where, std::to_string(stream.units.size()) + " units for " +
+                             std::to_string(stream.channels.size()) + " channels");
+    if (!stream.timestamps.empty() &&
+        static_cast<int64_t>(stream.timestamps.size()) != stream.sample_count())
+      throw Error(where, std::to_string(stream.timestamps.size()) + " time stamps for " +
+                             std::to_string(stream.sample_count()) + " samples");
+    if (!std::isfinite(stream.rate_hz) || stream.rate_hz < 0.0)
+      throw Error(where, "invalid rate_hz " + std::to_string(stream.rate_hz));
+    if (!std::isfinite(stream.start_time)) throw Error(where, "start_time is not finite");
+  }
+}
+
+// A [rows][columns] dataset written from contiguous memory (row after row), chunked
+// along the second dimension and deflate-compressed with shuffle.
+void write_chunked(hid_t location, const std::string& name, hid_t file_type, hid_t memory_type,
+                   const void* data, hsize_t rows, hsize_t columns, hsize_t chunk_columns,
+                   const std::string& where) {
+  const hsize_t shape[2] = {rows, columns};
+  Object space = checked(H5Screate_simple(2, shape, nullptr), H5Sclose, where, "dataspace");
+  Object properties =
+      checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
+  // Chunk dimensions must be positive and within a fixed extent: empty data stays contiguous.
+  if (rows > 0 && columns > 0) {
+    const hsize_t chunk[2] = {1, std::min(columns, chunk_columns)};
+    if (H5Pset_chunk(properties.id(), 2, chunk) < 0 || H5Pset_shuffle(properties.id()) < 0 ||
+        H5Pset_deflate(properties.id(), kDeflateLevel) < 0)
+      fail(where, "cannot set chunking and compression");
+  }
+  Object dataset = checked(H5Dcreate2(location, name.c_str(), file_type, space.id(), H5P_DEFAULT,
+                                      properties.id(), H5P_DEFAULT),
+                           H5Dclose, where, "cannot create dataset");
+  if (rows > 0 && columns > 0 &&
+      H5Dwrite(dataset.id(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    fail(where, "cannot write dataset");
+}
+
+void write_timestamps(hid_t location, const std::vector<double>& timestamps,
+                      const std::string& where) {
+  const hsize_t count = timestamps.size();
+  Object space = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, where, "dataspace");
+  Object properties =
+      checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
+  const hsize_t chunk = std::min<hsize_t>(count, kChunkSamples / 2);
+  if (H5Pset_chunk(properties.id(), 1, &chunk) < 0 || H5Pset_shuffle(properties.id()) < 0 ||
+      H5Pset_deflate(properties.id(), kDeflateLevel) < 0)
+    fail(where, "cannot set chunking and compression");
+  Object dataset = checked(H5Dcreate2(location, "timestamps", H5T_IEEE_F64LE, space.id(),
+                                      H5P_DEFAULT, properties.id(), H5P_DEFAULT),
+                           H5Dclose, where, "cannot create dataset");
+  if (H5Dwrite(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, timestamps.data()) <
+      0)
+    fail(where, "cannot write dataset");
+}
+
+// Min and max of each block of kOverviewBlock samples, per channel, laid out as
+// [channels][blocks] (each channel's blocks contiguous, like the samples).
+void write_overview(hid_t group, const Stream& stream, const std::string& where) {
+  const int64_t samples = stream.sample_count();
+  const int64_t channels = stream.channel_count();
+  const int64_t blocks = (samples + kOverviewBlock - 1) / kOverviewBlock;
+  std::vector<float> minima(static_cast<size_t>(channels * blocks));
+  std::vector<float> maxima(minima.size());
+  for (int64_t channel = 0; channel < channels; ++channel) {
+    for (int64_t block = 0; block < blocks; ++block) {
+      const int64_t first = block * kOverviewBlock;
+      const auto values =
+          stream.samples.col(channel).segment(first, std::min(kOverviewBlock, samples - first));
+      const size_t index = static_cast<size_t>(channel * blocks + block);
+      // NaN gaps (a dropped packet) must not hide the values around them.
+      minima[index] = values.minCoeff<Eigen::PropagateNumbers>();
+      maxima[index] = values.maxCoeff<Eigen::PropagateNumbers>();
+    }
+  }
+  const auto rows = static_cast<hsize_t>(channels);
+  const auto columns = static_cast<hsize_t>(blocks);
+  write_chunked(group, "overview_min", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, minima.data(), rows,
+                columns, kChunkSamples, where + "/overview_min");
+  write_chunked(group, "overview_max", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, maxima.data(), rows,
+                columns, kChunkSamples, where + "/overview_max");
+}
+
+void write_stream(hid_t streams, const Stream& stream, const std::string& file_where) {
+  const std::string where = file_where + ":/streams/" + stream.name;
+  Object group = hdf5::create_group(streams, stream.name, false, where);
+  hdf5::write_double_attribute(group.id(), "rate_hz", stream.rate_hz, where);
+  hdf5::write_double_attribute(group.id(), "start_time", stream.start_time, where);
+  hdf5::write_int_attribute(group.id(), "overview_block", kOverviewBlock, where);
+  hdf5::write_strings(group.id(), "channels", stream.channels, where + "/channels");
+  const std::vector<std::string> units =
+      stream.units.empty() ? std::vector<std::string>(stream.channels.size()) : stream.units;
+  hdf5::write_strings(group.id(), "units", units, where + "/units");
+  // Eigen's column-major matrix is channel after channel: exactly [channels][samples].
+  write_chunked(group.id(), "samples", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, stream.samples.data(),
+                static_cast<hsize_t>(stream.channel_count()),
+                static_cast<hsize_t>(stream.sample_count()), kChunkSamples, where + "/samples");
+  if (!stream.timestamps.empty())
+    write_timestamps(group.id(), stream.timestamps, where + "/timestamps");
+  write_overview(group.id(), stream, where);
+}
+
+void write_contents(hid_t file, const std::string& path, const Recording& recording) {
+  const std::string root = path + ":/";
+  hdf5::write_string_attribute(file, "format", hdf5::kFormatName, root);
+  hdf5::write_int_attribute(file, "format_version", kRecordingFormatVersion, root);
+  hdf5::write_string_attribute(file, "layout", recording.layout_id, root);
+  hdf5::write_string_attribute(file, "recording_id", recording.id, root);
+  Object metadata = hdf5::create_group(file, "metadata", false, path + ":/metadata");
+  for (const auto& [key, value] : recording.metadata)
+    hdf5::write_string_attribute(metadata.id(), key, value, path + ":/metadata");
+  Object streams = hdf5::create_group(file, "streams", true, path + ":/streams");
+  for (const Stream& stream : recording.streams) write_stream(streams.id(), stream, path);
+}
+
+std::string temporary_path(const std::string& path) {
+  static std::atomic<int> counter{0};
+  return path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+}
+
+}  // namespace
+
+void write_recording(const std::string& path, const Recording& recording) {
+  hdf5::silence_errors();
+  check_recording(path, recording);
+  // Same directory as the target, so the rename below is atomic on one file system.
+  const std::string temporary = temporary_path(path);
+  try {
+    Object file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT),
+                          H5Fclose, path, "cannot create file");
+    write_contents(file.id(), path, recording);
+    file.close(path);
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error) throw Error(path, "cannot replace file: " + error.message());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw;
+  }
+}
+
+}  // namespace tactile
