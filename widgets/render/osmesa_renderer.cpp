@@ -2,7 +2,6 @@
 
 #include <GL/osmesa.h>
 #include <imgui.h>
-#include <stb_image_write.h>
 
 #include <cstring>
 
@@ -10,19 +9,6 @@
 #include "tactile/error.h"
 
 namespace tactile {
-
-Image::Rgba Image::at(int x, int y) const {
-  const size_t offset = (static_cast<size_t>(y) * width + x) * 4;
-  return {rgba[offset], rgba[offset + 1], rgba[offset + 2], rgba[offset + 3]};
-}
-
-void write_png(const std::string& path, const Image& image) {
-  if (image.width <= 0 || image.height <= 0)
-    throw Error(path, "cannot write an empty image");
-  if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(),
-                      image.width * 4))
-    throw Error(path, "cannot write PNG");
-}
 
 OffscreenRenderer::OffscreenRenderer(int width, int height)
     : width_(width), height_(height), buffer_(static_cast<size_t>(width) * height * 4) {

@@ -6,24 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "tactile/widgets/image.h"
+
 struct osmesa_context;
 
 namespace tactile {
-
-struct Image {
-  int width = 0;
-  int height = 0;
-  std::vector<uint8_t> rgba;  // top row first
-
-  // Colour of pixel (x, y), y counted from the top; {r, g, b, a}.
-  struct Rgba {
-    uint8_t r, g, b, a;
-  };
-  Rgba at(int x, int y) const;
-};
-
-// Writes an RGBA image to PNG; throws tactile::Error naming the path on failure.
-void write_png(const std::string& path, const Image& image);
 
 class OffscreenRenderer {
  public:

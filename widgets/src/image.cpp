@@ -1,0 +1,42 @@
+#include "tactile/widgets/image.h"
+
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "tactile/error.h"
+
+namespace tactile {
+
+Image::Rgba Image::at(int x, int y) const {
+  const size_t offset = (static_cast<size_t>(y) * width + x) * 4;
+  return {rgba[offset], rgba[offset + 1], rgba[offset + 2], rgba[offset + 3]};
+}
+
+void Image::flip_vertically() {
+  const size_t row_bytes = static_cast<size_t>(width) * 4;
+  for (int y = 0; y < height / 2; ++y)
+    std::swap_ranges(rgba.begin() + y * row_bytes, rgba.begin() + (y + 1) * row_bytes,
+                     rgba.begin() + (height - 1 - y) * row_bytes);
+}
+
+void write_png(const std::string& path, const Image& image) {
+  if (image.width <= 0 || image.height <= 0) throw Error(path, "cannot write an empty image");
+  // Write beside the target and rename, so a failed write leaves no half PNG behind.
+  const std::string temporary = path + ".part";
+  if (!stbi_write_png(temporary.c_str(), image.width, image.height, 4, image.rgba.data(),
+                      image.width * 4)) {
+    std::remove(temporary.c_str());
+    throw Error(path, "cannot write PNG (is the directory there and writable?)");
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::remove(temporary.c_str());
+    throw Error(path, "cannot write PNG: " + error.message());
+  }
+}
+
+}  // namespace tactile
