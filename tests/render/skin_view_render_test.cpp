@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <limits>
 #include <vector>
 
 #include "osmesa_renderer.h"
@@ -109,26 +110,36 @@ TEST_F(GridFixture, MapIsCentredWithItsAspectRatioKept) {
 }
 
 TEST_F(GridFixture, LegendAndGroupNamesAreDrawn) {
+  SkinViewStyle without_names;
+  without_names.show_group_names = false;
+  frame(0.0, 1.0, without_names);
+  const Image plain = renderer.render();
   const SkinViewResult result = frame(0.0, 1.0, {.modality_label = "force (N)"});
   const Image image = renderer.render();
   write_png(testing::png_path("skin_grid_names"), image);
-  // The legend bar's top is bright yellow (1.0), its bottom dark purple (0.0).
+  // The legend bar runs from bright yellow (value_max) at the top to dark purple
+  // (value_min) at the bottom.
   const SkinViewGeometry geometry = skin_view_geometry(layout, ImVec2(0, 0), ImVec2(400, 300));
   const int bar_x = static_cast<int>(geometry.map_size.x) + 15;
-  EXPECT_TRUE(close_to(image.at(bar_x, 40), viridis(0.97f), 12));
-  EXPECT_TRUE(close_to(image.at(bar_x, 280), viridis(0.03f), 12));
-  // Names are light text over the middle column: some pixel near a row centroid
-  // is lighter than any viridis colour of the row's values around it.
-  const ImVec2 row_centre = result.transform.apply({15.0, 15.0});
-  int light = 0;
-  for (int dy = -6; dy <= 6; ++dy) {
-    for (int dx = -25; dx <= 25; ++dx) {
-      const Image::Rgba pixel =
-          image.at(static_cast<int>(row_centre.x) + dx, static_cast<int>(row_centre.y) + dy);
-      light += pixel.r > 200 && pixel.g > 200 && pixel.b > 200;
+  const Image::Rgba top = image.at(bar_x, 30);
+  const Image::Rgba bottom = image.at(bar_x, 282);
+  EXPECT_TRUE(top.r > 180 && top.g > 180 && top.b < 100);
+  EXPECT_TRUE(bottom.r < 100 && bottom.g < 40 && bottom.b > 60);
+  // The name of row 1 is written over its centroid (the middle taxel), and only
+  // when names are on.
+  const ImVec2 centroid = result.transform.apply({15.0, 15.0});
+  int changed = 0;
+  for (int dy = -8; dy <= 8; ++dy) {
+    for (int dx = -30; dx <= 30; ++dx) {
+      const int x = static_cast<int>(centroid.x) + dx, y = static_cast<int>(centroid.y) + dy;
+      changed += image.at(x, y).r != plain.at(x, y).r;
     }
   }
-  EXPECT_GT(light, 10);
+  EXPECT_GT(changed, 30);
+  // Away from any centroid (a corner taxel) nothing changes.
+  const ImVec2 corner = result.transform.apply({5.0, 5.0});
+  EXPECT_TRUE(
+      close_to(image.at(static_cast<int>(corner.x), static_cast<int>(corner.y)), viridis(0.0f), 3));
 }
 
 TEST_F(GridFixture, HoverAndClickNameTheTaxelUnderTheMouse) {
@@ -160,7 +171,8 @@ TEST_F(GridFixture, ShortValueArrayDrawsMissingTaxelsGrey) {
   const SkinViewResult result = frame(0.0, 1.0, {.show_group_names = false});
   const Image image = renderer.render();
   EXPECT_TRUE(close_to(centre_pixel(image, result, 3), viridis(0.375f), 3));
-  EXPECT_TRUE(close_to(centre_pixel(image, result, 8), viridis(std::nanf("")), 3));
+  EXPECT_TRUE(close_to(centre_pixel(image, result, 8),
+                       viridis(std::numeric_limits<float>::quiet_NaN()), 3));
 }
 
 }  // namespace

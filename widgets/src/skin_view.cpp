@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "tactile/widgets/colormap.h"
@@ -72,25 +73,61 @@ void shadowed_text(ImDrawList& draw, ImVec2 centre, float font_size, const std::
   draw.AddText(ImGui::GetFont(), font_size, at, kText, text.c_str());
 }
 
-// Names at the centroid of each body-part, location or side group, so a viewer
+bool is_side_group(const Group& group) { return group.kind == "side"; }
+bool is_part_group(const Group& group) {
+  return group.kind == "body-part" || group.kind == "location";
+}
+bool has_side_groups(const SkinLayout& layout) {
+  return std::any_of(layout.groups.begin(), layout.groups.end(), is_side_group);
+}
+const std::string& group_label(const Group& group) {
+  return group.name.empty() ? group.id : group.name;
+}
+
+// Names of body-part and location groups at the centroid of their taxels, one name
+// per side (a body part seen on the front and on the back map is named on both, not
+// half-way between), and side names centred above their taxels, so a viewer
 // recognises the map.
 void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTransform& transform) {
   const float font_size = ImGui::GetFontSize() * 0.85f;
+  std::map<int64_t, size_t> side_of;  // taxel id -> index of its side group
+  for (size_t index = 0; index < layout.groups.size(); ++index) {
+    if (!is_side_group(layout.groups[index])) continue;
+    for (int64_t id : layout.groups[index].taxels) side_of.emplace(id, index);
+  }
   for (const Group& group : layout.groups) {
-    if (group.kind != "body-part" && group.kind != "location" && group.kind != "side") continue;
-    Point2 sum;
-    int members = 0;
-    for (int64_t id : group.taxels) {
-      if (const Taxel* taxel = layout.find_taxel(id)) {
+    if (is_part_group(group)) {
+      std::map<size_t, std::pair<Point2, int>> sums;  // side -> (sum of centres, members)
+      for (int64_t id : group.taxels) {
+        const Taxel* taxel = layout.find_taxel(id);
+        if (!taxel) continue;
+        const auto side = side_of.find(id);
+        auto& [sum, members] = sums[side == side_of.end() ? SIZE_MAX : side->second];
         sum.x += taxel->position.x;
         sum.y += taxel->position.y;
         ++members;
       }
+      for (const auto& [side, sum] : sums) {
+        const Point2 centroid{sum.first.x / sum.second, sum.first.y / sum.second};
+        shadowed_text(draw, transform.apply(centroid), font_size, group_label(group));
+      }
+    } else if (is_side_group(group)) {
+      double top = std::numeric_limits<double>::infinity();
+      double left = top, right = -top;
+      for (int64_t id : group.taxels) {
+        const Taxel* taxel = layout.find_taxel(id);
+        if (!taxel) continue;
+        for (const Point2& point : taxel_outline(*taxel)) {
+          top = std::min(top, point.y);
+          left = std::min(left, point.x);
+          right = std::max(right, point.x);
+        }
+      }
+      if (!std::isfinite(top)) continue;
+      const ImVec2 anchor = transform.apply({0.5 * (left + right), top});
+      shadowed_text(draw, ImVec2(anchor.x, anchor.y - 0.6f * ImGui::GetFontSize()), font_size,
+                    group_label(group));
     }
-    if (members == 0) continue;
-    const Point2 centroid{sum.x / members, sum.y / members};
-    shadowed_text(draw, transform.apply(centroid), font_size,
-                  group.name.empty() ? group.id : group.name);
   }
 }
 
@@ -176,9 +213,12 @@ MapTransform fit_map(const SkinLayout& layout, ImVec2 top_left, ImVec2 size, flo
 SkinViewGeometry skin_view_geometry(const SkinLayout& layout, ImVec2 top_left, ImVec2 size,
                                     const SkinViewStyle& style) {
   SkinViewGeometry geometry;
-  geometry.map_min = top_left;
+  // Side names go above their taxels: keep a line free for them.
+  const float label_line =
+      style.show_group_names && has_side_groups(layout) ? ImGui::GetFontSize() : 0.0f;
+  geometry.map_min = ImVec2(top_left.x, top_left.y + label_line);
   geometry.map_size = ImVec2(std::max(size.x - (style.show_legend ? kLegendWidth : 0.0f), 1.0f),
-                             std::max(size.y, 1.0f));
+                             std::max(size.y - label_line, 1.0f));
   geometry.transform = fit_map(layout, geometry.map_min, geometry.map_size, kMapMargin);
   return geometry;
 }
@@ -198,13 +238,15 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
   const SkinViewGeometry geometry = skin_view_geometry(layout, origin, size, style);
   result.transform = geometry.transform;
 
+  ImGui::SetCursorScreenPos(geometry.map_min);
   ImGui::InvisibleButton("map", geometry.map_size);
   const bool hovered = ImGui::IsItemHovered();
   const bool clicked = ImGui::IsItemClicked(ImGuiMouseButton_Left);
   const ImVec2 mouse = ImGui::GetIO().MousePos;
 
+  // From the top of the view: side names sit in the line above the map.
   draw.PushClipRect(
-      geometry.map_min,
+      origin,
       ImVec2(geometry.map_min.x + geometry.map_size.x, geometry.map_min.y + geometry.map_size.y),
       true);
   const ScreenTaxel* hovered_outline = nullptr;

@@ -33,8 +33,8 @@ MapTransform fit_map(const SkinLayout& layout, ImVec2 top_left, ImVec2 size, flo
 
 struct SkinViewStyle {
   bool show_legend = true;
-  bool show_group_names = true;  // names of "body-part", "location" and "side" groups
-  std::string modality_label;    // legend title; empty: the layout's display modality
+  bool show_group_names = true;     // names of "body-part", "location" and "side" groups
+  std::string modality_label = {};  // legend title; empty: the layout's display modality
 };
 
 struct SkinViewResult {
