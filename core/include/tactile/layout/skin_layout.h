@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tactile {
@@ -15,7 +16,10 @@ struct Point2 {
   double y = 0.0;
 };
 
-enum class TaxelShape { kRectangle, kHexagon, kStripe, kPolygon };
+// JSON names: "rect", "hex", "stripe", "polygon", "circle". A hexagon is regular in its box
+// when the long side is 2/sqrt(3) of the short one; pointy-top when taller than wide, else
+// flat-top. A circle (or ellipse) fills its box.
+enum class TaxelShape { kRectangle, kHexagon, kStripe, kPolygon, kCircle };
 
 struct Taxel {
   int64_t id = 0;
@@ -74,6 +78,18 @@ struct SkinLayout {
 
 // The outline of a taxel on the map (explicit, or derived from shape, position, size).
 std::vector<Point2> taxel_outline(const Taxel& taxel);
+
+// The JSON name of a shape ("rect", "hex", ...).
+const char* taxel_shape_name(TaxelShape shape);
+
+// Generic layouts built in code. grid: rows x columns taxels, r-major, ids 0..R*C-1, channels
+// ch0.., modality "value", 10 mm pitch, one group of kind "row" per row. strip: count taxels in
+// a row along x. Throw tactile::Error (naming `id`) when empty or over kMaxGenericTaxels.
+constexpr int64_t kMaxGenericTaxels = 65536;
+SkinLayout make_grid_layout(int64_t rows, int64_t columns, const std::string& id = {});
+SkinLayout make_strip_layout(int64_t count, const std::string& id = {});
+// True for ids of the form "grid:..." or "strip:..." (valid or not).
+bool is_generic_layout_id(const std::string& id);
 
 // Loads assets/layouts/<id>.json, or builds a generic grid:RxC / strip:N layout.
 // Throws tactile::Error naming the file and the entry on any invalid content.

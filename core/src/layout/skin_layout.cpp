@@ -1,0 +1,220 @@
+// SkinLayout lookups, taxel outlines, and finding a layout by id (asset file or generic).
+
+#include "tactile/layout/skin_layout.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+
+#include "tactile/error.h"
+
+namespace tactile {
+
+//---- Lookups ----------------------------------------------------------------------------------
+
+int SkinLayout::channel_index(const std::string& name) const {
+  for (size_t index = 0; index < channels.size(); ++index) {
+    if (channels[index].name == name) return static_cast<int>(index);
+  }
+  return -1;
+}
+
+int SkinLayout::modality_index(const std::string& name) const {
+  for (size_t index = 0; index < modalities.size(); ++index) {
+    if (modalities[index] == name) return static_cast<int>(index);
+  }
+  return -1;
+}
+
+const Taxel* SkinLayout::find_taxel(int64_t id) const {
+  for (const Taxel& taxel : taxels) {
+    if (taxel.id == id) return &taxel;
+  }
+  return nullptr;
+}
+
+const Group* SkinLayout::find_group(const std::string& id) const {
+  for (const Group& group : groups) {
+    if (group.id == id) return &group;
+  }
+  return nullptr;
+}
+
+std::vector<const Group*> SkinLayout::groups_of(int64_t taxel_id, const std::string& kind) const {
+  std::vector<const Group*> result;
+  for (const Group& group : groups) {
+    if (!kind.empty() && group.kind != kind) continue;
+    if (std::find(group.taxels.begin(), group.taxels.end(), taxel_id) != group.taxels.end()) {
+      result.push_back(&group);
+    }
+  }
+  return result;
+}
+
+std::pair<Point2, Point2> SkinLayout::bounds() const {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  Point2 low{kInfinity, kInfinity};
+  Point2 high{-kInfinity, -kInfinity};
+  for (const Taxel& taxel : taxels) {
+    for (const Point2& vertex : taxel_outline(taxel)) {
+      low.x = std::min(low.x, vertex.x);
+      low.y = std::min(low.y, vertex.y);
+      high.x = std::max(high.x, vertex.x);
+      high.y = std::max(high.y, vertex.y);
+    }
+  }
+  if (low.x > high.x) return {Point2{}, Point2{}};  // no taxels: an empty box at the origin
+  return {low, high};
+}
+
+//---- Shapes -----------------------------------------------------------------------------------
+
+const char* taxel_shape_name(TaxelShape shape) {
+  switch (shape) {
+    case TaxelShape::kRectangle:
+      return "rect";
+    case TaxelShape::kHexagon:
+      return "hex";
+    case TaxelShape::kStripe:
+      return "stripe";
+    case TaxelShape::kPolygon:
+      return "polygon";
+    case TaxelShape::kCircle:
+      return "circle";
+  }
+  return "rect";
+}
+
+std::vector<Point2> taxel_outline(const Taxel& taxel) {
+  if (!taxel.outline.empty()) return taxel.outline;
+  const double x = taxel.position.x;
+  const double y = taxel.position.y;
+  const double half_width = taxel.size.x / 2.0;
+  const double half_height = taxel.size.y / 2.0;
+  switch (taxel.shape) {
+    case TaxelShape::kHexagon:
+      if (taxel.size.y >= taxel.size.x) {
+        // Pointy-top: corners at top and bottom; the box width is flat-to-flat.
+        return {{x, y - half_height},
+                {x + half_width, y - half_height / 2.0},
+                {x + half_width, y + half_height / 2.0},
+                {x, y + half_height},
+                {x - half_width, y + half_height / 2.0},
+                {x - half_width, y - half_height / 2.0}};
+      }
+      // Flat-top: corners at left and right; the box height is flat-to-flat.
+      return {{x - half_width, y},
+              {x - half_width / 2.0, y - half_height},
+              {x + half_width / 2.0, y - half_height},
+              {x + half_width, y},
+              {x + half_width / 2.0, y + half_height},
+              {x - half_width / 2.0, y + half_height}};
+    case TaxelShape::kCircle: {
+      // 24 vertices keep a 5 mm pad round on screen and its polygon area within 1.2 %.
+      constexpr int kVertices = 24;
+      std::vector<Point2> vertices;
+      vertices.reserve(kVertices);
+      for (int index = 0; index < kVertices; ++index) {
+        const double angle = 2.0 * std::numbers::pi * index / kVertices;
+        vertices.push_back({x + half_width * std::cos(angle), y + half_height * std::sin(angle)});
+      }
+      return vertices;
+    }
+    case TaxelShape::kRectangle:
+    case TaxelShape::kStripe:
+    case TaxelShape::kPolygon:  // a polygon without an outline fails validation; draw its box
+      break;
+  }
+  return {{x - half_width, y - half_height},
+          {x + half_width, y - half_height},
+          {x + half_width, y + half_height},
+          {x - half_width, y + half_height}};
+}
+
+//---- Finding layouts --------------------------------------------------------------------------
+
+std::string asset_dir() {
+  const char* from_environment = std::getenv("TACTILE_ASSETS");
+  if (from_environment != nullptr && from_environment[0] != '\0') return from_environment;
+  return TACTILE_ASSET_DIR;
+}
+
+std::vector<std::string> builtin_layout_ids() { return {"nao", "tsa", "fur", "robovie", "flux"}; }
+
+namespace {
+
+SkinLayout build_generic_layout(const std::string& id);
+
+// Layout ids name files, so they may not walk out of the layouts directory.
+bool is_plain_layout_name(const std::string& id) {
+  if (id.empty()) return false;
+  return std::all_of(id.begin(), id.end(), [](char character) {
+    return std::isalnum(static_cast<unsigned char>(character)) != 0 || character == '_' ||
+           character == '-';
+  });
+}
+
+}  // namespace
+
+SkinLayout load_layout(const std::string& id) {
+  const std::string where = "layout " + id;
+  if (is_generic_layout_id(id)) return build_generic_layout(id);
+  if (!is_plain_layout_name(id)) {
+    throw Error(where,
+                "invalid layout id (letters, digits, '-' and '_' only, or grid:RxC, strip:N)");
+  }
+  const std::filesystem::path path =
+      std::filesystem::path(asset_dir()) / "layouts" / (id + ".json");
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    std::string known;
+    for (const std::string& builtin : builtin_layout_ids()) known += builtin + ", ";
+    throw Error(where, "unknown layout: no file " + path.string() + " (known: " + known +
+                           "grid:RxC, strip:N)");
+  }
+  SkinLayout layout = load_layout_file(path.string());
+  if (layout.id != id) {
+    throw Error(path.string(), "declares id \"" + layout.id + "\", expected \"" + id + "\"");
+  }
+  return layout;
+}
+
+namespace {
+
+SkinLayout build_generic_layout(const std::string& id) {
+  // A decimal count that must fill its whole field; more than 18 digits could overflow int64
+  // and is far beyond the size limit anyway.
+  const auto parse_count = [&id](const std::string& text, const std::string& what) -> int64_t {
+    const bool digits_only = !text.empty() && std::all_of(text.begin(), text.end(), [](char digit) {
+      return digit >= '0' && digit <= '9';
+    });
+    if (!digits_only) {
+      throw Error("layout " + id, what + " \"" + text + "\" is not a positive whole number");
+    }
+    if (text.size() > 18) {
+      throw Error("layout " + id, what + " " + text + " is too large (at most " +
+                                      std::to_string(kMaxGenericTaxels) + " taxels)");
+    }
+    return std::stoll(text);
+  };
+  if (id.rfind("grid:", 0) == 0) {
+    const std::string shape = id.substr(5);
+    const size_t separator = shape.find('x');
+    if (separator == std::string::npos) {
+      throw Error("layout " + id, "expected grid:RxC (rows x columns), e.g. grid:4x4");
+    }
+    const int64_t rows = parse_count(shape.substr(0, separator), "rows");
+    const int64_t columns = parse_count(shape.substr(separator + 1), "columns");
+    return make_grid_layout(rows, columns, id);
+  }
+  const int64_t count = parse_count(id.substr(6), "taxel count");
+  return make_strip_layout(count, id);
+}
+
+}  // namespace
+
+}  // namespace tactile
