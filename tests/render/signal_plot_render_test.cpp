@@ -133,6 +133,33 @@ TEST_F(PlotFixture, ZoomedInSamplesAreDrawnAsALine) {
   EXPECT_GT(edge.front(), 0.7f);
 }
 
+TEST_F(PlotFixture, StackedLanesGiveEachChannelItsOwnBand) {
+  // A second channel, the sine upside down and in another colour: stacked, the
+  // first lives in the top half and the second in the bottom half.
+  std::vector<float> inverted = samples;
+  for (float& value : inverted) value = -value;
+  const MinMaxPyramid inverted_pyramid(inverted);
+  const uint32_t inverted_colour = IM_COL32(64, 220, 64, 255);
+  channels.push_back({"inverted", &inverted_pyramid, kRate, 0.0, inverted_colour});
+  SignalPlotState state{.view_t0 = 0.0, .view_t1 = 4.0, .fitted = true, .stacked = true};
+  const SignalPlotResult result = frame(state);
+  const Image image = renderer.render();
+  write_png(testing::png_path("sine_plot_stacked"), image);
+  const int peak = static_cast<int>(x_of(result, state, 0.5));
+  const std::vector<float> first = coloured_rows(image, result, peak);
+  ASSERT_FALSE(first.empty());
+  EXPECT_LT(first.back(), 0.1f);  // top of the top lane
+  int lowest_inverted = -1;
+  for (int y = static_cast<int>(result.area_min.y); y < static_cast<int>(result.area_max.y); ++y) {
+    if (close_to_packed(image.at(peak, y), inverted_colour, 12)) lowest_inverted = y;
+  }
+  ASSERT_GE(lowest_inverted, 0);
+  // The inverted peak is the bottom of the bottom lane.
+  const float fraction =
+      (lowest_inverted - result.area_min.y) / (result.area_max.y - result.area_min.y);
+  EXPECT_GT(fraction, 0.9f);
+}
+
 TEST(SignalPlot, VertexCountStaysBoundedForTenMillionSamples) {
   OffscreenRenderer renderer(800, 300);
   const std::vector<float> samples = sine(10'000'000);
