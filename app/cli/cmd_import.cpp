@@ -10,6 +10,7 @@
 #include "tactile/error.h"
 #include "tactile/io/csv.h"
 #include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
 
 namespace tactile::cli {
@@ -81,9 +82,15 @@ void run_import(const ImportOptions& options) {
               << " ground-truth labels not stored: no --labels database given\n";
     return;
   }
-  // TODO(lead): LabelStore(options.labels).insert(imported.labels);
-  std::cerr << "tactile import: --labels is not wired to the label store yet; "
-            << imported.labels.size() << " labels not stored\n";
+  // Importing the same file again replaces its ground truth instead of doubling it.
+  LabelStore store(options.labels);
+  LabelFilter previous;
+  previous.recording = recording.id;
+  previous.source = LabelSource::kGroundTruth;
+  store.remove_where(previous, "import");
+  store.add_many(imported.labels);
+  if (!layout.classes.empty() && store.classes(layout.id).empty()) store.set_classes(layout.id, layout.classes);
+  std::cout << "stored " << imported.labels.size() << " ground-truth labels in " << options.labels << "\n";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "commands.h"
 #include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_store.h"
 
 namespace tactile::cli {
 
@@ -56,18 +57,15 @@ void print_text(const RecordingFile& file, std::optional<int64_t> label_count,
   if (label_count)
     out << *label_count << " in " << labels_database << "\n";
   else
-    out << (labels_database.empty() ? "(no database given)" : "(label store not wired yet)")
-        << "\n";
+    out << "(no database given)\n";
   std::cout << out.str();
 }
 
 void run_info(const InfoOptions& options) {
   const RecordingFile file(options.file);
   std::optional<int64_t> label_count;
-  // TODO(lead): if (!options.labels.empty()) label_count =
-  // LabelStore(options.labels).count(file.recording_id());
-  if (!options.labels.empty() && !label_count)
-    std::cerr << "tactile info: --labels is not wired to the label store yet\n";
+  if (!options.labels.empty())
+    label_count = LabelStore(options.labels, LabelStore::OpenMode::kExisting).count(file.recording_id());
   if (options.json)
     std::cout << info_json(file, label_count).dump(2) << "\n";
   else
