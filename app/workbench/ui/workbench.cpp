@@ -148,7 +148,7 @@ void Workbench::frame(double seconds) {
   ImGui::BeginGroup();
   const float right_width = area.x - kSidebarWidth - ImGui::GetStyle().ItemSpacing.x;
   if (document_) {
-    const float transport_height = ImGui::GetFrameHeightWithSpacing() * 2.0f;
+    const float transport_height = ImGui::GetFrameHeightWithSpacing();
     const float labels_height = std::max(90.0f, main_height * 0.22f);
     const float views_height = main_height - transport_height - labels_height - ImGui::GetStyle().ItemSpacing.y * 2;
     const float skin_width = std::floor(right_width * 0.42f);
@@ -213,13 +213,19 @@ void Workbench::draw_sidebar(float width, float height) {
   if (document_ && ImGui::CollapsingHeader("Recording", ImGuiTreeNodeFlags_DefaultOpen)) {
     const Recording& recording = document_->recording;
     ImGui::Text("%s", recording.id.c_str());
-    ImGui::TextDisabled("layout");
-    ImGui::SameLine(90);
-    ImGui::Text("%s", document_->layout.name.empty() ? recording.layout_id.c_str() : document_->layout.name.c_str());
-    for (const auto& [key, value] : recording.metadata) {
-      ImGui::TextDisabled("%s", key.c_str());
-      ImGui::SameLine(90);
-      ImGui::TextWrapped("%s", value.c_str());
+    if (ImGui::BeginTable("metadata", 2)) {
+      ImGui::TableSetupColumn("key", ImGuiTableColumnFlags_WidthFixed);
+      ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch);
+      auto row = [](const char* key, const std::string& value) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextDisabled("%s", key);
+        ImGui::TableNextColumn();
+        ImGui::TextWrapped("%s", value.c_str());
+      };
+      row("layout", document_->layout.name.empty() ? recording.layout_id : document_->layout.name);
+      for (const auto& [key, value] : recording.metadata) row(key.c_str(), value);
+      ImGui::EndTable();
     }
     ImGui::Separator();
     for (size_t k = 0; k < recording.streams.size(); ++k) {
@@ -308,7 +314,7 @@ void Workbench::draw_plot_panel(float width, float height) {
 }
 
 void Workbench::draw_transport(float width) {
-  ImGui::BeginChild("transport", ImVec2(width, ImGui::GetFrameHeightWithSpacing() * 2.0f), false);
+  ImGui::BeginChild("transport", ImVec2(width, ImGui::GetFrameHeight()), false);
   if (ImGui::Button(clock_.playing() ? "Pause" : "Play", ImVec2(70, 0))) clock_.toggle();
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
