@@ -89,8 +89,10 @@ void run_import(const ImportOptions& options) {
   previous.source = LabelSource::kGroundTruth;
   store.remove_where(previous, "import");
   store.add_many(imported.labels);
-  if (!layout.classes.empty() && store.classes(layout.id).empty()) store.set_classes(layout.id, layout.classes);
-  std::cout << "stored " << imported.labels.size() << " ground-truth labels in " << options.labels << "\n";
+  if (!layout.classes.empty() && store.classes(layout.id).empty())
+    store.set_classes(layout.id, layout.classes);
+  std::cout << "stored " << imported.labels.size() << " ground-truth labels in " << options.labels
+            << "\n";
 }
 
 }  // namespace

@@ -65,7 +65,8 @@ void run_info(const InfoOptions& options) {
   const RecordingFile file(options.file);
   std::optional<int64_t> label_count;
   if (!options.labels.empty())
-    label_count = LabelStore(options.labels, LabelStore::OpenMode::kExisting).count(file.recording_id());
+    label_count =
+        LabelStore(options.labels, LabelStore::OpenMode::kExisting).count(file.recording_id());
   if (options.json)
     std::cout << info_json(file, label_count).dump(2) << "\n";
   else

@@ -67,14 +67,16 @@ int main(int argc, char** argv) {
       target = (program_folder().parent_path() / "screenshot.png").string();
       extra = {"--screenshot", target};
     }
-    std::cerr << "tactile-workbench: no display; rendering the main window headless to " << target << "\n";
+    std::cerr << "tactile-workbench: no display; rendering the main window headless to " << target
+              << "\n";
     return run_headless(argc, argv, extra);
   }
 
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  GLFWwindow* window = glfwCreateWindow(args.width, args.height, "Tactile Workbench", nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(args.width, args.height, "Tactile Workbench", nullptr, nullptr);
   if (!window) {
     glfwTerminate();
     std::cerr << "tactile-workbench: cannot open an OpenGL 3.3 window; try --headless\n";

@@ -12,51 +12,23 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_test_support.h"
+
 namespace {
 
-const std::string kTactile = std::string(TACTILE_BIN_DIR) + "/tactile";
+using tactile::test::CommandResult;
+using tactile::test::read_text;
+
 const std::string kData = std::string(TACTILE_TEST_DATA_DIR) + "/io";
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-struct CommandResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
 
 class IoCommand : public ::testing::Test {
  protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    directory = std::filesystem::temp_directory_path() /
-                ("tactile-io-cli-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(directory);
-    std::filesystem::create_directories(directory);
-  }
-  void TearDown() override { std::filesystem::remove_all(directory); }
-
-  std::string file(const std::string& name) const { return (directory / name).string(); }
-
-  // Runs `tactile <arguments>`, its output captured in files of the temp directory.
-  CommandResult tactile(const std::string& arguments) const {
-    const std::string out = file("stdout.txt");
-    const std::string err = file("stderr.txt");
-    const std::string command = kTactile + " " + arguments + " >'" + out + "' 2>'" + err + "'";
-    const int status = std::system(command.c_str());
-    CommandResult run;
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    run.out = read_text(out);
-    run.err = read_text(err);
-    std::filesystem::remove(out);
-    std::filesystem::remove(err);
-    return run;
+  std::string file(const std::string& name) const { return folder.file(name); }
+  tactile::test::CommandResult tactile(const std::string& arguments) const {
+    return tactile::test::run_program("tactile", arguments, folder);
   }
 
-  std::filesystem::path directory;
+  tactile::test::TempFolder folder{"tactile-io-cli"};
 };
 
 TEST_F(IoCommand, RaggedCsvFailsNamingFileAndLineAndWritesNothing) {

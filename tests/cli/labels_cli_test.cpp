@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_test_support.h"
 #include "tactile/io/label_store.h"
 
 namespace tactile {
@@ -18,9 +19,7 @@ namespace {
 class LabelsCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string pattern = (std::filesystem::temp_directory_path() / "labels_cli_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    directory_ = pattern;
+    directory_ = folder_.path();
     database_ = (directory_ / "labels.db").string();
     LabelStore store(database_);
     Label label;
@@ -44,24 +43,17 @@ class LabelsCommandTest : public ::testing::Test {
     store.add(label);
     store.set_classes("nao", {"pat", "poke", "stroke"});
   }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
-
-  // Runs `tactile ARGUMENTS`, stdout to `output` in the test directory; returns the exit code.
+  // Runs `tactile ARGUMENTS`; stdout and stderr land in stdout.txt and stderr.txt.
   int run(const std::string& arguments) {
-    const std::string command = std::string(TACTILE_BIN_DIR) + "/tactile " + arguments + " > '" +
-                                (directory_ / "stdout.txt").string() + "' 2> '" +
-                                (directory_ / "stderr.txt").string() + "'";
-    const int status = std::system(command.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const test::CommandResult result = test::run_program("tactile", arguments, folder_);
+    std::ofstream(directory_ / "stdout.txt", std::ios::binary) << result.out;
+    std::ofstream(directory_ / "stderr.txt", std::ios::binary) << result.err;
+    return result.exit_code;
   }
 
-  std::string text_of(const std::string& name) const {
-    std::ifstream stream(directory_ / name, std::ios::binary);
-    std::stringstream text;
-    text << stream.rdbuf();
-    return text.str();
-  }
+  std::string text_of(const std::string& name) const { return test::read_text(directory_ / name); }
 
+  test::TempFolder folder_{"labels_cli"};
   std::filesystem::path directory_;
   std::string database_;
 };

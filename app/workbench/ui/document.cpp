@@ -38,8 +38,8 @@ void select_stream(Document& document, int stream_index) {
   document.pyramids.clear();
   document.pyramids.reserve(static_cast<size_t>(stream.channel_count()));
   for (int64_t column = 0; column < stream.channel_count(); ++column)
-    document.pyramids.emplace_back(
-        std::span<const float>(stream.samples.col(column).data(), static_cast<size_t>(stream.sample_count())));
+    document.pyramids.emplace_back(std::span<const float>(
+        stream.samples.col(column).data(), static_cast<size_t>(stream.sample_count())));
 }
 
 }  // namespace tactile

@@ -27,7 +27,8 @@ struct Document {
 
 // Reads a recording (HDF5) and its layout; labels come from `labels_path`, or else
 // from labels.db in the recording's folder when there is one. Throws tactile::Error.
-std::unique_ptr<Document> open_document(const std::string& path, const std::string& labels_path = {});
+std::unique_ptr<Document> open_document(const std::string& path,
+                                        const std::string& labels_path = {});
 // Selects another stream and rebuilds the pyramids.
 void select_stream(Document& document, int stream_index);
 

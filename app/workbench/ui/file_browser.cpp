@@ -25,18 +25,20 @@ void FileBrowser::list_directory() {
   files_.clear();
   error_.clear();
   std::error_code error;
-  for (fs::directory_iterator it(directory_, error), end; !error && it != end; it.increment(error)) {
+  for (fs::directory_iterator it(directory_, error), end; !error && it != end;
+       it.increment(error)) {
     const std::string name = it->path().filename().string();
     if (name.empty() || name[0] == '.') continue;
     std::error_code type_error;
     if (it->is_directory(type_error)) {
       folders_.push_back(name);
     } else {
-      const bool wanted = extensions_.empty() ||
-                          std::any_of(extensions_.begin(), extensions_.end(), [&](const std::string& ext) {
-                            return name.size() >= ext.size() &&
-                                   name.compare(name.size() - ext.size(), ext.size(), ext) == 0;
-                          });
+      const bool wanted =
+          extensions_.empty() ||
+          std::any_of(extensions_.begin(), extensions_.end(), [&](const std::string& ext) {
+            return name.size() >= ext.size() &&
+                   name.compare(name.size() - ext.size(), ext.size(), ext) == 0;
+          });
       if (wanted) files_.push_back(name);
     }
   }
@@ -63,7 +65,8 @@ std::optional<std::string> FileBrowser::draw() {
     ImGui::BeginChild("entries", ImVec2(0, -ImGui::GetFrameHeightWithSpacing() * 2), true);
     std::string enter;
     for (const std::string& folder : folders_)
-      if (ImGui::Selectable((folder + "/").c_str(), false, ImGuiSelectableFlags_DontClosePopups)) enter = folder;
+      if (ImGui::Selectable((folder + "/").c_str(), false, ImGuiSelectableFlags_DontClosePopups))
+        enter = folder;
     for (const std::string& file : files_)
       if (ImGui::Selectable(file.c_str(), false, ImGuiSelectableFlags_AllowDoubleClick))
         chosen = (fs::path(directory_) / file).string();

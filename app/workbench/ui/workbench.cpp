@@ -22,11 +22,11 @@ constexpr int kMaxDefaultPlotChannels = 8;
 constexpr double kSpeeds[] = {0.25, 0.5, 1.0, 2.0, 4.0};
 
 // Tableau 10: distinct hues for up to ten plotted channels, then repeated.
-constexpr uint32_t kChannelColours[] = {
-    IM_COL32(31, 119, 180, 255), IM_COL32(255, 127, 14, 255), IM_COL32(44, 160, 44, 255),
-    IM_COL32(214, 39, 40, 255),  IM_COL32(148, 103, 189, 255), IM_COL32(140, 86, 75, 255),
-    IM_COL32(227, 119, 194, 255), IM_COL32(127, 127, 127, 255), IM_COL32(188, 189, 34, 255),
-    IM_COL32(23, 190, 207, 255)};
+constexpr uint32_t kChannelColours[] = {IM_COL32(31, 119, 180, 255),  IM_COL32(255, 127, 14, 255),
+                                        IM_COL32(44, 160, 44, 255),   IM_COL32(214, 39, 40, 255),
+                                        IM_COL32(148, 103, 189, 255), IM_COL32(140, 86, 75, 255),
+                                        IM_COL32(227, 119, 194, 255), IM_COL32(127, 127, 127, 255),
+                                        IM_COL32(188, 189, 34, 255),  IM_COL32(23, 190, 207, 255)};
 
 uint32_t class_colour(const std::string& class_name) {
   const size_t hash = std::hash<std::string>{}(class_name);
@@ -60,7 +60,8 @@ void Workbench::set_workspace(const std::string& folder) {
   workspace_ = folder;
   workspace_files_.clear();
   std::error_code error;
-  for (fs::recursive_directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+  for (fs::recursive_directory_iterator it(folder, error), end; !error && it != end;
+       it.increment(error))
     if (it->path().extension() == ".h5") workspace_files_.push_back(it->path().string());
   std::sort(workspace_files_.begin(), workspace_files_.end());
 }
@@ -94,10 +95,13 @@ void Workbench::choose_default_view() {
     spread.emplace_back(values.maxCoeff() - values.minCoeff(), column);
   }
   if (spread.empty())
-    for (int column = 0; column < std::min<int>(kMaxDefaultPlotChannels, stream.channel_count()); ++column)
+    for (int column = 0; column < std::min<int>(kMaxDefaultPlotChannels, stream.channel_count());
+         ++column)
       spread.emplace_back(0.0f, column);
-  std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
-  for (size_t k = 0; k < spread.size() && k < kMaxDefaultPlotChannels; ++k) plotted_[spread[k].second] = 1;
+  std::stable_sort(spread.begin(), spread.end(),
+                   [](auto& a, auto& b) { return a.first > b.first; });
+  for (size_t k = 0; k < spread.size() && k < kMaxDefaultPlotChannels; ++k)
+    plotted_[spread[k].second] = 1;
   plot_state_ = SignalPlotState{};
   plot_state_.view_t0 = 0.0;
   plot_state_.view_t1 = std::max(1e-3, document.recording.duration());
@@ -127,14 +131,16 @@ void Workbench::toggle_taxel_channels(int64_t taxel_id) {
 //---------------------------------------------------------------------------------------------
 void Workbench::frame(double seconds) {
   clock_.advance(seconds);
-  if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
+  if (!ImGui::GetIO().WantTextInput &&
+      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
     clock_.toggle();
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(viewport->WorkPos);
   ImGui::SetNextWindowSize(viewport->WorkSize);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_MenuBar |
-                                 ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoSavedSettings;
+                                 ImGuiWindowFlags_NoBringToFrontOnFocus |
+                                 ImGuiWindowFlags_NoSavedSettings;
   ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
   ImGui::Begin("Tactile Workbench", nullptr, flags);
   ImGui::PopStyleVar();
@@ -150,7 +156,8 @@ void Workbench::frame(double seconds) {
   if (document_) {
     const float transport_height = ImGui::GetFrameHeightWithSpacing();
     const float labels_height = std::max(90.0f, main_height * 0.22f);
-    const float views_height = main_height - transport_height - labels_height - ImGui::GetStyle().ItemSpacing.y * 2;
+    const float views_height =
+        main_height - transport_height - labels_height - ImGui::GetStyle().ItemSpacing.y * 2;
     const float skin_width = std::floor(right_width * 0.42f);
     draw_skin_panel(skin_width, views_height);
     ImGui::SameLine();
@@ -201,7 +208,8 @@ void Workbench::draw_sidebar(float width, float height) {
   ImGui::BeginChild("sidebar", ImVec2(width, height), true);
   if (ImGui::CollapsingHeader("Workspace", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (workspace_files_.empty()) ImGui::TextDisabled("(no recordings)");
-    ImGui::BeginChild("files", ImVec2(0, std::min(height * 0.45f, 22.0f * (workspace_files_.size() + 1))));
+    ImGui::BeginChild("files",
+                      ImVec2(0, std::min(height * 0.45f, 22.0f * (workspace_files_.size() + 1))));
     for (const std::string& file : workspace_files_) {
       const std::string shown = fs::relative(file, workspace_).string();
       const bool selected = document_ && document_->path == file;
@@ -231,8 +239,9 @@ void Workbench::draw_sidebar(float width, float height) {
     for (size_t k = 0; k < recording.streams.size(); ++k) {
       const Stream& stream = recording.streams[k];
       char text[160];
-      std::snprintf(text, sizeof(text), "%s  %g Hz  %lld ch  %s", stream.name.c_str(), stream.rate_hz,
-                    static_cast<long long>(stream.channel_count()), format_seconds(stream.duration()).c_str());
+      std::snprintf(text, sizeof(text), "%s  %g Hz  %lld ch  %s", stream.name.c_str(),
+                    stream.rate_hz, static_cast<long long>(stream.channel_count()),
+                    format_seconds(stream.duration()).c_str());
       if (ImGui::RadioButton(text, document_->stream_index == static_cast<int>(k))) {
         select_stream(*document_, static_cast<int>(k));
         choose_default_view();
@@ -307,8 +316,8 @@ void Workbench::draw_plot_panel(float width, float height) {
   std::vector<PlotSpan> spans;
   for (const Label& label : document_->labels)
     spans.push_back({label.t0, label.t1, class_colour(label.class_name), label.class_name});
-  const SignalPlotResult result =
-      draw_signal_plot("signals", channels, spans, plot_state_, clock_.time(), ImGui::GetContentRegionAvail());
+  const SignalPlotResult result = draw_signal_plot("signals", channels, spans, plot_state_,
+                                                   clock_.time(), ImGui::GetContentRegionAvail());
   if (result.clicked_time) clock_.seek(*result.clicked_time);
   ImGui::EndChild();
 }
@@ -334,8 +343,8 @@ void Workbench::draw_transport(float width) {
   const std::string now = format_seconds(clock_.time()) + " / " + format_seconds(clock_.end());
   ImGui::SetNextItemWidth(-1);
   float time = static_cast<float>(clock_.time());
-  if (ImGui::SliderFloat("##time", &time, static_cast<float>(clock_.start()), static_cast<float>(clock_.end()),
-                         now.c_str()))
+  if (ImGui::SliderFloat("##time", &time, static_cast<float>(clock_.start()),
+                         static_cast<float>(clock_.end()), now.c_str()))
     clock_.seek(time);
   ImGui::EndChild();
 }
@@ -348,8 +357,8 @@ void Workbench::draw_labels_panel(float width, float height) {
   } else if (labels.empty()) {
     ImGui::TextDisabled("No labels for this recording in %s.", document_->labels_path.c_str());
   } else if (ImGui::BeginTable("label_table", 6,
-                               ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV |
-                                   ImGuiTableFlags_Resizable)) {
+                               ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                                   ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable)) {
     ImGui::TableSetupScrollFreeze(0, 1);
     for (const char* header : {"class", "region", "t0", "t1", "source", "annotator"})
       ImGui::TableSetupColumn(header);
@@ -363,7 +372,8 @@ void Workbench::draw_labels_panel(float width, float height) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::PushID(row);
-        if (ImGui::Selectable(label.class_name.c_str(), current, ImGuiSelectableFlags_SpanAllColumns))
+        if (ImGui::Selectable(label.class_name.c_str(), current,
+                              ImGuiSelectableFlags_SpanAllColumns))
           clock_.seek(label.t0);
         ImGui::PopID();
         ImGui::TableNextColumn();
@@ -386,8 +396,9 @@ void Workbench::draw_status_bar() {
   if (!error_.empty()) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error_.c_str());
   } else if (document_) {
-    ImGui::TextDisabled("%s   %zu labels   space: play/pause   wheel: zoom   drag: pan   double-click: fit",
-                        document_->path.c_str(), document_->labels.size());
+    ImGui::TextDisabled(
+        "%s   %zu labels   space: play/pause   wheel: zoom   drag: pan   double-click: fit",
+        document_->path.c_str(), document_->labels.size());
   } else {
     ImGui::TextDisabled("Tactile Workbench");
   }

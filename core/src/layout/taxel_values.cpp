@@ -6,8 +6,8 @@
 
 namespace tactile {
 
-std::vector<int> taxel_columns(const SkinLayout& layout, const std::vector<std::string>& stream_channels,
-                               int modality) {
+std::vector<int> taxel_columns(const SkinLayout& layout,
+                               const std::vector<std::string>& stream_channels, int modality) {
   std::unordered_map<std::string, int> column_of;
   for (size_t column = 0; column < stream_channels.size(); ++column)
     column_of.emplace(stream_channels[column], static_cast<int>(column));
@@ -24,7 +24,8 @@ std::vector<int> taxel_columns(const SkinLayout& layout, const std::vector<std::
   return columns;
 }
 
-std::vector<float> taxel_values(const Stream& stream, const std::vector<int>& columns, int64_t sample) {
+std::vector<float> taxel_values(const Stream& stream, const std::vector<int>& columns,
+                                int64_t sample) {
   std::vector<float> values(columns.size(), std::numeric_limits<float>::quiet_NaN());
   if (sample < 0 || sample >= stream.sample_count()) return values;
   for (size_t k = 0; k < columns.size(); ++k)

@@ -1,0 +1,67 @@
+#pragma once
+// Shared by the command-line end-to-end tests: a temporary folder per test and a way
+// to run a built program with its output captured.
+
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace tactile::test {
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A fresh folder under the system's temp directory, removed with everything in it.
+class TempFolder {
+ public:
+  explicit TempFolder(const std::string& prefix = "tactile-test") {
+    std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+    if (!mkdtemp(pattern.data()))
+      throw std::runtime_error("cannot create a temp folder " + pattern);
+    path_ = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `<bin dir>/<program> <arguments>` through the shell, stdout and stderr captured
+// in files of `folder`.
+inline CommandResult run_program(const std::string& program, const std::string& arguments,
+                                 const TempFolder& folder) {
+  const std::string out = folder.file(".stdout.txt");
+  const std::string err = folder.file(".stderr.txt");
+  const std::string command = std::string(TACTILE_BIN_DIR) + "/" + program + " " + arguments +
+                              " >'" + out + "' 2>'" + err + "' </dev/null";
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = read_text(out);
+  result.err = read_text(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return result;
+}
+
+}  // namespace tactile::test
