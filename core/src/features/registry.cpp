@@ -7,6 +7,7 @@
 
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
+#include "tactile/features/generic.h"
 
 namespace tactile {
 
@@ -23,6 +24,7 @@ struct PipelineEntry {
 const std::vector<PipelineEntry>& pipeline_table() {
   static const std::vector<PipelineEntry> table = {
       // {"name", make_name_extractor},  (include "tactile/features/name.h")
+      {"generic", make_generic_extractor},
   };
   return table;
 }
