@@ -53,8 +53,8 @@ struct Subject {
 
 Subject draw_subject(Random& random) {
   Subject subject;
-  subject.touch_force = random.uniform(0.8, 2.8);
-  subject.caress_force_ratio = random.uniform(0.4, 0.85);
+  subject.touch_force = random.uniform(1.0, 2.8);
+  subject.caress_force_ratio = random.uniform(0.55, 0.95);
   subject.finger_spread = random.uniform(2.8, 4.2);
   subject.finger_elongation = random.uniform(1.1, 1.5);
   subject.finger_angle = random.uniform(0.0, std::numbers::pi);
@@ -64,7 +64,7 @@ Subject draw_subject(Random& random) {
   subject.aim_bias = random.truncated_normal(0.0, 1.5);
   subject.preferred_v = random.uniform(0.3, 0.7);
   subject.caress_tilt = random.truncated_normal(0.0, 0.15);
-  subject.caress_inset = random.uniform(0.0, 5.0);
+  subject.caress_inset = random.uniform(0.0, 7.0);
   subject.tremor_hz = random.uniform(8.0, 12.0);
   subject.tremor_depth = random.uniform(0.01, 0.04);
   return subject;
@@ -369,7 +369,7 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
   result.recording.id = simulated_recording_id("flux", subject_index, trial_index);
   result.recording.layout_id = layout.id;
   result.recording.metadata =
-      sim::simulated_metadata("flux", subject_index, trial_index, options.side, options.condition);
+      sim::simulated_metadata("flux", subject_index, trial_index, "", options.condition);
   char temperature_text[32];
   std::snprintf(temperature_text, sizeof(temperature_text), "%.2f", room.start());
   result.recording.metadata["temperature_c"] = temperature_text;
