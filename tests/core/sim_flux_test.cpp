@@ -272,6 +272,36 @@ TEST(SimFlux, NeighboursOfThePressedSerpentineRiseLessThanItButMoreThanFarOnes) 
   EXPECT_GT(neighbour_sum, 1.5 * far_sum);
 }
 
+TEST(SimFlux, EveryGestureCrossesTheSpecOnsetAndRelaxesBeforeTheNext) {
+  // Spec 5.3/5.5: e = reading / V0 - 1 on the top serpentines, onset at |e| > 0.05, and no new
+  // onset until every channel has been back under 0.05 for 0.5 s.
+  const SkinLayout layout = load_layout("flux");
+  for (int subject : {2, 4}) {
+    const SimulatedTrial trial = subject == 2 ? default_trial() : generate(11, subject, 0);
+    const Stream& stream = skin(trial);
+    std::vector<int> top;
+    std::vector<double> rest;
+    for (int zone = 1; zone <= 4; ++zone) {
+      top.push_back(column_of(stream, zone_channel(layout, zone)));
+      rest.push_back(mean_between(stream, top.back(), 0.0, 0.009));
+    }
+    auto largest_change = [&](double t0, double t1) {
+      double largest = 0.0;
+      for (size_t c = 0; c < top.size(); ++c)
+        for (int64_t n = stream.index_at(t0); n <= stream.index_at(t1); ++n)
+          largest = std::max(largest, std::abs(stream.samples(n, top[c]) / rest[c] - 1.0));
+      return largest;
+    };
+    for (size_t k = 0; k < trial.labels.size(); ++k) {
+      const Label& label = trial.labels[k];
+      EXPECT_GT(largest_change(label.t0, label.t1 + 0.1), 0.05)
+          << label.class_name << " at " << label.t0;
+      const double next = k + 1 < trial.labels.size() ? trial.labels[k + 1].t0 : stream.duration();
+      EXPECT_LT(largest_change(next - 0.6, next - 0.01), 0.05) << "before " << next << " s";
+    }
+  }
+}
+
 //---- Sensor and subjects
 
 TEST(SimFlux, WarmerTrialsRestAtHigherCounts) {

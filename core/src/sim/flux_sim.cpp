@@ -263,50 +263,17 @@ float adc_counts(double value) {
   return static_cast<float>(static_cast<int>(std::clamp(value, 0.0, sim::kFluxAdcMax) + 0.5));
 }
 
-}  // namespace
-
-//---- The generator
-
-SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOptions& options,
-                                   int subject_index, int trial_index) {
-  const std::string where = "layout " + layout.id;
-  if (options.repetitions < 0)
-    throw Error("--repetitions", "must be 0 (the skin's default) or more");
-  if (subject_index < 0 || trial_index < 0)
-    throw Error("flux simulator", "subject and trial are 0-based and not negative");
-  if (layout.classes.empty()) throw Error(where, "no classes to simulate");
-  const double rate = layout.sample_rate_hz > 0 ? layout.sample_rate_hz : 1000.0;
-  const FluxGeometry geometry = sim::flux_geometry(layout);
-  const std::vector<Zone> zones = zones_of(layout, geometry, where);
-  std::vector<ClassIntent> intents;
-  for (const std::string& name : layout.classes) intents.push_back(parse_class(name, where));
-
-  Random habits(derive_engine(options.seed, "flux-subject", subject_index));
-  const Subject subject = draw_subject(habits);
-  Random random(derive_engine(options.seed, "flux-trial", subject_index, trial_index));
-
-  // The sequence of gestures and rests.
-  const int repetitions = options.repetitions > 0 ? options.repetitions : kDefaultRepetitions;
-  const std::vector<int> order =
-      sim::shuffled_classes(static_cast<int>(layout.classes.size()), repetitions, random);
-  std::vector<Gesture> gestures;
-  double clock = random.uniform(2.0, 4.0);  // lead-in at rest: V0 is taken at start-up
-  for (int class_index : order) {
-    Gesture gesture = plan_gesture(intents[class_index], zones, geometry, subject, random, where,
-                                   layout.classes[class_index]);
-    gesture.class_index = class_index;
-    gesture.onset = clock;
-    clock = gesture.end() + random.uniform(kRestMin, kRestMax);
-    gestures.push_back(gesture);
-  }
-  const int64_t count = static_cast<int64_t>(std::ceil(clock * rate));
-
+// What the device records while the hand performs `gestures`: one row per sample until
+// `duration`, one column per real serpentine channel, in ADC counts.
+Stream record_skin(const SkinLayout& layout, const FluxGeometry& geometry,
+                   const std::vector<Gesture>& gestures, const Subject& subject, uint64_t seed,
+                   double rate, double duration, Random& random, RoomTemperature& room) {
+  const int64_t count = static_cast<int64_t>(std::ceil(duration * rate));
   // The stream holds the device's real channels only; the virtual sums are preprocessing's.
   std::vector<int> real_channels;
   for (const sim::Serpentine& serpentine : geometry.serpentines)
     real_channels.push_back(serpentine.layout_channel);
   std::sort(real_channels.begin(), real_channels.end());
-  SimulatedTrial result;
   Stream stream;
   stream.name = "skin";
   stream.rate_hz = rate;
@@ -322,12 +289,10 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
                 real_channels.begin();
   stream.samples.resize(count, static_cast<Eigen::Index>(real_channels.size()));
 
-  const std::vector<SerpentineTolerance> tolerances =
-      draw_tolerances(options.seed, serpentine_count);
+  const std::vector<SerpentineTolerance> tolerances = draw_tolerances(seed, serpentine_count);
   std::vector<sim::ViscoelasticSerpentine> serpentines;
   for (const SerpentineTolerance& tolerance : tolerances)
     serpentines.emplace_back(rate, tolerance.relaxation);
-  RoomTemperature room(random);
   const double mains_phase = random.uniform(0.0, 2.0 * std::numbers::pi);
   constexpr double kNoiseCounts = 0.5;  // amplifier and ADC noise, rms
   const double counts_per_ohm = sim::flux_counts_per_ohm();
@@ -366,6 +331,50 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
     }
   }
 
+  return stream;
+}
+
+}  // namespace
+
+//---- The generator
+
+SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                   int subject_index, int trial_index) {
+  const std::string where = "layout " + layout.id;
+  if (options.repetitions < 0)
+    throw Error("--repetitions", "must be 0 (the skin's default) or more");
+  if (subject_index < 0 || trial_index < 0)
+    throw Error("flux simulator", "subject and trial are 0-based and not negative");
+  if (layout.classes.empty()) throw Error(where, "no classes to simulate");
+  const double rate = layout.sample_rate_hz > 0 ? layout.sample_rate_hz : 1000.0;
+  const FluxGeometry geometry = sim::flux_geometry(layout);
+  const std::vector<Zone> zones = zones_of(layout, geometry, where);
+  std::vector<ClassIntent> intents;
+  for (const std::string& name : layout.classes) intents.push_back(parse_class(name, where));
+
+  Random habits(derive_engine(options.seed, "flux-subject", subject_index));
+  const Subject subject = draw_subject(habits);
+  Random random(derive_engine(options.seed, "flux-trial", subject_index, trial_index));
+
+  // The sequence of gestures and rests.
+  const int repetitions = options.repetitions > 0 ? options.repetitions : kDefaultRepetitions;
+  const std::vector<int> order =
+      sim::shuffled_classes(static_cast<int>(layout.classes.size()), repetitions, random);
+  std::vector<Gesture> gestures;
+  double clock = random.uniform(2.0, 4.0);  // lead-in at rest: V0 is taken at start-up
+  for (int class_index : order) {
+    Gesture gesture = plan_gesture(intents[class_index], zones, geometry, subject, random, where,
+                                   layout.classes[class_index]);
+    gesture.class_index = class_index;
+    gesture.onset = clock;
+    clock = gesture.end() + random.uniform(kRestMin, kRestMax);
+    gestures.push_back(gesture);
+  }
+
+  RoomTemperature room(random);
+  SimulatedTrial result;
+  result.recording.streams.push_back(
+      record_skin(layout, geometry, gestures, subject, options.seed, rate, clock, random, room));
   result.recording.id = simulated_recording_id("flux", subject_index, trial_index);
   result.recording.layout_id = layout.id;
   result.recording.metadata =
@@ -373,7 +382,6 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
   char temperature_text[32];
   std::snprintf(temperature_text, sizeof(temperature_text), "%.2f", room.start());
   result.recording.metadata["temperature_c"] = temperature_text;
-  result.recording.streams.push_back(std::move(stream));
 
   for (const Gesture& gesture : gestures) {
     Label label;
