@@ -22,7 +22,8 @@ constexpr double kVacuumPermittivity = 8.854e-12;  // F/m
 constexpr double kShellPermittivity = 2.9;         // relative permittivity of ABS
 constexpr double kCountStep = 5e-15;  // F per count: the module's 5 fF sensitivity (Sec. II-D)
 // The FDC2114 converts 4 channels at once; a 4x8 multiplexer steps through 8 positions per
-// frame (Sec. II-C), so a module's 32 pads are read in 8 slots of 1/64 s.
+// frame (Sec. II-C), 4 per sheet, so a module's 32 pads are read in 8 slots of 1/64 s.
+constexpr int kPositionsPerSheet = 4;
 constexpr int kScanSlots = 8;
 constexpr double kConversionShare = 0.8;  // of a slot; the rest is settling after switching
 constexpr int kConversionSamples = 3;     // points averaged over one conversion window
@@ -42,40 +43,31 @@ std::vector<Sheet> layout_sheets(const SkinLayout& layout) {
   for (size_t k = 0; k < layout.taxels.size(); ++k)
     index_of_id[layout.taxels[k].id] = static_cast<int>(k);
 
-  // Scan order inside a module: the module group's taxel order, 8 slots per frame.
-  std::map<int64_t, double> scan_offset;
-  for (const Group& group : layout.groups) {
-    if (group.kind != "module") continue;
-    const size_t count = group.taxels.size();
-    for (size_t k = 0; k < count; ++k) {
-      const size_t slot = k * kScanSlots / count;
-      scan_offset[group.taxels[k]] = static_cast<double>(slot) * kFramePeriod / kScanSlots;
-    }
-  }
-
   std::vector<Sheet> sheets;
+  std::vector<std::string> module_of_sheet;
   for (const Group& group : layout.groups) {
     if (group.kind != "sheet") continue;
     if (group.taxels.empty()) throw Error(layout.id, "sheet \"" + group.id + "\" has no taxels");
     Sheet sheet;
     sheet.id = group.id;
     const Group* location = group_holding(layout, group.taxels.front(), "location");
-    if (location == nullptr)
-      throw Error(layout.id, "sheet \"" + group.id + "\" lies in no group of kind \"location\"");
+    const Group* module = group_holding(layout, group.taxels.front(), "module");
+    if (location == nullptr || module == nullptr)
+      throw Error(layout.id, "sheet \"" + group.id +
+                                 "\" needs to lie in a group of kind \"location\" and one of kind "
+                                 "\"module\"");
     sheet.location = location->id;
+    module_of_sheet.push_back(module->id);
     double sum_x = 0.0, sum_y = 0.0;
     for (int64_t id : group.taxels) {
       const auto found = index_of_id.find(id);
-      const auto offset = scan_offset.find(id);
-      if (found == index_of_id.end() || offset == scan_offset.end())
-        throw Error(layout.id, "sheet \"" + group.id + "\": taxel " + std::to_string(id) +
-                                   " lies in no group of kind \"module\"");
+      if (found == index_of_id.end())
+        throw Error(layout.id, "sheet \"" + group.id + "\": unknown taxel " + std::to_string(id));
       const Taxel& taxel = layout.taxels[found->second];
       if (taxel.channels.empty() || taxel.channels.front() < 0)
         throw Error(layout.id, "taxel \"" + taxel.name + "\" has no capacitance channel");
       sheet.taxels.push_back(found->second);
       sheet.columns.push_back(taxel.channels.front());
-      sheet.scan_offsets.push_back(offset->second);
       sheet.pad_centres.push_back(taxel.position);
       sum_x += taxel.position.x;
       sum_y += taxel.position.y;
@@ -85,10 +77,10 @@ std::vector<Sheet> layout_sheets(const SkinLayout& layout) {
     const Taxel& first = layout.taxels[sheet.taxels.front()];
     sheet.pad_radius = 0.5 * std::min(first.size.x, first.size.y);
     double nearest = 0.0;
-    for (size_t a = 0; a < sheet.taxels.size(); ++a)
-      for (size_t b = a + 1; b < sheet.taxels.size(); ++b) {
-        const Point2 p = layout.taxels[sheet.taxels[a]].position;
-        const Point2 q = layout.taxels[sheet.taxels[b]].position;
+    for (size_t a = 0; a < sheet.pad_centres.size(); ++a)
+      for (size_t b = a + 1; b < sheet.pad_centres.size(); ++b) {
+        const Point2 p = sheet.pad_centres[a];
+        const Point2 q = sheet.pad_centres[b];
         const double distance = std::hypot(p.x - q.x, p.y - q.y);
         if (nearest == 0.0 || distance < nearest) nearest = distance;
       }
@@ -97,6 +89,30 @@ std::vector<Sheet> layout_sheets(const SkinLayout& layout) {
   }
   if (sheets.empty())
     throw Error(layout.id, "tsa simulator: layout has no group of kind \"sheet\"");
+
+  // Scan timing. The converter reads 4 pads at once and the multiplexer steps 4 positions per
+  // sheet, one sheet after the other. We assume each position reads the same corner of the
+  // four 2x2 quadrants of a sheet, so a touch that starts mid-frame shows spread over the
+  // sheet rather than as a row sweep (the paper does not give the wiring).
+  std::map<std::string, int> sheets_in_module;
+  std::vector<int> order_in_module;
+  for (const std::string& module : module_of_sheet)
+    order_in_module.push_back(sheets_in_module[module]++);
+  for (size_t s = 0; s < sheets.size(); ++s) {
+    Sheet& sheet = sheets[s];
+    double left = sheet.pad_centres.front().x, top = sheet.pad_centres.front().y;
+    for (const Point2& pad : sheet.pad_centres) {
+      left = std::min(left, pad.x);
+      top = std::min(top, pad.y);
+    }
+    const int slots = kPositionsPerSheet * sheets_in_module[module_of_sheet[s]];
+    for (const Point2& pad : sheet.pad_centres) {
+      const auto row = static_cast<int>(std::lround((pad.y - top) / sheet.pitch));
+      const auto column = static_cast<int>(std::lround((pad.x - left) / sheet.pitch));
+      const int slot = order_in_module[s] * kPositionsPerSheet + (row % 2) * 2 + column % 2;
+      sheet.scan_offsets.push_back(slot * kFramePeriod / slots);
+    }
+  }
   return sheets;
 }
 
@@ -208,8 +224,8 @@ Device make_device(const SkinLayout& layout, const std::vector<Sheet>& sheets, u
   for (const Sheet& sheet : sheets) {
     const double thickness = shell_thickness[sheet.location];
     const double air_gap = random.uniform(0.0, 0.4) * 1e-3;
-    // The fringe field widens a pad's sensing area by about half the shell's thickness.
-    const double radius = sheet.pad_radius + 0.5 * thickness * 1e3;
+    // The fringe field widens a pad's sensing area by about a third of the shell's thickness.
+    const double radius = sheet.pad_radius + 0.3 * thickness * 1e3;
     const double area = std::numbers::pi * radius * radius * 1e-6;
     // Parallel plates, ABS and air in series: C = e0 A / (t / er + gap).
     const double capacitance =

@@ -129,10 +129,10 @@ Habits draw_habits(uint64_t seed, int subject, size_t location_count) {
   Habits habits;
   // The paper's two groups, adult male and female, alternate so every split holds both.
   habits.male = subject % 2 == 0;
-  // Contact sizes: adult finger pads 10-13 mm wide (male) vs 9-11 mm (female); palms lie
-  // only partly on the curved shell.
-  habits.finger_half_width = random.truncated_normal(habits.male ? 6.0 : 5.2, 0.45);
-  habits.finger_elongation = random.uniform(1.15, 1.4);
+  // Contact sizes on a hard shell at light force: finger pads about 10 mm wide (male) vs
+  // 9 mm (female), a little longer than wide; palms lie only partly on the curved shell.
+  habits.finger_half_width = random.truncated_normal(habits.male ? 5.0 : 4.4, 0.4);
+  habits.finger_elongation = random.uniform(1.15, 1.35);
   habits.palm_half_width = random.truncated_normal(habits.male ? 16.0 : 13.5, 1.3);
   habits.palm_elongation = random.uniform(1.1, 1.3);
   const double speed_factor = habits.male ? random.uniform(0.95, 1.25) : random.uniform(0.8, 1.05);
@@ -213,7 +213,7 @@ Footprint shape_of_hand(Hand hand, const Habits& habits, Random& random) {
       shape.half_length = shape.half_width * habits.finger_elongation;
       break;
     case Hand::kFingertip:  // only the tip presses when poking
-      shape.half_width = 0.6 * habits.finger_half_width * random.truncated_normal(1.0, 0.08);
+      shape.half_width = 0.7 * habits.finger_half_width * random.truncated_normal(1.0, 0.08);
       shape.half_length = shape.half_width * 1.1;
       break;
     case Hand::kPalm:  // how flat the palm lands on the shell's curve varies
@@ -285,7 +285,8 @@ Touch plan_touch(int class_index, double start_time, const Habits& habits,
       touch.end = {centre.x + unit.x * path_length / 2, centre.y + unit.y * path_length / 2};
       touch.bow = habits.bow * random.truncated_normal(1.0, 0.3);
     }
-    duration = std::max(0.15, path_length / speed);
+    // Nobody slides for ever: a slow circle speeds up rather than lasting over 6 s.
+    duration = std::clamp(path_length / speed, 0.15, 6.0);
   }
   touch.contact_start = start_time;
   touch.contact_end = start_time + duration;
