@@ -136,13 +136,13 @@ Habits draw_habits(uint64_t seed, int subject, size_t location_count) {
   habits.palm_half_width = random.truncated_normal(habits.male ? 16.0 : 13.5, 1.3);
   habits.palm_elongation = random.uniform(1.1, 1.3);
   const double speed_factor = habits.male ? random.uniform(0.95, 1.25) : random.uniform(0.8, 1.05);
-  habits.tap_duration = random.uniform(0.14, 0.22);
-  habits.poke_duration = random.uniform(0.3, 0.6);
-  habits.slow_speed = random.uniform(8.0, 14.0) * speed_factor;
-  habits.finger_speed = random.uniform(40.0, 75.0) * speed_factor;
-  habits.palm_speed = random.uniform(70.0, 120.0) * speed_factor;
-  habits.stroke_length = random.uniform(18.0, 28.0);
-  habits.palm_preference = random.uniform(0.2, 0.65);
+  habits.tap_duration = random.uniform(0.14, 0.28);
+  habits.poke_duration = random.uniform(0.25, 0.8);
+  habits.slow_speed = random.uniform(6.0, 16.0) * speed_factor;
+  habits.finger_speed = random.uniform(35.0, 90.0) * speed_factor;
+  habits.palm_speed = random.uniform(60.0, 140.0) * speed_factor;
+  habits.stroke_length = random.uniform(15.0, 32.0);
+  habits.palm_preference = random.uniform(0.1, 0.8);
   habits.orientation = random.uniform(0.0, std::numbers::pi);
   habits.aim_offset = {random.normal(0.0, 3.0), random.normal(0.0, 3.0)};
   habits.bow = random.uniform(-3.0, 3.0);
@@ -153,7 +153,7 @@ Habits draw_habits(uint64_t seed, int subject, size_t location_count) {
     habits.location_weights.push_back(0.05 + weight * weight);
   }
   for (int k = 0; k < kDirectionCount; ++k)
-    habits.direction_weights.push_back(random.uniform(0.3, 1.0));
+    habits.direction_weights.push_back(random.uniform(0.1, 1.0));
   return habits;
 }
 
