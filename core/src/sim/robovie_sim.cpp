@@ -16,8 +16,9 @@ namespace {
 
 using sim::robovie::Films;
 
-// Contact impulse (N s) below which a stage counts as untouched: a brief brush, not a touch.
-constexpr double kTouchedImpulse = 0.5;
+// Contact impulse (N s) below which a stage counts as untouched: a finger's poke (a few N
+// for a fifth of a second) is above it, a hand that only grazes a film's edge is not.
+constexpr double kTouchedImpulse = 0.1;
 
 // The body part that carried the most contact force over [t0, t1), or "all" when nobody
 // touched. Measured on the contact loads before the sensor, i.e. what really happened.
