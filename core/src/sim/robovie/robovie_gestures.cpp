@@ -39,7 +39,9 @@ double Hands::tap(double t, const MapArea& area, double base_force, bool finger_
   contact.rise = 0.03;
   contact.fall = 0.05;
   contact.force = force(base_force);
-  contact.center = spot(area, random_.uniform(0.2, 0.8), random_.uniform(0.2, 0.8), 8.0);
+  const double u = random_.uniform(0.2, 0.8);  // own statements: argument order is unspecified
+  const double v = random_.uniform(0.2, 0.8);
+  contact.center = spot(area, u, v, 8.0);
   contact.half_size = finger_tip ? finger() : palm();
   add(contact);
   return contact.end();
@@ -244,9 +246,10 @@ double Hands::hug(double t, double hold) {
   torso.pulse_depth = 0.2;
   torso.pulse_hz = breathing;
   add(torso);
-  if (habits_.pats_while_hugging)
-    pats(t + rise + random_.uniform(0.3, 1.0), area("back-upper", View::kBack),
-         static_cast<int>(random_.integer(2, 4)));
+  if (habits_.pats_while_hugging) {
+    const double onset = t + rise + random_.uniform(0.3, 1.0);
+    pats(onset, area("back-upper", View::kBack), static_cast<int>(random_.integer(2, 4)));
+  }
   move(Joint::kWaist, JointMove::Shape::kBump, t, duration, random_.uniform(0.03, 0.06));
   return t + duration;
 }

@@ -77,9 +77,12 @@ class SessionPlayer {
                                      : hands_.tap(hands_.tap(t, approach_part, 5.0, false) + 0.3,
                                                   approach_part, 5.0, false);
         return t;
-      case kShakeHands:
-        return hands_.hand_shake(t, static_cast<int>(random_.integer(2, 6)),
-                                 random_.chance(0.6) ? random_.uniform(0.5, 4.0) : 0.0);
+      case kShakeHands: {
+        // Draws in their own statements: the order of a call's arguments is unspecified.
+        const int pumps = static_cast<int>(random_.integer(2, 6));
+        const double hold_after = random_.chance(0.6) ? random_.uniform(0.5, 4.0) : 0.0;
+        return hands_.hand_shake(t, pumps, hold_after);
+      }
       case kNiceToMeetYou:
         if (random_.chance(0.5 * habits_.touchiness))
           return hands_.tap(t + random_.uniform(0.5, 2.0), approach_part, 4.0, false);
@@ -88,8 +91,8 @@ class SessionPlayer {
       case kWhereFrom:
         if (random_.chance(0.35 * habits_.touchiness)) {
           const char* forearm = random_.chance(0.5) ? "forearm-right" : "forearm-left";
-          return hands_.hold(t + random_.uniform(0.5, 2.0), hands_.area(forearm, front), 3.0,
-                             random_.uniform(1.0, 4.0));
+          const double onset = t + random_.uniform(0.5, 2.0);
+          return hands_.hold(onset, hands_.area(forearm, front), 3.0, random_.uniform(1.0, 4.0));
         }
         return t;
       case kLetsPlay:
@@ -125,19 +128,23 @@ class SessionPlayer {
       }
       case kThatTickles: {
         double end = std::max(t, tickle_until_);
-        if (random_.chance(0.3 + 0.4 * habits_.touchiness))
-          end = hands_.tickle(end + random_.uniform(0.5, 1.5), random_.uniform(1.0, 3.0));
+        if (random_.chance(0.3 + 0.4 * habits_.touchiness)) {
+          const double onset = end + random_.uniform(0.5, 1.5);
+          end = hands_.tickle(onset, random_.uniform(1.0, 3.0));
+        }
         return end;
       }
       case kThanks:
-        if (random_.chance(0.5 * habits_.touchiness))
-          return hands_.pats(
-              t, hands_.area(random_.chance(0.5) ? "head" : "shoulder-right", View::kBack),
-              static_cast<int>(random_.integer(1, 2)));
+        if (random_.chance(0.5 * habits_.touchiness)) {
+          const char* part = random_.chance(0.5) ? "head" : "shoulder-right";
+          return hands_.pats(t, hands_.area(part, View::kBack),
+                             static_cast<int>(random_.integer(1, 2)));
+        }
         return t;
-      case kHug:
-        return hands_.hug(t + random_.uniform(0.5, 1.5),
-                          random_.uniform(2.0, 6.0) * habits_.patience);
+      case kHug: {
+        const double onset = t + random_.uniform(0.5, 1.5);
+        return hands_.hug(onset, random_.uniform(2.0, 6.0) * habits_.patience);
+      }
       case kByeBye:
         switch (random_.chance(0.7) ? habits_.bye_style : random_.integer(0, 3)) {
           case 0:
@@ -145,8 +152,10 @@ class SessionPlayer {
           case 1:
             return hands_.pats(t, hands_.area("head", View::kBack),
                                static_cast<int>(random_.integer(2, 3)));
-          case 2:
-            return hands_.hug(t + random_.uniform(0.3, 1.0), random_.uniform(1.0, 2.0));
+          case 2: {
+            const double onset = t + random_.uniform(0.3, 1.0);
+            return hands_.hug(onset, random_.uniform(1.0, 2.0));
+          }
           default:
             return t;  // waves goodbye from where they stand
         }
@@ -308,10 +317,10 @@ Session play_session(const Films& films, const std::vector<std::string>& stages,
     const bool asked_touch = stage == kShakeHands || stage == kPatHead || stage == kHug;
     if (stage == kTickleMe)
       done = touched + random.uniform(0.3, 0.8);
-    else
-      done = std::max(touched, answered) +
-             random.uniform(asked_touch ? 0.3 : 1.0, asked_touch ? 2.0 : 6.0) +
-             random.uniform(0.5, 2.0);
+    else {
+      const double chat = random.uniform(asked_touch ? 0.3 : 1.0, asked_touch ? 2.0 : 6.0);
+      done = std::max(touched, answered) + chat + random.uniform(0.5, 2.0);
+    }
     command = done;
   }
   double last_touch = 0.0;
