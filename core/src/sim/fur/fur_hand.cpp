@@ -244,8 +244,9 @@ std::vector<Episode> plan_gesture(Gesture gesture, const SubjectHabits& habits, 
       break;
     }
     case Gesture::kStroke: {
-      // The flat hand glides along the fur towards the person (from the front: up towards
-      // the crown's front edge, from behind: down the back of the head), lifted to return.
+      // The flat hand glides along the fur towards the person and ends at the preferred spot
+      // (from the front: up to the crown's front edge, from behind: down the back of the
+      // head), lifted to return.
       const int count =
           std::clamp(habits.stroke_count + static_cast<int>(random.integer(0, 1)), 1, 3);
       const double direction = heading + kPi + random.truncated_normal(0.0, 0.2, 2.0);
@@ -259,8 +260,8 @@ std::vector<Episode> plan_gesture(Gesture gesture, const SubjectHabits& habits, 
         stroke.fall = 0.2;
         stroke.force = 15.0 * force * random.uniform(0.85, 1.15);
         stroke.palm_share = 0.4;
-        stroke.start = map.clamp(along(centre, direction, -0.5 * length, 0.0), margin);
-        stroke.end = map.clamp(along(centre, direction, 0.5 * length, 0.0), margin);
+        stroke.start = map.clamp(along(centre, direction, -length, 0.0), margin);
+        stroke.end = centre;
         episodes.push_back(stroke);
         start += stroke.duration + random.uniform(0.3, 0.55);
       }

@@ -31,9 +31,12 @@ constexpr double kAdcOffsetCounts = 3.0;
 constexpr double kLowPassSeconds = 0.015;
 // Sneak paths of the resistor matrix: a pressed cell lowers the reading of the cells
 // sharing its row (next columns), its column (next rows) and its ADC line (diode partner).
-constexpr double kRowCoupling = 0.02;
-constexpr double kColumnCoupling = 0.015;
-constexpr double kLineCoupling = 0.01;
+// A sneak path runs through unpressed cells in series, so its conductance stays below
+// theirs however hard the neighbour is pressed: the crosstalk is minor (§2.1).
+constexpr double kRowCoupling = 0.15;
+constexpr double kColumnCoupling = 0.1;
+constexpr double kLineCoupling = 0.06;
+constexpr double kSneakLimit = 1.0;
 // Settling of fur, foam and fleece: a pressed cell keeps a residual compression that
 // recovers over seconds, and a small part of it stays (the resting resistance changes
 // after a contact, §2.1). Both are far slower than the 0.2 Hz high-pass of spec §3.2.
@@ -194,8 +197,10 @@ void FurSensor::advance(double dt) {
 
     double conductance =
         cell.rest_conductance * (1.0 + residual_[k] + permanent_[k]) * drift_ + touch_[k];
-    for (const Neighbour& neighbour : cell.neighbours)
-      conductance += neighbour.coupling * touch_[neighbour.cell];
+    for (const Neighbour& neighbour : cell.neighbours) {
+      const double pressed = touch_[neighbour.cell];
+      conductance += neighbour.coupling * kSneakLimit * pressed / (pressed + kSneakLimit);
+    }
     filtered_[k] += smoothing * (adc_reading(conductance) - filtered_[k]);
   }
 }
