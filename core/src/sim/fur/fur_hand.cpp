@@ -214,7 +214,7 @@ std::vector<Episode> plan_gesture(Gesture gesture, const SubjectHabits& habits, 
       for (int k = 0; k < count; ++k) {
         Episode pat = base;
         pat.onset = start;
-        pat.duration = random.uniform(0.12, 0.22);
+        pat.duration = random.uniform(0.14, 0.24);
         pat.rise = 0.04;
         pat.fall = 0.05;
         pat.force = 20.0 * force * random.uniform(0.8, 1.2);
