@@ -215,6 +215,32 @@ TEST(FurSimulator, TickleNeverSaturatesWhileTheOtherGesturesMostlyDo) {
     EXPECT_GT(saturated[name], gestures[name] / 2) << name;
 }
 
+TEST(FurSimulator, NormalisedByItsCalibrationOnlyTickleStaysBelowFullScale) {
+  // Spec §3.2-3.3 as the feature pipeline will run it: high-pass, divide by the calibration
+  // peak from the metadata, clip to [0, 1]. Paper 002 Fig 6: every gesture but tickling
+  // drives some cell to 1.
+  std::map<std::string, int> gestures, full;
+  for (const SimulatedTrial& trial : corpus()) {
+    const Stream& stream = skin(trial);
+    const std::vector<double> peaks = calibration_peaks(trial);
+    std::vector<std::vector<double>> filtered;
+    for (int64_t channel = 0; channel < stream.channel_count(); ++channel)
+      filtered.push_back(high_pass(stream, channel));
+    for (const Label& label : trial.labels) {
+      const FrameRange range = frames_of(stream, label.t0, label.t1);
+      double highest = 0.0;
+      for (int64_t channel = 0; channel < stream.channel_count(); ++channel)
+        for (int64_t frame = range.first; frame <= range.last; ++frame)
+          highest = std::max(highest, filtered[channel][frame] / peaks[channel]);
+      ++gestures[label.class_name];
+      if (highest >= 1.0) ++full[label.class_name];
+    }
+  }
+  EXPECT_EQ(full["tickle"], 0);
+  for (const std::string name : {"slap", "pat", "fondle", "stroke", "push"})
+    EXPECT_GT(full[name], gestures[name] * 3 / 4) << name;
+}
+
 // Drop-weighted centre of the cells pressed well below their rest level, per frame.
 std::vector<Point2> contact_centres(const SimulatedTrial& trial, const Label& label) {
   const Stream& stream = skin(trial);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -31,9 +32,15 @@ constexpr int kDefaultRepetitions = 5;
 // and the microcontroller's low-pass turns it into frames.
 constexpr int kSubsteps = 16;
 constexpr double kFrameNoiseCounts = 0.6;
-// Calibration press of spec §3.3: the soft-tipped 2.5 cm cylinder of paper 002 Fig 5.
-constexpr double kReferenceForceNewton = 0.5 * 9.81;
+// Calibration press of spec §3.3 with the soft-tipped 2.5 cm cylinder of paper 002 Fig 5.
+// The paper does not give the reference force; a light one keeps the cell's response graded,
+// so that firm gestures exceed it (saturate at 1 after normalisation) and tickling does not.
+constexpr double kReferenceForceNewton = 0.8;
 constexpr double kReferenceDiameterMm = 25.0;
+constexpr double kReferenceRiseSeconds = 0.3;
+constexpr double kReferenceHoldSeconds = 1.5;
+// Spec §3.2: the 0.2 Hz first-order high-pass the calibration peak is measured after.
+constexpr double kHighPassHz = 0.2;
 
 struct PlannedGesture {
   int class_index = 0;
@@ -41,12 +48,25 @@ struct PlannedGesture {
   size_t first_episode = 0, episode_count = 0;
 };
 
-std::string calibration_peaks(FurSensor& sensor, int channels) {
+// Spec §3.3: r_c = peak of the high-passed response of cell c to the reference press,
+// pressed on each cell in turn (rising over 0.3 s, then held), read at the frame rate.
+std::string calibration_peaks(FurSensor& sensor, int channels, double rate) {
   std::vector<double> peaks(static_cast<size_t>(channels), 0.0);
-  for (int cell = 0; cell < sensor.cell_count(); ++cell)
-    peaks[sensor.channel(cell)] =
-        sensor.rest_reading(cell) -
-        sensor.reading_under_reference(cell, kReferenceForceNewton, kReferenceDiameterMm);
+  const double rc = 1.0 / (2.0 * std::numbers::pi * kHighPassHz), dt = 1.0 / rate;
+  const double alpha = rc / (rc + dt);
+  const int frames = static_cast<int>((kReferenceRiseSeconds + kReferenceHoldSeconds) * rate);
+  for (int cell = 0; cell < sensor.cell_count(); ++cell) {
+    double previous = 1023.0 - sensor.rest_reading(cell), filtered = 0.0, peak = 0.0;
+    for (int frame = 1; frame <= frames; ++frame) {
+      const double share = std::min(1.0, frame * dt / kReferenceRiseSeconds);
+      const double force = kReferenceForceNewton * (0.5 - 0.5 * std::cos(std::numbers::pi * share));
+      const double u = 1023.0 - sensor.reading_under_reference(cell, force, kReferenceDiameterMm);
+      filtered = alpha * (filtered + u - previous);
+      previous = u;
+      peak = std::max(peak, filtered);
+    }
+    peaks[sensor.channel(cell)] = peak;
+  }
   std::string text;
   char number[32];
   for (size_t k = 0; k < peaks.size(); ++k) {
@@ -92,7 +112,7 @@ SimulatedTrial simulate_fur_trial(const SkinLayout& layout, const SimulationOpti
   Random device(derive_engine(options.seed, "fur-device"));
   FurSensor sensor(layout, device);
   const std::string calibration =
-      calibration_peaks(sensor, static_cast<int>(layout.channels.size()));
+      calibration_peaks(sensor, static_cast<int>(layout.channels.size()), rate);
   const sim::fur::HeadMap map = sim::fur::head_map(layout);
   Random subject_random(derive_engine(options.seed, "fur-subject", subject));
   const sim::fur::SubjectHabits habits = sim::fur::draw_habits(map, subject_random);

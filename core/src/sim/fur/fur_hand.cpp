@@ -273,7 +273,8 @@ std::vector<Episode> plan_gesture(Gesture gesture, const SubjectHabits& habits, 
       tickle.duration = random.uniform(1.6, 3.6) * duration;
       tickle.rise = 0.1;
       tickle.fall = 0.1;
-      tickle.force = 0.5 * force;
+      // Pressing harder would no longer tickle: people vary less here than in firm touches.
+      tickle.force = 0.4 * std::sqrt(force);
       tickle.fingertips_only = true;
       tickle.fingers = habits.tickle_fingers;
       tickle.wiggle_amplitude = random.uniform(6.0, 14.0) * motion;
