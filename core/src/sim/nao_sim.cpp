@@ -39,6 +39,7 @@ std::vector<SideArea> find_sides(const SkinLayout& layout) {
       const Taxel* taxel = layout.find_taxel(taxel_id);
       const int index = static_cast<int>(taxel - layout.taxels.data());
       side.cells.push_back(index);
+      side.centres.push_back(taxel->position);
       side.centre.x += taxel->position.x / static_cast<double>(group->taxels.size());
       side.centre.y += taxel->position.y / static_cast<double>(group->taxels.size());
       for (const Point2& corner : taxel_outline(*taxel)) {
@@ -99,13 +100,25 @@ SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOpti
   if (options.multi_touch) {
     const int pair_count = static_cast<int>(std::size(kMultiTouchPairs));
     for (int pair : sim::shuffled_classes(pair_count, repetitions, random)) {
-      // Two hands at once: the second starts within a moment of the first.
-      const double front_start = cursor + random.uniform(0.0, 0.3);
-      const double back_start = cursor + random.uniform(0.0, 0.3);
+      // Two hands at once: the briefer action happens while the longer one lasts.
       const char* front = kMultiTouchPairs[pair][0];
       const char* back = kMultiTouchPairs[pair][1];
-      const double front_end = place(front, class_index(layout, front), 0, front_start);
-      const double back_end = place(back, class_index(layout, back), 1, back_start);
+      place(front, class_index(layout, front), 0, cursor);
+      place(back, class_index(layout, back), 1, cursor);
+      Gesture& first = gestures[gestures.size() - 2];
+      Gesture& second = gestures.back();
+      const bool first_longer =
+          first.contact_end - first.contact_start >= second.contact_end - second.contact_start;
+      Gesture& longer = first_longer ? first : second;
+      Gesture& shorter = first_longer ? second : first;
+      const double slack = (longer.contact_end - longer.contact_start) -
+                           (shorter.contact_end - shorter.contact_start);
+      const double offset =
+          longer.contact_start + random.uniform(0.0, 0.6) * slack - shorter.contact_start;
+      const int64_t shift = std::llround(offset * rate_hz);
+      sim::nao::shift_gesture(shift >= 0 ? shorter : longer, std::abs(shift), rate_hz);
+      const double front_end = static_cast<double>(first.last_sample()) / rate_hz;
+      const double back_end = static_cast<double>(second.last_sample()) / rate_hz;
       cursor = std::max(front_end, back_end) + random.uniform(1.0, 2.5);
     }
   } else {

@@ -232,14 +232,24 @@ void poke(Context& context) {
   const double duration = random.uniform(0.12, 0.3) / habits.speed_scale;
   const double peak = random.uniform(2.0, 5.0) * habits.force_scale / fingers;
   touches.add(context.contact_start, context.contact_start + duration, peak);
+  // A poke is aimed: at the visible cell nearest to where this person likes to touch, with a
+  // few millimetres of aiming error.
+  const SideArea& side = context.side;
+  Point2 target = side.centres.front();
+  for (const Point2& centre : side.centres)
+    if (std::hypot(centre.x - context.hand.origin.x, centre.y - context.hand.origin.y) <
+        std::hypot(target.x - context.hand.origin.x, target.y - context.hand.origin.y))
+      target = centre;
+  context.hand.origin = {target.x + random.truncated_normal(0.0, 3.0),
+                         target.y + random.truncated_normal(0.0, 3.0)};
   const double tremor_phase = random.uniform(0.0, 2.0 * kPi);
   for (int k = 0; k < fingers; ++k) {
-    // Straight fingers side by side touch the skin with their tips close together.
-    const double v = finger_offset(k, fingers, 0.85 * habits.hand_scale);
+    // Straight fingers held together touch with their tips about 10 mm apart.
+    const double v = fingers == 1 ? 0.0 : (k - 0.5) * 10.0 * habits.hand_scale;
     Touches finger = touches;
     finger.peaks[0] *= random.uniform(0.8, 1.2);
     const HandPart tip =
-        make_part(6.0 * habits.hand_scale, 5.0 * habits.hand_scale, context.hand.angle, 6.0, 0.6);
+        make_part(4.5 * habits.hand_scale, 4.0 * habits.hand_scale, context.hand.angle, 5.0, 0.6);
     add_touching_part(context, tip, 0.0, v, finger, [=](double t) {
       const double tremor = 0.3 * std::sin(2.0 * kPi * 10.0 * t + tremor_phase);  // mm
       return Point2{tremor, tremor};
@@ -501,6 +511,12 @@ int64_t Gesture::last_sample() const {
   int64_t last = 0;
   for (const HandPart& part : parts) last = std::max(last, part.last_sample());
   return last;
+}
+
+void shift_gesture(Gesture& gesture, int64_t samples, double rate_hz) {
+  for (HandPart& part : gesture.parts) part.first_sample += samples;
+  gesture.contact_start += static_cast<double>(samples) / rate_hz;
+  gesture.contact_end += static_cast<double>(samples) / rate_hz;
 }
 
 SubjectHabits draw_habits(Random& random) {

@@ -62,10 +62,11 @@ SubjectHabits draw_habits(Random& random);
 
 // Where one side's cells lie on the map.
 struct SideArea {
-  std::string id;            // layout group id: "front" or "back"
-  std::vector<int> cells;    // indices into layout.taxels
-  Point2 centre, low, high;  // mean of the cell centres and bounding box of their outlines
-  double pitch = 0.0;        // smallest distance between two cell centres (mm)
+  std::string id;               // layout group id: "front" or "back"
+  std::vector<int> cells;       // indices into layout.taxels
+  std::vector<Point2> centres;  // of those cells, same order
+  Point2 centre, low, high;     // mean of the cell centres and bounding box of their outlines
+  double pitch = 0.0;           // smallest distance between two cell centres (mm)
 };
 
 // One gesture of one class on one side: the hand parts and the ground truth.
@@ -82,6 +83,9 @@ struct Gesture {
 // at `start` seconds; throws tactile::Error for a class this simulator does not know.
 Gesture build_gesture(const std::string& class_name, const SideArea& side,
                       const SubjectHabits& habits, Random& random, double start, double rate_hz);
+
+// Delays a gesture by `samples`, contact times included.
+void shift_gesture(Gesture& gesture, int64_t samples, double rate_hz);
 
 //---- Skin -------------------------------------------------------------------------------------
 

@@ -18,17 +18,19 @@ namespace tactile::sim::nao {
 
 namespace {
 
-constexpr double kGravity = 9.81;            // m/s^2 per g
-constexpr double kRasterStep = 0.5;          // mm between the points of a side's load raster
+constexpr double kGravity = 9.81;  // m/s^2 per g
+constexpr double kRasterStep = 0.5;
+constexpr double kPlateScale =
+    0.92;  // sensing plate / cell outline          // mm between the points of a side's load raster
 constexpr double kNormalMass = 0.5;          // kg of torso shell a cell's normal load moves
 constexpr double kShearMass = 0.6;           // kg, the same for loads along the surface
-constexpr double kUpperBodyMass = 2.0;       // kg, NAO's upper body swaying on its joints
+constexpr double kUpperBodyMass = 2.5;       // kg, NAO's upper body swaying on its joints
 constexpr double kLeverArm = 0.15;           // m from the hips to the middle of the skin
 constexpr double kCouplingLength = 25.0;     // mm, decay of vibration through the shell
 constexpr double kOtherSideCoupling = 0.02;  // the torso carries a little to the other side
 constexpr double kSlipSpeed = 15.0;          // mm/s at which friction reaches its sliding value
 constexpr double kTextureStep = 0.25;        // mm between the surface texture's ridges
-constexpr double kTextureGain = 1.0;         // texture force per unit friction force
+constexpr double kTextureGain = 3.0;         // texture force per unit friction force
 constexpr double kSiliconeCover = 2.0;       // mm of silicone above the proximity sensor
 // Optical proximity sensors see a hand beside them as farther than one above them.
 constexpr double kLateralWeight = 2.0;
@@ -130,8 +132,13 @@ LoadRaster make_raster(const SkinLayout& layout, const SideArea& side,
   raster.cell.assign(static_cast<size_t>(raster.columns) * raster.rows, -1);
   raster.shares.resize(raster.cell.size());
   for (int taxel : side.cells) {
-    const std::vector<Point2> outline = taxel_outline(layout.taxels[taxel]);
+    // The sensing plate is a little smaller than the cell: a load on the silicone seam
+    // between plates goes to the shell.
     const Cell& cell = cells[taxel];
+    std::vector<Point2> outline = taxel_outline(layout.taxels[taxel]);
+    for (Point2& corner : outline)
+      corner = {cell.centre.x + kPlateScale * (corner.x - cell.centre.x),
+                cell.centre.y + kPlateScale * (corner.y - cell.centre.y)};
     double low_x = 1e300, high_x = -1e300, low_y = 1e300, high_y = -1e300;
     for (const Point2& p : outline) {
       low_x = std::min(low_x, p.x), high_x = std::max(high_x, p.x);
