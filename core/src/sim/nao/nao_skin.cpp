@@ -18,10 +18,12 @@ namespace tactile::sim::nao {
 
 namespace {
 
-constexpr double kGravity = 9.81;  // m/s^2 per g
-constexpr double kRasterStep = 0.5;
-constexpr double kPlateScale =
-    0.92;  // sensing plate / cell outline          // mm between the points of a side's load raster
+constexpr double kGravity = 9.81;     // m/s^2 per g
+constexpr double kRasterStep = 0.5;   // mm between the points of a side's load raster
+constexpr double kPlateScale = 0.92;  // sensing plate / cell outline
+// Plate tilt on its silicone bed per N*mm of off-centre load: 1 N at a force sensor (6.7 mm out)
+// tilts it by about 1.7 degrees.
+constexpr double kTiltPerMoment = 0.0045;
 constexpr double kNormalMass = 0.5;          // kg of torso shell a cell's normal load moves
 constexpr double kShearMass = 0.6;           // kg, the same for loads along the surface
 constexpr double kUpperBodyMass = 2.5;       // kg, NAO's upper body swaying on its joints
@@ -462,7 +464,7 @@ void render_skin(const SkinLayout& layout, const std::vector<SideArea>& sides,
   const double dt = 1.0 / rate_hz;
   const Adc accelerometer(-2.0, 2.0, 10), force_sensor(0.0, 3.0, 12);
   const Adc proximity_sensor(1.0, 200.0, 16), thermometer(-40.0, 150.0, 14);
-  const double warming_rate = 1.0 - std::exp(-dt / 12.0), cooling_rate = 1.0 - std::exp(-dt / 40.0);
+  const double warming_rate = 1.0 - std::exp(-dt / 20.0), cooling_rate = 1.0 - std::exp(-dt / 40.0);
   for (Eigen::Index c = 0; c < cell_count; ++c) {
     const Cell& cell = cells[c];
     // Accelerometer: plate motion, body motion and joint vibration, seen through the mounting.
@@ -474,10 +476,19 @@ void render_skin(const SkinLayout& layout, const std::vector<SideArea>& sides,
       const Eigen::Vector3d plate(shear_x_plate.step(coupled_x(s, c) / kShearMass),
                                   shear_y_plate.step(coupled_y(s, c) / kShearMass),
                                   normal_plate.step(-coupled_normal(s, c) / kNormalMass));
-      const Eigen::Vector3d skin =
-          plate / kGravity +
-          Eigen::Vector3d(cell.facing * torso(s, 0), torso(s, 1), cell.facing * torso(s, 2)) +
-          body.joint_vibration(s) * cell.joint_gain * cell.joint_direction;
+      const Eigen::Vector3d gravity(cell.facing * torso(s, 0), torso(s, 1),
+                                    cell.facing * torso(s, 2));
+      // A load off the plate's middle sinks that edge into the silicone: the plate tilts and
+      // the accelerometer sees gravity turn (rotation about the axis normal x lever).
+      double moment_x = 0.0, moment_y = 0.0;
+      for (int sensor = 0; sensor < 3; ++sensor) {
+        const double load = loads.sensor_force(s, 3 * c + sensor);
+        moment_x += load * (cell.sensors[sensor].x - cell.centre.x);
+        moment_y += load * (cell.sensors[sensor].y - cell.centre.y);
+      }
+      const Eigen::Vector3d tilt(-kTiltPerMoment * moment_y, kTiltPerMoment * moment_x, 0.0);
+      const Eigen::Vector3d skin = plate / kGravity + gravity + tilt.cross(gravity) +
+                                   body.joint_vibration(s) * cell.joint_gain * cell.joint_direction;
       const Eigen::Vector3d sensed = cell.mount * skin + cell.accel_offset;
       for (int axis = 0; axis < 3; ++axis)
         samples(s, cell.columns.accel[axis]) =
