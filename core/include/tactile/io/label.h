@@ -14,6 +14,11 @@ const char* to_string(LabelSource source);
 // Throws tactile::Error on an unknown name.
 LabelSource parse_label_source(const std::string& name);
 
+// The class stored for a segment whose class nobody knows yet (a segmenter's output): the
+// label store needs a class, and `tactile features` gives such segments the class of the
+// ground truth they overlap most.
+inline constexpr const char* kUnknownClass = "unknown";
+
 struct Label {
   int64_t id = 0;  // assigned by the LabelStore; 0 before insertion
   std::string recording;

@@ -1,0 +1,126 @@
+// `tactile segment RECORDING.h5|FOLDER... --labels DB --method M [--params k=v,...] [--replace]`
+// Runs a segmenter on each recording and stores its labels (source segmenter) in the
+// label database, one transaction per recording. A folder stands for every .h5 file under
+// it. Segments whose class the method does not know are stored with class "unknown"
+// (the store needs a class); `tactile features` gives them the overlapping ground truth.
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_store.h"
+#include "tactile/layout/skin_layout.h"
+#include "tactile/parameters.h"
+#include "tactile/segment/segmenter.h"
+
+namespace tactile::cli {
+
+namespace {
+
+struct SegmentOptions {
+  std::vector<std::string> inputs;
+  std::string database, method, params;
+  bool replace = false;
+};
+
+// Files as given; folders expanded to their .h5 files, sorted, so runs are repeatable.
+std::vector<std::string> recording_files(const std::vector<std::string>& inputs) {
+  std::vector<std::string> files;
+  for (const std::string& input : inputs) {
+    std::error_code error;
+    if (std::filesystem::is_directory(input, error)) {
+      std::vector<std::string> found;
+      for (const auto& entry : std::filesystem::recursive_directory_iterator(input))
+        if (entry.is_regular_file() && entry.path().extension() == ".h5")
+          found.push_back(entry.path().string());
+      if (found.empty()) throw Error(input, "folder holds no .h5 recordings");
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (std::filesystem::is_regular_file(input, error)) {
+      files.push_back(input);
+    } else {
+      throw Error(input, "no such recording file or folder");
+    }
+  }
+  return files;
+}
+
+// Removes the recording's earlier labels of this segmenter, leaving other methods'
+// segments alone; in one transaction when they are the recording's only segmenter labels.
+int64_t remove_earlier(LabelStore& store, const std::string& recording,
+                       const std::string& annotator) {
+  LabelFilter filter;
+  filter.recording = recording;
+  filter.source = LabelSource::kSegmenter;
+  const std::vector<Label> earlier = store.list(filter);
+  const bool all_ours = std::all_of(earlier.begin(), earlier.end(), [&](const Label& label) {
+    return label.annotator == annotator;
+  });
+  if (all_ours) return store.remove_where(filter, annotator);
+  int64_t removed = 0;
+  for (const Label& label : earlier)
+    if (label.annotator == annotator) {
+      store.remove(label.id, annotator);
+      ++removed;
+    }
+  return removed;
+}
+
+void run_segment(const SegmentOptions& options) {
+  const std::vector<std::string> methods = segmenter_methods();
+  if (std::find(methods.begin(), methods.end(), options.method) == methods.end()) {
+    std::string known;
+    for (const std::string& name : methods) known += (known.empty() ? "" : ", ") + name;
+    throw Error("--method", "unknown segmenter '" + options.method +
+                                "' (known: " + (known.empty() ? "none" : known) + ")");
+  }
+  const Parameters parameters = Parameters::parse(options.params, "--params");
+  const std::vector<std::string> files = recording_files(options.inputs);
+  LabelStore store(options.database);
+  const std::string annotator = "segmenter:" + options.method;
+  int64_t total = 0;
+  for (const std::string& file : files) {
+    const Recording recording = read_recording(file);
+    const SkinLayout layout = load_layout(recording.layout_id);
+    std::vector<Label> labels = segment_recording(options.method, recording, layout, parameters);
+    for (Label& label : labels)
+      if (label.class_name.empty()) label.class_name = kUnknownClass;
+    int64_t removed = 0;
+    if (options.replace) removed = remove_earlier(store, recording.id, annotator);
+    store.add_many(labels);
+    total += static_cast<int64_t>(labels.size());
+    std::cout << recording.id << ": " << labels.size() << " segments";
+    if (options.replace) std::cout << " (replaced " << removed << ")";
+    std::cout << "\n";
+  }
+  std::cout << total << " segments from " << files.size()
+            << (files.size() == 1 ? " recording" : " recordings") << " stored in "
+            << options.database << " (" << annotator << ")\n";
+}
+
+}  // namespace
+
+void register_segment(CLI::App& app) {
+  auto options = std::make_shared<SegmentOptions>();
+  CLI::App* command = app.add_subcommand(
+      "segment", "Find touch segments in recordings and store them as labels (source segmenter)");
+  command->add_option("RECORDINGS", options->inputs, "Recording files (.h5) or folders of them")
+      ->required();
+  command->add_option("--labels", options->database, "Label database (SQLite; created if missing)")
+      ->required();
+  command
+      ->add_option("--method", options->method,
+                   "Segmenter: proximity, threshold, frame-edge, scenario or excitation")
+      ->required();
+  command->add_option("--params", options->params, "Method parameters as key=value,...");
+  command->add_flag("--replace", options->replace,
+                    "First remove each recording's earlier labels from this method");
+  command->callback([options] { run_segment(*options); });
+}
+
+}  // namespace tactile::cli
