@@ -44,9 +44,11 @@ Label whole(const Recording& recording, const std::string& region = "all") {
   return label;
 }
 
+// As a corpus run does: preprocess the recording once, then extract the segment.
 FeatureResult run(const FeatureExtractor& extractor, const Recording& recording,
                   const SkinLayout& layout, const Label& label) {
-  return extractor.extract(SegmentInput{recording, layout, label});
+  const Recording prepared = extractor.preprocess(recording, layout);
+  return extractor.extract(SegmentInput{prepared, layout, label});
 }
 
 // The value of a named column.
@@ -139,15 +141,20 @@ TEST(GenericFeatures, StripHasPerChannelColumnsOnlyInAStableOrder) {
 
 TEST(GenericFeatures, RegionLimitsContactToItsGroup) {
   const SkinLayout layout = make_grid_layout(6, 6);
-  Recording recording = blank_recording(layout, 20, 100.0);
+  Recording recording = blank_recording(layout, 40, 100.0);
   // Two touches at once: a moving one in rows 0-2, a still one in rows 3-5.
-  for (int64_t sample = 0; sample < 20; ++sample) {
-    press_blob(recording, 6, sample, 1, 1 + sample / 10);
+  for (int64_t sample = 10; sample < 30; ++sample) {
+    press_blob(recording, 6, sample, 1, sample / 10);
     press_blob(recording, 6, sample, 4, 3);
   }
   const auto extractor = make_generic_extractor({});
-  const FeatureResult all = run(*extractor, recording, layout, whole(recording));
-  const FeatureResult lower = run(*extractor, recording, layout, whole(recording, "row4"));
+  // The label covers only the touch: rest comes from the recording around it.
+  Label touch = whole(recording);
+  touch.t0 = 0.1;
+  touch.t1 = 0.3;
+  const FeatureResult all = run(*extractor, recording, layout, touch);
+  touch.region = "row4";
+  const FeatureResult lower = run(*extractor, recording, layout, touch);
   ASSERT_TRUE(lower.skip_reason.empty()) << lower.skip_reason;
   EXPECT_NEAR(value_of(*extractor, layout, all, "contact.max_area"), 1800.0, 1e-9);
   // Row 4 holds three taxels of the still touch only.
@@ -157,17 +164,58 @@ TEST(GenericFeatures, RegionLimitsContactToItsGroup) {
 }
 
 TEST(GenericFeatures, ReversedModalityTakesLowValuesAsContact) {
-  // Proximity: far is 200, a finger at 20 over taxel 1 of three in an L.
-  Eigen::MatrixXd values(2, 3);
-  values << 200, 20, 200, 200, 200, 20;
+  // Proximity: far is 200; a finger at 20 over taxel 1, then over taxel 2 of three in an L.
+  Eigen::MatrixXd values(3, 3);
+  values << 200, 200, 200, 200, 20, 200, 200, 200, 20;
   const std::vector<Point2> positions = {{0, 0}, {10, 0}, {0, 10}};
   const ContactMotion motion =
-      contact_motion(values, positions, Eigen::VectorXd::Constant(3, 5.0), 0.2, true);
+      contact_motion(values, {}, positions, Eigen::VectorXd::Constant(3, 5.0), 0.2, true);
   EXPECT_DOUBLE_EQ(motion.max_area, 5.0);
+  EXPECT_DOUBLE_EQ(motion.mean_area, 10.0 / 3.0);
   EXPECT_NEAR(motion.path_length, std::hypot(10.0, 10.0), 1e-12);
   const ContactMotion upright =
-      contact_motion(values, positions, Eigen::VectorXd::Constant(3, 5.0), 0.2, false);
-  EXPECT_DOUBLE_EQ(upright.max_area, 10.0);  // the far taxels, read the wrong way round
+      contact_motion(values, {}, positions, Eigen::VectorXd::Constant(3, 5.0), 0.2, false);
+  EXPECT_DOUBLE_EQ(upright.max_area, 10.0);  // the far readings, taken the wrong way round
+}
+
+TEST(GenericFeatures, PeakOfAReversedModalityIsItsSmallestValue) {
+  const std::vector<double> distance = {200, 150, 30, 30, 180};
+  const ChannelSummary near = summarise_channel(distance, 10.0, true);
+  EXPECT_EQ(near.peak, 30.0);
+  EXPECT_EQ(near.peak_index, 2);
+  EXPECT_EQ(summarise_channel(distance, 10.0).peak, 200.0);
+  const SkinLayout nao = load_layout("nao");
+  const auto columns = make_generic_extractor({})->columns(nao);
+  ASSERT_EQ(columns.size(), 32u * 7 + 4);  // proximity of the 32 cells, and the map
+  EXPECT_NE(columns[3].description.find("smallest"), std::string::npos) << columns[3].description;
+}
+
+TEST(GenericFeatures, TaxelsRestingAtDifferentLevelsAreNotContact) {
+  // Taxel 0 rests at 500, taxel 1 at 100 (raw counts differ per cell); only taxel 2 is
+  // pressed (falls from 300 to 50). Noise of 2 counts on the others.
+  Eigen::MatrixXd values(4, 3);
+  values << 500, 100, 300, 502, 98, 50, 499, 101, 60, 501, 100, 300;
+  const std::vector<Point2> positions = {{0, 0}, {10, 0}, {0, 10}};
+  const ContactMotion motion =
+      contact_motion(values, {}, positions, Eigen::VectorXd::Constant(3, 4.0), 0.2, true);
+  EXPECT_DOUBLE_EQ(motion.max_area, 4.0);
+  EXPECT_DOUBLE_EQ(motion.mean_area, 2.0);
+  EXPECT_DOUBLE_EQ(motion.displacement, 0.0);
+  // The same with rest levels from the whole recording: all four samples are one press.
+  Eigen::RowVectorXd rest(3);
+  rest << 500, 100, 300;
+  const ContactMotion held = contact_motion(values.middleRows(1, 2), rest, positions,
+                                            Eigen::VectorXd::Constant(3, 4.0), 0.2, true);
+  EXPECT_DOUBLE_EQ(held.mean_area, 4.0);
+}
+
+TEST(GenericFeatures, QuietLevelIsALowPercentileIgnoringNan) {
+  std::vector<double> values = {9, 1, 5, 3, 7, 2, 8, 4, 6, 10, 11};
+  EXPECT_EQ(quiet_level(values, false), 2.0);  // floor(0.1 x 10) = element 1 in order
+  EXPECT_EQ(quiet_level(values, true), 10.0);  // ceil(0.9 x 10) = element 9 in order
+  values.push_back(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(quiet_level(values, false), 2.0);
+  EXPECT_EQ(quiet_level(std::vector<double>{}, false), 0.0);
 }
 
 TEST(GenericFeatures, ConstantChannelsGiveFiniteZeros) {
@@ -183,15 +231,23 @@ TEST(GenericFeatures, ConstantChannelsGiveFiniteZeros) {
   EXPECT_EQ(value_of(*extractor, layout, result, "centroid.path_length"), 0.0);
 }
 
-TEST(GenericFeatures, ShortSegmentsAndNanSamplesAreSkippedWithAReason) {
+TEST(GenericFeatures, ShortSegmentsHaveDefinedValuesAndEmptyOrNanOnesAreSkipped) {
   const SkinLayout layout = make_grid_layout(2, 2);
   Recording recording = blank_recording(layout, 10, 100.0);
+  recording.streams[0].samples(3, 1) = 4.0f;
   const auto extractor = make_generic_extractor({});
   Label label = whole(recording);
-  label.t0 = 0.0;
-  label.t1 = 0.02;  // two samples
-  EXPECT_NE(run(*extractor, recording, layout, label).skip_reason.find("2 samples"),
-            std::string::npos);
+  label.t0 = 0.025;
+  label.t1 = 0.035;  // sample 3 only
+  const FeatureResult single = run(*extractor, recording, layout, label);
+  ASSERT_TRUE(single.skip_reason.empty()) << single.skip_reason;
+  EXPECT_EQ(value_of(*extractor, layout, single, "ch1.peak"), 4.0);
+  EXPECT_EQ(value_of(*extractor, layout, single, "ch1.hjorth_mobility"), 0.0);
+  EXPECT_NEAR(value_of(*extractor, layout, single, "ch1.integral"), 0.04, 1e-12);
+  for (double value : single.values) EXPECT_TRUE(std::isfinite(value));
+  label.t0 = 0.031;  // between samples: none inside
+  label.t1 = 0.035;
+  EXPECT_EQ(run(*extractor, recording, layout, label).skip_reason, "segment holds no samples");
   recording.streams[0].samples(6, 3) = std::numeric_limits<float>::quiet_NaN();
   const std::string reason = run(*extractor, recording, layout, whole(recording)).skip_reason;
   EXPECT_NE(reason.find("channel ch3 at t=0.06"), std::string::npos) << reason;

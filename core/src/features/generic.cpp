@@ -11,14 +11,24 @@
 
 namespace tactile {
 
+namespace {
+
+// The rest level of a channel: this percentile of its recording (the complement when
+// reversed).
+constexpr double kQuietPercentile = 0.1;
+// The stream preprocess() adds: one sample, each channel's rest level.
+constexpr const char* kRestStream = "generic.rest";
+
+}  // namespace
+
 //---- Pure functions
 
-ChannelSummary summarise_channel(std::span<const double> values, double rate_hz) {
+ChannelSummary summarise_channel(std::span<const double> values, double rate_hz, bool reversed) {
   ChannelSummary summary;
   if (values.empty()) return summary;
   // Kaboli et al. eqs. (2)-(4): activity, mobility, complexity.
   summary.hjorth = stats::hjorth(values);
-  summary.peak_index = stats::argmax(values);
+  summary.peak_index = reversed ? stats::argmin(values) : stats::argmax(values);
   summary.peak = values[static_cast<size_t>(summary.peak_index)];
   summary.mean = stats::mean(values);
   // Rectangle rule: each sample stands for 1 / rate seconds.
@@ -28,20 +38,41 @@ ChannelSummary summarise_channel(std::span<const double> values, double rate_hz)
   return summary;
 }
 
-ContactMotion contact_motion(const Eigen::MatrixXd& values, const std::vector<Point2>& positions,
-                             const Eigen::VectorXd& areas, double threshold, bool reversed) {
+double quiet_level(std::span<const double> values, bool reversed) {
+  std::vector<double> finite;
+  finite.reserve(values.size());
+  for (double value : values)
+    if (std::isfinite(value)) finite.push_back(value);
+  if (finite.empty()) return 0.0;
+  // Touch is rare over a recording: a low percentile is the rest level, and unlike the
+  // minimum it ignores single noise spikes.
+  const double position = (reversed ? 1.0 - kQuietPercentile : kQuietPercentile) *
+                          static_cast<double>(finite.size() - 1);
+  const auto index = static_cast<size_t>(reversed ? std::ceil(position) : std::floor(position));
+  std::nth_element(finite.begin(), finite.begin() + static_cast<std::ptrdiff_t>(index),
+                   finite.end());
+  return finite[index];
+}
+
+ContactMotion contact_motion(const Eigen::MatrixXd& values, const Eigen::RowVectorXd& rest,
+                             const std::vector<Point2>& positions, const Eigen::VectorXd& areas,
+                             double threshold, bool reversed) {
   ContactMotion motion;
   if (values.size() == 0) return motion;
-  const double low = values.minCoeff();
-  const double high = values.maxCoeff();
-  const double range = high - low;
-  // Spec §0 zero test, on the range: a flat segment has no contact.
-  if (range <= 1e-12 * std::max({1.0, std::abs(low), std::abs(high)})) return motion;
-
-  // How far each value is past the rest level, in the direction of touch.
-  const Eigen::ArrayXXd past_rest =
-      reversed ? Eigen::ArrayXXd(high - values.array()) : Eigen::ArrayXXd(values.array() - low);
-  const Eigen::ArrayXXd contact = (past_rest > threshold * range).cast<double>();
+  // Taxels of one skin rest at different levels, so each has its own; its excursion past
+  // rest is compared with the largest of any taxel, so that untouched taxels' noise does
+  // not count as contact. Values on the far side of rest are no touch at all.
+  Eigen::RowVectorXd level = rest;
+  if (level.size() != values.cols())
+    level = reversed ? Eigen::RowVectorXd(values.colwise().maxCoeff())
+                     : Eigen::RowVectorXd(values.colwise().minCoeff());
+  const Eigen::ArrayXXd past_rest = (reversed ? Eigen::ArrayXXd((-values).rowwise() + level)
+                                              : Eigen::ArrayXXd(values.rowwise() - level))
+                                        .cwiseMax(0.0);
+  const double largest = past_rest.maxCoeff();
+  // Spec §0 zero test, on the excursion: a flat segment has no contact.
+  if (largest <= 1e-12 * std::max(1.0, values.cwiseAbs().maxCoeff())) return motion;
+  const Eigen::ArrayXXd contact = (past_rest > threshold * largest).cast<double>();
   const Eigen::VectorXd area = contact.matrix() * areas;
   motion.max_area = area.maxCoeff();
   motion.mean_area = area.mean();
@@ -111,7 +142,8 @@ struct ChannelPlan {
   std::vector<int64_t> map_taxels;  // taxel ids
   std::vector<Point2> positions;
   Eigen::VectorXd areas;
-  bool reversed = false;  // small values mean contact (display_min > display_max)
+  bool reversed = false;             // small values mean contact (display_min > display_max)
+  std::vector<bool> value_reversed;  // per value channel: of the reversed map modality
 };
 
 class GenericExtractor : public FeatureExtractor {
@@ -132,8 +164,10 @@ class GenericExtractor : public FeatureExtractor {
   std::vector<FeatureColumn> columns(const SkinLayout& layout) const override {
     const ChannelPlan plan = plan_for(layout);
     std::vector<FeatureColumn> columns;
-    for (int index : plan.value_channels) {
-      const Channel& channel = layout.channels[static_cast<size_t>(index)];
+    for (size_t position = 0; position < plan.value_channels.size(); ++position) {
+      const Channel& channel = layout.channels[static_cast<size_t>(plan.value_channels[position])];
+      // For modalities where small means touch, the peak is the smallest value.
+      const std::string extreme = plan.value_reversed[position] ? "smallest" : "largest";
       const std::string unit = channel.unit.empty() ? "units" : channel.unit;
       const std::string& name = channel.name;
       columns.push_back({name + ".hjorth_activity",
@@ -143,17 +177,17 @@ class GenericExtractor : public FeatureExtractor {
       columns.push_back(
           {name + ".hjorth_complexity",
            "Kaboli eq. (4): mobility(diff x) / mobility(x) of " + name + ", dimensionless"});
-      columns.push_back({name + ".peak", "largest value of " + name + ", " + unit});
+      columns.push_back({name + ".peak", extreme + " value of " + name + ", " + unit});
       columns.push_back({name + ".mean", "mean of " + name + ", " + unit});
       columns.push_back(
           {name + ".integral", "sum of " + name + " / sample rate, " + unit + " x s"});
-      columns.push_back({name + ".peak_time", "time of the first largest value of " + name +
+      columns.push_back({name + ".peak_time", "time of the first " + extreme + " value of " + name +
                                                   " after the segment's start, s"});
     }
     if (plan.has_map) {
       const std::string unit = layout.map_unit.empty() ? "map units" : layout.map_unit;
-      const std::string level = "taxels past " + shortest_text(threshold_) +
-                                " of the segment's range of " + map_modality(layout);
+      const std::string level = "taxels of " + map_modality(layout) + " past their rest level by " +
+                                shortest_text(threshold_) + " of the segment's largest excursion";
       columns.push_back(
           {"contact.max_area", "largest contact area (" + level + "), " + unit + "^2"});
       columns.push_back(
@@ -167,15 +201,39 @@ class GenericExtractor : public FeatureExtractor {
     return columns;
   }
 
+  // Adds a one-sample stream with each channel's rest level over the whole recording, so
+  // a segment inside a long press still knows where rest is.
+  Recording preprocess(const Recording& recording, const SkinLayout& layout) const override {
+    const Stream& stream = find_stream(recording, layout);
+    const ChannelPlan plan = plan_for(layout);
+    std::vector<bool> reversed(static_cast<size_t>(stream.channel_count()), false);
+    if (plan.reversed)
+      for (int channel : plan.map_channels) reversed[static_cast<size_t>(channel)] = true;
+    Stream rest;
+    rest.name = kRestStream;
+    rest.rate_hz = stream.rate_hz;
+    rest.channels = stream.channels;
+    rest.units = stream.units;
+    rest.samples.resize(1, stream.channel_count());
+    for (int64_t channel = 0; channel < stream.channel_count(); ++channel) {
+      const std::vector<double> values =
+          stats::to_double(stream.samples.col(channel).data(), stream.sample_count());
+      rest.samples(0, channel) =
+          static_cast<float>(quiet_level(values, reversed[static_cast<size_t>(channel)]));
+    }
+    Recording prepared = recording;
+    prepared.streams.push_back(std::move(rest));
+    return prepared;
+  }
+
   FeatureResult extract(const SegmentInput& input) const override {
     const Stream& stream = find_stream(input.recording, input.layout);
     const ChannelPlan plan = plan_for(input.layout);
     const auto [first, last] = sample_range(stream, input.segment.t0, input.segment.t1);
     const int64_t count = last - first;
-    // Hjorth complexity needs second differences.
-    if (count < 3)
-      return FeatureResult::skip("segment holds " + std::to_string(count) +
-                                 " samples; generic needs at least 3");
+    // Shorter segments still have defined values: Hjorth of fewer than 3 samples is 0
+    // where its differences are missing (spec §1.4).
+    if (count < 1) return FeatureResult::skip("segment holds no samples");
     std::vector<std::vector<double>> channel_values;
     channel_values.reserve(plan.value_channels.size());
     for (int index : plan.value_channels) {
@@ -191,8 +249,9 @@ class GenericExtractor : public FeatureExtractor {
     }
 
     FeatureResult result;
-    for (const std::vector<double>& values : channel_values) {
-      const ChannelSummary summary = summarise_channel(values, stream.rate_hz);
+    for (size_t position = 0; position < channel_values.size(); ++position) {
+      const ChannelSummary summary = summarise_channel(channel_values[position], stream.rate_hz,
+                                                       plan.value_reversed[position]);
       const double peak_time = stream.time_of(first + summary.peak_index) - input.segment.t0;
       result.values.insert(result.values.end(), {summary.hjorth.activity, summary.hjorth.mobility,
                                                  summary.hjorth.complexity, summary.peak,
@@ -249,6 +308,9 @@ class GenericExtractor : public FeatureExtractor {
           taxel.area > 0.0 ? taxel.area : taxel.size.x * taxel.size.y;
     }
     plan.reversed = layout.display_min > layout.display_max && modality == layout.display_modality;
+    for (int channel : plan.value_channels)
+      plan.value_reversed.push_back(
+          plan.reversed && layout.channels[static_cast<size_t>(channel)].modality == modality);
     return plan;
   }
 
@@ -290,17 +352,22 @@ class GenericExtractor : public FeatureExtractor {
       for (size_t index = 0; index < plan.map_taxels.size(); ++index)
         if (in_group.count(plan.map_taxels[index])) members.push_back(index);
     }
+    // Without preprocess() the segment's own quietest values stand in for rest.
+    const Stream* rest_stream = input.recording.find_stream(kRestStream);
     Eigen::MatrixXd values(count, static_cast<Eigen::Index>(members.size()));
+    Eigen::RowVectorXd rest(rest_stream ? values.cols() : 0);
     std::vector<Point2> positions;
     Eigen::VectorXd areas(static_cast<Eigen::Index>(members.size()));
     for (size_t column = 0; column < members.size(); ++column) {
       const size_t member = members[column];
-      values.col(static_cast<Eigen::Index>(column)) =
+      const auto index = static_cast<Eigen::Index>(column);
+      values.col(index) =
           stream.samples.col(plan.map_channels[member]).segment(first, count).cast<double>();
+      if (rest_stream) rest(index) = rest_stream->samples(0, plan.map_channels[member]);
       positions.push_back(plan.positions[member]);
-      areas(static_cast<Eigen::Index>(column)) = plan.areas(static_cast<Eigen::Index>(member));
+      areas(index) = plan.areas(static_cast<Eigen::Index>(member));
     }
-    return contact_motion(values, positions, areas, threshold_, plan.reversed);
+    return contact_motion(values, rest, positions, areas, threshold_, plan.reversed);
   }
 
   std::string modality_;
