@@ -11,5 +11,6 @@ void register_info(CLI::App& app);
 void register_import(CLI::App& app);
 void register_export(CLI::App& app);
 void register_labels(CLI::App& app);
+void register_simulate(CLI::App& app);
 
 }  // namespace tactile::cli
