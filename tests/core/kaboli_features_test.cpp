@@ -155,9 +155,9 @@ K4Recording k4_recording() {
     set_signal(k4.recording, k4.layout, cell, "ax", signals.ax);
     set_signal(k4.recording, k4.layout, cell, "ay", signals.ay);
     set_signal(k4.recording, k4.layout, cell, "az", signals.az);
-    for (int f = 0; f < 3; ++f)
-      set_signal(k4.recording, k4.layout, cell, "f" + std::to_string(f + 1),
-                 signals.force[static_cast<size_t>(f)]);
+    const char* const force_modalities[] = {"f1", "f2", "f3"};
+    for (size_t f = 0; f < 3; ++f)
+      set_signal(k4.recording, k4.layout, cell, force_modalities[f], signals.force[f]);
     set_signal(k4.recording, k4.layout, cell, "prox", proximity[static_cast<size_t>(cell - 1)]);
   }
   return k4;
