@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "kaboli_k4_data.h"
 #include "nao_test_recording.h"
 #include "tactile/dsp/zero_mean.h"
 #include "tactile/error.h"
@@ -13,37 +14,15 @@
 namespace tactile {
 namespace {
 
+using testing::k4_cells;
+using testing::k4_recording;
+using testing::K4Recording;
 using Vector = std::vector<double>;
-using testing::set_signal;
 
 //---- Test vector K4
 
-struct K4Cell {
-  Vector ax, ay, az;
-  std::vector<Vector> force;
-};
-
-const std::vector<K4Cell>& k4_cells() {
-  static const std::vector<K4Cell> cells = {
-      {{0, 1, 0.5, -1, 0, 1.5, 0, -1},
-       {0, 0.5, 1, 0.5, 0, -0.5, -1, -0.5},
-       {1, 1, 2, 2, 1, 1, 2, 2},
-       {{0, 0.2, 0.8, 1, 0.6, 0.2, 0, 0},
-        {0, 0.1, 0.4, 0.5, 0.3, 0.1, 0, 0},
-        {0, 0, 0.2, 0.3, 0.2, 0, 0, 0}}},
-      {{0, 2, 1, 3, 2, 4, 3, 5},
-       {1, 0, 1, 0, 1, 0, 1, 0},
-       {0, 1, 1, 0, 0, 1, 1, 0},
-       {{0, 0, 0.1, 0.6, 0.9, 0.4, 0.1, 0}, {0, 0, 0, 0.2, 0.4, 0.2, 0, 0}, Vector(8, 0.1)}},
-      {Vector(8, 5),
-       {1, 2, 1, 2, 1, 2, 1, 2},
-       Vector(8, 0),
-       {Vector(8, 0), Vector(8, 0), Vector(8, 0)}},
-  };
-  return cells;
-}
-
-KaboliDescriptor k4_cell_descriptor(const K4Cell& cell, NcorrMode mode = NcorrMode::kRanks) {
+KaboliDescriptor k4_cell_descriptor(const testing::K4Cell& cell,
+                                    NcorrMode mode = NcorrMode::kRanks) {
   std::vector<std::span<const double>> forces(cell.force.begin(), cell.force.end());
   return kaboli_cell_descriptor(cell.ax, cell.ay, cell.az, forces, mode);
 }
@@ -73,13 +52,13 @@ TEST(KaboliCellDescriptor, MatchesVectorK4ForBothContactedCells) {
 }
 
 TEST(KaboliCellDescriptor, IsUnchangedByZeroMeanPreprocessing) {
-  const K4Cell& raw = k4_cells()[0];
+  const testing::K4Cell& raw = k4_cells()[0];
   const auto shifted = [](const Vector& x) {
     const Eigen::VectorXd centred =
         zero_mean(Eigen::Map<const Eigen::VectorXd>(x.data(), x.size()));
     return Vector(centred.data(), centred.data() + centred.size());
   };
-  K4Cell centred{shifted(raw.ax), shifted(raw.ay), shifted(raw.az), {}};
+  testing::K4Cell centred{shifted(raw.ax), shifted(raw.ay), shifted(raw.az), {}};
   for (const Vector& force : raw.force) centred.force.push_back(shifted(force));
   EXPECT_NEAR(Eigen::Map<const Eigen::VectorXd>(centred.az.data(), 8).mean(), 0.0, 1e-15);
   EXPECT_DOUBLE_EQ(centred.az[0], -0.5);
@@ -135,33 +114,6 @@ TEST(ZeroMean, RemovesTheMeanOfEachSignal) {
 }
 
 //---- The extractor on a hand-built NAO recording
-
-// The NAO layout with its front reduced to cells 1-3, carrying K4's signals in samples 0-7
-// (proximity minima 20, 45 and exactly 50 mm), followed by 12 samples of rest.
-struct K4Recording {
-  SkinLayout layout;
-  Recording recording;
-};
-
-K4Recording k4_recording() {
-  K4Recording k4{load_layout("nao"), {}};
-  for (Group& group : k4.layout.groups)
-    if (group.id == "front") group.taxels = {1, 2, 3};
-  k4.recording = testing::nao_recording(k4.layout, 20);
-  const std::vector<Vector> proximity = {
-      {200, 20, 30, 40, 60, 200, 200, 200}, {200, 100, 45, 47, 80, 200, 200, 200}, Vector(8, 50.0)};
-  for (int64_t cell = 1; cell <= 3; ++cell) {
-    const K4Cell& signals = k4_cells()[static_cast<size_t>(cell - 1)];
-    set_signal(k4.recording, k4.layout, cell, "ax", signals.ax);
-    set_signal(k4.recording, k4.layout, cell, "ay", signals.ay);
-    set_signal(k4.recording, k4.layout, cell, "az", signals.az);
-    const char* const force_modalities[] = {"f1", "f2", "f3"};
-    for (size_t f = 0; f < 3; ++f)
-      set_signal(k4.recording, k4.layout, cell, force_modalities[f], signals.force[f]);
-    set_signal(k4.recording, k4.layout, cell, "prox", proximity[static_cast<size_t>(cell - 1)]);
-  }
-  return k4;
-}
 
 Label segment(double t0, double t1, const std::string& region) {
   Label label;
