@@ -15,16 +15,25 @@ KaboliDescriptor kaboli_cell_descriptor(std::span<const double> ax, std::span<co
                                         std::span<const double> az,
                                         const std::vector<std::span<const double>>& forces,
                                         NcorrMode ncorr_mode) {
-  const auto ncorr = ncorr_mode == NcorrMode::kEq6 ? stats::spearman_eq6 : stats::spearman;
   KaboliDescriptor p{};
   // Kaboli et al. eq. (5): Lcorr = Pearson correlation between two axes.
   p[0] = stats::pearson(ax, ay);
   p[1] = stats::pearson(ax, az);
   p[2] = stats::pearson(ay, az);
   // Kaboli et al. eq. (6): Ncorr = Spearman rank correlation between two axes.
-  p[3] = ncorr(ax, ay);
-  p[4] = ncorr(ax, az);
-  p[5] = ncorr(ay, az);
+  if (ncorr_mode == NcorrMode::kEq6) {
+    p[3] = stats::spearman_eq6(ax, ay);
+    p[4] = stats::spearman_eq6(ax, az);
+    p[5] = stats::spearman_eq6(ay, az);
+  } else {
+    // stats::spearman is Pearson of average ranks; each axis is ranked once, not once per pair
+    // (ranking is the costliest step of the descriptor).
+    const std::vector<double> rank_x = stats::rank(ax), rank_y = stats::rank(ay),
+                              rank_z = stats::rank(az);
+    p[3] = stats::pearson(rank_x, rank_y);
+    p[4] = stats::pearson(rank_x, rank_z);
+    p[5] = stats::pearson(rank_y, rank_z);
+  }
   // Kaboli et al. eqs. (2)-(4): Hjorth Activity, Mobility, Complexity per axis.
   const std::array<std::span<const double>, 3> axes = {ax, ay, az};
   for (size_t axis = 0; axis < 3; ++axis) {
