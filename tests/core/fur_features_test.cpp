@@ -26,7 +26,9 @@ TEST(ThresholdSegments, QuietForcedAndOpenEndsMatchSpecVectorF2) {
   const std::vector<SampleSegment> segments = threshold_segments(active, 15, 60);
   ASSERT_EQ(segments.size(), 4u);
   const std::vector<std::tuple<int64_t, int64_t, SegmentEnd>> expected = {
-      {5, 17, SegmentEnd::kQuiet}, {40, 40, SegmentEnd::kQuiet}, {60, 119, SegmentEnd::kForced},
+      {5, 17, SegmentEnd::kQuiet},
+      {40, 40, SegmentEnd::kQuiet},
+      {60, 119, SegmentEnd::kForced},
       {120, 124, SegmentEnd::kOpen}};
   for (size_t k = 0; k < expected.size(); ++k) {
     EXPECT_EQ(segments[k].first, std::get<0>(expected[k])) << k;
@@ -59,7 +61,8 @@ TEST(FurFeatures, SeriesMatchSpecVectorF3) {
   const std::vector<double> area = {4, 17, 24, 24, 4};
   const std::vector<double> sum = {0.55, 1.3, 1.45, 1.5, 0.38};
   const std::vector<double> peak = {0.5, 0.8, 0.6, 0.9, 0.3};
-  const std::vector<Point2> centre = {{0, 0}, {0.387097, 0.870968}, {1.8, 1.4}, {2.44444, 2.07407}, {2, 0}};
+  const std::vector<Point2> centre = {
+      {0, 0}, {0.387097, 0.870968}, {1.8, 1.4}, {2.44444, 2.07407}, {2, 0}};
   ASSERT_EQ(series.centre.size(), centre.size());
   for (size_t t = 0; t < 5; ++t) {
     EXPECT_NEAR(series.area[t], area[t], 1e-9) << t;
@@ -71,20 +74,24 @@ TEST(FurFeatures, SeriesMatchSpecVectorF3) {
 }
 
 TEST(FurFeatures, FifteenFeaturesMatchSpecVectorF3) {
-  const std::array<double, 15> expected = {5,   14.6, 24,      81.44,    1.5,      1.036,    0.224584, 0.9,
-                                           0.62, 0.0456, 1.32631, 0.869008, 0.913937, 0.648898, 2};
-  const std::array<double, 15> features = fur_segment_features(toy_values(), kToySizes, kToyPositions, 0.1);
+  const std::array<double, 15> expected = {5,       14.6,     24,       81.44,    1.5,
+                                           1.036,   0.224584, 0.9,      0.62,     0.0456,
+                                           1.32631, 0.869008, 0.913937, 0.648898, 2};
+  const std::array<double, 15> features =
+      fur_segment_features(toy_values(), kToySizes, kToyPositions, 0.1);
   for (size_t k = 0; k < 15; ++k)
-    EXPECT_NEAR(features[k], expected[k], 1e-5 * std::max(1.0, std::abs(expected[k]))) << "feature " << k + 1;
+    EXPECT_NEAR(features[k], expected[k], 1e-5 * std::max(1.0, std::abs(expected[k])))
+        << "feature " << k + 1;
   EXPECT_NEAR(features[12] + features[13], 1.56284, 1e-5);  // the 14-feature "variance centre"
 }
 
 TEST(FurFeatures, SegmentBelowThresholdHasZeroCentreFeatures) {
   const Eigen::MatrixXd quiet = Eigen::MatrixXd::Constant(3, 4, 0.05);
-  const std::array<double, 15> features = fur_segment_features(quiet, kToySizes, kToyPositions, 0.1);
+  const std::array<double, 15> features =
+      fur_segment_features(quiet, kToySizes, kToyPositions, 0.1);
   EXPECT_EQ(features[0], 3.0);
-  EXPECT_EQ(features[1], 0.0);             // no active area
-  EXPECT_NEAR(features[5], 0.2, 1e-12);    // the sum still counts every cell
+  EXPECT_EQ(features[1], 0.0);           // no active area
+  EXPECT_NEAR(features[5], 0.2, 1e-12);  // the sum still counts every cell
   for (size_t k = 10; k < 15; ++k) EXPECT_EQ(features[k], 0.0) << k;
 }
 
@@ -111,7 +118,8 @@ Recording press_recording(const SkinLayout& layout) {
   stream.name = "skin";
   stream.rate_hz = 15.0;
   for (const Channel& channel : layout.channels) stream.channels.push_back(channel.name);
-  stream.samples = SampleMatrix::Constant(150, static_cast<Eigen::Index>(layout.channels.size()), 700.0f);
+  stream.samples =
+      SampleMatrix::Constant(150, static_cast<Eigen::Index>(layout.channels.size()), 700.0f);
   stream.samples.block(30, layout.channel_index("f000"), 6, 1).array() -= 200.0f;
   recording.streams.push_back(std::move(stream));
   return recording;
@@ -119,8 +127,8 @@ Recording press_recording(const SkinLayout& layout) {
 
 TEST(ThresholdSegmenter, PressOnTheTopCellIsOneQuietSegmentOnTheTop) {
   const SkinLayout layout = load_layout("fur");
-  const std::vector<Label> labels =
-      segment_threshold(press_recording(layout), layout, Parameters::parse("calibration_peak=200", "--params"));
+  const std::vector<Label> labels = segment_threshold(
+      press_recording(layout), layout, Parameters::parse("calibration_peak=200", "--params"));
   ASSERT_EQ(labels.size(), 1u);
   EXPECT_NEAR(labels[0].t0, 30.0 / 15.0, 1e-12);
   EXPECT_NEAR(labels[0].t1, 36.0 / 15.0, 1e-12);  // the release undershoots and is clipped
@@ -177,12 +185,12 @@ TEST(FurExtractor, PressOnOneCellGivesItsAreaPositionAndDecayingPressure) {
   ASSERT_EQ(values.size(), 15u);
   const Taxel& cell = layout.taxels[0];
   EXPECT_EQ(values[0], 6.0);
-  EXPECT_NEAR(values[1], cell.area / 100.0, 1e-9);                // cm²
-  EXPECT_NEAR(values[7], 0.9227, 1e-4);                            // α: the step's first output
+  EXPECT_NEAR(values[1], cell.area / 100.0, 1e-9);  // cm²
+  EXPECT_NEAR(values[7], 0.9227, 1e-4);             // α: the step's first output
   EXPECT_NEAR(values[8], 0.9227 * (1 - std::pow(0.9227, 6)) / (1 - 0.9227) / 6, 1e-4);
-  EXPECT_NEAR(values[10], cell.position.x / 10.0, 1e-9);           // cm
+  EXPECT_NEAR(values[10], cell.position.x / 10.0, 1e-9);  // cm
   EXPECT_NEAR(values[11], cell.position.y / 10.0, 1e-9);
-  EXPECT_EQ(values[14], 0.0);                                      // one cell: no travel
+  EXPECT_EQ(values[14], 0.0);  // one cell: no travel
 }
 
 TEST(FurExtractor, FourteenFeatureVariantJoinsTheCentreVariances) {
@@ -201,13 +209,15 @@ TEST(FurExtractor, FourteenFeatureVariantJoinsTheCentreVariances) {
 TEST(FurExtractor, MissingSampleAndEmptySpanAreSkippedWithReasons) {
   const SkinLayout layout = load_layout("fur");
   Recording raw = press_recording(layout);
-  raw.streams[0].samples(32, layout.channel_index("f017")) = std::numeric_limits<float>::quiet_NaN();
+  raw.streams[0].samples(32, layout.channel_index("f017")) =
+      std::numeric_limits<float>::quiet_NaN();
   Label label;
   label.t0 = 2.0;
   label.t1 = 2.4;
   const Extracted missing = extract_fur(layout, raw, label);
   EXPECT_TRUE(missing.result.values.empty());
-  EXPECT_NE(missing.result.skip_reason.find("f017"), std::string::npos) << missing.result.skip_reason;
+  EXPECT_NE(missing.result.skip_reason.find("f017"), std::string::npos)
+      << missing.result.skip_reason;
   label.t1 = label.t0;
   EXPECT_FALSE(extract_fur(layout, raw, label).result.skip_reason.empty());
 }

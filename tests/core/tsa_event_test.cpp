@@ -1,4 +1,6 @@
 // TSA single-touch events (spec §2.4) and the tsa_event feature set (spec §2.5-2.11).
+#include "tactile/features/tsa_event.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 
 #include "tactile/dsp/tsa_preprocess.h"
 #include "tactile/error.h"
-#include "tactile/features/tsa_event.h"
 #include "tactile/segment/frame_edge.h"
 
 namespace tactile {
@@ -82,12 +83,14 @@ TEST(TsaEventFeatures, FrameDescriptorsMatchSpecVectorT3) {
       {{4, 5, 1.41421, 1.58114}, {4, 6, 2, 0.707107}, {6, 7, 1.41421, 1.58114}}};
   for (size_t n = 0; n < 3; ++n) {
     const std::array<double, 4> descriptors = tsa_frame_descriptors(frames[n], kSheetCentre);
-    for (size_t k = 0; k < 4; ++k) EXPECT_NEAR(descriptors[k], expected[n][k], 1e-5) << n << " D" << k + 1;
+    for (size_t k = 0; k < 4; ++k)
+      EXPECT_NEAR(descriptors[k], expected[n][k], 1e-5) << n << " D" << k + 1;
   }
 }
 
 TEST(TsaEventFeatures, DescriptorStatisticsMatchSpecVectorT3) {
-  const std::array<double, 8> expected = {4.66667, 6, 1.60948, 1.28979, 1.1547, 1, 0.338204, 0.504623};
+  const std::array<double, 8> expected = {4.66667, 6, 1.60948,  1.28979,
+                                          1.1547,  1, 0.338204, 0.504623};
   const std::array<double, 8> statistics = tsa_descriptor_statistics(toy_frames(), kSheetCentre);
   for (size_t k = 0; k < 8; ++k) EXPECT_NEAR(statistics[k], expected[k], 1e-5) << "value " << k;
 }
@@ -135,7 +138,7 @@ TEST(TsaEventFeatures, EveryStraightDirectionGetsItsCode) {
     return tsa_direction_code({{1.5, 1.5}, {1.5 + dx, 1.5 + dy}});
   };
   EXPECT_EQ(code(-2, 0), 4);
-  EXPECT_EQ(code(0, 2), 5);   // y grows downwards
+  EXPECT_EQ(code(0, 2), 5);  // y grows downwards
   EXPECT_EQ(code(0, -2), 6);
   EXPECT_EQ(code(2, 2), 7);
   EXPECT_EQ(code(-2, -2), 8);
@@ -167,7 +170,8 @@ Recording sliding_touch_recording(const SkinLayout& layout) {
   stream.samples.resize(120, columns);
   for (Eigen::Index frame = 0; frame < 120; ++frame)
     for (Eigen::Index column = 0; column < columns; ++column)
-      stream.samples(frame, column) = static_cast<float>(400 + column % 97 + 0.3 * ((frame * 7 + column * 13) % 5 - 2));
+      stream.samples(frame, column) =
+          static_cast<float>(400 + column % 97 + 0.3 * ((frame * 7 + column * 13) % 5 - 2));
   for (int frame = 40; frame <= 47; ++frame) {
     const int pad_column = (frame - 40) / 2;  // two frames per pad column
     for (int row : {1, 2}) {
@@ -209,7 +213,8 @@ TEST(FrameEdgeSegmenter, FallingTouchSignFindsNothingInRisingCounts) {
 TEST(FrameEdgeSegmenter, RejectsAnUnknownParameterByName) {
   const SkinLayout layout = load_layout("tsa");
   try {
-    segment_frame_edge(sliding_touch_recording(layout), layout, Parameters::parse("gapp=1", "--params"));
+    segment_frame_edge(sliding_touch_recording(layout), layout,
+                       Parameters::parse("gapp=1", "--params"));
     FAIL() << "no error";
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("gapp"), std::string::npos);
@@ -240,7 +245,7 @@ TEST(TsaEventExtractor, SlidingFingerGoesLeftToRightOnSheetSix) {
   const std::vector<double>& values = extracted.result.values;
   ASSERT_EQ(values.size(), 4u);
   EXPECT_DOUBLE_EQ(values[0], labels.front().t1 - labels.front().t0);  // every frame active
-  EXPECT_EQ(values[1], 3.0);  // left -> right
+  EXPECT_EQ(values[1], 3.0);                                           // left -> right
   EXPECT_GT(values[2], 0.0);  // two rows touched: spread about the centroid
   EXPECT_EQ(values[3], 6.0);  // m03.s2 = 2 * (3 - 1) + 2
 }
@@ -250,8 +255,8 @@ TEST(TsaEventExtractor, ExtendedAndOneHotColumnsMatchTheirValues) {
   const Recording raw = sliding_touch_recording(layout);
   const std::vector<Label> labels = segment_frame_edge(raw, layout, {});
   ASSERT_EQ(labels.size(), 1u);
-  const Extracted extracted =
-      extract_tsa(layout, raw, labels.front(), "tsa_features=EXTENDED,direction=onehot,location=onehot");
+  const Extracted extracted = extract_tsa(layout, raw, labels.front(),
+                                          "tsa_features=EXTENDED,direction=onehot,location=onehot");
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   ASSERT_EQ(extracted.columns.size(), 1u + 11u + 1u + 42u + 8u);
   ASSERT_EQ(extracted.result.values.size(), extracted.columns.size());
@@ -292,12 +297,14 @@ TEST(TsaEventExtractor, SegmentWithoutContactIsSkippedWithAReason) {
 TEST(TsaEventExtractor, MissingSampleInTheSegmentIsSkippedNamingTheChannel) {
   const SkinLayout layout = load_layout("tsa");
   Recording raw = sliding_touch_recording(layout);
-  raw.streams[0].samples(42, layout.channel_index("m03.s2.p05")) = std::numeric_limits<float>::quiet_NaN();
+  raw.streams[0].samples(42, layout.channel_index("m03.s2.p05")) =
+      std::numeric_limits<float>::quiet_NaN();
   Label label;
   label.t0 = 5.0;
   label.t1 = 6.0;
   const Extracted extracted = extract_tsa(layout, raw, label);
-  EXPECT_NE(extracted.result.skip_reason.find("m03.s2.p05"), std::string::npos) << extracted.result.skip_reason;
+  EXPECT_NE(extracted.result.skip_reason.find("m03.s2.p05"), std::string::npos)
+      << extracted.result.skip_reason;
 }
 
 TEST(TsaEventExtractor, UnknownRegionAndEmptySpanAreSkipped) {
@@ -306,11 +313,13 @@ TEST(TsaEventExtractor, UnknownRegionAndEmptySpanAreSkipped) {
   label.t0 = 5.0;
   label.t1 = 6.0;
   label.region = "tail";
-  EXPECT_NE(extract_tsa(layout, sliding_touch_recording(layout), label).result.skip_reason.find("tail"),
-            std::string::npos);
+  EXPECT_NE(
+      extract_tsa(layout, sliding_touch_recording(layout), label).result.skip_reason.find("tail"),
+      std::string::npos);
   label.region = "all";
   label.t0 = label.t1 = 5.0;
-  EXPECT_FALSE(extract_tsa(layout, sliding_touch_recording(layout), label).result.skip_reason.empty());
+  EXPECT_FALSE(
+      extract_tsa(layout, sliding_touch_recording(layout), label).result.skip_reason.empty());
 }
 
 TEST(TsaEventExtractor, RejectsBadOptionsByName) {

@@ -81,7 +81,8 @@ SampleMatrix touched_sheets(int64_t frames) {
 TEST(ContactTrigger, TouchAboveBaselineClearsTheThresholdOnlyWhereTouched) {
   const dsp::ContactTrigger trigger =
       dsp::contact_trigger(touched_sheets(60), {{0, 1}, {2, 3}}, {});
-  // Noise of ±0.5 counts: 5 robust sigmas (3.7) clear the 3-count floor; a still pad gets the floor.
+  // Noise of ±0.5 counts: 5 robust sigmas (3.7) clear the 3-count floor; a still pad gets the
+  // floor.
   EXPECT_NEAR(trigger.thresholds[0], 5.0 * 1.4826 * 0.5, 1e-6);
   EXPECT_DOUBLE_EQ(trigger.thresholds[3], 3.0);
   EXPECT_NEAR(trigger.contact(31, 0), 40.0, 0.6);
@@ -139,10 +140,9 @@ TEST(HighPass, CoefficientOfPointTwoHertzAtFifteenHertzMatchesSpecVectorF1) {
 }
 
 TEST(HighPass, StepResponseMatchesSpecVectorF1) {
-  expect_near_all(dsp::high_pass(vector_of({0, 0, 1, 1, 1, 1, 1, 0, 0, 0}), 0.2, 15.0),
-                  {0, 0, 0.9227, 0.851375, 0.785564, 0.72484, 0.66881, -0.305589, -0.281967,
-                   -0.260171},
-                  1e-5);
+  expect_near_all(
+      dsp::high_pass(vector_of({0, 0, 1, 1, 1, 1, 1, 0, 0, 0}), 0.2, 15.0),
+      {0, 0, 0.9227, 0.851375, 0.785564, 0.72484, 0.66881, -0.305589, -0.281967, -0.260171}, 1e-5);
 }
 
 TEST(HighPass, ConstantOffsetGivesZeroFromTheFirstSample) {
@@ -161,12 +161,13 @@ TEST(HighPass, RejectsANonPositiveCutOffOrRate) {
 }
 
 TEST(Calibration, NormalisedStepMatchesSpecVectorF1) {
-  const Eigen::VectorXd filtered = dsp::high_pass(vector_of({0, 0, 1, 1, 1, 1, 1, 0, 0, 0}), 0.2, 15.0);
+  const Eigen::VectorXd filtered =
+      dsp::high_pass(vector_of({0, 0, 1, 1, 1, 1, 1, 0, 0, 0}), 0.2, 15.0);
   const SampleMatrix samples = filtered.cast<float>();
   const std::vector<double> peaks = {0.8};
   const SampleMatrix normalised = dsp::normalise_to_calibration(samples, peaks);
-  expect_near_all(normalised.col(0).cast<double>(), {0, 0, 1, 1, 0.981955, 0.90605, 0.836012, 0, 0, 0},
-                  1e-5);
+  expect_near_all(normalised.col(0).cast<double>(),
+                  {0, 0, 1, 1, 0.981955, 0.90605, 0.836012, 0, 0, 0}, 1e-5);
 }
 
 TEST(Calibration, DeadCellReadsZeroAndMissingSampleStaysNaN) {

@@ -29,7 +29,8 @@ struct ChannelState {
 void check(const ContactTriggerOptions& options) {
   if (!(options.rate_hz > 0.0)) throw Error("rate", "frame rate must be positive");
   if (!(options.baseline_seconds > 0.0))
-    throw Error("baseline_seconds", "must be positive, not " + std::to_string(options.baseline_seconds));
+    throw Error("baseline_seconds",
+                "must be positive, not " + std::to_string(options.baseline_seconds));
   if (!(options.noise_sigmas >= 0.0)) throw Error("noise_sigmas", "must not be negative");
   if (!(options.minimum_threshold >= 0.0)) throw Error("minimum_threshold", "must not be negative");
   if (options.hold_off_frames < 0) throw Error("hold_off_frames", "must not be negative");
@@ -105,7 +106,8 @@ ContactTrigger contact_trigger(const SampleMatrix& smoothed,
       if (idle_run <= options.hold_off_frames) continue;
       for (int column : sheet) {
         const float value = smoothed(frame, column);
-        if (std::isfinite(value)) states[column].baseline += follow * (value - states[column].baseline);
+        if (std::isfinite(value))
+          states[column].baseline += follow * (value - states[column].baseline);
       }
     }
   }

@@ -42,7 +42,8 @@ FurPreprocessOptions fur_preprocess_options(const Parameters& parameters) {
   options.adc_max = parameters.number("adc_max", options.adc_max);
   options.signal = parameters.text("signal", options.signal);
   if (options.signal != "auto" && options.signal != "falling" && options.signal != "rising")
-    throw Error(parameters.where(), "signal=" + options.signal + ": expected falling, rising or auto");
+    throw Error(parameters.where(),
+                "signal=" + options.signal + ": expected falling, rising or auto");
   if (parameters.has("calibration_peak")) {
     options.calibration_peak = parameters.number("calibration_peak", 0.0);
     if (!(*options.calibration_peak > 0.0))
@@ -61,28 +62,33 @@ const Stream& fur_stream(const Recording& recording) {
 }
 
 std::vector<double> fur_calibration_peaks(const Recording& recording, const SkinLayout& layout,
-                                          const Stream& stream, const FurPreprocessOptions& options) {
+                                          const Stream& stream,
+                                          const FurPreprocessOptions& options) {
   const auto columns = static_cast<size_t>(stream.channel_count());
   if (options.calibration_peak) return std::vector<double>(columns, *options.calibration_peak);
   const std::string where = recording.id + " metadata calibration_peak";
   const auto found = recording.metadata.find("calibration_peak");
   if (found == recording.metadata.end())
-    throw Error(recording.id, "no calibration: the recording has no calibration_peak metadata; "
-                              "give calibration_peak=<counts>");
+    throw Error(recording.id,
+                "no calibration: the recording has no calibration_peak metadata; "
+                "give calibration_peak=<counts>");
   const std::vector<double> per_channel = parse_peaks(found->second, where);
   if (per_channel.size() != layout.channels.size())
     throw Error(where, std::to_string(per_channel.size()) + " values for the " +
-                           std::to_string(layout.channels.size()) + " channels of layout " + layout.id);
+                           std::to_string(layout.channels.size()) + " channels of layout " +
+                           layout.id);
   if (stream.channels.empty()) {
     if (columns != per_channel.size())
-      throw Error(where, "the stream's " + std::to_string(columns) + " unnamed columns do not match");
+      throw Error(where,
+                  "the stream's " + std::to_string(columns) + " unnamed columns do not match");
     return per_channel;
   }
   std::vector<double> peaks(columns, 0.0);
   for (size_t column = 0; column < columns; ++column) {
     const int channel = layout.channel_index(stream.channels[column]);
     if (channel < 0)
-      throw Error(where, "stream channel " + stream.channels[column] + " is not in layout " + layout.id);
+      throw Error(where,
+                  "stream channel " + stream.channels[column] + " is not in layout " + layout.id);
     peaks[column] = per_channel[channel];
   }
   return peaks;

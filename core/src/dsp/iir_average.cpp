@@ -12,8 +12,8 @@ namespace {
 
 void check_window(int64_t window) {
   if (!is_power_of_two(window))
-    throw Error("iir_n", "the IIR average's N must be a power of two >= 1, not " +
-                             std::to_string(window));
+    throw Error("iir_n",
+                "the IIR average's N must be a power of two >= 1, not " + std::to_string(window));
 }
 
 // One channel, contiguous in and out; the loop carries the filter state, so it stays plain.

@@ -24,29 +24,32 @@ std::vector<TsaSheet> tsa_sheets(const SkinLayout& layout, const Stream& stream)
     sheet.id = group.id;
     sheet.code = static_cast<int>(sheets.size()) + 1;
     if (!group.taxels.empty()) {
-      const std::vector<const Group*> locations = layout.groups_of(group.taxels.front(), "location");
+      const std::vector<const Group*> locations =
+          layout.groups_of(group.taxels.front(), "location");
       if (!locations.empty()) sheet.location = locations.front()->id;
     }
     std::vector<Point2> map_positions;
     for (int64_t id : group.taxels) {
       const Taxel* taxel = layout.find_taxel(id);
       if (taxel == nullptr || taxel->channels.empty() || taxel->channels.front() < 0)
-        throw Error("layout " + layout.id, "sheet " + group.id + ": taxel " + std::to_string(id) +
-                                                " has no channel");
+        throw Error("layout " + layout.id,
+                    "sheet " + group.id + ": taxel " + std::to_string(id) + " has no channel");
       const int channel = taxel->channels.front();
       int column = channel;
       if (!unnamed) {
         const auto found = column_of_channel.find(layout.channels[channel].name);
         if (found == column_of_channel.end())
-          throw Error("stream " + stream.name,
-                      "no column for channel " + layout.channels[channel].name + " of sheet " + group.id);
+          throw Error(
+              "stream " + stream.name,
+              "no column for channel " + layout.channels[channel].name + " of sheet " + group.id);
         column = found->second;
       }
       sheet.taxels.push_back(id);
       sheet.columns.push_back(column);
       map_positions.push_back(taxel->position);
     }
-    if (map_positions.empty()) throw Error("layout " + layout.id, "sheet " + group.id + " has no taxels");
+    if (map_positions.empty())
+      throw Error("layout " + layout.id, "sheet " + group.id + " has no taxels");
     // Pitch = the nearest spacing of two pads; positions relative to the top-left pad.
     double pitch = 0.0;
     Point2 low = map_positions.front(), high = map_positions.front();
@@ -66,7 +69,8 @@ std::vector<TsaSheet> tsa_sheets(const SkinLayout& layout, const Stream& stream)
     sheets.push_back(std::move(sheet));
   }
   if (sheets.empty())
-    throw Error("layout " + layout.id, "has no group of kind \"sheet\" (the TSA methods need sheets)");
+    throw Error("layout " + layout.id,
+                "has no group of kind \"sheet\" (the TSA methods need sheets)");
   return sheets;
 }
 
@@ -78,20 +82,25 @@ TsaPreprocessOptions tsa_preprocess_options(const Parameters& parameters) {
   TsaPreprocessOptions options;
   options.iir_window = parameters.integer("iir_n", options.iir_window);
   if (!is_power_of_two(options.iir_window))
-    throw Error(parameters.where(), "iir_n=" + std::to_string(options.iir_window) +
-                                        ": must be a power of two >= 1");
+    throw Error(parameters.where(),
+                "iir_n=" + std::to_string(options.iir_window) + ": must be a power of two >= 1");
   options.touch = parameters.text("touch", options.touch);
   if (options.touch != "auto" && options.touch != "rising" && options.touch != "falling")
-    throw Error(parameters.where(), "touch=" + options.touch + ": expected rising, falling or auto");
+    throw Error(parameters.where(),
+                "touch=" + options.touch + ": expected rising, falling or auto");
   ContactTriggerOptions& trigger = options.trigger;
   trigger.baseline_seconds = parameters.number("baseline_seconds", trigger.baseline_seconds);
   trigger.noise_sigmas = parameters.number("noise_sigmas", trigger.noise_sigmas);
   trigger.minimum_threshold = parameters.number("min_threshold", trigger.minimum_threshold);
   trigger.hold_off_frames = parameters.integer("hold_off_frames", trigger.hold_off_frames);
-  if (!(trigger.baseline_seconds > 0.0)) throw Error(parameters.where(), "baseline_seconds must be positive");
-  if (trigger.noise_sigmas < 0.0) throw Error(parameters.where(), "noise_sigmas must not be negative");
-  if (trigger.minimum_threshold < 0.0) throw Error(parameters.where(), "min_threshold must not be negative");
-  if (trigger.hold_off_frames < 0) throw Error(parameters.where(), "hold_off_frames must not be negative");
+  if (!(trigger.baseline_seconds > 0.0))
+    throw Error(parameters.where(), "baseline_seconds must be positive");
+  if (trigger.noise_sigmas < 0.0)
+    throw Error(parameters.where(), "noise_sigmas must not be negative");
+  if (trigger.minimum_threshold < 0.0)
+    throw Error(parameters.where(), "min_threshold must not be negative");
+  if (trigger.hold_off_frames < 0)
+    throw Error(parameters.where(), "hold_off_frames must not be negative");
   return options;
 }
 
@@ -125,7 +134,8 @@ Recording tsa_preprocess(const Recording& recording, const SkinLayout& layout,
   ContactTriggerOptions trigger = options.trigger;
   trigger.rate_hz = raw.rate_hz;
   trigger.rising = tsa_touch_rises(recording, options.touch);
-  ContactTrigger contacts = contact_trigger(iir_average_columns(raw.samples, options.iir_window), groups, trigger);
+  ContactTrigger contacts =
+      contact_trigger(iir_average_columns(raw.samples, options.iir_window), groups, trigger);
 
   Recording result = recording;
   for (Stream& stream : result.streams) {
@@ -134,11 +144,11 @@ Recording tsa_preprocess(const Recording& recording, const SkinLayout& layout,
     stream.units.assign(stream.channels.size(), "counts above baseline");
     break;
   }
-  result.metadata["preprocessing"] =
-      "tsa: IIR average N=" + std::to_string(options.iir_window) + ", baseline over " +
-      std::to_string(trigger.baseline_seconds) + " s, trigger " + std::to_string(trigger.noise_sigmas) +
-      " sigma (min " + std::to_string(trigger.minimum_threshold) + " counts), touch " +
-      (trigger.rising ? "rising" : "falling");
+  result.metadata["preprocessing"] = "tsa: IIR average N=" + std::to_string(options.iir_window) +
+                                     ", baseline over " + std::to_string(trigger.baseline_seconds) +
+                                     " s, trigger " + std::to_string(trigger.noise_sigmas) +
+                                     " sigma (min " + std::to_string(trigger.minimum_threshold) +
+                                     " counts), touch " + (trigger.rising ? "rising" : "falling");
   return result;
 }
 

@@ -16,9 +16,11 @@ namespace tactile {
 FurSeries fur_series(const Eigen::MatrixXd& values, const std::vector<double>& sizes,
                      const std::vector<Point2>& positions, double threshold) {
   const Eigen::Index cells = values.cols();
-  if (static_cast<Eigen::Index>(sizes.size()) != cells || static_cast<Eigen::Index>(positions.size()) != cells)
-    throw Error("fur features", std::to_string(cells) + " cells but " + std::to_string(sizes.size()) +
-                                    " sizes and " + std::to_string(positions.size()) + " positions");
+  if (static_cast<Eigen::Index>(sizes.size()) != cells ||
+      static_cast<Eigen::Index>(positions.size()) != cells)
+    throw Error("fur features", std::to_string(cells) + " cells but " +
+                                    std::to_string(sizes.size()) + " sizes and " +
+                                    std::to_string(positions.size()) + " positions");
   const Eigen::Map<const Eigen::ArrayXd> size(sizes.data(), cells);
   Eigen::ArrayXd x(cells), y(cells);
   for (Eigen::Index c = 0; c < cells; ++c) {
@@ -36,7 +38,8 @@ FurSeries fur_series(const Eigen::MatrixXd& values, const std::vector<double>& s
     // Centre weighted by pressure and size over the active cells: w_c = v_c s_c act_c.
     const Eigen::ArrayXd weight = v * size * active;
     const double total = weight.sum();
-    if (total > 0.0) series.centre.push_back({(weight * x).sum() / total, (weight * y).sum() / total});
+    if (total > 0.0)
+      series.centre.push_back({(weight * x).sum() / total, (weight * y).sum() / total});
   }
   return series;
 }
@@ -55,25 +58,15 @@ std::array<double, kFurFeatureCount> fur_segment_features(const Eigen::MatrixXd&
     centre_y.push_back(centre.y);
   }
   // Translation: distance from the first to the last valid centre (0 with fewer than two).
-  const double translation =
-      series.centre.size() < 2 ? 0.0
-                               : std::hypot(series.centre.back().x - series.centre.front().x,
-                                            series.centre.back().y - series.centre.front().y);
-  return {static_cast<double>(values.rows()),
-          stats::mean(series.area),
-          maximum(series.area),
-          stats::variance(series.area),
-          maximum(series.sum),
-          stats::mean(series.sum),
-          stats::variance(series.sum),
-          maximum(series.peak),
-          stats::mean(series.peak),
-          stats::variance(series.peak),
-          stats::mean(centre_x),
-          stats::mean(centre_y),
-          stats::variance(centre_x),
-          stats::variance(centre_y),
-          translation};
+  const double translation = series.centre.size() < 2
+                                 ? 0.0
+                                 : std::hypot(series.centre.back().x - series.centre.front().x,
+                                              series.centre.back().y - series.centre.front().y);
+  return {static_cast<double>(values.rows()), stats::mean(series.area),  maximum(series.area),
+          stats::variance(series.area),       maximum(series.sum),       stats::mean(series.sum),
+          stats::variance(series.sum),        maximum(series.peak),      stats::mean(series.peak),
+          stats::variance(series.peak),       stats::mean(centre_x),     stats::mean(centre_y),
+          stats::variance(centre_x),          stats::variance(centre_y), translation};
 }
 
 //---- The extractor ------------------------------------------------------------------------
@@ -110,20 +103,23 @@ class FurExtractor : public FeatureExtractor {
       throw Error(parameters.where(), "threshold must lie in [0, 1) (values are normalised)");
     const int64_t features = parameters.integer("fur_features", kFurFeatureCount);
     if (features != 14 && features != 15)
-      throw Error(parameters.where(), "fur_features=" + std::to_string(features) + ": expected 14 or 15");
+      throw Error(parameters.where(),
+                  "fur_features=" + std::to_string(features) + ": expected 14 or 15");
     joint_centre_variance_ = features == 14;
   }
 
   std::string name() const override { return "fur"; }
   std::string description() const override {
-    return "Smart fur (paper 002): duration, active area, sum and peak pressure (max, mean, variance), "
+    return "Smart fur (paper 002): duration, active area, sum and peak pressure (max, mean, "
+           "variance), "
            "pressure centre and its variance, translation, on calibrated [0, 1] pressures";
   }
 
   std::vector<FeatureColumn> columns(const SkinLayout&) const override {
     std::vector<FeatureColumn> columns(kColumns.begin(), kColumns.end());
     if (joint_centre_variance_) {
-      columns[12] = {"centre_variance", "var(centre x) + var(centre y) [cm^2] (the paper's 14-feature list)"};
+      columns[12] = {"centre_variance",
+                     "var(centre x) + var(centre y) [cm^2] (the paper's 14-feature list)"};
       columns.erase(columns.begin() + 13);
     }
     return columns;
@@ -150,18 +146,20 @@ class FurExtractor : public FeatureExtractor {
       sizes.push_back(taxel.area / 100.0);
       positions.push_back({taxel.position.x / 10.0, taxel.position.y / 10.0});
     }
-    if (used.empty()) return FeatureResult::skip("the stream carries no cell of layout " + input.layout.id);
+    if (used.empty())
+      return FeatureResult::skip("the stream carries no cell of layout " + input.layout.id);
 
     Eigen::MatrixXd values(end - begin, static_cast<Eigen::Index>(used.size()));
     for (size_t c = 0; c < used.size(); ++c)
       for (int64_t t = begin; t < end; ++t) {
         const float value = stream.samples(t, used[c]);
         if (!std::isfinite(value))
-          return FeatureResult::skip("missing sample (NaN) at sample " + std::to_string(t) + " of channel " +
-                                     stream.channels[used[c]]);
+          return FeatureResult::skip("missing sample (NaN) at sample " + std::to_string(t) +
+                                     " of channel " + stream.channels[used[c]]);
         values(t - begin, static_cast<Eigen::Index>(c)) = value;
       }
-    const std::array<double, kFurFeatureCount> features = fur_segment_features(values, sizes, positions, threshold_);
+    const std::array<double, kFurFeatureCount> features =
+        fur_segment_features(values, sizes, positions, threshold_);
     FeatureResult result;
     result.values.assign(features.begin(), features.end());
     if (joint_centre_variance_) {

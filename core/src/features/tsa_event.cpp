@@ -58,11 +58,12 @@ std::array<double, 4> tsa_frame_descriptors(const TsaFrame& frame, Point2 sheet_
                                              contact.position.y - sheet_centre.y));
   }
   // TSA §2.5: D1 mean, D2 max, D3 sample std of the active values, D4 max distance from centre.
-  return {stats::mean(values), *std::max_element(values.begin(), values.end()), stats::sample_std(values),
-          farthest};
+  return {stats::mean(values), *std::max_element(values.begin(), values.end()),
+          stats::sample_std(values), farthest};
 }
 
-std::array<double, 8> tsa_descriptor_statistics(const std::vector<TsaFrame>& frames, Point2 sheet_centre) {
+std::array<double, 8> tsa_descriptor_statistics(const std::vector<TsaFrame>& frames,
+                                                Point2 sheet_centre) {
   std::array<std::vector<double>, 4> series;
   for (const TsaFrame& frame : frames) {
     if (frame.empty()) continue;
@@ -116,9 +117,17 @@ int tsa_direction_code(const std::vector<Point2>& path, const TsaDirectionOption
 namespace {
 
 constexpr std::array<const char*, kTsaDirectionCodes> kDirectionNames = {
-    "none",       "clockwise",   "counter_clockwise",         "left_to_right",
-    "right_to_left", "up_to_down", "down_to_up",              "upper_left_to_lower_right",
-    "lower_right_to_upper_left", "lower_left_to_upper_right", "upper_right_to_lower_left"};
+    "none",
+    "clockwise",
+    "counter_clockwise",
+    "left_to_right",
+    "right_to_left",
+    "up_to_down",
+    "down_to_up",
+    "upper_left_to_lower_right",
+    "lower_right_to_upper_left",
+    "lower_left_to_upper_right",
+    "upper_right_to_lower_left"};
 
 std::string upper(std::string text) {
   for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -129,8 +138,9 @@ class TsaEventExtractor : public FeatureExtractor {
  public:
   explicit TsaEventExtractor(const Parameters& parameters) {
     std::vector<std::string> known = dsp::tsa_preprocess_keys();
-    known.insert(known.end(), {"tsa_features", "area_mode", "direction", "location", "direction_min_area",
-                               "direction_ratio", "direction_min_displacement"});
+    known.insert(known.end(),
+                 {"tsa_features", "area_mode", "direction", "location", "direction_min_area",
+                  "direction_ratio", "direction_min_displacement"});
     parameters.expect_only(known);
     preprocess_options_ = dsp::tsa_preprocess_options(parameters);
     const std::string features = upper(parameters.text("tsa_features", "BASIC"));
@@ -145,7 +155,8 @@ class TsaEventExtractor : public FeatureExtractor {
     else if (area == "COUNT")
       area_mode_ = TsaAreaMode::kCount;
     else
-      throw Error(parameters.where(), "area_mode=" + area + ": expected TEXT, EQ8_LITERAL or COUNT");
+      throw Error(parameters.where(),
+                  "area_mode=" + area + ": expected TEXT, EQ8_LITERAL or COUNT");
     direction_onehot_ = read_encoding(parameters, "direction");
     location_onehot_ = read_encoding(parameters, "location");
     direction_.minimum_area = parameters.number("direction_min_area", direction_.minimum_area);
@@ -156,7 +167,8 @@ class TsaEventExtractor : public FeatureExtractor {
 
   std::string name() const override { return "tsa_event"; }
   std::string description() const override {
-    return "Event-triggered capacitive TSA (paper 001): time, direction class (Fig. 8), area (eq. 8) "
+    return "Event-triggered capacitive TSA (paper 001): time, direction class (Fig. 8), area (eq. "
+           "8) "
            "and sheet location per single-touch event; EXTENDED adds D1-D4 mean and std (eqs. 5-6)";
   }
 
@@ -164,18 +176,22 @@ class TsaEventExtractor : public FeatureExtractor {
     std::vector<FeatureColumn> columns;
     columns.push_back({"time", "event duration N_ev * T_frame [s] (spec 2.8)"});
     if (direction_onehot_) {
-      for (int code = 0; code < kTsaDirectionCodes; ++code)
-        columns.push_back({std::string("direction.") + kDirectionNames[code],
-                           "1 when the direction class (spec 2.10, Fig. 8) is code " + std::to_string(code)});
+      for (int code = 0; code < kTsaDirectionCodes; ++code) {
+        std::string description = "1 when the direction class (spec 2.10, Fig. 8) is code ";
+        description.append(std::to_string(code));
+        columns.push_back({std::string("direction.") + kDirectionNames[code], description});
+      }
     } else {
-      columns.push_back({"direction", "direction class 0-10 of the centroid path (spec 2.10, Fig. 8)"});
+      columns.push_back(
+          {"direction", "direction class 0-10 of the centroid path (spec 2.10, Fig. 8)"});
     }
-    const char* area_description =
-        area_mode_ == TsaAreaMode::kDistanceSum ? "sum over frames of distances of active pads to the "
-                                                  "frame centroid [pitch] (eq. 8, text reading)"
-        : area_mode_ == TsaAreaMode::kEq8Literal ? "sum over frames of the root of summed squared "
-                                                   "distances to the centroid [pitch] (eq. 8 as typeset)"
-                                                 : "number of triggered pads summed over frames (Table 3)";
+    const char* area_description = area_mode_ == TsaAreaMode::kDistanceSum
+                                       ? "sum over frames of distances of active pads to the "
+                                         "frame centroid [pitch] (eq. 8, text reading)"
+                                   : area_mode_ == TsaAreaMode::kEq8Literal
+                                       ? "sum over frames of the root of summed squared "
+                                         "distances to the centroid [pitch] (eq. 8 as typeset)"
+                                       : "number of triggered pads summed over frames (Table 3)";
     columns.push_back({"area", area_description});
     if (location_onehot_) {
       for (const Group& group : layout.groups)
@@ -187,13 +203,18 @@ class TsaEventExtractor : public FeatureExtractor {
     if (extended_) {
       static constexpr std::array<const char*, 4> kDescriptors = {
           "mean of active values [counts]", "max of active values [counts]",
-          "sample std of active values [counts]", "max distance of an active pad from the sheet centre [pitch]"};
-      for (const char* statistic : {"mean", "std"})
-        for (size_t k = 0; k < 4; ++k)
-          columns.push_back({"d" + std::to_string(k + 1) + "_" + statistic,
-                             std::string(statistic) + " over frames (eq. " +
-                                 (statistic[0] == 'm' ? "5" : "6, N-1") + ") of D" + std::to_string(k + 1) +
-                                 ", " + kDescriptors[k]});
+          "sample std of active values [counts]",
+          "max distance of an active pad from the sheet centre [pitch]"};
+      for (const std::string statistic : {"mean", "std"})
+        for (size_t k = 0; k < 4; ++k) {
+          std::string descriptor = "d";
+          descriptor += std::to_string(k + 1);
+          std::string description = statistic;
+          description.append(statistic == "mean" ? " over frames (eq. 5) of "
+                                                 : " over frames (eq. 6, N-1) of ");
+          description.append(descriptor).append(", ").append(kDescriptors[k]);
+          columns.push_back({descriptor + "_" + statistic, description});
+        }
     }
     return columns;
   }
@@ -211,14 +232,17 @@ class TsaEventExtractor : public FeatureExtractor {
     // Candidate sheets: those of the segment's region (spec §2.1: the event belongs to the
     // sheet with the most active frames).
     std::vector<const dsp::TsaSheet*> candidates;
-    const Group* region = input.segment.region == "all" ? nullptr : input.layout.find_group(input.segment.region);
+    const Group* region =
+        input.segment.region == "all" ? nullptr : input.layout.find_group(input.segment.region);
     if (input.segment.region != "all" && region == nullptr)
-      return FeatureResult::skip("region " + input.segment.region + " is not a group of layout " + input.layout.id);
+      return FeatureResult::skip("region " + input.segment.region + " is not a group of layout " +
+                                 input.layout.id);
     for (const dsp::TsaSheet& sheet : sheets)
-      if (region == nullptr ||
-          std::find(region->taxels.begin(), region->taxels.end(), sheet.taxels.front()) != region->taxels.end())
+      if (region == nullptr || std::find(region->taxels.begin(), region->taxels.end(),
+                                         sheet.taxels.front()) != region->taxels.end())
         candidates.push_back(&sheet);
-    if (candidates.empty()) return FeatureResult::skip("region " + input.segment.region + " holds no sheet");
+    if (candidates.empty())
+      return FeatureResult::skip("region " + input.segment.region + " holds no sheet");
 
     const dsp::TsaSheet* best = nullptr;
     int64_t best_frames = 0;
@@ -229,9 +253,10 @@ class TsaEventExtractor : public FeatureExtractor {
         for (int column : sheet->columns) {
           const float value = stream.samples(n, column);
           if (std::isnan(value))
-            return FeatureResult::skip("missing sample (NaN) at frame " + std::to_string(n) + " of channel " +
-                                       (column < static_cast<int>(stream.channels.size()) ? stream.channels[column]
-                                                                                          : std::to_string(column)));
+            return FeatureResult::skip(
+                "missing sample (NaN) at frame " + std::to_string(n) + " of channel " +
+                (column < static_cast<int>(stream.channels.size()) ? stream.channels[column]
+                                                                   : std::to_string(column)));
           active = active || value > 0.0f;
         }
         frames += active;
@@ -241,7 +266,8 @@ class TsaEventExtractor : public FeatureExtractor {
         best = sheet;
       }
     }
-    if (best == nullptr) return FeatureResult::skip("no pad triggered on region " + input.segment.region);
+    if (best == nullptr)
+      return FeatureResult::skip("no pad triggered on region " + input.segment.region);
 
     // The event: from the sheet's first to its last active frame inside the segment.
     std::vector<TsaFrame> frames;
@@ -266,7 +292,8 @@ class TsaEventExtractor : public FeatureExtractor {
     values.push_back(static_cast<double>(last - first + 1) / stream.rate_hz);  // spec §2.8
     const int direction = tsa_direction_code(path, direction_);
     if (direction_onehot_) {
-      for (int code = 0; code < kTsaDirectionCodes; ++code) values.push_back(code == direction ? 1.0 : 0.0);
+      for (int code = 0; code < kTsaDirectionCodes; ++code)
+        values.push_back(code == direction ? 1.0 : 0.0);
     } else {
       values.push_back(direction);
     }

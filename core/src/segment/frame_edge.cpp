@@ -17,7 +17,8 @@ std::vector<int> occupancy_changes(const std::vector<uint8_t>& active) {
   return changes;
 }
 
-std::vector<FrameEvent> frame_events(const std::vector<uint8_t>& active, int64_t gap, bool keep_open) {
+std::vector<FrameEvent> frame_events(const std::vector<uint8_t>& active, int64_t gap,
+                                     bool keep_open) {
   std::vector<FrameEvent> events;
   const auto frames = static_cast<int64_t>(active.size());
   int64_t n = 0;
@@ -60,7 +61,8 @@ std::vector<Label> segment_frame_edge(const Recording& recording, const SkinLayo
   if (events_per != "location" && events_per != "sheet")
     throw Error(parameters.where(), "events_per=" + events_per + ": expected location or sheet");
 
-  const Recording contacts = dsp::tsa_preprocess(recording, layout, dsp::tsa_preprocess_options(parameters));
+  const Recording contacts =
+      dsp::tsa_preprocess(recording, layout, dsp::tsa_preprocess_options(parameters));
   const Stream& stream = dsp::tsa_stream(contacts);
   const std::vector<dsp::TsaSheet> sheets = dsp::tsa_sheets(layout, stream);
   const int64_t frames = stream.sample_count();
@@ -77,8 +79,9 @@ std::vector<Label> segment_frame_edge(const Recording& recording, const SkinLayo
   std::map<std::string, std::vector<size_t>> surfaces;
   std::vector<std::string> surface_order;
   for (size_t s = 0; s < sheets.size(); ++s) {
-    const std::string& surface =
-        (events_per == "location" && !sheets[s].location.empty()) ? sheets[s].location : sheets[s].id;
+    const std::string& surface = (events_per == "location" && !sheets[s].location.empty())
+                                     ? sheets[s].location
+                                     : sheets[s].id;
     if (!surfaces.count(surface)) surface_order.push_back(surface);
     surfaces[surface].push_back(s);
   }
@@ -109,7 +112,8 @@ std::vector<Label> segment_frame_edge(const Recording& recording, const SkinLayo
       label.region = sheets[best].location.empty() ? sheets[best].id : sheets[best].location;
       label.annotator = "segmenter:frame-edge";
       label.source = LabelSource::kSegmenter;
-      label.note = "sheet=" + sheets[best].id + " frames=" + std::to_string(event.last - event.first + 1) +
+      label.note = "sheet=" + sheets[best].id +
+                   " frames=" + std::to_string(event.last - event.first + 1) +
                    (event.open ? " truncated" : "");
       labels.push_back(std::move(label));
     }

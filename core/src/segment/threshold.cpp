@@ -21,8 +21,8 @@ const char* to_string(SegmentEnd end) {
   return "open";
 }
 
-std::vector<SampleSegment> threshold_segments(const std::vector<uint8_t>& active, int64_t quiet_samples,
-                                              int64_t max_samples) {
+std::vector<SampleSegment> threshold_segments(const std::vector<uint8_t>& active,
+                                              int64_t quiet_samples, int64_t max_samples) {
   std::vector<SampleSegment> segments;
   bool in_segment = false;
   int64_t start = 0;
@@ -63,7 +63,8 @@ std::vector<Label> segment_threshold(const Recording& recording, const SkinLayou
   if (!(quiet_seconds > 0.0)) throw Error(parameters.where(), "quiet_seconds must be positive");
   if (!(max_seconds > 0.0)) throw Error(parameters.where(), "max_seconds must be positive");
 
-  const Recording normalised = dsp::fur_preprocess(recording, layout, dsp::fur_preprocess_options(parameters));
+  const Recording normalised =
+      dsp::fur_preprocess(recording, layout, dsp::fur_preprocess_options(parameters));
   const Stream& stream = dsp::fur_stream(normalised);
   const int64_t samples = stream.sample_count();
   // Q = 1 s · fs and L_max = 4 s · fs samples at the defaults (15 and 60 at 15 Hz).
@@ -85,8 +86,8 @@ std::vector<Label> segment_threshold(const Recording& recording, const SkinLayou
     if (group.kind != "region") continue;
     std::vector<int> member_columns;
     for (size_t k = 0; k < layout.taxels.size(); ++k)
-      if (columns[k] >= 0 &&
-          std::find(group.taxels.begin(), group.taxels.end(), layout.taxels[k].id) != group.taxels.end())
+      if (columns[k] >= 0 && std::find(group.taxels.begin(), group.taxels.end(),
+                                       layout.taxels[k].id) != group.taxels.end())
         member_columns.push_back(columns[k]);
     regions.push_back(&group);
     region_columns.push_back(std::move(member_columns));

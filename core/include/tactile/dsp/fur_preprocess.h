@@ -15,9 +15,9 @@
 namespace tactile::dsp {
 
 struct FurPreprocessOptions {
-  double cutoff_hz = 0.2;        // spec §3.2
-  double adc_max = 1023.0;       // 10-bit converter: u = adc_max - raw
-  std::string signal = "auto";   // falling | rising | auto (metadata key "signal"; else falling)
+  double cutoff_hz = 0.2;       // spec §3.2
+  double adc_max = 1023.0;      // 10-bit converter: u = adc_max - raw
+  std::string signal = "auto";  // falling | rising | auto (metadata key "signal"; else falling)
   // One calibration peak for every cell, overriding the recording's metadata key
   // "calibration_peak" (one value per layout channel, comma-separated, in counts).
   std::optional<double> calibration_peak;
@@ -33,7 +33,8 @@ const Stream& fur_stream(const Recording& recording);
 // Calibration peak of each column of the fur stream: the option, else the metadata.
 // Throws tactile::Error naming the recording and the metadata key when neither is usable.
 std::vector<double> fur_calibration_peaks(const Recording& recording, const SkinLayout& layout,
-                                          const Stream& stream, const FurPreprocessOptions& options);
+                                          const Stream& stream,
+                                          const FurPreprocessOptions& options);
 
 // The recording with its fur stream replaced by v in [0, 1] (NaN where a sample was
 // missing); metadata "preprocessing" says what was done and "dead_cells" lists the channels

@@ -18,11 +18,11 @@ namespace tactile::dsp {
 // One 4x4 sheet of the layout, in the sheet's own coordinates (spec §2.1: x = column to
 // the right, y = row downwards, unit = pad pitch).
 struct TsaSheet {
-  std::string id;        // the "sheet" group, e.g. "m03.s2"
-  std::string location;  // the "location" group holding it, e.g. "arm-left"; "" when none
-  int code = 0;          // spec §2.9 location code: 1-based order among the layout's sheets
-  std::vector<int64_t> taxels;   // taxel ids, in the group's order
-  std::vector<int> columns;      // stream column of each pad
+  std::string id;               // the "sheet" group, e.g. "m03.s2"
+  std::string location;         // the "location" group holding it, e.g. "arm-left"; "" when none
+  int code = 0;                 // spec §2.9 location code: 1-based order among the layout's sheets
+  std::vector<int64_t> taxels;  // taxel ids, in the group's order
+  std::vector<int> columns;     // stream column of each pad
   std::vector<Point2> positions;  // pad positions in pitch units, (0, 0) = top-left pad
   Point2 centre;                  // centre of the pad grid, (1.5, 1.5) on a 4x4 sheet
 };
@@ -32,7 +32,7 @@ struct TsaSheet {
 std::vector<TsaSheet> tsa_sheets(const SkinLayout& layout, const Stream& stream);
 
 struct TsaPreprocessOptions {
-  int64_t iir_window = 4;     // eq. (3) N (spec default); 1 when the counts are already smoothed
+  int64_t iir_window = 4;      // eq. (3) N (spec default); 1 when the counts are already smoothed
   std::string touch = "auto";  // rising | falling | auto (the recording's front_end metadata)
   ContactTriggerOptions trigger;  // rate and direction are filled from the recording
 };

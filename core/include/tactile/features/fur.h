@@ -16,10 +16,10 @@ namespace tactile {
 
 // Per-sample series of a segment (spec §3.5), T samples each.
 struct FurSeries {
-  std::vector<double> area;         // A(t) = Σ_c s_c · [v_c(t) > θ]  [cm²]
-  std::vector<double> sum;          // S(t) = Σ_c v_c(t)
-  std::vector<double> peak;         // P(t) = max_c v_c(t)
-  std::vector<Point2> centre;       // pressure- and size-weighted centre of active cells, valid t only
+  std::vector<double> area;    // A(t) = Σ_c s_c · [v_c(t) > θ]  [cm²]
+  std::vector<double> sum;     // S(t) = Σ_c v_c(t)
+  std::vector<double> peak;    // P(t) = max_c v_c(t)
+  std::vector<Point2> centre;  // pressure- and size-weighted centre of active cells, valid t only
 };
 
 // `values`: T x C normalised pressures v in [0, 1] (rows = samples); `sizes` s_c [cm²] and

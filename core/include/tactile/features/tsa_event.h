@@ -36,7 +36,8 @@ double tsa_area(const std::vector<TsaFrame>& frames, TsaAreaMode mode);
 // pad from the sheet's centre (spec §2.5); all 0 for an empty frame.
 std::array<double, 4> tsa_frame_descriptors(const TsaFrame& frame, Point2 sheet_centre);
 // TSA eqs. (5)-(6) over the non-empty frames: [mean D1..D4, sample std D1..D4].
-std::array<double, 8> tsa_descriptor_statistics(const std::vector<TsaFrame>& frames, Point2 sheet_centre);
+std::array<double, 8> tsa_descriptor_statistics(const std::vector<TsaFrame>& frames,
+                                                Point2 sheet_centre);
 
 struct TsaPathShape {
   double signed_area = 0.0;       // shoelace over the closed path; > 0 = clockwise (y down)

@@ -23,7 +23,8 @@ struct FrameEvent {
 };
 // Maximal runs of active frames; runs separated by at most `gap` inactive frames merge.
 // A run still open at the end is returned flagged open only when `keep_open`.
-std::vector<FrameEvent> frame_events(const std::vector<uint8_t>& active, int64_t gap, bool keep_open);
+std::vector<FrameEvent> frame_events(const std::vector<uint8_t>& active, int64_t gap,
+                                     bool keep_open);
 
 // Segmenter "frame-edge" on a raw TSA recording: eq. (3) smoothing, baseline and trigger
 // (dsp/tsa_preprocess.h), then events on the frames of each location group (a palm that

@@ -23,8 +23,8 @@ struct SampleSegment {
 // Spec §3.4 state machine on activity flags: quiet end after `quiet_samples` inactive samples
 // (the quiet tail is not part of the segment), forced end at `max_samples`, and a segment
 // still running at the end of the stream returned as kOpen [start, last].
-std::vector<SampleSegment> threshold_segments(const std::vector<uint8_t>& active, int64_t quiet_samples,
-                                              int64_t max_samples);
+std::vector<SampleSegment> threshold_segments(const std::vector<uint8_t>& active,
+                                              int64_t quiet_samples, int64_t max_samples);
 
 // Segmenter "threshold" on a raw smart-fur recording: the fur preprocessing
 // (dsp/fur_preprocess.h), active(t) = max_c v_c(t) > threshold, then the state machine.
