@@ -250,6 +250,33 @@ TEST(TsaEventExtractor, SlidingFingerGoesLeftToRightOnSheetSix) {
   EXPECT_EQ(values[3], 6.0);  // m03.s2 = 2 * (3 - 1) + 2
 }
 
+TEST(TsaEventExtractor, ToyFramesOnSheetFiveGiveTheFeatureVectorOfSpecVectorT3) {
+  // The three T3 frames as counts above a flat 100-count rest on sheet m03.s1 (code 5), with
+  // eq. 3 switched off (N = 1) and a 1-count trigger, so the contacts are exactly T3's values.
+  const SkinLayout layout = load_layout("tsa");
+  Recording raw = sliding_touch_recording(layout);
+  Stream& stream = raw.streams[0];
+  stream.samples.setConstant(100.0f);
+  const std::vector<std::vector<std::pair<int, float>>> frames = {
+      {{4, 5}, {8, 3}}, {{5, 6}, {6, 2}, {9, 4}}, {{7, 7}, {11, 5}}};  // (pad, value)
+  for (size_t n = 0; n < frames.size(); ++n)
+    for (const auto& [pad, value] : frames[n]) {
+      const std::string name = "m03.s1.p" + std::string(pad < 10 ? "0" : "") + std::to_string(pad);
+      stream.samples(static_cast<Eigen::Index>(40 + n), layout.channel_index(name)) += value;
+    }
+  Label label;
+  label.t0 = 40.0 / 8.0;
+  label.t1 = 43.0 / 8.0;
+  const Extracted extracted =
+      extract_tsa(layout, raw, label, "iir_n=1,min_threshold=1,tsa_features=EXTENDED");
+  ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
+  const std::vector<double> expected = {0.375,   3,       3.96212, 5, 4.66667,  6,
+                                        1.60948, 1.28979, 1.1547,  1, 0.338204, 0.504623};
+  ASSERT_EQ(extracted.result.values.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k)
+    EXPECT_NEAR(extracted.result.values[k], expected[k], 1e-5) << extracted.columns[k].name;
+}
+
 TEST(TsaEventExtractor, ExtendedAndOneHotColumnsMatchTheirValues) {
   const SkinLayout layout = load_layout("tsa");
   const Recording raw = sliding_touch_recording(layout);

@@ -30,7 +30,8 @@ std::vector<FrameEvent> frame_events(const std::vector<uint8_t>& active, int64_t
 // (dsp/tsa_preprocess.h), then events on the frames of each location group (a palm that
 // spills onto the next sheet of the same body part is one event); each event's region is
 // the location, its note names the sheet with the most active frames (spec §2.1).
-// Parameters: gap (frames, 0), keep_open (false), and the preprocessing keys of
+// Parameters: gap (frames, 0), keep_open (false), events_per (location | sheet: one event per
+// sheet as spec §2.4 words it), and the preprocessing keys of
 // tsa_preprocess_keys(). Throws tactile::Error naming a bad parameter or layout.
 std::vector<Label> segment_frame_edge(const Recording& recording, const SkinLayout& layout,
                                       const Parameters& parameters);
