@@ -72,7 +72,9 @@ TEST(FluxRatiometric, BaselineIsResampledEachMinuteWhenQuiet) {
   EXPECT_EQ(result.baseline_samples, (std::vector<int64_t>{9, 6009, 12009}));
   // Just before the re-sample the drift shows; from it on it starts again from 0.
   EXPECT_NEAR(result.deviation(6008, 0), 0.04 * 5999 / 6000 / 1.00006, 1e-9);
-  EXPECT_DOUBLE_EQ(result.deviation(6009, 0), 0.0);
+  // V0 is the mean of the first half of the settled second before it: y at sample 5934.5.
+  EXPECT_NEAR(result.deviation(6009, 0), (1 + 0.04 * 6009 / 6000) / (1 + 0.04 * 5934.5 / 6000) - 1,
+              1e-12);
   EXPECT_LT(result.deviation(12008, 0), 0.04);
 }
 
@@ -95,6 +97,37 @@ TEST(FluxRatiometric, ResampleWaitsForEveryChannelToBeQuietForOneSecond) {
   const RatiometricResult result = ratiometric_deviation(averaged, 100.0, 1, FluxOptions{});
   ASSERT_EQ(result.baseline_samples.size(), 2u);
   EXPECT_EQ(result.baseline_samples[1], 6300 + 100 - 1);
+}
+
+// 100 Hz: a press from 58 s, then the sensor's slow relaxation (τ = 7 s) from 4.8 % above rest.
+Eigen::MatrixXd press_then_relaxation() {
+  Eigen::MatrixXd averaged = Eigen::MatrixXd::Constant(9000, 1, 100.0);
+  averaged.col(0).segment(5800, 100).setConstant(130.0);
+  for (int64_t n = 5900; n < 9000; ++n)
+    averaged(n, 0) = 100.0 + 4.8 * std::exp(-(n - 5900) / 700.0);
+  return averaged;
+}
+
+TEST(FluxRatiometric, ResampleWaitsForTheRelaxationTailToSettle) {
+  const RatiometricResult result =
+      ratiometric_deviation(press_then_relaxation(), 100.0, 1, FluxOptions{});
+  ASSERT_EQ(result.baseline_samples.size(), 2u);
+  // The tail falls under 5 % at once, but still moves more than 0.1 % per half second
+  // until it is about 1.4 % above rest (~8.6 s after the release).
+  EXPECT_GT(result.baseline_samples[1], 6700);
+  // At rest again the deviation stays close to 0 rather than a tail's worth below it.
+  EXPECT_GT(result.deviation(8999, 0), -0.016);
+}
+
+TEST(FluxRatiometric, WithoutTheSettleTestTheTailBecomesTheBaseline) {
+  FluxOptions spec_only;
+  spec_only.baseline_settle = 1.0;  // any change passes: the spec's rule alone
+  const RatiometricResult result =
+      ratiometric_deviation(press_then_relaxation(), 100.0, 1, spec_only);
+  ASSERT_EQ(result.baseline_samples.size(), 2u);
+  // Window 5800..6299, re-armed after 0.5 s under θ_on: the re-sample lands in the tail.
+  EXPECT_LT(result.baseline_samples[1], 6360);
+  EXPECT_LT(result.deviation(8999, 0), -0.02);
 }
 
 TEST(FluxRatiometric, NonPositiveBaselineMarksTheChannelInvalidWithZeroDeviation) {

@@ -11,8 +11,8 @@ namespace tactile::dsp {
 //---- Options
 
 std::vector<std::string> flux_option_keys() {
-  return {"average_window",    "onset_threshold",  "window_s", "refractory_quiet_s",
-          "baseline_period_s", "baseline_quiet_s", "steady_s"};
+  return {"average_window",    "onset_threshold",  "window_s",        "refractory_quiet_s",
+          "baseline_period_s", "baseline_quiet_s", "baseline_settle", "steady_s"};
 }
 
 FluxOptions flux_options(const Parameters& parameters) {
@@ -37,6 +37,7 @@ FluxOptions flux_options(const Parameters& parameters) {
   options.refractory_quiet_s = not_negative("refractory_quiet_s", options.refractory_quiet_s);
   options.baseline_period_s = positive("baseline_period_s", options.baseline_period_s);
   options.baseline_quiet_s = not_negative("baseline_quiet_s", options.baseline_quiet_s);
+  options.baseline_settle = positive("baseline_settle", options.baseline_settle);
   options.steady_s = positive("steady_s", options.steady_s);
   return options;
 }
@@ -92,6 +93,59 @@ double largest_magnitude(const Eigen::MatrixXd& values, Eigen::Index row, int64_
   return largest;
 }
 
+// Whether the averaged signals have settled: sliding sums over the two halves of the last
+// 2h samples, updated in O(columns) per sample. Non-finite samples count as 0 in the sums
+// and are counted apart (a NaN would otherwise spoil every later sum).
+class SettleWindow {
+ public:
+  SettleWindow(const Eigen::MatrixXd& values, Eigen::Index half)
+      : values_(values),
+        half_(half),
+        early_(Eigen::VectorXd::Zero(values.cols())),
+        late_(Eigen::VectorXd::Zero(values.cols())) {}
+  // Moves the window to end at sample n (called for n = 0, 1, 2, ...).
+  void advance(Eigen::Index n) {
+    if (half_ < 1) return;
+    add(late_, n, +1.0);
+    non_finite_ += non_finite(n);
+    if (n - half_ >= 0) {
+      add(late_, n - half_, -1.0);
+      add(early_, n - half_, +1.0);
+    }
+    if (n - 2 * half_ >= 0) {
+      add(early_, n - 2 * half_, -1.0);
+      non_finite_ -= non_finite(n - 2 * half_);
+    }
+    filled_ = n + 1;
+  }
+  // Mean of each column over the early half (valid once settled() holds).
+  Eigen::VectorXd early_mean() const { return early_ / static_cast<double>(half_); }
+  bool has_halves() const { return half_ >= 1; }
+  // True when every column's mean over the late half differs from the one over the early
+  // half by less than tolerance · |baseline|, with no non-finite sample in either.
+  bool settled(const Eigen::VectorXd& baseline, double tolerance) const {
+    if (half_ < 1) return true;
+    if (filled_ < 2 * half_ || non_finite_ > 0) return false;
+    const Eigen::ArrayXd change = (late_ - early_).array().abs() / static_cast<double>(half_);
+    return (change < tolerance * baseline.array().abs()).all();
+  }
+
+ private:
+  void add(Eigen::VectorXd& sums, Eigen::Index n, double sign) {
+    for (Eigen::Index column = 0; column < values_.cols(); ++column)
+      if (std::isfinite(values_(n, column))) sums[column] += sign * values_(n, column);
+  }
+  int64_t non_finite(Eigen::Index n) const {
+    return static_cast<int64_t>((!values_.row(n).array().isFinite()).count());
+  }
+
+  const Eigen::MatrixXd& values_;
+  Eigen::Index half_;
+  Eigen::VectorXd early_, late_;
+  int64_t non_finite_ = 0;
+  Eigen::Index filled_ = 0;
+};
+
 }  // namespace
 
 RatiometricResult ratiometric_deviation(const Eigen::MatrixXd& averaged, double rate_hz,
@@ -127,14 +181,18 @@ RatiometricResult ratiometric_deviation(const Eigen::MatrixXd& averaged, double 
       }
     }
   };
+  SettleWindow settle(averaged, quiet_needed / 2);
   int64_t next_due = startup + period;
   int64_t quiet_run = 0;
   for (Eigen::Index n = 0; n < count; ++n) {
     normalise(n);
+    settle.advance(n);
     quiet_run = largest_magnitude(result.deviation, n, columns) < threshold ? quiet_run + 1 : 0;
     if (n >= next_due && quiet_run >= quiet_needed && !detector.in_progress() &&
-        averaged.row(n).allFinite()) {
-      baseline = averaged.row(n).transpose();
+        averaged.row(n).allFinite() && settle.settled(baseline, options.baseline_settle)) {
+      // The early half of the settled quiet time, not y[n]: the last samples may already
+      // carry the start of the next touch, still under θ_on.
+      baseline = settle.has_halves() ? settle.early_mean() : averaged.row(n).transpose();
       normalise(n);
       result.baseline_samples.push_back(n);
       next_due = n + period;

@@ -23,7 +23,10 @@ struct FluxOptions {
   double refractory_quiet_s = 0.5;  // refractory_quiet_s: quiet time before a new onset
   double baseline_period_s = 60.0;  // baseline_period_s: V0 re-sampling period of §5.3
   double baseline_quiet_s = 1.0;    // baseline_quiet_s: quiet time a re-sample needs
-  double steady_s = 0.5;            // steady_s: L_s / fs, end of window averaged (§5.6)
+  // baseline_settle: how far the signal may still move during that quiet time (relative
+  // change between the means of its two halves). Not in the spec: see ratiometric_deviation.
+  double baseline_settle = 0.001;
+  double steady_s = 0.5;  // steady_s: L_s / fs, end of window averaged (§5.6)
 };
 std::vector<std::string> flux_option_keys();
 // Throws tactile::Error naming the key when a value is out of range. Does not reject
@@ -70,8 +73,14 @@ struct RatiometricResult {
 // y[N-1] is not finite), applied from sample 0; then re-sampled every baseline period once
 // no excitation is in progress (detector on the first `onset_columns` columns) and every
 // column has had |e| < θ_on for the baseline quiet time, postponed until that holds. A
-// re-sample applies from its own sample on. V0 <= 0 marks the column invalid and holds its
-// e at 0 while that V0 lasts.
+// re-sample applies from its own sample on.
+// Beyond the spec, a re-sample also waits until every column has settled: the means of the
+// two halves of the quiet time differ by less than baseline_settle · V0; the new V0 is the
+// mean of the early half (y[n] may already carry the start of the next touch, under θ_on). Without
+// it, V0 is taken on the slow relaxation tail (τ ≈ 7 s, under θ_on long before it ends), each such
+// V0 up to θ_on above the last, until the resting e sits below -θ_on: the quiet test then
+// never passes again, no excitation re-arms the detector, and every later event is lost. V0 <= 0
+// marks the column invalid and holds its e at 0 while that V0 lasts.
 RatiometricResult ratiometric_deviation(const Eigen::MatrixXd& averaged, double rate_hz,
                                         int64_t onset_columns, const FluxOptions& options);
 
