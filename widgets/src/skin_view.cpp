@@ -205,6 +205,33 @@ void taxel_tooltip(const SkinLayout& layout, const Taxel& taxel, float value, bo
   ImGui::EndTooltip();
 }
 
+// Updates the caller's zoom from the mouse, then applies it to the fitted transform:
+// screen = centre + zoom * (fitted - centre) + pan.
+void apply_zoom(SkinViewZoom& zoom, SkinViewGeometry& geometry, bool hovered, ImVec2 mouse) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const double centre_x = geometry.map_min.x + 0.5 * geometry.map_size.x;
+  const double centre_y = geometry.map_min.y + 0.5 * geometry.map_size.y;
+  if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) zoom = SkinViewZoom{};
+  if (hovered && io.MouseWheel != 0.0f) {
+    // Keep the map point under the pointer where it is.
+    const double factor = std::pow(1.2, static_cast<double>(io.MouseWheel));
+    const double next = std::clamp(zoom.zoom * factor, 1.0, 40.0);
+    const double applied = next / zoom.zoom;
+    zoom.pan_x = (mouse.x - centre_x) - applied * (mouse.x - centre_x - zoom.pan_x);
+    zoom.pan_y = (mouse.y - centre_y) - applied * (mouse.y - centre_y - zoom.pan_y);
+    zoom.zoom = next;
+  }
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+    zoom.pan_x += io.MouseDelta.x;
+    zoom.pan_y += io.MouseDelta.y;
+  }
+  if (zoom.zoom <= 1.0) zoom.pan_x = zoom.pan_y = 0.0;
+  MapTransform& transform = geometry.transform;
+  transform.offset_x = centre_x + zoom.zoom * (transform.offset_x - centre_x) + zoom.pan_x;
+  transform.offset_y = centre_y + zoom.zoom * (transform.offset_y - centre_y) + zoom.pan_y;
+  transform.scale *= zoom.zoom;
+}
+
 }  // namespace
 
 //---- Public
@@ -258,14 +285,16 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
   ImGui::PushID(id);
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const SkinViewGeometry geometry = skin_view_geometry(layout, origin, size, style);
-  result.transform = geometry.transform;
+  SkinViewGeometry geometry = skin_view_geometry(layout, origin, size, style);
 
   ImGui::SetCursorScreenPos(geometry.map_min);
-  ImGui::InvisibleButton("map", geometry.map_size);
+  ImGui::InvisibleButton("map", geometry.map_size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   const bool hovered = ImGui::IsItemHovered();
   const bool clicked = ImGui::IsItemClicked(ImGuiMouseButton_Left);
   const ImVec2 mouse = ImGui::GetIO().MousePos;
+  if (style.zoom) apply_zoom(*style.zoom, geometry, hovered, mouse);
+  result.transform = geometry.transform;
 
   // From the top of the view: side names sit in the line above the map.
   draw.PushClipRect(

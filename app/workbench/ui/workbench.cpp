@@ -87,6 +87,7 @@ void Workbench::choose_default_view() {
   const Stream& stream = document.stream();
   modality_ = std::max(0, document.layout.modality_index(document.layout.display_modality));
   rest_scale_modality_ = -1;
+  skin_zoom_ = SkinViewZoom{};
   plotted_.assign(static_cast<size_t>(stream.channel_count()), 0);
   const std::vector<int> columns = taxel_columns(document.layout, stream.channels, modality_);
   std::vector<std::pair<float, int>> spread;
@@ -337,6 +338,7 @@ void Workbench::draw_skin_panel(float width, float height) {
   }
   SkinViewStyle style;
   style.modality_label = legend;
+  style.zoom = &skin_zoom_;
   const ImVec2 size = ImGui::GetContentRegionAvail();
   const SkinViewResult result =
       draw_skin_view("skin_view", layout, values, value_min, value_max, size, style);
@@ -442,7 +444,8 @@ void Workbench::draw_status_bar() {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error_.c_str());
   } else if (document_) {
     ImGui::TextDisabled(
-        "%s   %zu labels   space: play/pause   wheel: zoom   drag: pan   double-click: fit",
+        "%s   %zu labels   space: play/pause   wheel: zoom   drag (skin: right-drag): pan   "
+        "double-click: fit",
         document_->path.c_str(), document_->labels.size());
   } else {
     ImGui::TextDisabled("Tactile Workbench");

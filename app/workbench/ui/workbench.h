@@ -12,6 +12,7 @@
 #include "tactile/live/playback.h"
 #include "tactile/signal/display_scale.h"
 #include "tactile/widgets/signal_plot.h"
+#include "tactile/widgets/skin_view.h"
 
 namespace tactile {
 
@@ -53,6 +54,7 @@ class Workbench {
   SignalPlotState plot_state_;
   std::vector<char> plotted_;  // per channel of the current stream
   int modality_ = 0;
+  SkinViewZoom skin_zoom_;
   // The skin shows each taxel's change from its rest level unless raw values are asked for.
   bool show_raw_values_ = false;
   RestScale rest_scale_;
