@@ -69,6 +69,9 @@ void run_stream_sim(const StreamSimOptions& options) {
       options.duration > 0.0
           ? static_cast<int64_t>(std::llround(options.duration * format.sample_rate_hz))
           : -1;  // known once the first trial is simulated
+  if (remaining == 0)
+    throw Error("--duration", "is shorter than one sample of the " + options.skin + " device (" +
+                                  std::to_string(1.0 / format.sample_rate_hz) + " s)");
   int trials = 0;
   // The next trial is simulated while this one is sent, so a long trial never stalls the wire.
   std::future<SimulatedTrial> next = simulate(0);

@@ -54,6 +54,23 @@ TEST(PacketHeader, IsLaidOutByteByByteAsDocumented) {
   EXPECT_EQ(d[33], 0x80);
 }
 
+TEST(PacketHeader, TheWorkedExampleOfTheDocsDecodes) {
+  // docs/PACKETS.md, "Worked example": one flux sample.
+  const std::vector<uint8_t> datagram = {0x54, 0x57, 0x50, 0x4b, 0x01, 0x05, 0x00, 0x20, 0x07, 0x00,
+                                         0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd0, 0x3f,
+                                         0x01, 0x00, 0x08, 0x00, 0x10, 0x00, 0x00, 0x00, 0x49, 0x23,
+                                         0xe5, 0x7c, 0x00, 0x02, 0x12, 0x02, 0xf2, 0x01, 0xff, 0x03,
+                                         0x00, 0x00, 0x64, 0x00, 0xc8, 0x00, 0x2c, 0x01};
+  const PacketBatch batch = decode_packet(datagram, load_layout("flux"));
+  EXPECT_EQ(batch.sequence, 7u);
+  EXPECT_EQ(batch.time, 0.25);
+  ASSERT_EQ(batch.samples.rows(), 1);
+  ASSERT_EQ(batch.samples.cols(), 8);
+  const std::vector<float> expected = {512, 530, 498, 1023, 0, 100, 200, 300};
+  for (int column = 0; column < 8; ++column)
+    EXPECT_EQ(batch.samples(0, column), expected[static_cast<size_t>(column)]) << column;
+}
+
 //---- Round trips -----------------------------------------------------------------------
 
 class PacketRoundTrip : public ::testing::TestWithParam<std::string> {};

@@ -1,5 +1,6 @@
 // Encoding streams into datagrams and decoding them back (header byte map in
 // docs/PACKETS.md). Every read of a datagram is preceded by a length check.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
