@@ -117,7 +117,7 @@ INSTANTIATE_TEST_SUITE_P(Skins, StreamCli,
 
 TEST(StreamCliUrls, BadUrlsAndPortsAreRefusedNamingTheOption) {
   const TempFolder folder("tactile-urls");
-  for (const std::string& url :
+  for (const std::string url :
        {"udp://127.0.0.1:0", "udp://127.0.0.1:65536", "http://127.0.0.1:9000", "udp://127.0.0.1",
         "udp://127.0.0.1:port", "udp://nao.local:9000"}) {
     const CommandResult sim =
