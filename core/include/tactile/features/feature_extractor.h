@@ -1,0 +1,58 @@
+#pragma once
+// One interface for every descriptor set: a pipeline preprocesses a whole recording
+// once, then turns each labelled segment into one row of finite features (or says why
+// the segment has no row).
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tactile/io/label.h"
+#include "tactile/io/recording.h"
+#include "tactile/layout/skin_layout.h"
+#include "tactile/parameters.h"
+
+namespace tactile {
+
+struct FeatureColumn {
+  std::string name;         // CSV/ARFF column name, e.g. "front.hjorth_mobility_ax"
+  std::string description;  // units and the formula it implements, e.g. "Kaboli eq. (3), ax"
+};
+
+// One labelled segment of a (preprocessed) recording.
+struct SegmentInput {
+  const Recording& recording;
+  const SkinLayout& layout;
+  const Label& segment;
+};
+
+struct FeatureResult {
+  std::vector<double> values;  // in columns() order; every value finite
+  std::string skip_reason;     // non-empty: no row for this segment, and why
+  static FeatureResult skip(std::string reason) { return {{}, std::move(reason)}; }
+};
+
+class FeatureExtractor {
+ public:
+  virtual ~FeatureExtractor() = default;
+  virtual std::string name() const = 0;
+  virtual std::string description() const = 0;
+  // The columns this extractor writes for a layout (their count may depend on it).
+  virtual std::vector<FeatureColumn> columns(const SkinLayout& layout) const = 0;
+  // The pipeline's preprocessing of a whole recording (filters, normalisation, virtual
+  // channels), run once before any segment is extracted. Default: none.
+  virtual Recording preprocess(const Recording& recording, const SkinLayout& layout) const;
+  virtual FeatureResult extract(const SegmentInput& input) const = 0;
+};
+
+// The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
+// robovie_xcorr, flux, generic.
+std::vector<std::string> feature_pipelines();
+// Throws tactile::Error naming the pipeline when unknown, or a parameter when bad.
+std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
+                                                         const Parameters& parameters = {});
+
+// Sample index range [first, last) of a stream covered by [t0, t1), clamped to the stream.
+std::pair<int64_t, int64_t> sample_range(const Stream& stream, double t0, double t1);
+
+}  // namespace tactile

@@ -1,0 +1,60 @@
+#pragma once
+// One interface for every classifier (spec §6.10): fit, predict, per-class scores,
+// save/load as JSON, name and parameters, so evaluation code is shared.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tactile/parameters.h"
+
+namespace tactile::ml {
+
+using Matrix = Eigen::MatrixXd;  // rows = samples, columns = features
+using Vector = Eigen::VectorXd;
+
+// Class index returned by predict() when a classifier answers "unknown" (CLAFIC's
+// fidelity test, an unlabelled SOM neuron).
+constexpr int kUnknownClass = -1;
+
+class Classifier {
+ public:
+  virtual ~Classifier() = default;
+  // The command-line name, e.g. "linear-svm", "knn".
+  virtual std::string name() const = 0;
+  // The effective parameters, defaults included, as `key=value` pairs.
+  virtual Parameters parameters() const = 0;
+  // y holds class indices 0..class_count-1. Every random step draws from `seed`.
+  // Throws tactile::Error on input it cannot learn from (e.g. no samples).
+  virtual void fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t seed) = 0;
+  // Per-class scores, rows = samples, columns = classes; larger = more likely.
+  virtual Matrix scores(const Matrix& x) const = 0;
+  // Class per row: argmax of scores (first on ties) unless the method can answer unknown.
+  virtual std::vector<int> predict(const Matrix& x) const;
+  virtual nlohmann::json save() const = 0;
+  virtual void load(const nlohmann::json& model) = 0;
+};
+
+// "name[:key=value,...]", e.g. "knn:k=3,metric=cosine". Throws tactile::Error naming the
+// unknown name or the bad parameter.
+std::unique_ptr<Classifier> make_classifier(const std::string& specification);
+// Every name make_classifier accepts.
+std::vector<std::string> classifier_names();
+// A model saved with save(), with its name and parameters, restored.
+std::unique_ptr<Classifier> load_classifier(const nlohmann::json& document);
+nlohmann::json save_classifier(const Classifier& classifier);
+
+// z-score fitted on training data (spec §6.4): μ = mean, s = sample std; s = 0 -> z = x - μ.
+struct Standardizer {
+  Vector mean;
+  Vector scale;  // 1 where the training std was 0
+  void fit(const Matrix& x);
+  Matrix transform(const Matrix& x) const;
+  nlohmann::json save() const;
+  void load(const nlohmann::json& model);
+};
+
+}  // namespace tactile::ml

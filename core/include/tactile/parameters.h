@@ -1,0 +1,37 @@
+#pragma once
+// Named parameters of a method (a segmenter, a feature set, a classifier), given on the
+// command line as `key=value,...` and read with typed getters that name the bad key.
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace tactile {
+
+class Parameters {
+ public:
+  Parameters() = default;
+  // Parses "a=1,b=cosine"; `where` names the source in errors (e.g. "--params").
+  static Parameters parse(const std::string& text, const std::string& where);
+
+  void set(const std::string& key, const std::string& value) { values_[key] = value; }
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+  // Typed getters: the default when absent; tactile::Error naming `where` and the key
+  // when the value does not parse or is not finite.
+  double number(const std::string& key, double fallback) const;
+  int64_t integer(const std::string& key, int64_t fallback) const;
+  bool flag(const std::string& key, bool fallback) const;
+  std::string text(const std::string& key, const std::string& fallback) const;
+  // Throws tactile::Error naming any key not in `known` (catches typos).
+  void expect_only(const std::vector<std::string>& known) const;
+
+  const std::map<std::string, std::string>& values() const { return values_; }
+  std::string where() const { return where_; }
+  void set_where(std::string where) { where_ = std::move(where); }
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::string where_ = "parameters";
+};
+
+}  // namespace tactile
