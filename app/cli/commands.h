@@ -12,5 +12,7 @@ void register_import(CLI::App& app);
 void register_export(CLI::App& app);
 void register_labels(CLI::App& app);
 void register_simulate(CLI::App& app);
+void register_stream_sim(CLI::App& app);
+void register_stream_listen(CLI::App& app);
 
 }  // namespace tactile::cli
