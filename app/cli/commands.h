@@ -13,5 +13,8 @@ void register_export(CLI::App& app);
 void register_labels(CLI::App& app);
 void register_segment(CLI::App& app);
 void register_features(CLI::App& app);
+void register_simulate(CLI::App& app);
+void register_stream_sim(CLI::App& app);
+void register_stream_listen(CLI::App& app);
 
 }  // namespace tactile::cli

@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   tactile::cli::register_labels(app);
   tactile::cli::register_segment(app);
   tactile::cli::register_features(app);
+  tactile::cli::register_simulate(app);
+  tactile::cli::register_stream_sim(app);
+  tactile::cli::register_stream_listen(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -177,3 +177,43 @@ TEST_F(GridFixture, ShortValueArrayDrawsMissingTaxelsGrey) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+TEST_F(GridFixture, WheelZoomKeepsTheTaxelUnderThePointerAndDoubleClickResets) {
+  SkinViewZoom zoom;
+  SkinViewStyle style;
+  style.zoom = &zoom;
+  ImGuiIO& io = ImGui::GetIO();
+  const SkinViewResult fitted = frame(0.0, 1.0, style);
+  renderer.render();
+  const ImVec2 pointer = fitted.transform.apply(layout.taxels[2].position);
+  io.MousePos = pointer;
+  io.MouseWheel = 2.0f;
+  const SkinViewResult zoomed = frame(0.0, 1.0, style);
+  io.MouseWheel = 0.0f;
+  const Image image = renderer.render();
+  EXPECT_NEAR(zoom.zoom, 1.44, 1e-9);
+  EXPECT_NEAR(zoomed.transform.scale, fitted.transform.scale * 1.44, 1e-6);
+  const ImVec2 still = zoomed.transform.apply(layout.taxels[2].position);
+  EXPECT_NEAR(still.x, pointer.x, 0.5);
+  EXPECT_NEAR(still.y, pointer.y, 0.5);
+  EXPECT_TRUE(close_to(centre_pixel(image, zoomed, 2), viridis(values[2]), 3));
+
+  io.MouseDown[0] = true;
+  frame(0.0, 1.0, style);
+  renderer.render();
+  io.MouseDown[0] = false;
+  frame(0.0, 1.0, style);
+  renderer.render();
+  io.MouseDown[0] = true;
+  frame(0.0, 1.0, style);  // second press: a double-click
+  renderer.render();
+  io.MouseDown[0] = false;
+  EXPECT_DOUBLE_EQ(zoom.zoom, 1.0);
+  EXPECT_DOUBLE_EQ(zoom.pan_x, 0.0);
+}
+
+}  // namespace
+}  // namespace tactile

@@ -95,23 +95,26 @@ void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTrans
     if (!is_side_group(layout.groups[index])) continue;
     for (int64_t id : layout.groups[index].taxels) side_of.emplace(id, index);
   }
+  // Names are placed greedily, biggest group first, and a name that would overlap one
+  // already drawn is left out (the tooltip still names every taxel's groups).
+  struct Placed {
+    ImVec2 min, max;
+  };
+  std::vector<Placed> placed;
+  auto place = [&](ImVec2 centre, const std::string& text) {
+    const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(font_size, FLT_MAX, 0.0f, text.c_str());
+    const ImVec2 low(centre.x - 0.5f * extent.x - 2.0f, centre.y - 0.5f * extent.y);
+    const ImVec2 high(centre.x + 0.5f * extent.x + 2.0f, centre.y + 0.5f * extent.y);
+    for (const Placed& other : placed)
+      if (low.x < other.max.x && other.min.x < high.x && low.y < other.max.y &&
+          other.min.y < high.y)
+        return;
+    placed.push_back({low, high});
+    shadowed_text(draw, centre, font_size, text);
+  };
+  std::vector<const Group*> parts;
   for (const Group& group : layout.groups) {
-    if (is_part_group(group)) {
-      std::map<size_t, std::pair<Point2, int>> sums;  // side -> (sum of centres, members)
-      for (int64_t id : group.taxels) {
-        const Taxel* taxel = layout.find_taxel(id);
-        if (!taxel) continue;
-        const auto side = side_of.find(id);
-        auto& [sum, members] = sums[side == side_of.end() ? SIZE_MAX : side->second];
-        sum.x += taxel->position.x;
-        sum.y += taxel->position.y;
-        ++members;
-      }
-      for (const auto& [side, sum] : sums) {
-        const Point2 centroid{sum.first.x / sum.second, sum.first.y / sum.second};
-        shadowed_text(draw, transform.apply(centroid), font_size, group_label(group));
-      }
-    } else if (is_side_group(group)) {
+    if (is_side_group(group)) {
       double top = std::numeric_limits<double>::infinity();
       double left = top, right = -top;
       for (int64_t id : group.taxels) {
@@ -125,8 +128,28 @@ void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTrans
       }
       if (!std::isfinite(top)) continue;
       const ImVec2 anchor = transform.apply({0.5 * (left + right), top});
-      shadowed_text(draw, ImVec2(anchor.x, anchor.y - 0.6f * ImGui::GetFontSize()), font_size,
-                    group_label(group));
+      place(ImVec2(anchor.x, anchor.y - 0.6f * ImGui::GetFontSize()), group_label(group));
+    } else if (is_part_group(group)) {
+      parts.push_back(&group);
+    }
+  }
+  std::stable_sort(parts.begin(), parts.end(), [](const Group* a, const Group* b) {
+    return a->taxels.size() > b->taxels.size();
+  });
+  for (const Group* group : parts) {
+    std::map<size_t, std::pair<Point2, int>> sums;  // side -> (sum of centres, members)
+    for (int64_t id : group->taxels) {
+      const Taxel* taxel = layout.find_taxel(id);
+      if (!taxel) continue;
+      const auto side = side_of.find(id);
+      auto& [sum, members] = sums[side == side_of.end() ? SIZE_MAX : side->second];
+      sum.x += taxel->position.x;
+      sum.y += taxel->position.y;
+      ++members;
+    }
+    for (const auto& [side, sum] : sums) {
+      const Point2 centroid{sum.first.x / sum.second, sum.first.y / sum.second};
+      place(transform.apply(centroid), group_label(*group));
     }
   }
 }
@@ -151,9 +174,9 @@ void draw_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size, double value_mi
   }
   draw.AddRect(ImVec2(bar_left, bar_top), ImVec2(bar_left + kLegendBarWidth, bar_bottom), kOutline);
   char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value_max);
+  std::snprintf(text, sizeof text, "%.3g", value_max);
   draw.AddText(ImVec2(bar_left + kLegendBarWidth + 4.0f, bar_top - 0.5f * line), kText, text);
-  std::snprintf(text, sizeof text, "%.4g", value_min);
+  std::snprintf(text, sizeof text, "%.3g", value_min);
   draw.AddText(ImVec2(bar_left + kLegendBarWidth + 4.0f, bar_bottom - 0.5f * line), kText, text);
   if (!label.empty()) {
     const ImVec4 clip(top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y);
@@ -180,6 +203,33 @@ void taxel_tooltip(const SkinLayout& layout, const Taxel& taxel, float value, bo
     ImGui::Text("Value: %.6g", value);
   }
   ImGui::EndTooltip();
+}
+
+// Updates the caller's zoom from the mouse, then applies it to the fitted transform:
+// screen = centre + zoom * (fitted - centre) + pan.
+void apply_zoom(SkinViewZoom& zoom, SkinViewGeometry& geometry, bool hovered, ImVec2 mouse) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const double centre_x = geometry.map_min.x + 0.5 * geometry.map_size.x;
+  const double centre_y = geometry.map_min.y + 0.5 * geometry.map_size.y;
+  if (hovered && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) zoom = SkinViewZoom{};
+  if (hovered && io.MouseWheel != 0.0f) {
+    // Keep the map point under the pointer where it is.
+    const double factor = std::pow(1.2, static_cast<double>(io.MouseWheel));
+    const double next = std::clamp(zoom.zoom * factor, 1.0, 40.0);
+    const double applied = next / zoom.zoom;
+    zoom.pan_x = (mouse.x - centre_x) - applied * (mouse.x - centre_x - zoom.pan_x);
+    zoom.pan_y = (mouse.y - centre_y) - applied * (mouse.y - centre_y - zoom.pan_y);
+    zoom.zoom = next;
+  }
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+    zoom.pan_x += io.MouseDelta.x;
+    zoom.pan_y += io.MouseDelta.y;
+  }
+  if (zoom.zoom <= 1.0) zoom.pan_x = zoom.pan_y = 0.0;
+  MapTransform& transform = geometry.transform;
+  transform.offset_x = centre_x + zoom.zoom * (transform.offset_x - centre_x) + zoom.pan_x;
+  transform.offset_y = centre_y + zoom.zoom * (transform.offset_y - centre_y) + zoom.pan_y;
+  transform.scale *= zoom.zoom;
 }
 
 }  // namespace
@@ -235,14 +285,16 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
   ImGui::PushID(id);
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const SkinViewGeometry geometry = skin_view_geometry(layout, origin, size, style);
-  result.transform = geometry.transform;
+  SkinViewGeometry geometry = skin_view_geometry(layout, origin, size, style);
 
   ImGui::SetCursorScreenPos(geometry.map_min);
-  ImGui::InvisibleButton("map", geometry.map_size);
+  ImGui::InvisibleButton("map", geometry.map_size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   const bool hovered = ImGui::IsItemHovered();
   const bool clicked = ImGui::IsItemClicked(ImGuiMouseButton_Left);
   const ImVec2 mouse = ImGui::GetIO().MousePos;
+  if (style.zoom) apply_zoom(*style.zoom, geometry, hovered, mouse);
+  result.transform = geometry.transform;
 
   // From the top of the view: side names sit in the line above the map.
   draw.PushClipRect(

@@ -86,6 +86,8 @@ void Workbench::choose_default_view() {
   const Document& document = *document_;
   const Stream& stream = document.stream();
   modality_ = std::max(0, document.layout.modality_index(document.layout.display_modality));
+  rest_scale_modality_ = -1;
+  skin_zoom_ = SkinViewZoom{};
   plotted_.assign(static_cast<size_t>(stream.channel_count()), 0);
   const std::vector<int> columns = taxel_columns(document.layout, stream.channels, modality_);
   std::vector<std::pair<float, int>> spread;
@@ -106,12 +108,25 @@ void Workbench::choose_default_view() {
   plot_state_.view_t0 = 0.0;
   plot_state_.view_t1 = std::max(1e-3, document.recording.duration());
   plot_state_.fitted = true;
-  if (!document.labels.empty()) {
-    const Label& first = document.labels.front();
-    clock_.seek(0.5 * (first.t0 + first.t1));
-  } else {
+  if (document.labels.empty()) {
     clock_.seek(0.0);
+    return;
   }
+  // The instant of the first labelled touch where the skin changes most from rest.
+  const Label& first = document.labels.front();
+  const RestScale scale = rest_scale(stream, columns);
+  const int64_t start = stream.index_at(first.t0);
+  const int64_t end = stream.index_at(first.t1);
+  int64_t best = (start + end) / 2;
+  double best_change = -1.0;
+  for (int64_t sample = start; sample <= end; ++sample) {
+    double change = 0.0;
+    for (size_t k = 0; k < columns.size(); ++k)
+      if (columns[k] >= 0 && std::isfinite(scale.rest[k]))
+        change += std::abs(stream.samples(sample, columns[k]) - scale.rest[k]);
+    if (change > best_change) best_change = change, best = sample;
+  }
+  clock_.seek(stream.time_of(best));
 }
 
 void Workbench::toggle_taxel_channels(int64_t taxel_id) {
@@ -229,7 +244,20 @@ void Workbench::draw_sidebar(float width, float height) {
         ImGui::TableNextColumn();
         ImGui::TextDisabled("%s", key);
         ImGui::TableNextColumn();
-        ImGui::TextWrapped("%s", value.c_str());
+        // Long values (per-channel calibration lists) are cut; the tooltip has them whole.
+        constexpr size_t kShown = 48;
+        if (value.size() <= kShown) {
+          ImGui::TextWrapped("%s", value.c_str());
+        } else {
+          ImGui::TextWrapped("%s...", value.substr(0, kShown).c_str());
+          if (ImGui::IsItemHovered()) {
+            ImGui::BeginTooltip();
+            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+            ImGui::TextUnformatted(value.c_str());
+            ImGui::PopTextWrapPos();
+            ImGui::EndTooltip();
+          }
+        }
       };
       row("layout", document_->layout.name.empty() ? recording.layout_id : document_->layout.name);
       for (const auto& [key, value] : recording.metadata) row(key.c_str(), value);
@@ -274,24 +302,43 @@ void Workbench::draw_skin_panel(float width, float height) {
       if (ImGui::Selectable(layout.modalities[k].c_str(), k == modality_)) modality_ = k;
     ImGui::EndCombo();
   }
+  ImGui::SameLine();
+  ImGui::Checkbox("raw values", &show_raw_values_);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Off: each taxel's change from its rest level (median), scaled to the\n"
+        "recording's touches. On: raw values in the layout's display range.");
   const Stream& stream = document_->stream();
   const std::vector<int> columns = taxel_columns(layout, stream.channels, modality_);
-  const std::vector<float> values = taxel_values(stream, columns, stream.index_at(clock_.time()));
-  // The layout's display range belongs to its display modality; others scale to their data.
-  double value_min = layout.display_min;
-  double value_max = layout.display_max;
-  if (layout.modalities.empty() || layout.modalities[modality_] != layout.display_modality) {
-    value_min = std::numeric_limits<double>::max();
-    value_max = std::numeric_limits<double>::lowest();
-    for (int column : columns) {
-      if (column < 0 || stream.sample_count() == 0) continue;
-      value_min = std::min<double>(value_min, stream.samples.col(column).minCoeff());
-      value_max = std::max<double>(value_max, stream.samples.col(column).maxCoeff());
+  std::vector<float> values = taxel_values(stream, columns, stream.index_at(clock_.time()));
+  double value_min = 0.0;
+  double value_max = 1.0;
+  std::string legend = current;
+  if (show_raw_values_) {
+    // The layout's display range belongs to its display modality; others scale to their data.
+    value_min = layout.display_min;
+    value_max = layout.display_max;
+    if (layout.modalities.empty() || layout.modalities[modality_] != layout.display_modality) {
+      value_min = std::numeric_limits<double>::max();
+      value_max = std::numeric_limits<double>::lowest();
+      for (int column : columns) {
+        if (column < 0 || stream.sample_count() == 0) continue;
+        value_min = std::min<double>(value_min, stream.samples.col(column).minCoeff());
+        value_max = std::max<double>(value_max, stream.samples.col(column).maxCoeff());
+      }
+      if (value_min > value_max) value_min = 0.0, value_max = 1.0;
     }
-    if (value_min > value_max) value_min = 0.0, value_max = 1.0;
+  } else {
+    if (rest_scale_modality_ != modality_) {
+      rest_scale_ = rest_scale(stream, columns);
+      rest_scale_modality_ = modality_;
+    }
+    values = change_from_rest(values, rest_scale_);
+    value_max = rest_scale_.max_change;
   }
   SkinViewStyle style;
-  style.modality_label = current;
+  style.modality_label = legend;
+  style.zoom = &skin_zoom_;
   const ImVec2 size = ImGui::GetContentRegionAvail();
   const SkinViewResult result =
       draw_skin_view("skin_view", layout, values, value_min, value_max, size, style);
@@ -397,7 +444,8 @@ void Workbench::draw_status_bar() {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error_.c_str());
   } else if (document_) {
     ImGui::TextDisabled(
-        "%s   %zu labels   space: play/pause   wheel: zoom   drag: pan   double-click: fit",
+        "%s   %zu labels   space: play/pause   wheel: zoom   drag (skin: right-drag): pan   "
+        "double-click: fit",
         document_->path.c_str(), document_->labels.size());
   } else {
     ImGui::TextDisabled("Tactile Workbench");

@@ -10,7 +10,9 @@
 #include "document.h"
 #include "file_browser.h"
 #include "tactile/live/playback.h"
+#include "tactile/signal/display_scale.h"
 #include "tactile/widgets/signal_plot.h"
+#include "tactile/widgets/skin_view.h"
 
 namespace tactile {
 
@@ -52,6 +54,11 @@ class Workbench {
   SignalPlotState plot_state_;
   std::vector<char> plotted_;  // per channel of the current stream
   int modality_ = 0;
+  SkinViewZoom skin_zoom_;
+  // The skin shows each taxel's change from its rest level unless raw values are asked for.
+  bool show_raw_values_ = false;
+  RestScale rest_scale_;
+  int rest_scale_modality_ = -1;  // modality rest_scale_ was computed for; -1: stale
   bool quit_ = false;
   std::string error_;
   FileBrowser file_browser_;

@@ -7,7 +7,15 @@
 
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
+#include "tactile/features/flux.h"
+#include "tactile/features/fur.h"
 #include "tactile/features/generic.h"
+#include "tactile/features/kaboli.h"
+#include "tactile/features/koo.h"
+#include "tactile/features/naya.h"
+#include "tactile/features/robovie_xcorr.h"
+#include "tactile/features/silvera_tawil.h"
+#include "tactile/features/tsa_event.h"
 
 namespace tactile {
 
@@ -24,6 +32,14 @@ struct PipelineEntry {
 const std::vector<PipelineEntry>& pipeline_table() {
   static const std::vector<PipelineEntry> table = {
       // {"name", make_name_extractor},  (include "tactile/features/name.h")
+      {"kaboli", make_kaboli_extractor},
+      {"naya", make_naya_extractor},
+      {"silvera_tawil", make_silvera_tawil_extractor},
+      {"koo", make_koo_extractor},
+      {"tsa_event", make_tsa_event_extractor},
+      {"fur", make_fur_extractor},
+      {"robovie_xcorr", make_robovie_xcorr_extractor},
+      {"flux", make_flux_extractor},
       {"generic", make_generic_extractor},
   };
   return table;

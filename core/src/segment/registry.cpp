@@ -5,7 +5,12 @@
 #include <vector>
 
 #include "tactile/error.h"
+#include "tactile/segment/excitation.h"
+#include "tactile/segment/frame_edge.h"
+#include "tactile/segment/proximity.h"
+#include "tactile/segment/scenario.h"
 #include "tactile/segment/segmenter.h"
+#include "tactile/segment/threshold.h"
 
 namespace tactile {
 
@@ -23,6 +28,9 @@ struct MethodEntry {
 const std::vector<MethodEntry>& method_table() {
   static const std::vector<MethodEntry> table = {
       // {"name", segment_name},  (include "tactile/segment/name.h")
+      {"proximity", segment_proximity},   {"threshold", segment_threshold},
+      {"frame-edge", segment_frame_edge}, {"scenario", segment_scenario},
+      {"excitation", segment_excitation},
   };
   return table;
 }

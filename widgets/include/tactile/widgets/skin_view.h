@@ -31,10 +31,19 @@ struct MapTransform {
 // ratio kept, centred.
 MapTransform fit_map(const SkinLayout& layout, ImVec2 top_left, ImVec2 size, float margin);
 
+// Zoom and pan of a skin view, kept by the caller between frames: the mouse wheel zooms
+// about the pointer, dragging with the right button pans, a double-click resets.
+struct SkinViewZoom {
+  double zoom = 1.0;   // 1 = the whole layout fitted into the view
+  double pan_x = 0.0;  // pixels
+  double pan_y = 0.0;
+};
+
 struct SkinViewStyle {
   bool show_legend = true;
   bool show_group_names = true;     // names of "body-part", "location" and "side" groups
   std::string modality_label = {};  // legend title; empty: the layout's display modality
+  SkinViewZoom* zoom = nullptr;     // interactive zoom and pan when given
 };
 
 struct SkinViewResult {

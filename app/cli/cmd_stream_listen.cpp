@@ -1,0 +1,119 @@
+// `tactile stream-listen --skin ID --from udp://HOST:PORT --duration S [--idle S]
+//  [--out FILE.h5]`: receives live packets (docs/PACKETS.md) for S seconds (or until the
+// stream has been silent for --idle seconds), decodes and checks them, reports loss and rate,
+// and optionally writes what arrived as a recording.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.h"
+#include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/live/packet_stream.h"
+#include "tactile/live/udp.h"
+
+namespace tactile::cli {
+
+namespace {
+
+struct StreamListenOptions {
+  std::string skin;
+  std::string from;
+  double duration = 0.0;
+  double idle = 0.0;  // 0: listen for the whole duration
+  std::string out;
+};
+
+void run_stream_listen(const StreamListenOptions& options) {
+  const UdpEndpoint local = parse_udp_url(options.from, "--from");
+  if (!(options.duration > 0.0) || !std::isfinite(options.duration))
+    throw Error("--duration", "must be a number of seconds above 0");
+  if (!(options.idle >= 0.0) || !std::isfinite(options.idle))
+    throw Error("--idle", "must be a number of seconds, 0 or more (0: never)");
+  packet_format_info(options.skin);  // refuses a skin without a packet format
+  PacketCollector collector(load_layout(options.skin), !options.out.empty());
+  UdpSocket socket = UdpSocket::bind_to(local);
+
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                                   std::chrono::duration<double>(options.duration));
+  Clock::time_point first_arrival, last_arrival;
+  int64_t oversized = 0;
+  // Larger than any datagram UDP can carry, so a size above it cannot happen unnoticed.
+  std::vector<uint8_t> buffer(65536);
+  for (;;) {
+    const Clock::time_point now = Clock::now();
+    double left = std::chrono::duration<double>(end - now).count();
+    const bool streaming = collector.datagrams() > 0 || oversized > 0;
+    if (streaming && options.idle > 0.0)
+      left =
+          std::min(left, options.idle - std::chrono::duration<double>(now - last_arrival).count());
+    if (left <= 0.0) break;
+    const std::optional<size_t> size = socket.receive(buffer, left);
+    if (!size) continue;  // the loop head decides whether time is up
+    last_arrival = Clock::now();
+    if (collector.datagrams() == 0 && oversized == 0) first_arrival = last_arrival;
+    if (*size > buffer.size()) {
+      ++oversized;
+      continue;
+    }
+    collector.add(std::span<const uint8_t>(buffer.data(), *size));
+  }
+
+  const SequenceTracker& sequence = collector.sequence();
+  const double seconds = std::chrono::duration<double>(last_arrival - first_arrival).count();
+  // N datagrams arriving over `seconds` span N - 1 intervals.
+  const double rate = seconds > 0.0 ? static_cast<double>(sequence.received() - 1) / seconds : 0.0;
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3);
+  out << "stream-listen: " << options.skin << " on " << local.url() << "\n"
+      << "datagrams: " << sequence.received() << "\n"
+      << "bytes: " << collector.bytes() << "\n"
+      << "samples: " << collector.samples() << " (device time " << collector.first_time() << " to "
+      << collector.end_time() << " s)\n"
+      << "lost: " << sequence.lost() << "\n"
+      << "duplicated: " << sequence.duplicated() << "\n"
+      << "reordered: " << sequence.reordered() << "\n"
+      << "broken: " << collector.broken() + oversized << "\n"
+      << "saturated: " << collector.saturated() << "\n"
+      << "seconds: " << seconds << "\n"
+      << std::setprecision(1) << "rate: " << rate << " datagrams/s\n";
+  if (sequence.restarts() > 0) out << "restarts: " << sequence.restarts() << "\n";
+  std::cout << out.str();
+  if (collector.broken() > 0)
+    std::cerr << "tactile: " << collector.broken()
+              << " broken datagrams, the last: " << collector.last_error() << "\n";
+  if (oversized > 0) std::cerr << "tactile: " << oversized << " datagrams over 64 KiB\n";
+
+  if (!options.out.empty()) {
+    const std::string id = std::filesystem::path(options.out).stem().string();
+    if (collector.samples() == 0)
+      throw Error(options.out, "nothing was received on " + local.url() + ", nothing written");
+    Recording recording = collector.recording(id);
+    recording.metadata["source"] = local.url();
+    write_recording(options.out, recording);
+    std::cout << "written: " << options.out << "\n";
+  }
+}
+
+}  // namespace
+
+void register_stream_listen(CLI::App& app) {
+  auto options = std::make_shared<StreamListenOptions>();
+  CLI::App* command = app.add_subcommand(
+      "stream-listen", "Receive live UDP packets of a skin, report loss and rate, record them");
+  command->add_option("--skin", options->skin, "Skin: nao, tsa, fur, robovie, flux")->required();
+  command->add_option("--from", options->from, "Where to listen, udp://HOST:PORT")->required();
+  command->add_option("--duration", options->duration, "Seconds to listen at most")->required();
+  command->add_option("--idle", options->idle,
+                      "Stop once no datagram has come for this many seconds (default: never)");
+  command->add_option("--out", options->out, "Write what arrived as a recording (.h5)");
+  command->callback([options] { run_stream_listen(*options); });
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,29 @@
+#pragma once
+// How a skin view colours raw device values. Many skins report a large rest level with
+// a small change under touch (capacitive counts, a pressure matrix's pull-up, a piezo's
+// bipolar swing), so a view shows the size of the change from each taxel's rest level,
+// scaled to the changes the recording actually contains.
+
+#include <vector>
+
+#include "tactile/io/recording.h"
+
+namespace tactile {
+
+struct RestScale {
+  std::vector<float> rest;  // per entry of `columns`: the column's rest level (NaN when absent)
+  std::vector<float> noise_band;  // per entry: changes up to this size are noise (3 sigma)
+  double max_change = 1.0;        // change beyond the noise band that maps to the top of the scale
+};
+
+// From up to `probes` evenly spaced samples of each column: rest = median (touches are
+// brief against a recording), noise sigma = 1.4826 x median absolute deviation, noise
+// band = 3 sigma. The scale's top = the 99th percentile of the changes that exceed their
+// band, so a quiet taxel stays dark, a touch shows whatever the skin's rest level, and a
+// single spike does not wash the map out. Columns < 0 are skipped.
+RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int probes = 2048);
+
+// max(0, |value - rest| - noise band) per entry; NaN stays NaN.
+std::vector<float> change_from_rest(const std::vector<float>& values, const RestScale& scale);
+
+}  // namespace tactile

@@ -1,0 +1,69 @@
+#include "tactile/signal/display_scale.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tactile {
+
+namespace {
+
+// The median of `values`, reordering them.
+float median_of(std::vector<float>& values) {
+  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+}  // namespace
+
+RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int probes) {
+  RestScale scale;
+  scale.rest.assign(columns.size(), std::numeric_limits<float>::quiet_NaN());
+  scale.noise_band.assign(columns.size(), 0.0f);
+  const int64_t count = stream.sample_count();
+  if (count == 0 || probes < 1) return scale;
+  const int64_t taken = std::min<int64_t>(count, probes);
+  std::vector<float> column_values;
+  std::vector<float> deviations;
+  std::vector<float> excess;
+  for (size_t k = 0; k < columns.size(); ++k) {
+    const int column = columns[k];
+    if (column < 0 || column >= stream.channel_count()) continue;
+    column_values.clear();
+    for (int64_t probe = 0; probe < taken; ++probe) {
+      const float value =
+          stream.samples(probe * (count - 1) / std::max<int64_t>(1, taken - 1), column);
+      if (std::isfinite(value)) column_values.push_back(value);
+    }
+    if (column_values.empty()) continue;
+    deviations = column_values;
+    const float rest = median_of(deviations);
+    for (float& value : deviations) value = std::abs(value - rest);
+    const float band = 3.0f * 1.4826f * median_of(deviations);
+    scale.rest[k] = rest;
+    scale.noise_band[k] = band;
+    for (float value : column_values) {
+      const float beyond = std::abs(value - rest) - band;
+      if (beyond > 0.0f) excess.push_back(beyond);
+    }
+  }
+  if (!excess.empty()) {
+    auto top =
+        excess.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(excess.size() - 1));
+    std::nth_element(excess.begin(), top, excess.end());
+    scale.max_change = std::max(1e-6f, *top);
+  }
+  return scale;
+}
+
+std::vector<float> change_from_rest(const std::vector<float>& values, const RestScale& scale) {
+  std::vector<float> changes(values.size(), std::numeric_limits<float>::quiet_NaN());
+  for (size_t k = 0; k < values.size() && k < scale.rest.size(); ++k) {
+    const float change = std::abs(values[k] - scale.rest[k]);  // NaN in either stays NaN
+    changes[k] = std::isnan(change) ? change : std::max(0.0f, change - scale.noise_band[k]);
+  }
+  return changes;
+}
+
+}  // namespace tactile

@@ -1,0 +1,151 @@
+// `tactile stream-sim` and `tactile stream-listen` end to end on loopback: a listener in the
+// background, a one-second simulated stream, the count and loss it reports, the recording it
+// writes, and the URLs both refuse. Every wait is bounded.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <thread>
+
+#include "cli_test_support.h"
+#include "tactile/error.h"
+#include "tactile/live/udp.h"
+
+namespace tactile {
+namespace {
+
+using test::CommandResult;
+using test::run_program;
+using test::TempFolder;
+
+// A loopback port nobody uses right now (the kernel's pick, released again).
+uint16_t free_port() { return UdpSocket::bind_to({"127.0.0.1", 0}).local_port(); }
+
+// True once someone holds `port` (the listener has bound it), false after `timeout`.
+bool wait_until_bound(uint16_t port, std::chrono::seconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < end) {
+    try {
+      UdpSocket::bind_to({"127.0.0.1", port});
+    } catch (const Error&) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// The number after "key: " in a command's report, -1 when absent.
+double reported(const std::string& text, const std::string& key) {
+  std::smatch match;
+  if (!std::regex_search(text, match, std::regex("(^|\n)" + key + ": ([0-9.]+)"))) return -1;
+  return std::stod(match[2]);
+}
+
+struct Session {
+  CommandResult sender;
+  CommandResult listener;
+};
+
+// Starts stream-listen in the background, streams one second of `skin` at the device's rate,
+// and waits for the listener to fall silent (at most 30 s).
+Session stream_one_second(const std::string& skin, const std::string& out,
+                          const TempFolder& listen_folder, const TempFolder& send_folder) {
+  const uint16_t port = free_port();
+  const std::string url = "udp://127.0.0.1:" + std::to_string(port);
+  std::future<CommandResult> listening = std::async(std::launch::async, [&] {
+    return run_program("tactile",
+                       "stream-listen --skin " + skin + " --from " + url +
+                           " --duration 30 --idle 2" + (out.empty() ? "" : " --out '" + out + "'"),
+                       listen_folder);
+  });
+  Session session;
+  if (!wait_until_bound(port, std::chrono::seconds(10))) {
+    session.listener = listening.get();
+    ADD_FAILURE() << "the listener never bound " << url << ": " << session.listener.err;
+    return session;
+  }
+  session.sender = run_program(
+      "tactile", "stream-sim --skin " + skin + " --to " + url + " --rate-factor 1 --duration 1",
+      send_folder);
+  session.listener = listening.get();
+  return session;
+}
+
+class StreamCli : public ::testing::TestWithParam<std::pair<std::string, int>> {};
+
+TEST_P(StreamCli, OneSecondOnLoopbackArrivesCompleteAtTheDeviceRate) {
+  const auto& [skin, datagrams_per_second] = GetParam();
+  const TempFolder listen_folder("tactile-listen"), send_folder("tactile-send");
+  const std::string out = listen_folder.file(skin + "-live.h5");
+  const Session session = stream_one_second(skin, out, listen_folder, send_folder);
+  ASSERT_EQ(session.sender.exit_code, 0) << session.sender.err;
+  ASSERT_EQ(session.listener.exit_code, 0) << session.listener.err;
+  const std::string& sent = session.sender.out;
+  const std::string& heard = session.listener.out;
+
+  EXPECT_EQ(reported(sent, "datagrams"), datagrams_per_second) << sent;
+  EXPECT_EQ(reported(heard, "datagrams"), datagrams_per_second) << heard;
+  EXPECT_EQ(reported(heard, "bytes"), reported(sent, "bytes"));
+  EXPECT_EQ(reported(heard, "lost"), 0) << heard;
+  EXPECT_EQ(reported(heard, "broken"), 0) << heard;
+  EXPECT_EQ(reported(heard, "reordered"), 0) << heard;
+  // Paced, not bursted: the last datagram leaves about 1 s after the first. Loose bounds, as
+  // the machine may be busy.
+  EXPECT_GT(reported(sent, "seconds"), 0.8) << sent;
+  EXPECT_LT(reported(sent, "seconds"), 2.0) << sent;
+  EXPECT_GT(reported(heard, "rate"), 0.5 * datagrams_per_second) << heard;
+  EXPECT_LT(reported(heard, "rate"), 1.25 * datagrams_per_second) << heard;
+
+  // What arrived was recorded: one second of samples at the device's rate.
+  const TempFolder info_folder("tactile-info");
+  const CommandResult info = run_program("tactile", "info --json '" + out + "'", info_folder);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json streams = nlohmann::json::parse(info.out)["streams"];
+  ASSERT_EQ(streams.size(), 1u);
+  EXPECT_EQ(streams[0]["samples"], reported(sent, "samples"));
+  EXPECT_NEAR(streams[0]["duration_s"].get<double>(), 1.0, 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(Skins, StreamCli,
+                         ::testing::Values(std::make_pair(std::string("nao"), 250),
+                                           std::make_pair(std::string("fur"), 15),
+                                           std::make_pair(std::string("flux"), 100)),
+                         [](const auto& info) { return info.param.first; });
+
+TEST(StreamCliUrls, BadUrlsAndPortsAreRefusedNamingTheOption) {
+  const TempFolder folder("tactile-urls");
+  for (const std::string url :
+       {"udp://127.0.0.1:0", "udp://127.0.0.1:65536", "http://127.0.0.1:9000", "udp://127.0.0.1",
+        "udp://127.0.0.1:port", "udp://nao.local:9000"}) {
+    const CommandResult sim =
+        run_program("tactile", "stream-sim --skin fur --to '" + url + "' --duration 1", folder);
+    EXPECT_EQ(sim.exit_code, 1) << url;
+    EXPECT_NE(sim.err.find("--to"), std::string::npos) << url << ": " << sim.err;
+    const CommandResult listen = run_program(
+        "tactile", "stream-listen --skin fur --from '" + url + "' --duration 1", folder);
+    EXPECT_EQ(listen.exit_code, 1) << url;
+    EXPECT_NE(listen.err.find("--from"), std::string::npos) << url << ": " << listen.err;
+  }
+  const CommandResult port_range = run_program(
+      "tactile", "stream-sim --skin fur --to udp://127.0.0.1:70000 --duration 1", folder);
+  EXPECT_NE(port_range.err.find("1-65535"), std::string::npos) << port_range.err;
+}
+
+TEST(StreamCliUrls, UnknownSkinAndBadRateFactorAreRefused) {
+  const TempFolder folder("tactile-skin");
+  const CommandResult skin = run_program(
+      "tactile", "stream-sim --skin grid:4x4 --to udp://127.0.0.1:9 --duration 1", folder);
+  EXPECT_EQ(skin.exit_code, 1);
+  EXPECT_NE(skin.err.find("grid:4x4"), std::string::npos) << skin.err;
+  const CommandResult rate = run_program(
+      "tactile", "stream-sim --skin fur --to udp://127.0.0.1:9 --rate-factor 0 --duration 1",
+      folder);
+  EXPECT_EQ(rate.exit_code, 1);
+  EXPECT_NE(rate.err.find("--rate-factor"), std::string::npos) << rate.err;
+}
+
+}  // namespace
+}  // namespace tactile

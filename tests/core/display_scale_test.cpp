@@ -1,0 +1,50 @@
+#include "tactile/signal/display_scale.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace tactile {
+namespace {
+
+TEST(RestScale, RestIsTheMedianAndTheScaleIgnoresOneSpike) {
+  // Noise-free columns: the noise band is zero and changes show whole.
+  Stream stream;
+  stream.rate_hz = 10;
+  stream.samples = SampleMatrix::Constant(1000, 2, 500.0f);
+  // Column 1 is pressed down by 40 counts for 100 samples and spikes once.
+  stream.samples.col(1).segment(300, 100).setConstant(460.0f);
+  stream.samples(700, 1) = 5000.0f;
+  const RestScale scale = rest_scale(stream, {0, 1, -1});
+  EXPECT_FLOAT_EQ(scale.rest[0], 500.0f);
+  EXPECT_FLOAT_EQ(scale.rest[1], 500.0f);
+  EXPECT_TRUE(std::isnan(scale.rest[2]));
+  EXPECT_NEAR(scale.max_change, 40.0, 1e-6);
+  const std::vector<float> change = change_from_rest({500.0f, 460.0f, 3.0f}, scale);
+  EXPECT_FLOAT_EQ(change[0], 0.0f);
+  EXPECT_FLOAT_EQ(change[1], 40.0f);
+  EXPECT_TRUE(std::isnan(change[2]));
+}
+
+TEST(RestScale, NoiseStaysDarkAndATouchShowsAboveIt) {
+  Stream stream;
+  stream.rate_hz = 10;
+  stream.samples = SampleMatrix::Zero(2000, 1);
+  // -1, 0, +1 cycling noise on a rest level of 100 (MAD 1), and a touch of +30 for 20 samples.
+  for (int k = 0; k < 2000; ++k) stream.samples(k, 0) = 100.0f + static_cast<float>(k % 3 - 1);
+  stream.samples.col(0).segment(1000, 20).setConstant(130.0f);
+  const RestScale scale = rest_scale(stream, {0});
+  EXPECT_NEAR(scale.noise_band[0], 3.0 * 1.4826, 1e-4);
+  EXPECT_FLOAT_EQ(change_from_rest({101.0f}, scale)[0], 0.0f);
+  EXPECT_GT(change_from_rest({130.0f}, scale)[0], 0.8 * scale.max_change);
+}
+
+TEST(RestScale, FlatRecordingKeepsAPositiveScale) {
+  Stream stream;
+  stream.rate_hz = 10;
+  stream.samples = SampleMatrix::Constant(10, 1, 7.0f);
+  EXPECT_GT(rest_scale(stream, {0}).max_change, 0.0);
+}
+
+}  // namespace
+}  // namespace tactile
