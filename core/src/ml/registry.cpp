@@ -73,7 +73,8 @@ std::vector<ClassifierEntry> classifier_catalog() {
 // effective parameters) and what load() needs to restore its fitted state.
 nlohmann::json save_classifier(const Classifier& classifier) {
   nlohmann::json parameters = nlohmann::json::object();
-  for (const auto& [key, value] : classifier.parameters().values()) parameters[key] = value;
+  const Parameters effective = classifier.parameters();
+  for (const auto& [key, value] : effective.values()) parameters[key] = value;
   return {{"name", classifier.name()}, {"parameters", parameters}, {"model", classifier.save()}};
 }
 
