@@ -8,6 +8,7 @@
 
 #include "tactile/error.h"
 #include "tactile/ml/classifier.h"
+#include "tactile/ml/knn.h"
 
 namespace tactile::ml {
 
@@ -27,6 +28,14 @@ struct ClassifierRow {
 const std::vector<ClassifierRow>& classifier_table() {
   static const std::vector<ClassifierRow> table = {
       // {"name", "one-line description", make_name_classifier},  (include "tactile/ml/family.h")
+      {"knn", "k nearest neighbours (k, metric=euclidean|cosine, weights, standardize)",
+       make_knn_classifier},
+      {"cosine-knn", "MATLAB Cosine KNN: cosine distance, k=10, equal weights, standardised",
+       make_cosine_knn_classifier},
+      {"weighted-knn", "MATLAB Weighted KNN: Euclidean, k=10, weights 1/d^2, standardised",
+       make_weighted_knn_classifier},
+      {"subspace-knn", "MATLAB Subspace KNN: 30 1-NN learners on random halves of the predictors",
+       make_subspace_knn_classifier},
   };
   return table;
 }

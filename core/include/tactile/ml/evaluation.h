@@ -19,12 +19,13 @@ namespace tactile::ml {
 struct Protocol {
   enum class Kind { kKFold, kLeaveOneOut, kLeaveOneSubjectOut, kHoldout, kSplit };
   Kind kind = Kind::kKFold;
-  int folds = 10;          // k-fold
-  int repetitions = 1;     // k-fold and hold-out
+  int folds = 10;               // k-fold
+  int repetitions = 1;          // k-fold and hold-out
   double test_fraction = 0.15;  // hold-out
-  std::string train_query;  // split: "side=back,condition=stationary"
-  std::string test_query;   // split: "side=front"
-  // "kfold:K[xR]" | "loo" | "loso" | "holdout:FxR" | "split:QUERY/QUERY"; throws tactile::Error naming --protocol.
+  std::string train_query;      // split: "side=back,condition=stationary"
+  std::string test_query;       // split: "side=front"
+  // "kfold:K[xR]" | "loo" | "loso" | "holdout:FxR" | "split:QUERY/QUERY"; throws tactile::Error
+  // naming --protocol.
   static Protocol parse(const std::string& text);
   std::string to_string() const;
 };
@@ -44,8 +45,8 @@ struct ClassFigures {
 };
 
 struct Misclassified {
-  int64_t row = 0;          // dataset row
-  int64_t segment_id = 0;   // label id in the label store
+  int64_t row = 0;         // dataset row
+  int64_t segment_id = 0;  // label id in the label store
   std::string recording;
   std::string true_class;
   std::string predicted_class;  // "unknown" for kUnknownClass
@@ -62,19 +63,21 @@ struct EvaluationResult {
   std::vector<ClassFigures> per_class;
   std::vector<Misclassified> misclassified;
   int64_t predictions = 0;
-  double seconds = 0.0;        // wall time of the whole evaluation
-  double fit_seconds = 0.0;    // summed over folds
+  double seconds = 0.0;      // wall time of the whole evaluation
+  double fit_seconds = 0.0;  // summed over folds
   double predict_seconds = 0.0;
 };
 
 struct EvaluationControl {
   std::function<void(int done, int total)> progress;
-  const std::atomic<bool>* cancel = nullptr;  // set to true to stop; evaluate() throws tactile::Error("cancelled")
-  int threads = 0;                             // 0 = hardware concurrency
+  const std::atomic<bool>* cancel =
+      nullptr;      // set to true to stop; evaluate() throws tactile::Error("cancelled")
+  int threads = 0;  // 0 = hardware concurrency
 };
 
 EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_specification,
-                          const Protocol& protocol, uint64_t seed, const EvaluationControl& control = {});
+                          const Protocol& protocol, uint64_t seed,
+                          const EvaluationControl& control = {});
 
 nlohmann::json to_json(const EvaluationResult& result);
 
