@@ -36,6 +36,13 @@ void write_dataset_arff(const std::string& path, const Dataset& dataset, const s
 // Reads a dataset CSV: the one write_dataset_csv writes, or any CSV with a `class`
 // column whose other numeric columns are features. Throws tactile::Error naming file,
 // line and column.
+//   Our own files are recognised by class, subject, recording, segment_id side by side:
+//   columns before them are features, columns after them metadata (an empty cell: the row
+//   lacks that key). In any other file a column is a feature when its first data row holds
+//   a number there, else metadata; subject, recording and segment_id are optional. Column
+//   descriptions are not stored in CSV and read back empty. Both writers refuse a dataset
+//   with no rows, NaN/inf values, repeated column names or an empty class; the ARFF
+//   also leaves out segment_id and metadata, and keeps descriptions as comments.
 Dataset read_dataset_csv(const std::string& path);
 
 }  // namespace tactile

@@ -1,0 +1,232 @@
+// The generic descriptor set on hand-built grid and strip recordings.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tactile/error.h"
+#include "tactile/features/generic.h"
+
+namespace tactile {
+namespace {
+
+Recording blank_recording(const SkinLayout& layout, int64_t samples, double rate_hz) {
+  Recording recording;
+  recording.id = "hand-built";
+  recording.layout_id = layout.id;
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = rate_hz;
+  for (const Channel& channel : layout.channels) {
+    stream.channels.push_back(channel.name);
+    stream.units.push_back(channel.unit);
+  }
+  stream.samples = SampleMatrix::Zero(samples, static_cast<int64_t>(layout.channels.size()));
+  recording.streams.push_back(std::move(stream));
+  return recording;
+}
+
+// A 3 x 3 blob, 1 at its centre and 0.5 around it, centred on (row, column) at `sample`.
+void press_blob(Recording& recording, int64_t columns, int64_t sample, int64_t row, int64_t column,
+                float scale = 1.0f) {
+  for (int64_t dr = -1; dr <= 1; ++dr)
+    for (int64_t dc = -1; dc <= 1; ++dc)
+      recording.streams[0].samples(sample, (row + dr) * columns + column + dc) =
+          scale * ((dr == 0 && dc == 0) ? 1.0f : 0.5f);
+}
+
+Label whole(const Recording& recording, const std::string& region = "all") {
+  Label label;
+  label.recording = recording.id;
+  label.t0 = 0.0;
+  label.t1 = recording.duration() + 1.0;
+  label.region = region;
+  return label;
+}
+
+FeatureResult run(const FeatureExtractor& extractor, const Recording& recording,
+                  const SkinLayout& layout, const Label& label) {
+  return extractor.extract(SegmentInput{recording, layout, label});
+}
+
+// The value of a named column.
+double value_of(const FeatureExtractor& extractor, const SkinLayout& layout,
+                const FeatureResult& result, const std::string& name) {
+  const std::vector<FeatureColumn> columns = extractor.columns(layout);
+  for (size_t index = 0; index < columns.size(); ++index)
+    if (columns[index].name == name) return result.values.at(index);
+  ADD_FAILURE() << "no column " << name;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+TEST(GenericFeatures, BlobMovingAcrossAGridHasPathLengthOfTheDistanceMoved) {
+  const SkinLayout layout = make_grid_layout(5, 8);
+  // Centre moves along row 2 from column 1 to column 6, ten samples per column: 50 mm.
+  Recording recording = blank_recording(layout, 60, 100.0);
+  for (int64_t sample = 0; sample < 60; ++sample)
+    press_blob(recording, 8, sample, 2, 1 + sample / 10);
+  const auto extractor = make_generic_extractor({});
+  const FeatureResult result = run(*extractor, recording, layout, whole(recording));
+  ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+  ASSERT_EQ(result.values.size(), extractor->columns(layout).size());
+  EXPECT_NEAR(value_of(*extractor, layout, result, "centroid.path_length"), 50.0, 1e-9);
+  EXPECT_NEAR(value_of(*extractor, layout, result, "centroid.displacement"), 50.0, 1e-9);
+  // Nine 10 x 10 mm taxels pass 0.2 of the range at every sample.
+  EXPECT_NEAR(value_of(*extractor, layout, result, "contact.max_area"), 900.0, 1e-9);
+  EXPECT_NEAR(value_of(*extractor, layout, result, "contact.mean_area"), 900.0, 1e-9);
+}
+
+TEST(GenericFeatures, StationaryPressHasNoDisplacementAndAnAreaThatGrowsWithTheThreshold) {
+  const SkinLayout layout = make_grid_layout(4, 4);
+  Recording recording = blank_recording(layout, 40, 50.0);
+  // Rises and falls in place; samples 0..4 and 35..39 are untouched.
+  for (int64_t sample = 5; sample < 35; ++sample)
+    press_blob(recording, 4, sample, 1, 2, static_cast<float>(std::sin((sample - 5) * M_PI / 30)));
+  const auto extractor = make_generic_extractor({});
+  const FeatureResult result = run(*extractor, recording, layout, whole(recording));
+  ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+  EXPECT_NEAR(value_of(*extractor, layout, result, "centroid.displacement"), 0.0, 1e-9);
+  EXPECT_NEAR(value_of(*extractor, layout, result, "centroid.path_length"), 0.0, 1e-4);
+  EXPECT_NEAR(value_of(*extractor, layout, result, "contact.max_area"), 900.0, 1e-9);
+  const double mean_area = value_of(*extractor, layout, result, "contact.mean_area");
+  EXPECT_GT(mean_area, 100.0);
+  EXPECT_LT(mean_area, 900.0 * 30 / 40);
+
+  Parameters strict;
+  strict.set("threshold", "0.6");
+  const auto strict_extractor = make_generic_extractor(strict);
+  const FeatureResult centre_only = run(*strict_extractor, recording, layout, whole(recording));
+  // Only the centre passes 0.6 of the range.
+  EXPECT_NEAR(value_of(*strict_extractor, layout, centre_only, "contact.max_area"), 100.0, 1e-9);
+}
+
+TEST(GenericFeatures, PerChannelValuesMatchTheirDefinitions) {
+  const SkinLayout layout = make_strip_layout(2);
+  Recording recording = blank_recording(layout, 8, 10.0);
+  const float values[] = {0, 1, 3, 2, 5, 5, 1, 0};  // first maximum at sample 4
+  for (int64_t sample = 0; sample < 8; ++sample)
+    recording.streams[0].samples(sample, 1) = values[sample];
+  const auto extractor = make_generic_extractor({});
+  Label label = whole(recording);
+  label.t0 = 0.15;  // samples 2..7 (times 0.2 .. 0.7)
+  const FeatureResult result = run(*extractor, recording, layout, label);
+  ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+  const std::vector<double> segment = {3, 2, 5, 5, 1, 0};
+  const stats::Hjorth hjorth = stats::hjorth(segment);
+  EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "ch1.hjorth_activity"), hjorth.activity);
+  EXPECT_NEAR(hjorth.activity, 32.0 / 9.0, 1e-12);  // population variance
+  EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "ch1.hjorth_mobility"), hjorth.mobility);
+  EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "ch1.hjorth_complexity"),
+                   hjorth.complexity);
+  EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "ch1.peak"), 5.0);
+  EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "ch1.mean"), 16.0 / 6.0);
+  EXPECT_NEAR(value_of(*extractor, layout, result, "ch1.integral"), 1.6, 1e-12);
+  EXPECT_NEAR(value_of(*extractor, layout, result, "ch1.peak_time"), 0.4 - 0.15, 1e-12);
+}
+
+TEST(GenericFeatures, StripHasPerChannelColumnsOnlyInAStableOrder) {
+  const SkinLayout layout = make_strip_layout(3);
+  const auto extractor = make_generic_extractor({});
+  const std::vector<FeatureColumn> columns = extractor->columns(layout);
+  ASSERT_EQ(columns.size(), 21u);
+  EXPECT_EQ(columns[0].name, "ch0.hjorth_activity");
+  EXPECT_EQ(columns[6].name, "ch0.peak_time");
+  EXPECT_EQ(columns[7].name, "ch1.hjorth_activity");
+  for (const FeatureColumn& column : columns) EXPECT_FALSE(column.description.empty());
+  EXPECT_EQ(make_generic_extractor({})->columns(make_grid_layout(2, 2)).back().name,
+            "centroid.displacement");
+}
+
+TEST(GenericFeatures, RegionLimitsContactToItsGroup) {
+  const SkinLayout layout = make_grid_layout(6, 6);
+  Recording recording = blank_recording(layout, 20, 100.0);
+  // Two touches at once: a moving one in rows 0-2, a still one in rows 3-5.
+  for (int64_t sample = 0; sample < 20; ++sample) {
+    press_blob(recording, 6, sample, 1, 1 + sample / 10);
+    press_blob(recording, 6, sample, 4, 3);
+  }
+  const auto extractor = make_generic_extractor({});
+  const FeatureResult all = run(*extractor, recording, layout, whole(recording));
+  const FeatureResult lower = run(*extractor, recording, layout, whole(recording, "row4"));
+  ASSERT_TRUE(lower.skip_reason.empty()) << lower.skip_reason;
+  EXPECT_NEAR(value_of(*extractor, layout, all, "contact.max_area"), 1800.0, 1e-9);
+  // Row 4 holds three taxels of the still touch only.
+  EXPECT_NEAR(value_of(*extractor, layout, lower, "contact.max_area"), 300.0, 1e-9);
+  EXPECT_NEAR(value_of(*extractor, layout, lower, "centroid.displacement"), 0.0, 1e-9);
+  EXPECT_FALSE(run(*extractor, recording, layout, whole(recording, "elbow")).skip_reason.empty());
+}
+
+TEST(GenericFeatures, ReversedModalityTakesLowValuesAsContact) {
+  // Proximity: far is 200, a finger at 20 over taxel 1 of three in an L.
+  Eigen::MatrixXd values(2, 3);
+  values << 200, 20, 200, 200, 200, 20;
+  const std::vector<Point2> positions = {{0, 0}, {10, 0}, {0, 10}};
+  const ContactMotion motion =
+      contact_motion(values, positions, Eigen::VectorXd::Constant(3, 5.0), 0.2, true);
+  EXPECT_DOUBLE_EQ(motion.max_area, 5.0);
+  EXPECT_NEAR(motion.path_length, std::hypot(10.0, 10.0), 1e-12);
+  const ContactMotion upright =
+      contact_motion(values, positions, Eigen::VectorXd::Constant(3, 5.0), 0.2, false);
+  EXPECT_DOUBLE_EQ(upright.max_area, 10.0);  // the far taxels, read the wrong way round
+}
+
+TEST(GenericFeatures, ConstantChannelsGiveFiniteZeros) {
+  const SkinLayout layout = make_grid_layout(3, 3);
+  Recording recording = blank_recording(layout, 10, 100.0);
+  recording.streams[0].samples.setConstant(0.5f);
+  const auto extractor = make_generic_extractor({});
+  const FeatureResult result = run(*extractor, recording, layout, whole(recording));
+  ASSERT_TRUE(result.skip_reason.empty());
+  for (double value : result.values) EXPECT_TRUE(std::isfinite(value));
+  EXPECT_EQ(value_of(*extractor, layout, result, "ch4.hjorth_mobility"), 0.0);
+  EXPECT_EQ(value_of(*extractor, layout, result, "contact.max_area"), 0.0);
+  EXPECT_EQ(value_of(*extractor, layout, result, "centroid.path_length"), 0.0);
+}
+
+TEST(GenericFeatures, ShortSegmentsAndNanSamplesAreSkippedWithAReason) {
+  const SkinLayout layout = make_grid_layout(2, 2);
+  Recording recording = blank_recording(layout, 10, 100.0);
+  const auto extractor = make_generic_extractor({});
+  Label label = whole(recording);
+  label.t0 = 0.0;
+  label.t1 = 0.02;  // two samples
+  EXPECT_NE(run(*extractor, recording, layout, label).skip_reason.find("2 samples"),
+            std::string::npos);
+  recording.streams[0].samples(6, 3) = std::numeric_limits<float>::quiet_NaN();
+  const std::string reason = run(*extractor, recording, layout, whole(recording)).skip_reason;
+  EXPECT_NE(reason.find("channel ch3 at t=0.06"), std::string::npos) << reason;
+}
+
+TEST(GenericFeatures, BadParametersAndMismatchedRecordingsNameTheProblem) {
+  Parameters unknown = Parameters::parse("treshold=0.3", "--params");
+  EXPECT_THROW(make_generic_extractor(unknown), Error);
+  Parameters too_high = Parameters::parse("threshold=1.5", "--params");
+  EXPECT_THROW(make_generic_extractor(too_high), Error);
+  Parameters modality = Parameters::parse("modality=force", "--params");
+  try {
+    make_generic_extractor(modality)->columns(make_grid_layout(2, 2));
+    FAIL() << "unknown modality accepted";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.where(), "--params");
+    EXPECT_NE(error.message().find("modality=force"), std::string::npos);
+  }
+  const SkinLayout layout = make_grid_layout(2, 2);
+  const Recording recording = blank_recording(make_grid_layout(3, 3), 10, 100.0);
+  EXPECT_THROW(run(*make_generic_extractor({}), recording, layout, whole(recording)), Error);
+}
+
+TEST(FeatureRegistry, ListsGenericAndNamesAnUnknownPipeline) {
+  const std::vector<std::string> names = feature_pipelines();
+  EXPECT_NE(std::find(names.begin(), names.end(), "generic"), names.end());
+  EXPECT_EQ(make_feature_extractor("generic")->name(), "generic");
+  try {
+    make_feature_extractor("kabolli");
+    FAIL() << "unknown pipeline accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("kabolli"), std::string::npos);
+    EXPECT_NE(std::string(error.what()).find("generic"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace tactile
