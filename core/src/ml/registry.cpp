@@ -8,6 +8,7 @@
 
 #include "tactile/error.h"
 #include "tactile/ml/classifier.h"
+#include "tactile/ml/grid_search.h"
 #include "tactile/ml/knn.h"
 
 namespace tactile::ml {
@@ -36,6 +37,10 @@ const std::vector<ClassifierRow>& classifier_table() {
        make_weighted_knn_classifier},
       {"subspace-knn", "MATLAB Subspace KNN: 30 1-NN learners on random halves of the predictors",
        make_subspace_knn_classifier},
+      {"grid-search",
+       "hyper-parameter grid by inner CV on the training fold: base=knn,k=1|3|5,inner=kfold:3",
+       make_grid_search_classifier},
+      {"grid", "short name of grid-search", make_grid_search_classifier},
   };
   return table;
 }
@@ -85,6 +90,17 @@ nlohmann::json save_classifier(const Classifier& classifier) {
   const Parameters effective = classifier.parameters();
   for (const auto& [key, value] : effective.values()) parameters[key] = value;
   return {{"name", classifier.name()}, {"parameters", parameters}, {"model", classifier.save()}};
+}
+
+std::string specification_of(const Classifier& classifier) {
+  std::string specification = classifier.name();
+  const Parameters parameters = classifier.parameters();
+  char separator = ':';
+  for (const auto& [key, value] : parameters.values()) {
+    specification.append(1, separator).append(key).append("=").append(value);
+    separator = ',';
+  }
+  return specification;
 }
 
 std::unique_ptr<Classifier> load_classifier(const nlohmann::json& document) {

@@ -53,6 +53,9 @@ std::vector<ClassifierEntry> classifier_catalog();
 // A model saved with save(), with its name and parameters, restored.
 std::unique_ptr<Classifier> load_classifier(const nlohmann::json& document);
 nlohmann::json save_classifier(const Classifier& classifier);
+// "name:key=value,..." from name() and parameters(): make_classifier of it gives the same
+// classifier.
+std::string specification_of(const Classifier& classifier);
 
 // z-score fitted on training data (spec §6.4): μ = mean, s = sample std; s = 0 -> z = x - μ.
 struct Standardizer {
