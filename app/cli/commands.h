@@ -12,5 +12,6 @@ void register_import(CLI::App& app);
 void register_export(CLI::App& app);
 void register_labels(CLI::App& app);
 void register_simulate(CLI::App& app);
+void register_evaluate(CLI::App& app);
 
 }  // namespace tactile::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   tactile::cli::register_export(app);
   tactile::cli::register_labels(app);
   tactile::cli::register_simulate(app);
+  tactile::cli::register_evaluate(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
