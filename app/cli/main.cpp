@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   tactile::cli::register_simulate(app);
   tactile::cli::register_stream_sim(app);
   tactile::cli::register_stream_listen(app);
+  tactile::cli::register_evaluate(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

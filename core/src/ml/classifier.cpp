@@ -24,7 +24,8 @@ void Standardizer::fit(const Matrix& x) {
   scale = Vector::Ones(x.cols());
   if (n < 2) return;
   for (Eigen::Index column = 0; column < x.cols(); ++column) {
-    const double variance = (x.col(column).array() - mean(column)).square().sum() / static_cast<double>(n - 1);
+    const double variance =
+        (x.col(column).array() - mean(column)).square().sum() / static_cast<double>(n - 1);
     const double deviation = std::sqrt(variance);
     if (deviation > 1e-12 * std::max(1.0, std::abs(mean(column)))) scale(column) = deviation;
   }

@@ -43,9 +43,19 @@ class Classifier {
 std::unique_ptr<Classifier> make_classifier(const std::string& specification);
 // Every name make_classifier accepts.
 std::vector<std::string> classifier_names();
+// Every name with a one-line description (what it is, which preset or paper it reproduces),
+// in the order `tactile evaluate --list` prints them.
+struct ClassifierEntry {
+  std::string name;
+  std::string description;
+};
+std::vector<ClassifierEntry> classifier_catalog();
 // A model saved with save(), with its name and parameters, restored.
 std::unique_ptr<Classifier> load_classifier(const nlohmann::json& document);
 nlohmann::json save_classifier(const Classifier& classifier);
+// "name:key=value,..." from name() and parameters(): make_classifier of it gives the same
+// classifier.
+std::string specification_of(const Classifier& classifier);
 
 // z-score fitted on training data (spec §6.4): μ = mean, s = sample std; s = 0 -> z = x - μ.
 struct Standardizer {

@@ -1,0 +1,219 @@
+// `tactile evaluate`: cross-validate a classifier on a feature CSV and print accuracy, the
+// confusion matrix, per-class figures and the misclassified segments.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "commands.h"
+#include "progress.h"
+#include "tactile/error.h"
+#include "tactile/features/dataset.h"
+#include "tactile/ml/classifier.h"
+#include "tactile/ml/evaluation.h"
+
+namespace tactile::cli {
+
+namespace {
+
+struct EvaluateArgs {
+  std::string features;
+  std::string classifier;
+  std::string protocol = "kfold:10";
+  uint64_t seed = 1;
+  int threads = 0;
+  bool json = false;
+  bool list = false;
+  std::string save_model;
+};
+
+void print_list() {
+  size_t width = 0;
+  for (const auto& entry : ml::classifier_catalog()) width = std::max(width, entry.name.size());
+  for (const auto& entry : ml::classifier_catalog())
+    std::cout << std::left << std::setw(static_cast<int>(width) + 2) << entry.name
+              << entry.description << "\n";
+}
+
+// Fits on every row and writes the model with its class and feature names, through a temp
+// file so a failed write never leaves half a model behind.
+void save_model(const std::string& path, const Dataset& dataset, const std::string& specification,
+                uint64_t seed) {
+  const std::vector<std::string> classes = dataset.class_names();
+  std::map<std::string, int> index;
+  for (size_t k = 0; k < classes.size(); ++k) index[classes[k]] = static_cast<int>(k);
+  std::vector<int> labels;
+  for (const std::string& name : dataset.classes) labels.push_back(index.at(name));
+  auto classifier = ml::make_classifier(specification);
+  classifier->fit(dataset.features, labels, static_cast<int>(classes.size()), seed);
+  nlohmann::json document = ml::save_classifier(*classifier);
+  document["classes"] = classes;
+  nlohmann::json columns = nlohmann::json::array();
+  for (const FeatureColumn& column : dataset.columns) columns.push_back(column.name);
+  document["features"] = columns;
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path, "cannot write the model");
+    out << document.dump(1) << "\n";
+    out.close();
+    if (!out) {
+      std::remove(temporary.c_str());
+      throw Error(path, "cannot write the model");
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::remove(temporary.c_str());
+    throw Error(path, "cannot write the model: " + error.message());
+  }
+}
+
+std::string percent(double value) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2) << 100.0 * value << " %";
+  return text.str();
+}
+
+void print_result(const ml::EvaluationResult& result, const Dataset& dataset) {
+  const auto classes = static_cast<Eigen::Index>(result.classes.size());
+  const int64_t correct = result.confusion.leftCols(classes).cast<int64_t>().trace();
+  std::cout << "classifier  " << result.classifier << "\n"
+            << "protocol    " << result.protocol << " (" << result.fold_models.size()
+            << " folds, seed " << result.seed << ")\n"
+            << "dataset     " << dataset.rows() << " rows, " << dataset.features.cols()
+            << " features, " << classes << " classes\n"
+            << "accuracy    " << std::fixed << std::setprecision(4) << result.accuracy << " ("
+            << correct << "/" << result.predictions << " predictions, " << percent(result.accuracy)
+            << ")\n\n";
+
+  const bool any_unknown =
+      result.confusion.cols() > classes && result.confusion.col(classes).sum() > 0;
+  size_t name_width = 7;
+  for (const std::string& name : result.classes) name_width = std::max(name_width, name.size());
+  int cell = 6;
+  for (const std::string& name : result.classes)
+    cell = std::max(cell, static_cast<int>(name.size()) + 1);
+  std::cout << "confusion (rows true, columns predicted)\n"
+            << std::setw(static_cast<int>(name_width)) << "";
+  for (const std::string& name : result.classes) std::cout << std::setw(cell) << name;
+  if (any_unknown) std::cout << std::setw(cell + 2) << "unknown";
+  std::cout << "\n";
+  for (Eigen::Index row = 0; row < classes; ++row) {
+    std::cout << std::left << std::setw(static_cast<int>(name_width))
+              << result.classes[static_cast<size_t>(row)] << std::right;
+    for (Eigen::Index column = 0; column < classes; ++column)
+      std::cout << std::setw(cell) << result.confusion(row, column);
+    if (any_unknown) std::cout << std::setw(cell + 2) << result.confusion(row, classes);
+    std::cout << "\n";
+  }
+
+  std::cout << "\n"
+            << std::left << std::setw(static_cast<int>(name_width)) << "class" << std::right
+            << std::setw(11) << "precision" << std::setw(9) << "recall" << std::setw(9)
+            << "support\n";
+  for (size_t k = 0; k < result.per_class.size(); ++k) {
+    const ml::ClassFigures& figure = result.per_class[k];
+    std::cout << std::left << std::setw(static_cast<int>(name_width)) << result.classes[k]
+              << std::right << std::setprecision(4) << std::setw(11) << figure.precision
+              << std::setw(9) << figure.recall << std::setw(8) << figure.support << "\n";
+  }
+
+  // A CSV without a segment_id column reads back as id 0 on every row: name rows instead.
+  std::vector<int64_t> sorted_ids = dataset.segment_ids;
+  std::sort(sorted_ids.begin(), sorted_ids.end());
+  const bool distinct_ids =
+      static_cast<int64_t>(sorted_ids.size()) == dataset.rows() &&
+      std::adjacent_find(sorted_ids.begin(), sorted_ids.end()) == sorted_ids.end();
+  std::vector<int64_t> wrong_rows;
+  for (const ml::Misclassified& wrong : result.misclassified) wrong_rows.push_back(wrong.row);
+  std::sort(wrong_rows.begin(), wrong_rows.end());
+  wrong_rows.erase(std::unique(wrong_rows.begin(), wrong_rows.end()), wrong_rows.end());
+  std::cout << "\nmisclassified " << result.misclassified.size() << " predictions of "
+            << wrong_rows.size() << (distinct_ids ? " segments" : " rows (no segment ids)");
+  constexpr size_t kShown = 10;
+  for (size_t i = 0; i < std::min(kShown, wrong_rows.size()); ++i) {
+    const auto row = static_cast<size_t>(wrong_rows[i]);
+    std::cout << (i == 0 ? ": " : ", ")
+              << (distinct_ids ? dataset.segment_ids[row] : wrong_rows[i]);
+  }
+  if (wrong_rows.size() > kShown) std::cout << ", ...";
+  // Grid search chooses per fold: say what it chose, and how often.
+  std::map<std::string, int> chosen;
+  for (const std::string& model : result.fold_models) ++chosen[model];
+  if (chosen.size() > 1 || result.classifier.rfind("grid", 0) == 0)
+    for (const auto& [model, folds] : chosen)
+      std::cout << "\nfold model  " << model << " (" << folds << " folds)";
+  std::cout << "\n"
+            << std::setprecision(3) << "time        " << result.seconds << " s (fit "
+            << result.fit_seconds << " s, predict " << result.predict_seconds
+            << " s, summed over folds)\n";
+}
+
+void run_evaluate(const EvaluateArgs& args) {
+  if (args.list) {
+    print_list();
+    return;
+  }
+  if (args.features.empty()) throw Error("--features", "required (a feature CSV)");
+  if (args.classifier.empty())
+    throw Error("--classifier", "required (see `tactile evaluate --list`)");
+  if (args.threads < 0) throw Error("--threads", "must be 0 (all cores) or more");
+  const ml::Protocol protocol = ml::Protocol::parse(args.protocol);
+  ml::make_classifier(args.classifier);  // a bad name fails before the file is read
+  const Dataset dataset = read_dataset_csv(args.features);
+
+  ProgressBar bar("evaluate " + args.classifier);
+  ml::EvaluationControl control;
+  control.threads = args.threads;
+  control.progress = [&](int done, int total) { bar.update(done, total); };
+  const ml::EvaluationResult result =
+      ml::evaluate(dataset, args.classifier, protocol, args.seed, control);
+  bar.finish();
+  if (!args.save_model.empty()) save_model(args.save_model, dataset, args.classifier, args.seed);
+
+  if (args.json) {
+    nlohmann::json out = ml::to_json(result);
+    out["features"] = args.features;
+    if (!args.save_model.empty()) out["model"] = args.save_model;
+    std::cout << out.dump(2) << "\n";
+  } else {
+    print_result(result, dataset);
+    if (!args.save_model.empty())
+      std::cout << "model       " << args.save_model << " (fitted on all rows)\n";
+  }
+}
+
+}  // namespace
+
+void register_evaluate(CLI::App& app) {
+  auto args = std::make_shared<EvaluateArgs>();
+  CLI::App* command = app.add_subcommand(
+      "evaluate", "Cross-validate a classifier on a feature CSV (accuracy, confusion, errors)");
+  command->add_option("--features", args->features,
+                      "Feature CSV (from `tactile features`, or any CSV with a class column)");
+  command->add_option("--classifier", args->classifier,
+                      "NAME[:key=value,...], e.g. knn:k=3,metric=cosine (see --list)");
+  command
+      ->add_option("--protocol", args->protocol,
+                   "kfold:K[xR] | loo | loso | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY")
+      ->capture_default_str();
+  command->add_option("--seed", args->seed, "Random seed of folds and classifiers")
+      ->capture_default_str();
+  command->add_option("--threads", args->threads, "Worker threads (0: every core)")
+      ->capture_default_str();
+  command->add_option("--save-model", args->save_model,
+                      "Also fit on every row and save the model as JSON");
+  command->add_flag("--json", args->json, "Print the result as JSON");
+  command->add_flag("--list", args->list, "List the classifier names and exit");
+  command->callback([args] { run_evaluate(*args); });
+}
+
+}  // namespace tactile::cli

@@ -1,0 +1,130 @@
+// The table of classifiers: one line per name, name -> factory. Adding a classifier is one
+// #include and one line in classifier_table(); evaluation, the command line and the
+// workbench pick it up from here.
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tactile/error.h"
+#include "tactile/ml/classifier.h"
+#include "tactile/ml/grid_search.h"
+#include "tactile/ml/knn.h"
+
+namespace tactile::ml {
+
+namespace {
+
+// A factory reads its parameters (rejecting unknown keys with expect_only) and returns an
+// unfitted classifier.
+using ClassifierFactory = std::unique_ptr<Classifier> (*)(const Parameters&);
+
+struct ClassifierRow {
+  const char* name;
+  const char* description;
+  ClassifierFactory make;
+};
+
+// Listed order is the order `tactile evaluate --list` prints.
+const std::vector<ClassifierRow>& classifier_table() {
+  static const std::vector<ClassifierRow> table = {
+      // {"name", "one-line description", make_name_classifier},  (include "tactile/ml/family.h")
+      {"knn", "k nearest neighbours (k, metric=euclidean|cosine, weights, standardize)",
+       make_knn_classifier},
+      {"cosine-knn", "MATLAB Cosine KNN: cosine distance, k=10, equal weights, standardised",
+       make_cosine_knn_classifier},
+      {"weighted-knn", "MATLAB Weighted KNN: Euclidean, k=10, weights 1/d^2, standardised",
+       make_weighted_knn_classifier},
+      {"subspace-knn", "MATLAB Subspace KNN: 30 1-NN learners on random halves of the predictors",
+       make_subspace_knn_classifier},
+      {"grid-search",
+       "hyper-parameter grid by inner CV on the training fold: base=knn,k=1|3|5,inner=kfold:3",
+       make_grid_search_classifier},
+      {"grid", "short name of grid-search", make_grid_search_classifier},
+  };
+  return table;
+}
+
+std::string known_names() {
+  std::string known;
+  for (const ClassifierRow& row : classifier_table())
+    known += (known.empty() ? "" : ", ") + std::string(row.name);
+  return known.empty() ? "none" : known;
+}
+
+}  // namespace
+
+std::unique_ptr<Classifier> make_classifier(const std::string& specification) {
+  const size_t colon = specification.find(':');
+  const std::string name = specification.substr(0, colon);
+  const std::string where = name.empty() ? std::string("classifier") : "classifier " + name;
+  const auto& table = classifier_table();
+  const auto found = std::find_if(table.begin(), table.end(),
+                                  [&](const ClassifierRow& row) { return name == row.name; });
+  if (found == table.end())
+    throw Error(where, "unknown classifier '" + name + "' (known: " + known_names() + ")");
+  Parameters parameters;
+  if (colon != std::string::npos)
+    parameters = Parameters::parse(specification.substr(colon + 1), where);
+  parameters.set_where(where);
+  return found->make(parameters);
+}
+
+std::vector<std::string> classifier_names() {
+  std::vector<std::string> names;
+  for (const ClassifierRow& row : classifier_table()) names.emplace_back(row.name);
+  return names;
+}
+
+std::vector<ClassifierEntry> classifier_catalog() {
+  std::vector<ClassifierEntry> entries;
+  for (const ClassifierRow& row : classifier_table())
+    entries.push_back({row.name, row.description});
+  return entries;
+}
+
+// The document holds what make_classifier needs to rebuild the same classifier (name and
+// effective parameters) and what load() needs to restore its fitted state.
+nlohmann::json save_classifier(const Classifier& classifier) {
+  nlohmann::json parameters = nlohmann::json::object();
+  const Parameters effective = classifier.parameters();
+  for (const auto& [key, value] : effective.values()) parameters[key] = value;
+  return {{"name", classifier.name()}, {"parameters", parameters}, {"model", classifier.save()}};
+}
+
+std::string specification_of(const Classifier& classifier) {
+  std::string specification = classifier.name();
+  const Parameters parameters = classifier.parameters();
+  char separator = ':';
+  for (const auto& [key, value] : parameters.values()) {
+    specification.append(1, separator).append(key).append("=").append(value);
+    separator = ',';
+  }
+  return specification;
+}
+
+std::unique_ptr<Classifier> load_classifier(const nlohmann::json& document) {
+  if (!document.is_object() || !document.contains("name") || !document["name"].is_string() ||
+      !document.contains("model"))
+    throw Error("model", "not a saved classifier (expected an object with 'name' and 'model')");
+  std::string specification = document["name"].get<std::string>();
+  if (document.contains("parameters")) {
+    const nlohmann::json& parameters = document["parameters"];
+    if (!parameters.is_object()) throw Error("model", "'parameters' is not an object");
+    std::string list;
+    for (const auto& [key, value] : parameters.items()) {
+      if (!value.is_string()) throw Error("model", "parameter '" + key + "' is not a string");
+      list += (list.empty() ? "" : ",") + key + "=" + value.get<std::string>();
+    }
+    if (!list.empty()) specification += ":" + list;
+  }
+  std::unique_ptr<Classifier> classifier = make_classifier(specification);
+  try {
+    classifier->load(document["model"]);
+  } catch (const nlohmann::json::exception& error) {
+    throw Error("model " + classifier->name(), std::string("malformed model: ") + error.what());
+  }
+  return classifier;
+}
+
+}  // namespace tactile::ml
