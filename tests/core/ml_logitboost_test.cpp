@@ -150,5 +150,13 @@ TEST(LogitBoost, BadInputIsAnError) {
   EXPECT_THROW(LogitBoost("adaboost", Parameters()), Error);
 }
 
+TEST(LogitBoost, RegistryFactoryReadsItsParameters) {
+  const auto boost =
+      make_logitboost_classifier(Parameters::parse("learners=30,learning_rate=0.1", "lb"));
+  EXPECT_EQ(boost->name(), "logitboost");
+  EXPECT_EQ(boost->parameters().integer("learners", 0), 30);
+  EXPECT_EQ(make_logitboost_classifier(Parameters())->parameters().number("learning_rate", 0), 1.0);
+}
+
 }  // namespace
 }  // namespace tactile::ml

@@ -364,5 +364,22 @@ TEST(SupportVectorMachine, ASingleTrainingClassAlwaysWins) {
   EXPECT_EQ(restored.predict(Matrix::Zero(2, 2)), (std::vector<int>{1, 1}));
 }
 
+TEST(SupportVectorMachine, RegistryFactoriesBuildTheNamedPresets) {
+  const Parameters none;
+  const std::pair<const char*, std::unique_ptr<Classifier> (*)(const Parameters&)> factories[] = {
+      {"linear-svm", make_linear_svm_classifier},
+      {"quadratic-svm", make_quadratic_svm_classifier},
+      {"cubic-svm", make_cubic_svm_classifier},
+      {"fine-gaussian-svm", make_fine_gaussian_svm_classifier},
+      {"medium-gaussian-svm", make_medium_gaussian_svm_classifier},
+      {"coarse-gaussian-svm", make_coarse_gaussian_svm_classifier}};
+  for (const auto& [name, factory] : factories) {
+    const std::unique_ptr<Classifier> classifier = factory(none);
+    EXPECT_EQ(classifier->name(), name);
+    EXPECT_EQ(classifier->parameters().values(), make(name).parameters().values());
+  }
+  EXPECT_THROW(make_cubic_svm_classifier(Parameters::parse("order=4", "cubic-svm")), Error);
+}
+
 }  // namespace
 }  // namespace tactile::ml

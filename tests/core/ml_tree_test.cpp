@@ -168,5 +168,12 @@ TEST(DecisionTree, ParametersListTheEffectiveSettings) {
   EXPECT_EQ(make("tree").parameters().integer("max_splits", 0), 100);
 }
 
+TEST(DecisionTree, RegistryFactoriesBuildTheNamedPresets) {
+  EXPECT_EQ(make_tree_classifier(Parameters())->name(), "tree");
+  const auto medium = make_medium_tree_classifier(Parameters::parse("max_splits=4", "medium-tree"));
+  EXPECT_EQ(medium->name(), "medium-tree");
+  EXPECT_EQ(medium->parameters().integer("max_splits", 0), 4);
+}
+
 }  // namespace
 }  // namespace tactile::ml

@@ -221,4 +221,8 @@ void LogitBoost::load(const nlohmann::json& model) {
   fitted_ = true;
 }
 
+std::unique_ptr<Classifier> make_logitboost_classifier(const Parameters& parameters) {
+  return std::make_unique<LogitBoost>("logitboost", parameters);
+}
+
 }  // namespace tactile::ml

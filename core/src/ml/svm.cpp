@@ -426,4 +426,25 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
   fitted_ = true;
 }
 
+//---- Registry factories ------------------------------------------------------------------------
+
+std::unique_ptr<Classifier> make_linear_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("linear-svm", parameters);
+}
+std::unique_ptr<Classifier> make_quadratic_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("quadratic-svm", parameters);
+}
+std::unique_ptr<Classifier> make_cubic_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("cubic-svm", parameters);
+}
+std::unique_ptr<Classifier> make_fine_gaussian_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("fine-gaussian-svm", parameters);
+}
+std::unique_ptr<Classifier> make_medium_gaussian_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("medium-gaussian-svm", parameters);
+}
+std::unique_ptr<Classifier> make_coarse_gaussian_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("coarse-gaussian-svm", parameters);
+}
+
 }  // namespace tactile::ml

@@ -263,4 +263,12 @@ void DecisionTree::load(const nlohmann::json& model) {
   }
 }
 
+std::unique_ptr<Classifier> make_tree_classifier(const Parameters& parameters) {
+  return std::make_unique<DecisionTree>("tree", parameters);
+}
+
+std::unique_ptr<Classifier> make_medium_tree_classifier(const Parameters& parameters) {
+  return std::make_unique<DecisionTree>("medium-tree", parameters);
+}
+
 }  // namespace tactile::ml

@@ -20,6 +20,7 @@
 // is not used).
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,5 +64,8 @@ class LogitBoost : public Classifier {
   std::vector<std::vector<RegressionStump>> stumps_;
   bool fitted_ = false;
 };
+
+// Registry factory for `logitboost`.
+std::unique_ptr<Classifier> make_logitboost_classifier(const Parameters& parameters);
 
 }  // namespace tactile::ml

@@ -4,7 +4,8 @@
 //
 // Presets (names as on the command line; MATLAB Classification Learner presets as found in
 // exported code: BoxConstraint 1, Standardize true, one-vs-one):
-//   linear-svm           K(x, z) = x'z / s²,            s = 1 (Kaboli §1.14: linear C-SVM)
+//   linear-svm           K(x, z) = x'z / s²,            s = 1 (Kaboli §1.14: linear C-SVM;
+//                        MATLAB's Linear SVM with KernelScale 'auto' is `scale=auto`)
 //   quadratic-svm        K(x, z) = (1 + x'z / s²)²,     s = 'auto' (MATLAB Quadratic SVM)
 //   cubic-svm            K(x, z) = (1 + x'z / s²)³,     s = 'auto' (MATLAB Cubic SVM)
 //   fine-gaussian-svm    K(x, z) = exp(-|x - z|² / s²), s = sqrt(P) / 4 (MATLAB Fine Gaussian)
@@ -26,6 +27,7 @@
 // support vectors (in standardised units) in the JSON; no libsvm model file is written.
 
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -98,5 +100,13 @@ class SupportVectorMachine : public Classifier {
 };
 
 std::vector<std::string> svm_preset_names();
+
+// Registry factories, one per command-line name (they read and check the parameters).
+std::unique_ptr<Classifier> make_linear_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_quadratic_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_cubic_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_fine_gaussian_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_medium_gaussian_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_coarse_gaussian_svm_classifier(const Parameters& parameters);
 
 }  // namespace tactile::ml

@@ -17,6 +17,7 @@
 // the lower threshold. Features are used as given: splits do not depend on scaling.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -62,5 +63,9 @@ class DecisionTree : public Classifier {
 };
 
 std::vector<std::string> tree_preset_names();
+
+// Registry factories for `tree` and `medium-tree`.
+std::unique_ptr<Classifier> make_tree_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_medium_tree_classifier(const Parameters& parameters);
 
 }  // namespace tactile::ml
