@@ -1,0 +1,112 @@
+#pragma once
+// Support vector machines trained by libsvm's C-SVC solver, one-vs-one, on features
+// standardised with the training fold's statistics (spec §6.4).
+//
+// Presets (names as on the command line; MATLAB Classification Learner presets as found in
+// exported code: BoxConstraint 1, Standardize true, one-vs-one):
+//   linear-svm           K(x, z) = x'z / s²,            s = 1 (Kaboli §1.14: linear C-SVM;
+//                        MATLAB's Linear SVM with KernelScale 'auto' is `scale=auto`)
+//   quadratic-svm        K(x, z) = (1 + x'z / s²)²,     s = 'auto' (MATLAB Quadratic SVM)
+//   cubic-svm            K(x, z) = (1 + x'z / s²)³,     s = 'auto' (MATLAB Cubic SVM)
+//   fine-gaussian-svm    K(x, z) = exp(-|x - z|² / s²), s = sqrt(P) / 4 (MATLAB Fine Gaussian)
+//   medium-gaussian-svm  as above,                      s = sqrt(P)     (MATLAB Medium Gaussian)
+//   coarse-gaussian-svm  as above,                      s = 4 sqrt(P)   (MATLAB Coarse Gaussian)
+// P = number of features. Parameters: `c` (box constraint, default 1) and `scale`: "auto",
+// a positive number, or a multiple of sqrt(P) written "0.25sqrtP", "sqrtP", "4sqrtP".
+//
+// One-vs-one: for every pair of classes a < b present in the training set we train one
+// two-class libsvm C-SVC on the samples of a (in row order) followed by those of b — the
+// same sub-problem libsvm's own multi-class C-SVC solves — so each pair can have its own
+// kernel scale, as MATLAB's 'auto' scale is chosen per binary learner. A pair's decision
+// value f(x) = Σ coef_i K(sv_i, x) - rho votes for a when f > 0, else for b (libsvm's rule).
+// Scores are the vote counts divided by the number of pairs (rows sum to 1; argmax with
+// ties to the lowest class index is libsvm's prediction). A single class in the training
+// set scores 1 for every sample; classes absent from the training set score 0.
+//
+// Save/load keeps the standardiser, and per pair the kernel scale, rho, coefficients and
+// support vectors (in standardised units) in the JSON; no libsvm model file is written.
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "tactile/ml/classifier.h"
+
+namespace tactile::ml {
+
+enum class SvmKernel { kLinear, kPolynomial, kGaussian };
+
+// How the kernel scale s is chosen at fit time.
+struct KernelScale {
+  enum class Mode { kFixed, kAuto, kSqrtFeatures };
+  Mode mode = Mode::kFixed;
+  double value = 1.0;  // s for kFixed; the multiple of sqrt(P) for kSqrtFeatures
+  // "auto" | "2.5" | "0.25sqrtP" | "sqrtP"; throws tactile::Error naming `where`.
+  static KernelScale parse(const std::string& text, const std::string& where);
+  std::string to_string() const;
+};
+
+// One binary learner of the one-vs-one scheme.
+struct PairwiseSvm {
+  int positive_class = 0;  // wins the vote when the decision value is > 0
+  int negative_class = 1;
+  double scale = 1.0;
+  double rho = 0.0;
+  Vector coefficients;     // y_i alpha_i per support vector
+  Matrix support_vectors;  // rows, standardised
+};
+
+// MATLAB's 'auto' kernel scale for one binary learner: up to 100 points drawn per class
+// (without replacement, from `engine`), s = median over the drawn positive points of the
+// distance to the nearest drawn negative point, times sqrt(n_neg/N_neg · n_pos/N_pos)^(1/P).
+// When that is not a positive finite number (every positive point on a negative one) s = 1.
+double auto_kernel_scale(const Matrix& positive, const Matrix& negative, std::mt19937_64& engine);
+
+class SupportVectorMachine : public Classifier {
+ public:
+  // `preset` is one of svm_preset_names(); throws tactile::Error on an unknown preset,
+  // unknown parameter key, c <= 0 or a bad scale.
+  SupportVectorMachine(const std::string& preset, const Parameters& parameters);
+
+  std::string name() const override { return preset_; }
+  Parameters parameters() const override;
+  void fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t seed) override;
+  Matrix scores(const Matrix& x) const override;
+  nlohmann::json save() const override;
+  void load(const nlohmann::json& model) override;
+
+  // Decision value of every pair, rows = samples, columns = learners() in order.
+  Matrix decision_values(const Matrix& x) const;
+  const std::vector<PairwiseSvm>& learners() const { return learners_; }
+  SvmKernel kernel() const { return kernel_; }
+  int degree() const { return degree_; }
+
+ private:
+  Matrix kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const;
+
+  std::string preset_;
+  SvmKernel kernel_ = SvmKernel::kLinear;
+  int degree_ = 1;
+  double box_constraint_ = 1.0;
+  KernelScale scale_;
+
+  bool fitted_ = false;
+  int class_count_ = 0;
+  int only_class_ = -1;  // the single class seen in training, else -1
+  Standardizer standardizer_;
+  std::vector<PairwiseSvm> learners_;
+};
+
+std::vector<std::string> svm_preset_names();
+
+// Registry factories, one per command-line name (they read and check the parameters).
+std::unique_ptr<Classifier> make_linear_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_quadratic_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_cubic_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_fine_gaussian_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_medium_gaussian_svm_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_coarse_gaussian_svm_classifier(const Parameters& parameters);
+
+}  // namespace tactile::ml

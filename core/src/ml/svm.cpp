@@ -1,0 +1,450 @@
+#include "tactile/ml/svm.h"
+
+#include <svm.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include "tactile/error.h"
+#include "training_checks.h"
+
+namespace tactile::ml {
+
+namespace {
+
+struct Preset {
+  const char* name;
+  SvmKernel kernel;
+  int degree;
+  KernelScale scale;
+};
+
+const std::vector<Preset>& presets() {
+  using Mode = KernelScale::Mode;
+  static const std::vector<Preset> table = {
+      {"linear-svm", SvmKernel::kLinear, 1, {Mode::kFixed, 1.0}},
+      {"quadratic-svm", SvmKernel::kPolynomial, 2, {Mode::kAuto, 1.0}},
+      {"cubic-svm", SvmKernel::kPolynomial, 3, {Mode::kAuto, 1.0}},
+      {"fine-gaussian-svm", SvmKernel::kGaussian, 1, {Mode::kSqrtFeatures, 0.25}},
+      {"medium-gaussian-svm", SvmKernel::kGaussian, 1, {Mode::kSqrtFeatures, 1.0}},
+      {"coarse-gaussian-svm", SvmKernel::kGaussian, 1, {Mode::kSqrtFeatures, 4.0}},
+  };
+  return table;
+}
+
+const char* kernel_name(SvmKernel kernel) {
+  switch (kernel) {
+    case SvmKernel::kLinear:
+      return "linear";
+    case SvmKernel::kPolynomial:
+      return "polynomial";
+    case SvmKernel::kGaussian:
+      return "gaussian";
+  }
+  return "linear";
+}
+
+// Shortest text that parses back to the same double.
+std::string format_number(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+bool parse_positive(const std::string& text, double& value) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size() && std::isfinite(value) &&
+         value > 0.0;
+}
+
+// libsvm prints its progress to stdout through one global function pointer.
+void silence_libsvm() {
+  static std::once_flag once;
+  std::call_once(once, [] { svm_set_print_string_function([](const char*) {}); });
+}
+
+Matrix gather_rows(const Matrix& x, const std::vector<int64_t>& rows) {
+  Matrix gathered(static_cast<Eigen::Index>(rows.size()), x.cols());
+  for (size_t row = 0; row < rows.size(); ++row)
+    gathered.row(static_cast<Eigen::Index>(row)) = x.row(rows[row]);
+  return gathered;
+}
+
+// Up to `limit` rows drawn without replacement (a partial Fisher-Yates shuffle); all rows in
+// order when there are no more than `limit`.
+Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
+  const int64_t count = x.rows();
+  if (count <= limit) return x;
+  std::vector<int64_t> order(static_cast<size_t>(count));
+  for (int64_t row = 0; row < count; ++row) order[static_cast<size_t>(row)] = row;
+  for (int64_t slot = 0; slot < limit; ++slot) {
+    const auto pick = slot + static_cast<int64_t>(training_checks::uniform_index(
+                                 engine, static_cast<uint64_t>(count - slot)));
+    std::swap(order[static_cast<size_t>(slot)], order[static_cast<size_t>(pick)]);
+  }
+  order.resize(static_cast<size_t>(limit));
+  return gather_rows(x, order);
+}
+
+double median(std::vector<double> values) {
+  const size_t middle = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle),
+                   values.end());
+  const double upper = values[middle];
+  if (values.size() % 2 == 1) return upper;
+  const double lower =
+      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
+  return 0.5 * (lower + upper);
+}
+
+struct ModelDeleter {
+  void operator()(svm_model* model) const { svm_free_and_destroy_model(&model); }
+};
+
+}  // namespace
+
+//---- Kernel scale --------------------------------------------------------------------------
+
+KernelScale KernelScale::parse(const std::string& text, const std::string& where) {
+  if (text == "auto") return {Mode::kAuto, 1.0};
+  const std::string suffix = "sqrtP";
+  KernelScale scale;
+  std::string number = text;
+  if (text.size() >= suffix.size() &&
+      text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    scale.mode = Mode::kSqrtFeatures;
+    number = text.substr(0, text.size() - suffix.size());
+    if (number.empty()) number = "1";
+  }
+  if (!parse_positive(number, scale.value))
+    throw Error(where,
+                "scale=" + text + ": expected auto, a positive number or a multiple like 4sqrtP");
+  return scale;
+}
+
+std::string KernelScale::to_string() const {
+  switch (mode) {
+    case Mode::kAuto:
+      return "auto";
+    case Mode::kSqrtFeatures:
+      return (value == 1.0 ? std::string() : format_number(value)) + "sqrtP";
+    case Mode::kFixed:
+      break;
+  }
+  return format_number(value);
+}
+
+double auto_kernel_scale(const Matrix& positive, const Matrix& negative, std::mt19937_64& engine) {
+  constexpr int64_t kPointsPerClass = 100;
+  if (positive.rows() == 0 || negative.rows() == 0 || positive.cols() != negative.cols())
+    throw Error("kernel scale", "needs points of both classes with the same features");
+  const Matrix drawn_positive = draw_rows(positive, kPointsPerClass, engine);
+  const Matrix drawn_negative = draw_rows(negative, kPointsPerClass, engine);
+  std::vector<double> nearest(static_cast<size_t>(drawn_positive.rows()));
+  for (Eigen::Index row = 0; row < drawn_positive.rows(); ++row)
+    nearest[static_cast<size_t>(row)] = std::sqrt(
+        (drawn_negative.rowwise() - drawn_positive.row(row)).rowwise().squaredNorm().minCoeff());
+  // The drawn subset's nearest neighbours lie farther apart than the full set's; the factor
+  // shrinks s by the sampled fraction's P-th root (MATLAB's heuristic, as exported).
+  const double sampled_fraction =
+      static_cast<double>(drawn_negative.rows()) / static_cast<double>(negative.rows()) *
+      static_cast<double>(drawn_positive.rows()) / static_cast<double>(positive.rows());
+  const double scale =
+      median(std::move(nearest)) *
+      std::pow(std::sqrt(sampled_fraction), 1.0 / static_cast<double>(positive.cols()));
+  return std::isfinite(scale) && scale > 0.0 ? scale : 1.0;
+}
+
+//---- Construction and parameters ---------------------------------------------------------------
+
+std::vector<std::string> svm_preset_names() {
+  std::vector<std::string> names;
+  for (const Preset& preset : presets()) names.emplace_back(preset.name);
+  return names;
+}
+
+SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Parameters& parameters)
+    : preset_(preset) {
+  const auto found = std::find_if(presets().begin(), presets().end(), [&](const Preset& candidate) {
+    return preset == candidate.name;
+  });
+  if (found == presets().end())
+    throw Error(parameters.where(), "no SVM preset named '" + preset + "'");
+  parameters.expect_only({"c", "scale"});
+  kernel_ = found->kernel;
+  degree_ = found->degree;
+  scale_ = found->scale;
+  box_constraint_ = parameters.number("c", 1.0);
+  if (box_constraint_ <= 0.0)
+    throw Error(parameters.where(), "c=" + format_number(box_constraint_) + ": must be positive");
+  if (parameters.has("scale"))
+    scale_ = KernelScale::parse(parameters.text("scale", ""), parameters.where());
+}
+
+Parameters SupportVectorMachine::parameters() const {
+  Parameters parameters;
+  parameters.set("c", format_number(box_constraint_));
+  parameters.set("scale", scale_.to_string());
+  return parameters;
+}
+
+//---- Training ----------------------------------------------------------------------------------
+
+void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int class_count,
+                               uint64_t seed) {
+  const std::vector<int64_t> counts = training_checks::check_training(preset_, x, y, class_count);
+  silence_libsvm();
+  fitted_ = false;
+  learners_.clear();
+  class_count_ = class_count;
+  only_class_ = -1;
+  standardizer_.fit(x);
+  const Matrix z = standardizer_.transform(x);
+
+  std::vector<std::vector<int64_t>> members(static_cast<size_t>(class_count));
+  for (size_t row = 0; row < y.size(); ++row)
+    members[static_cast<size_t>(y[row])].push_back(static_cast<int64_t>(row));
+  std::vector<int> present;
+  for (int label = 0; label < class_count; ++label)
+    if (counts[static_cast<size_t>(label)] > 0) present.push_back(label);
+  if (present.size() == 1) {
+    only_class_ = present.front();
+    fitted_ = true;
+    return;
+  }
+
+  const Eigen::Index feature_count = z.cols();
+  std::mt19937_64 engine(seed);
+  for (size_t first = 0; first < present.size(); ++first) {
+    for (size_t second = first + 1; second < present.size(); ++second) {
+      PairwiseSvm learner;
+      learner.positive_class = present[first];
+      learner.negative_class = present[second];
+      const Matrix positive = gather_rows(z, members[static_cast<size_t>(learner.positive_class)]);
+      const Matrix negative = gather_rows(z, members[static_cast<size_t>(learner.negative_class)]);
+      switch (scale_.mode) {
+        case KernelScale::Mode::kFixed:
+          learner.scale = scale_.value;
+          break;
+        case KernelScale::Mode::kSqrtFeatures:
+          learner.scale = scale_.value * std::sqrt(static_cast<double>(feature_count));
+          break;
+        case KernelScale::Mode::kAuto:
+          learner.scale = auto_kernel_scale(positive, negative, engine);
+          break;
+      }
+
+      // The sub-problem libsvm's multi-class C-SVC would solve: class a's rows, then b's.
+      const Eigen::Index rows = positive.rows() + negative.rows();
+      std::vector<svm_node> nodes(static_cast<size_t>(rows * (feature_count + 1)));
+      std::vector<svm_node*> row_nodes(static_cast<size_t>(rows));
+      std::vector<double> targets(static_cast<size_t>(rows));
+      for (Eigen::Index row = 0; row < rows; ++row) {
+        const bool is_positive = row < positive.rows();
+        const auto source = is_positive ? positive.row(row) : negative.row(row - positive.rows());
+        svm_node* node = &nodes[static_cast<size_t>(row * (feature_count + 1))];
+        row_nodes[static_cast<size_t>(row)] = node;
+        targets[static_cast<size_t>(row)] = is_positive ? 1.0 : -1.0;
+        for (Eigen::Index column = 0; column < feature_count; ++column)
+          node[column] = {static_cast<int>(column + 1), source(column)};
+        node[feature_count] = {-1, 0.0};
+      }
+      svm_problem problem{static_cast<int>(rows), targets.data(), row_nodes.data()};
+
+      // Kernels in libsvm's form (gamma u'v + coef0)^degree and exp(-gamma |u - v|²) with
+      // gamma = 1/s²; the linear kernel is the degree-1 polynomial without offset.
+      svm_parameter parameter{};
+      parameter.svm_type = C_SVC;
+      parameter.kernel_type = kernel_ == SvmKernel::kGaussian ? RBF : POLY;
+      parameter.degree = degree_;
+      parameter.gamma = 1.0 / (learner.scale * learner.scale);
+      parameter.coef0 = kernel_ == SvmKernel::kPolynomial ? 1.0 : 0.0;
+      parameter.cache_size = 100.0;
+      parameter.eps = 1e-3;
+      parameter.C = box_constraint_;
+      parameter.nu = 0.5;
+      parameter.p = 0.1;
+      parameter.shrinking = 1;
+      parameter.probability = 0;
+      if (const char* problem_text = svm_check_parameter(&problem, &parameter))
+        throw Error(preset_, std::string("libsvm: ") + problem_text);
+      const std::unique_ptr<svm_model, ModelDeleter> model(svm_train(&problem, &parameter));
+      if (!model) throw Error(preset_, "libsvm returned no model");
+
+      // libsvm's decision value favours its first label; make f > 0 mean the positive class.
+      const double sign = model->label[0] == 1 ? 1.0 : -1.0;
+      learner.rho = sign * model->rho[0];
+      learner.coefficients.resize(model->l);
+      learner.support_vectors = Matrix::Zero(model->l, feature_count);
+      for (int vector = 0; vector < model->l; ++vector) {
+        learner.coefficients(vector) = sign * model->sv_coef[0][vector];
+        for (const svm_node* node = model->SV[vector]; node->index != -1; ++node)
+          learner.support_vectors(vector, node->index - 1) = node->value;
+      }
+      learners_.push_back(std::move(learner));
+    }
+  }
+  fitted_ = true;
+}
+
+//---- Prediction --------------------------------------------------------------------------------
+
+Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const {
+  const double gamma = 1.0 / (learner.scale * learner.scale);
+  const Matrix gram = z * learner.support_vectors.transpose();
+  switch (kernel_) {
+    case SvmKernel::kLinear:
+      return gamma * gram;
+    case SvmKernel::kPolynomial: {
+      const Eigen::ArrayXXd base = gamma * gram.array() + 1.0;
+      Eigen::ArrayXXd power = base;
+      for (int order = 1; order < degree_; ++order) power *= base;
+      return power.matrix();
+    }
+    case SvmKernel::kGaussian: {
+      const Eigen::ArrayXXd squared_distance =
+          ((-2.0 * gram).colwise() + z.rowwise().squaredNorm()).rowwise() +
+          learner.support_vectors.rowwise().squaredNorm().transpose();
+      return (-gamma * squared_distance.max(0.0)).exp().matrix();
+    }
+  }
+  return gram;
+}
+
+Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
+  training_checks::check_prediction(preset_, x, standardizer_.mean.size(), fitted_);
+  const Matrix z = standardizer_.transform(x);
+  Matrix decision(x.rows(), static_cast<Eigen::Index>(learners_.size()));
+  for (size_t index = 0; index < learners_.size(); ++index) {
+    const PairwiseSvm& learner = learners_[index];
+    decision.col(static_cast<Eigen::Index>(index)) =
+        (kernel_matrix(z, learner) * learner.coefficients).array() - learner.rho;
+  }
+  return decision;
+}
+
+Matrix SupportVectorMachine::scores(const Matrix& x) const {
+  const Matrix decision = decision_values(x);
+  Matrix votes = Matrix::Zero(x.rows(), class_count_);
+  if (only_class_ >= 0) {
+    votes.col(only_class_).setOnes();
+    return votes;
+  }
+  for (size_t index = 0; index < learners_.size(); ++index) {
+    const PairwiseSvm& learner = learners_[index];
+    for (Eigen::Index row = 0; row < x.rows(); ++row) {
+      const bool positive = decision(row, static_cast<Eigen::Index>(index)) > 0.0;
+      votes(row, positive ? learner.positive_class : learner.negative_class) += 1.0;
+    }
+  }
+  return votes / static_cast<double>(learners_.size());
+}
+
+//---- Save and load -----------------------------------------------------------------------------
+
+nlohmann::json SupportVectorMachine::save() const {
+  if (!fitted_) throw Error(preset_, "save() before fit()");
+  nlohmann::json learners = nlohmann::json::array();
+  for (const PairwiseSvm& learner : learners_) {
+    nlohmann::json support_vectors = nlohmann::json::array();
+    for (Eigen::Index row = 0; row < learner.support_vectors.rows(); ++row) {
+      const Vector vector = learner.support_vectors.row(row).transpose();
+      support_vectors.push_back(std::vector<double>(vector.data(), vector.data() + vector.size()));
+    }
+    learners.push_back({{"positive_class", learner.positive_class},
+                        {"negative_class", learner.negative_class},
+                        {"scale", learner.scale},
+                        {"rho", learner.rho},
+                        {"coefficients", std::vector<double>(learner.coefficients.data(),
+                                                             learner.coefficients.data() +
+                                                                 learner.coefficients.size())},
+                        {"support_vectors", std::move(support_vectors)}});
+  }
+  return {{"kernel", kernel_name(kernel_)},       {"degree", degree_},
+          {"class_count", class_count_},          {"only_class", only_class_},
+          {"standardizer", standardizer_.save()}, {"learners", std::move(learners)}};
+}
+
+void SupportVectorMachine::load(const nlohmann::json& model) {
+  const std::string where = preset_ + " model";
+  fitted_ = false;
+  try {
+    if (model.at("kernel").get<std::string>() != kernel_name(kernel_) ||
+        model.at("degree").get<int>() != degree_)
+      throw Error(where, "saved with another kernel than " + preset_ + "'s");
+    const int class_count = model.at("class_count").get<int>();
+    const int only_class = model.at("only_class").get<int>();
+    if (class_count < 1 || only_class < -1 || only_class >= class_count)
+      throw Error(where, "bad class_count or only_class");
+    Standardizer standardizer;
+    standardizer.load(model.at("standardizer"));
+    const Eigen::Index feature_count = standardizer.mean.size();
+    std::vector<PairwiseSvm> learners;
+    for (const auto& saved : model.at("learners")) {
+      PairwiseSvm learner;
+      learner.positive_class = saved.at("positive_class").get<int>();
+      learner.negative_class = saved.at("negative_class").get<int>();
+      learner.scale = saved.at("scale").get<double>();
+      learner.rho = saved.at("rho").get<double>();
+      const auto coefficients = saved.at("coefficients").get<std::vector<double>>();
+      const auto support_vectors =
+          saved.at("support_vectors").get<std::vector<std::vector<double>>>();
+      if (learner.positive_class < 0 || learner.positive_class >= class_count ||
+          learner.negative_class < 0 || learner.negative_class >= class_count)
+        throw Error(where, "learner class out of range");
+      if (!std::isfinite(learner.scale) || learner.scale <= 0.0 || !std::isfinite(learner.rho))
+        throw Error(where, "learner scale or rho is not a positive finite number");
+      if (coefficients.size() != support_vectors.size())
+        throw Error(where, "coefficient and support vector counts differ");
+      const auto count = static_cast<Eigen::Index>(coefficients.size());
+      learner.coefficients = Eigen::Map<const Vector>(coefficients.data(), count);
+      learner.support_vectors.resize(count, feature_count);
+      for (Eigen::Index row = 0; row < count; ++row) {
+        const auto& vector = support_vectors[static_cast<size_t>(row)];
+        if (static_cast<Eigen::Index>(vector.size()) != feature_count)
+          throw Error(where, "support vector " + std::to_string(row) + " has " +
+                                 std::to_string(vector.size()) + " values, expected " +
+                                 std::to_string(feature_count));
+        learner.support_vectors.row(row) =
+            Eigen::Map<const Vector>(vector.data(), feature_count).transpose();
+      }
+      if (!learner.coefficients.allFinite() || !learner.support_vectors.allFinite())
+        throw Error(where, "non-finite coefficient or support vector");
+      learners.push_back(std::move(learner));
+    }
+    if (only_class < 0 && learners.empty()) throw Error(where, "no learners");
+    class_count_ = class_count;
+    only_class_ = only_class;
+    standardizer_ = std::move(standardizer);
+    learners_ = std::move(learners);
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(where, error.what());
+  }
+  fitted_ = true;
+}
+
+//---- Registry factories ------------------------------------------------------------------------
+
+std::unique_ptr<Classifier> make_linear_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("linear-svm", parameters);
+}
+std::unique_ptr<Classifier> make_quadratic_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("quadratic-svm", parameters);
+}
+std::unique_ptr<Classifier> make_cubic_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("cubic-svm", parameters);
+}
+std::unique_ptr<Classifier> make_fine_gaussian_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("fine-gaussian-svm", parameters);
+}
+std::unique_ptr<Classifier> make_medium_gaussian_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("medium-gaussian-svm", parameters);
+}
+std::unique_ptr<Classifier> make_coarse_gaussian_svm_classifier(const Parameters& parameters) {
+  return std::make_unique<SupportVectorMachine>("coarse-gaussian-svm", parameters);
+}
+
+}  // namespace tactile::ml
