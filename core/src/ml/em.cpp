@@ -467,4 +467,10 @@ void ExpectationMaximization::load(const nlohmann::json& model) {
     throw Error(where, "standardizer and mixture differ in dimension");
 }
 
+//---- registry factory ---------------------------------------------------------------------
+
+std::unique_ptr<Classifier> make_em_classifier(const Parameters& parameters) {
+  return std::make_unique<ExpectationMaximization>(parameters);
+}
+
 }  // namespace tactile::ml

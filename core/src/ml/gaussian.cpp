@@ -295,4 +295,14 @@ void QuadraticDiscriminant::load(const nlohmann::json& model) {
   }
 }
 
+//---- registry factories -------------------------------------------------------------------
+
+std::unique_ptr<Classifier> make_gaussian_ml_classifier(const Parameters& parameters) {
+  return std::make_unique<GaussianMaximumLikelihood>(parameters);
+}
+
+std::unique_ptr<Classifier> make_qda_classifier(const Parameters& parameters) {
+  return std::make_unique<QuadraticDiscriminant>(parameters);
+}
+
 }  // namespace tactile::ml

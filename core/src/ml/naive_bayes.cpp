@@ -266,4 +266,14 @@ void KernelNaiveBayes::load(const nlohmann::json& model) {
   if ((widths_.array() <= 0.0).any()) throw Error(where, "a width is not positive");
 }
 
+//---- registry factories -------------------------------------------------------------------
+
+std::unique_ptr<Classifier> make_gaussian_nb_classifier(const Parameters& parameters) {
+  return std::make_unique<GaussianNaiveBayes>(parameters);
+}
+
+std::unique_ptr<Classifier> make_kernel_nb_classifier(const Parameters& parameters) {
+  return std::make_unique<KernelNaiveBayes>(parameters);
+}
+
 }  // namespace tactile::ml

@@ -104,4 +104,7 @@ class ExpectationMaximization : public Classifier {
   std::vector<int> cluster_classes_;
 };
 
+// Factory for the classifier registry (name -> factory table).
+std::unique_ptr<Classifier> make_em_classifier(const Parameters& parameters);
+
 }  // namespace tactile::ml

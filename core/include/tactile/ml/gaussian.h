@@ -91,4 +91,8 @@ class QuadraticDiscriminant : public Classifier {
   std::vector<GaussianDensity> densities_;
 };
 
+// Factories for the classifier registry (name -> factory table).
+std::unique_ptr<Classifier> make_gaussian_ml_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_qda_classifier(const Parameters& parameters);
+
 }  // namespace tactile::ml

@@ -72,4 +72,8 @@ class KernelNaiveBayes : public Classifier {
 // σ̂ = MAD / 0.6745; 0 when the MAD is 0 (the caller decides the fallback).
 double silverman_width(const Vector& values);
 
+// Factories for the classifier registry (name -> factory table).
+std::unique_ptr<Classifier> make_gaussian_nb_classifier(const Parameters& parameters);
+std::unique_ptr<Classifier> make_kernel_nb_classifier(const Parameters& parameters);
+
 }  // namespace tactile::ml
