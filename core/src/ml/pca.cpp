@@ -1,0 +1,106 @@
+#include "tactile/ml/pca.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "probabilistic_support.h"
+#include "tactile/error.h"
+
+namespace tactile::ml {
+
+void fix_column_signs(Matrix& columns) {
+  for (Eigen::Index column = 0; column < columns.cols(); ++column) {
+    Eigen::Index largest = 0;
+    columns.col(column).cwiseAbs().maxCoeff(&largest);  // first maximum on ties
+    if (columns(largest, column) < 0.0) columns.col(column) = -columns.col(column);
+  }
+}
+
+Pca fit_pca(const Matrix& x, const PcaOptions& options) {
+  const std::string where = "pca";
+  if (x.rows() < 2) throw Error(where, "needs at least 2 samples, got " + std::to_string(x.rows()));
+  if (x.cols() < 1) throw Error(where, "no features");
+  support::check_query_input(x, x.cols(), where);
+  if (options.components < 0 || options.components > x.cols())
+    throw Error(where, "components=" + std::to_string(options.components) + ": expected 0.." +
+                           std::to_string(x.cols()));
+  if (!(options.variance_fraction > 0.0 && options.variance_fraction <= 1.0))
+    throw Error(where, "variance fraction " + support::format_number(options.variance_fraction) +
+                           " is not in (0, 1]");
+
+  Pca pca;
+  if (options.standardize) {
+    pca.standardizer.fit(x);
+  } else {
+    pca.standardizer.mean = x.colwise().mean().transpose();
+    pca.standardizer.scale = Vector::Ones(x.cols());
+  }
+  const Matrix z = pca.standardizer.transform(x);
+  // Spec §6.5: Cz = Zᵀ Z / (N-1), eigenvalues descending.
+  const Matrix covariance = (z.transpose() * z) / static_cast<double>(x.rows() - 1);
+  const Eigen::SelfAdjointEigenSolver<Matrix> solver(covariance);
+  if (solver.info() != Eigen::Success) throw Error(where, "eigendecomposition did not converge");
+  pca.eigenvalues = solver.eigenvalues().reverse().cwiseMax(0.0);
+  pca.loadings = solver.eigenvectors().rowwise().reverse();
+  fix_column_signs(pca.loadings);
+  const double total = pca.eigenvalues.sum();
+  if (!(total > 0.0)) throw Error(where, "every feature is constant: no variance to explain");
+  pca.explained_ratio = pca.eigenvalues / total;
+
+  if (options.components > 0) {
+    pca.kept = options.components;
+  } else {
+    const Vector cumulative = pca.cumulative_ratio();
+    pca.kept = static_cast<int>(cumulative.size());
+    for (Eigen::Index k = 0; k < cumulative.size(); ++k) {
+      if (cumulative(k) >= options.variance_fraction - 1e-12) {
+        pca.kept = static_cast<int>(k + 1);
+        break;
+      }
+    }
+  }
+  return pca;
+}
+
+Vector Pca::cumulative_ratio() const {
+  Vector cumulative(explained_ratio.size());
+  double sum = 0.0;
+  for (Eigen::Index k = 0; k < explained_ratio.size(); ++k)
+    cumulative(k) = sum += explained_ratio(k);
+  return cumulative;
+}
+
+Matrix Pca::transform(const Matrix& x) const {
+  if (kept == 0) throw Error("pca", "not fitted");
+  support::check_query_input(x, loadings.rows(), "pca");
+  return standardizer.transform(x) * loadings.leftCols(kept);
+}
+
+nlohmann::json Pca::save() const {
+  return {{"standardizer", standardizer.save()},
+          {"eigenvalues", support::vector_to_json(eigenvalues)},
+          {"explained_ratio", support::vector_to_json(explained_ratio)},
+          {"loadings", support::matrix_to_json(loadings)},
+          {"kept", kept}};
+}
+
+void Pca::load(const nlohmann::json& model) {
+  const std::string where = "pca model";
+  try {
+    standardizer.load(model.at("standardizer"));
+    eigenvalues = support::vector_from_json(model.at("eigenvalues"), where + " eigenvalues");
+    explained_ratio =
+        support::vector_from_json(model.at("explained_ratio"), where + " explained_ratio");
+    loadings = support::matrix_from_json(model.at("loadings"), where + " loadings");
+    kept = model.at("kept").get<int>();
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(where, error.what());
+  }
+  const Eigen::Index features = standardizer.mean.size();
+  if (loadings.rows() != features || loadings.cols() != features ||
+      eigenvalues.size() != features || explained_ratio.size() != features || kept < 1 ||
+      kept > features)
+    throw Error(where, "shapes do not match " + std::to_string(features) + " features");
+}
+
+}  // namespace tactile::ml

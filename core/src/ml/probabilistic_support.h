@@ -1,0 +1,58 @@
+#pragma once
+// Helpers shared by the probabilistic classifiers (Gaussian ML, QDA, naive Bayes, EM):
+// input checks that name the bad row and column, log-domain normalisation that never
+// yields NaN, and JSON for Eigen vectors and matrices. Private to core/src/ml.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "tactile/ml/classifier.h"
+
+namespace tactile::ml::support {
+
+// Throws tactile::Error (where = `where`) on zero samples, a label count that differs from
+// the row count, a label outside 0..class_count-1, or a NaN / infinite value (naming its
+// row and column).
+void check_training_input(const Matrix& x, const std::vector<int>& y, int class_count,
+                          const std::string& where);
+// Throws tactile::Error when x has not `columns` columns or holds a non-finite value.
+void check_query_input(const Matrix& x, Eigen::Index columns, const std::string& where);
+
+// Row indices of each class, in row order.
+std::vector<std::vector<Eigen::Index>> rows_by_class(const std::vector<int>& y, int class_count);
+// The rows `indices` of x, in that order.
+Matrix select_rows(const Matrix& x, const std::vector<Eigen::Index>& indices);
+
+// log Σ exp(values) of each row, exact for rows holding -infinity entries; a row of only
+// -infinity gives -infinity.
+Vector log_sum_exp_rows(const Matrix& log_values);
+// exp(log_values - row log-sum-exp): each row becomes probabilities that sum to 1, with
+// -infinity entries mapping to 0.
+Matrix normalise_log_rows(const Matrix& log_values);
+
+// Class priors: "empirical" (N_k / N) or "uniform" over the classes present in training.
+Vector class_priors(const std::vector<std::vector<Eigen::Index>>& members, const std::string& mode,
+                    const std::string& where);
+
+// Uniform draw in [0, 1) from the top 53 bits, so results do not depend on the standard
+// library's distribution implementation.
+inline double uniform01(std::mt19937_64& random) {
+  return static_cast<double>(random() >> 11) * 0x1.0p-53;
+}
+
+// Shortest text that reads back as the same double (for parameters()).
+std::string format_number(double value);
+// A parameter that must be > 0 (or >= 0 when `allow_zero`); Error naming the key otherwise.
+double positive_number(const Parameters& parameters, const std::string& key, double fallback,
+                       bool allow_zero = false);
+
+nlohmann::json vector_to_json(const Vector& vector);
+nlohmann::json matrix_to_json(const Matrix& matrix);  // array of rows
+Vector vector_from_json(const nlohmann::json& value, const std::string& where);
+Matrix matrix_from_json(const nlohmann::json& value, const std::string& where);
+
+}  // namespace tactile::ml::support
