@@ -7,9 +7,17 @@
 #include <vector>
 
 #include "tactile/error.h"
+#include "tactile/ml/clafic.h"
 #include "tactile/ml/classifier.h"
+#include "tactile/ml/em.h"
+#include "tactile/ml/gaussian.h"
 #include "tactile/ml/grid_search.h"
 #include "tactile/ml/knn.h"
+#include "tactile/ml/logitboost.h"
+#include "tactile/ml/naive_bayes.h"
+#include "tactile/ml/som.h"
+#include "tactile/ml/svm.h"
+#include "tactile/ml/tree.h"
 
 namespace tactile::ml {
 
@@ -29,6 +37,18 @@ struct ClassifierRow {
 const std::vector<ClassifierRow>& classifier_table() {
   static const std::vector<ClassifierRow> table = {
       // {"name", "one-line description", make_name_classifier},  (include "tactile/ml/family.h")
+      {"linear-svm", "C-SVC, linear kernel, standardised, one-vs-one (c, scale)",
+       make_linear_svm_classifier},
+      {"quadratic-svm", "MATLAB Quadratic SVM: (1+x'z/s^2)^2, scale auto per pair",
+       make_quadratic_svm_classifier},
+      {"cubic-svm", "MATLAB Cubic SVM: (1+x'z/s^2)^3, scale auto per pair",
+       make_cubic_svm_classifier},
+      {"fine-gaussian-svm", "MATLAB Fine Gaussian SVM: s = sqrt(P)/4",
+       make_fine_gaussian_svm_classifier},
+      {"medium-gaussian-svm", "MATLAB Medium Gaussian SVM: s = sqrt(P)",
+       make_medium_gaussian_svm_classifier},
+      {"coarse-gaussian-svm", "MATLAB Coarse Gaussian SVM: s = 4 sqrt(P)",
+       make_coarse_gaussian_svm_classifier},
       {"knn", "k nearest neighbours (k, metric=euclidean|cosine, weights, standardize)",
        make_knn_classifier},
       {"cosine-knn", "MATLAB Cosine KNN: cosine distance, k=10, equal weights, standardised",
@@ -41,6 +61,26 @@ const std::vector<ClassifierRow>& classifier_table() {
        "hyper-parameter grid by inner CV on the training fold: base=knn,k=1|3|5,inner=kfold:3",
        make_grid_search_classifier},
       {"grid", "short name of grid-search", make_grid_search_classifier},
+      {"tree", "CART, Gini, max_splits=100 (MATLAB Fine Tree)", make_tree_classifier},
+      {"medium-tree", "CART, Gini, max_splits=20 (MATLAB Medium Tree)",
+       make_medium_tree_classifier},
+      {"logitboost", "LogitBoost with stumps (learners=10, learning_rate=1; Weka defaults)",
+       make_logitboost_classifier},
+      {"gaussian-ml",
+       "Gaussian maximum likelihood, full covariance per class, equal priors (smart fur)",
+       make_gaussian_ml_classifier},
+      {"gaussian-nb", "MATLAB Gaussian Naive Bayes (var_smoothing, priors)",
+       make_gaussian_nb_classifier},
+      {"kernel-nb", "MATLAB Kernel Naive Bayes: normal kernel, unbounded support, Silverman width",
+       make_kernel_nb_classifier},
+      {"qda", "MATLAB Quadratic Discriminant, regularised when singular (ridge, priors)",
+       make_qda_classifier},
+      {"clafic",
+       "CLAFIC subspace method: c1 subspace size, c2 sensor banks, tau fidelity -> unknown",
+       make_clafic_classifier},
+      {"som", "Kohonen SOM (7x7) with neuron-to-class regions; rows, columns, epochs, schedules",
+       make_som_classifier},
+      {"em", "EM Gaussian mixture, clusters mapped to classes (Kaboli Fig. 4)", make_em_classifier},
   };
   return table;
 }
