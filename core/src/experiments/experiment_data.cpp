@@ -1,5 +1,6 @@
 #include "experiment_data.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -8,6 +9,7 @@
 #include "tactile/features/corpus.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/label_store.h"
+#include "tactile/layout/skin_layout.h"
 #include "tactile/sim/workspace.h"
 
 namespace tactile::experiments {
@@ -22,7 +24,8 @@ Dataset experiment_dataset(const ExperimentOptions& options, const std::string& 
   std::filesystem::path folder;
   if (options.data_dir.empty()) {
     if (options.work_dir.empty())
-      throw Error("work folder", "an experiment without --data needs a work folder to simulate into");
+      throw Error("work folder",
+                  "an experiment without --data needs a work folder to simulate into");
     folder = std::filesystem::path(options.work_dir) / skin;
     write_simulation(folder.string(), skin, simulation, [&options](int done, int total) {
       report_progress(options, "simulate", done, total);
@@ -74,10 +77,57 @@ std::vector<int> class_indices(const Dataset& dataset, const std::vector<std::st
   labels.reserve(dataset.classes.size());
   for (const std::string& name : dataset.classes) {
     const auto found = index.find(name);
-    if (found == index.end()) throw Error("dataset", "class '" + name + "' is not in the class list");
+    if (found == index.end())
+      throw Error("dataset", "class '" + name + "' is not in the class list");
     labels.push_back(found->second);
   }
   return labels;
+}
+
+std::vector<std::string> ordered_classes(const Dataset& dataset, const std::string& skin) {
+  const std::vector<std::string> present = dataset.class_names();
+  std::vector<std::string> ordered;
+  for (const std::string& name : load_layout(skin).classes)
+    if (std::find(present.begin(), present.end(), name) != present.end()) ordered.push_back(name);
+  for (const std::string& name : present)
+    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end()) ordered.push_back(name);
+  return ordered;
+}
+
+Eigen::MatrixXi cross_validate(const Eigen::MatrixXd& x, const std::vector<int>& labels,
+                               int class_count, const std::vector<ml::Fold>& folds,
+                               const std::string& specification, uint64_t seed,
+                               const ml::PcaOptions* pca,
+                               const std::function<void(int done, int total)>& progress) {
+  Eigen::MatrixXi confusion = Eigen::MatrixXi::Zero(class_count, class_count + 1);
+  for (size_t fold = 0; fold < folds.size(); ++fold) {
+    const std::vector<int64_t>& train = folds[fold].train;
+    const std::vector<int64_t>& test = folds[fold].test;
+    Eigen::MatrixXd train_x(static_cast<Eigen::Index>(train.size()), x.cols());
+    Eigen::MatrixXd test_x(static_cast<Eigen::Index>(test.size()), x.cols());
+    std::vector<int> train_y;
+    for (size_t row = 0; row < train.size(); ++row) {
+      train_x.row(static_cast<Eigen::Index>(row)) = x.row(train[row]);
+      train_y.push_back(labels[static_cast<size_t>(train[row])]);
+    }
+    for (size_t row = 0; row < test.size(); ++row)
+      test_x.row(static_cast<Eigen::Index>(row)) = x.row(test[row]);
+    if (pca) {
+      const ml::Pca projection = ml::fit_pca(train_x, *pca);
+      train_x = projection.transform(train_x);
+      test_x = projection.transform(test_x);
+    }
+    auto classifier = ml::make_classifier(specification);
+    classifier->fit(train_x, train_y, class_count, seed + fold);
+    const std::vector<int> predicted = classifier->predict(test_x);
+    for (size_t row = 0; row < test.size(); ++row) {
+      const int truth = labels[static_cast<size_t>(test[row])];
+      const int answer = predicted[row] == ml::kUnknownClass ? class_count : predicted[row];
+      ++confusion(truth, answer);
+    }
+    if (progress) progress(static_cast<int>(fold + 1), static_cast<int>(folds.size()));
+  }
+  return confusion;
 }
 
 std::string percent_text(double fraction) {

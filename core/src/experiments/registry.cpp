@@ -6,6 +6,7 @@
 
 #include "tactile/error.h"
 #include "tactile/experiments/experiment.h"
+#include "tactile/experiments/tsa.h"
 
 namespace tactile::experiments {
 
@@ -13,7 +14,9 @@ namespace {
 
 // In the order `experiment_names` lists them; each paper's engineer adds their lines here.
 const std::vector<std::pair<std::string, ExperimentRunner>>& runner_table() {
-  static const std::vector<std::pair<std::string, ExperimentRunner>> table = {};
+  static const std::vector<std::pair<std::string, ExperimentRunner>> table = {
+      {"tsa-classifiers", run_tsa_classifiers},
+  };
   return table;
 }
 
