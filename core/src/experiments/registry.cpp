@@ -6,6 +6,7 @@
 
 #include "tactile/error.h"
 #include "tactile/experiments/experiment.h"
+#include "tactile/experiments/fur.h"
 #include "tactile/experiments/tsa.h"
 
 namespace tactile::experiments {
@@ -16,6 +17,7 @@ namespace {
 const std::vector<std::pair<std::string, ExperimentRunner>>& runner_table() {
   static const std::vector<std::pair<std::string, ExperimentRunner>> table = {
       {"tsa-classifiers", run_tsa_classifiers},
+      {"fur-ml", run_fur_ml},
   };
   return table;
 }
