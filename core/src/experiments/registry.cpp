@@ -7,6 +7,7 @@
 #include "tactile/error.h"
 #include "tactile/experiments/experiment.h"
 #include "tactile/experiments/fur.h"
+#include "tactile/experiments/robovie.h"
 #include "tactile/experiments/tsa.h"
 
 namespace tactile::experiments {
@@ -18,6 +19,7 @@ const std::vector<std::pair<std::string, ExperimentRunner>>& runner_table() {
   static const std::vector<std::pair<std::string, ExperimentRunner>> table = {
       {"tsa-classifiers", run_tsa_classifiers},
       {"fur-ml", run_fur_ml},
+      {"robovie-clafic", run_robovie_clafic},
   };
   return table;
 }
