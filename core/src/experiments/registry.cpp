@@ -6,6 +6,7 @@
 
 #include "tactile/error.h"
 #include "tactile/experiments/experiment.h"
+#include "tactile/experiments/flux.h"
 #include "tactile/experiments/fur.h"
 #include "tactile/experiments/robovie.h"
 #include "tactile/experiments/tsa.h"
@@ -20,6 +21,7 @@ const std::vector<std::pair<std::string, ExperimentRunner>>& runner_table() {
       {"tsa-classifiers", run_tsa_classifiers},
       {"fur-ml", run_fur_ml},
       {"robovie-clafic", run_robovie_clafic},
+      {"flux-som", run_flux_som},
   };
   return table;
 }
