@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   tactile::cli::register_stream_sim(app);
   tactile::cli::register_stream_listen(app);
   tactile::cli::register_evaluate(app);
+  tactile::cli::register_experiment(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -12,10 +12,10 @@
 namespace tactile::experiments {
 
 struct ExperimentOptions {
-  std::string data_dir;   // recordings + labels.db of the skin; empty: simulate into work_dir
-  std::string work_dir;   // where simulated data and intermediate files go (created)
+  std::string data_dir;  // recordings + labels.db of the skin; empty: simulate into work_dir
+  std::string work_dir;  // where simulated data and intermediate files go (created)
   uint64_t seed = 1;
-  bool quick = false;     // fewer subjects/repetitions, for tests and smoke runs
+  bool quick = false;  // fewer subjects/repetitions, for tests and smoke runs
   std::function<void(const std::string& stage, int done, int total)> progress;
 };
 
@@ -32,7 +32,8 @@ struct ExperimentReport {
   std::string name;   // "kaboli-location"
   std::string paper;  // "Kaboli et al., Table 5"
   std::vector<ReportTable> tables;
-  nlohmann::json json;  // machine-readable: at least {"accuracy": ..., "paper_accuracy": ...} per table
+  nlohmann::json
+      json;  // machine-readable: at least {"accuracy": ..., "paper_accuracy": ...} per table
 };
 
 using ExperimentRunner = std::function<ExperimentReport(const ExperimentOptions&)>;
