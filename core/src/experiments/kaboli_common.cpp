@@ -35,11 +35,21 @@ struct SetDesign {
 SetDesign design_of(Set set) {
   switch (set) {
     case Set::kBackStationary:
-      return {"back-stationary", "side=back,condition=stationary", "back", "stationary", false, 3,
+      return {"back-stationary",
+              "side=back,condition=stationary",
+              "back",
+              "stationary",
+              false,
+              3,
               "train"};
     case Set::kFrontStationary:
-      return {"front-stationary", "side=front,condition=stationary", "front", "stationary", false,
-              4, "test"};
+      return {"front-stationary",
+              "side=front,condition=stationary",
+              "front",
+              "stationary",
+              false,
+              4,
+              "test"};
     case Set::kBackMoving:
       return {"back-moving", "side=back,condition=moving", "back", "moving", false, 3, "train"};
     case Set::kFrontMoving:
@@ -111,10 +121,9 @@ void Corpus::report(const std::string& stage, int done, int total) const {
 
 Corpus::Source& Corpus::source(Set set) {
   const SetDesign design = design_of(set);
-  const std::string folder =
-      options_.data_dir.empty()
-          ? (std::filesystem::path(options_.work_dir) / design.name).string()
-          : options_.data_dir;
+  const std::string folder = options_.data_dir.empty()
+                                 ? (std::filesystem::path(options_.work_dir) / design.name).string()
+                                 : options_.data_dir;
   auto found = sources_.find(folder);
   if (found != sources_.end()) return found->second;
 
@@ -156,8 +165,7 @@ Corpus::Source& Corpus::source(Set set) {
     // Segment as a person would see the stream (spec §1.1: proximity window), then name each
     // segment by the ground truth only to score it.
     recording.segments = segment_recording("proximity", data, layout);
-    for (Label& segment : recording.segments)
-      segment.class_name = class_on_region(segment, labels);
+    for (Label& segment : recording.segments) segment.class_name = class_on_region(segment, labels);
     recording.ground_truth = labels;
     source.recordings.push_back(std::move(recording));
     report(std::string("segment ") + design.name, ++done, static_cast<int>(truth.size()));
@@ -191,8 +199,8 @@ Dataset Corpus::dataset(Set set, const std::string& pipeline) {
         kClasses.end())
       touches.push_back(row);
   if (touches.empty())
-    throw Error(data.folder, std::string("no segment of set ") + design.name +
-                                 " overlaps a ground-truth touch");
+    throw Error(data.folder,
+                std::string("no segment of set ") + design.name + " overlaps a ground-truth touch");
   set_notes_[design.name] = std::string(design.name) + ": " + std::to_string(touches.size()) +
                             " segments from " + data.folder + " (" +
                             std::to_string(rows.size() - touches.size()) +
@@ -204,8 +212,9 @@ std::string Corpus::notes() const {
   std::string text;
   for (const auto& [name, note] : set_notes_) text += (text.empty() ? "" : "; ") + note;
   if (options_.data_dir.empty())
-    text += std::string("; simulated NAO skin (") + (options_.quick ? "quick: 2 subjects" : "6 subjects") +
-            " per set, seed " + std::to_string(options_.seed) + ")";
+    text += std::string("; simulated NAO skin (") +
+            (options_.quick ? "quick: 2 subjects" : "6 subjects") + " per set, seed " +
+            std::to_string(options_.seed) + ")";
   return text;
 }
 
@@ -293,7 +302,8 @@ nlohmann::json confusion_json(const std::string& title, const Scored& ours,
   nlohmann::json confusion = nlohmann::json::array(), paper_confusion = nlohmann::json::array();
   for (int row = 0; row < kClassCount; ++row) {
     std::vector<int> cells;
-    for (int column = 0; column <= kClassCount; ++column) cells.push_back(ours.confusion(row, column));
+    for (int column = 0; column <= kClassCount; ++column)
+      cells.push_back(ours.confusion(row, column));
     confusion.push_back(cells);
     paper_confusion.push_back(paper[static_cast<size_t>(row)]);
   }

@@ -43,9 +43,9 @@ class Corpus {
   void report(const std::string& stage, int done, int total) const;
 
   ExperimentOptions options_;
-  std::map<std::string, Source> sources_;          // by folder
-  std::map<std::string, Dataset> datasets_;        // by folder + pipeline
-  std::map<std::string, std::string> set_notes_;   // by set name
+  std::map<std::string, Source> sources_;         // by folder
+  std::map<std::string, Dataset> datasets_;       // by folder + pipeline
+  std::map<std::string, std::string> set_notes_;  // by set name
 };
 
 struct Scored {

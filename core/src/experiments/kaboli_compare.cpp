@@ -63,9 +63,11 @@ ExperimentReport run_kaboli_compare(const ExperimentOptions& options) {
     }
     table.rows.push_back(std::move(row));
   }
-  table.note = "'-': not run in the paper. K-NN k = 1 on standardised features, tree = CART "
-               "(Gini, 100 splits) in place of Weka's C4.5, LogitBoost 10 stumps, SVM as in "
-               "Table 5. " + corpus.notes();
+  table.note =
+      "'-': not run in the paper. K-NN k = 1 on standardised features, tree = CART "
+      "(Gini, 100 splits) in place of Weka's C4.5, LogitBoost 10 stumps, SVM as in "
+      "Table 5. " +
+      corpus.notes();
   report.tables.push_back(std::move(table));
   report.json["tables"] = tables;
   // The headline pair: the proposed descriptor with the SVM (the paper's 96.75 %).
