@@ -137,6 +137,9 @@ Corpus::Source& Corpus::source(Set set) {
     simulation.side = design.side;
     simulation.repetitions = options_.quick ? 2 : design.repetitions;
     const std::string stage = std::string("simulate ") + design.name;
+    // The set's folder belongs to the experiment: clear what an earlier run (perhaps with more
+    // subjects) left there, so its recordings never mix into this one.
+    std::filesystem::remove_all(folder);
     write_simulation(folder, "nao", simulation,
                      [&](int done, int total) { report(stage, done, total); });
   }

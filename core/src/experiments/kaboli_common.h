@@ -23,7 +23,9 @@ using PaperMatrix = std::array<std::array<int, kClassCount>, kClassCount>;
 enum class Set { kBackStationary, kFrontStationary, kBackMoving, kFrontMoving, kMultiTouch };
 std::string set_name(Set set);
 
-// The recordings of each set, segmented once, and their feature datasets per pipeline.
+// The recordings of each set, segmented once, and their feature datasets per pipeline. Without
+// a data folder each set is simulated afresh into work_dir/<set name> (e.g. back-stationary),
+// replacing what that folder held.
 class Corpus {
  public:
   explicit Corpus(const ExperimentOptions& options);
