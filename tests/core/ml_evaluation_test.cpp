@@ -61,6 +61,16 @@ TEST(Protocol, BadSpecificationsNameTheProtocolOption) {
   }
 }
 
+TEST(Protocol, MissingFoldCountSaysWhatFormIsExpected) {
+  try {
+    Protocol::parse("kfold:x");
+    FAIL();
+  } catch (const Error& error) {
+    EXPECT_NE(error.message().find("expected kfold:K or kfold:KxR"), std::string::npos)
+        << error.what();
+  }
+}
+
 //---- Folds
 
 TEST(Folds, StratifiedKFoldCoversEveryRowOncePerRepetitionWithBalancedClasses) {

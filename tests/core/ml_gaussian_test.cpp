@@ -122,7 +122,7 @@ TEST(GaussianMaximumLikelihood, BadInputNamesWhatAndWhere) {
     FAIL() << "NaN accepted";
   } catch (const Error& error) {
     EXPECT_EQ(error.where(), "gaussian-ml");
-    EXPECT_NE(error.message().find("row 2 feature 1"), std::string::npos) << error.what();
+    EXPECT_NE(error.message().find("row 2, feature 1"), std::string::npos) << error.what();
   }
   EXPECT_THROW(classifier.fit(Matrix(0, 2), {}, 2, 0), Error);
   EXPECT_THROW(classifier.fit(x, std::vector<int>(9, 2), 2, 0), Error);  // label out of range

@@ -302,7 +302,7 @@ TEST(SupportVectorMachine, NotANumberInTrainingOrTestDataNamesTheRow) {
     svm.fit(train.x, train.y, 3, 1);
     FAIL() << "NaN accepted";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("row 13 column 1"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("row 13, feature 1"), std::string::npos) << error.what();
   }
   train.x(13, 1) = 0.0;
   svm.fit(train.x, train.y, 3, 1);

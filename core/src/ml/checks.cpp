@@ -13,7 +13,7 @@ void check_finite(const Matrix& x, const std::string& where) {
   for (Eigen::Index column = 0; column < x.cols(); ++column)
     for (Eigen::Index row = 0; row < x.rows(); ++row)
       if (!std::isfinite(x(row, column)))
-        throw Error(where, "sample " + std::to_string(row) + ", feature " + std::to_string(column) +
+        throw Error(where, "row " + std::to_string(row) + ", feature " + std::to_string(column) +
                                " is not a finite number");
 }
 
@@ -29,7 +29,7 @@ void check_training_set(const Matrix& x, const std::vector<int>& y, int class_co
                 std::to_string(x.rows()) + " samples but " + std::to_string(y.size()) + " labels");
   for (size_t row = 0; row < y.size(); ++row)
     if (y[row] < 0 || y[row] >= class_count)
-      throw Error(where, "sample " + std::to_string(row) + " has class " + std::to_string(y[row]) +
+      throw Error(where, "row " + std::to_string(row) + " has class " + std::to_string(y[row]) +
                              ", outside 0.." + std::to_string(class_count - 1));
   check_finite(x, where);
 }
@@ -39,6 +39,10 @@ void check_query(const Matrix& x, Eigen::Index features, const std::string& wher
     throw Error(where, "expected " + std::to_string(features) + " features, got " +
                            std::to_string(x.cols()));
   check_finite(x, where);
+}
+
+void check_fitted(bool fitted, const std::string& where) {
+  if (!fitted) throw Error(where, "scores asked before fit() or load()");
 }
 
 }  // namespace tactile::ml

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "input_checks.h"
 #include "model_json.h"
 #include "tactile/error.h"
+#include "tactile/ml/checks.h"
 
 namespace tactile::ml {
 
@@ -216,7 +216,7 @@ Parameters ClaficClassifier::parameters() const {
 // CLAFIC is deterministic: the seed is not used.
 void ClaficClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                            uint64_t /*seed*/) {
-  input_checks::require_training_data(kWhere, x, y, class_count);
+  check_training_set(x, y, class_count, kWhere);
   if (dimension_overrides_.size() > 1 &&
       dimension_overrides_.size() != static_cast<size_t>(class_count))
     throw Error(kWhere, "dimensions lists " + std::to_string(dimension_overrides_.size()) +
@@ -238,7 +238,8 @@ void ClaficClassifier::fit(const Matrix& x, const std::vector<int>& y, int class
 }
 
 Matrix ClaficClassifier::discrimination(const Matrix& x) const {
-  input_checks::require_query(kWhere, x, feature_count_, !subspaces_.empty());
+  check_fitted(!subspaces_.empty(), kWhere);
+  check_query(x, feature_count_, kWhere);
   Matrix values(x.rows(), static_cast<Eigen::Index>(subspaces_.size()));
   for (size_t k = 0; k < subspaces_.size(); ++k)
     values.col(static_cast<Eigen::Index>(k)) = clafic_discrimination(x, subspaces_[k].bank_basis);

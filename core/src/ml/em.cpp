@@ -217,7 +217,7 @@ GaussianMixture fit_gaussian_mixture(const Matrix& x, const MixtureOptions& opti
                                      uint64_t seed) {
   check_options(options);
   if (x.rows() == 0) throw Error("em", "no samples");
-  support::check_query_input(x, x.cols(), "em");
+  check_query(x, x.cols(), "em");
   if (x.rows() < options.components)
     throw Error("em", std::to_string(x.rows()) + " samples cannot fill " +
                           std::to_string(options.components) + " clusters");
@@ -399,7 +399,7 @@ Parameters ExpectationMaximization::parameters() const {
 
 void ExpectationMaximization::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                   uint64_t seed) {
-  support::check_training_input(x, y, class_count, name());
+  check_training_set(x, y, class_count, name());
   class_count_ = class_count;
   standardizer_ = Standardizer{};
   if (standardize_) {
@@ -418,7 +418,7 @@ void ExpectationMaximization::fit(const Matrix& x, const std::vector<int>& y, in
 
 Matrix ExpectationMaximization::scores(const Matrix& x) const {
   if (mixture_.components() == 0) throw Error(name(), "not fitted");
-  support::check_query_input(x, standardizer_.mean.size(), name());
+  check_query(x, standardizer_.mean.size(), name());
   const Matrix responsibilities = mixture_.responsibilities(standardizer_.transform(x));
   Matrix membership = Matrix::Zero(mixture_.components(), class_count_);
   for (size_t cluster = 0; cluster < cluster_classes_.size(); ++cluster)
@@ -429,7 +429,7 @@ Matrix ExpectationMaximization::scores(const Matrix& x) const {
 
 std::vector<int> ExpectationMaximization::predict(const Matrix& x) const {
   if (mixture_.components() == 0) throw Error(name(), "not fitted");
-  support::check_query_input(x, standardizer_.mean.size(), name());
+  check_query(x, standardizer_.mean.size(), name());
   std::vector<int> classes = mixture_.assign(standardizer_.transform(x));
   for (int& value : classes) value = cluster_classes_[static_cast<size_t>(value)];
   return classes;

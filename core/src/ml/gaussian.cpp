@@ -106,7 +106,7 @@ Parameters GaussianMaximumLikelihood::parameters() const {
 
 void GaussianMaximumLikelihood::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                     uint64_t /*seed: the fit is deterministic*/) {
-  support::check_training_input(x, y, class_count, name());
+  check_training_set(x, y, class_count, name());
   const auto members = support::rows_by_class(y, class_count);
   const double small_class_ridge = ridge_factor_ * std::max(mean_global_variance(x), 1e-12);
   dimension_ = x.cols();
@@ -132,7 +132,7 @@ void GaussianMaximumLikelihood::fit(const Matrix& x, const std::vector<int>& y, 
 
 Matrix GaussianMaximumLikelihood::log_likelihoods(const Matrix& x) const {
   if (densities_.empty()) throw Error(name(), "not fitted");
-  support::check_query_input(x, dimension_, name());
+  check_query(x, dimension_, name());
   Matrix result(x.rows(), static_cast<Eigen::Index>(densities_.size()));
   for (size_t k = 0; k < densities_.size(); ++k)
     result.col(static_cast<Eigen::Index>(k)) =
@@ -198,7 +198,7 @@ Parameters QuadraticDiscriminant::parameters() const {
 
 void QuadraticDiscriminant::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                 uint64_t /*seed: the fit is deterministic*/) {
-  support::check_training_input(x, y, class_count, name());
+  check_training_set(x, y, class_count, name());
   const auto members = support::rows_by_class(y, class_count);
   priors_ = support::class_priors(members, priors_mode_, name());
   const Eigen::Index dimension = x.cols();
@@ -243,7 +243,7 @@ void QuadraticDiscriminant::fit(const Matrix& x, const std::vector<int>& y, int 
 
 Matrix QuadraticDiscriminant::scores(const Matrix& x) const {
   if (densities_.empty()) throw Error(name(), "not fitted");
-  support::check_query_input(x, dimension_, name());
+  check_query(x, dimension_, name());
   Matrix log_posterior(x.rows(), static_cast<Eigen::Index>(densities_.size()));
   for (size_t k = 0; k < densities_.size(); ++k) {
     const double prior = priors_(static_cast<Eigen::Index>(k));

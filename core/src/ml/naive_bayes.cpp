@@ -85,7 +85,7 @@ Parameters GaussianNaiveBayes::parameters() const {
 
 void GaussianNaiveBayes::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                              uint64_t /*seed: the fit is deterministic*/) {
-  support::check_training_input(x, y, class_count, name());
+  check_training_set(x, y, class_count, name());
   const auto members = support::rows_by_class(y, class_count);
   priors_ = support::class_priors(members, priors_mode_, name());
   const Eigen::Index dimension = x.cols();
@@ -122,7 +122,7 @@ void GaussianNaiveBayes::fit(const Matrix& x, const std::vector<int>& y, int cla
 
 Matrix GaussianNaiveBayes::scores(const Matrix& x) const {
   if (priors_.size() == 0) throw Error(name(), "not fitted");
-  support::check_query_input(x, means_.cols(), name());
+  check_query(x, means_.cols(), name());
   Matrix log_likelihood(x.rows(), priors_.size());
   for (Eigen::Index k = 0; k < priors_.size(); ++k) {
     // Σ_j ln N(x_j; μ_kj, σ²_kj) = -½ Σ_j [ln 2π σ²_kj + (x_j - μ_kj)² / σ²_kj].
@@ -178,7 +178,7 @@ Parameters KernelNaiveBayes::parameters() const {
 
 void KernelNaiveBayes::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                            uint64_t /*seed: the fit is deterministic*/) {
-  support::check_training_input(x, y, class_count, name());
+  check_training_set(x, y, class_count, name());
   const auto members = support::rows_by_class(y, class_count);
   priors_ = support::class_priors(members, priors_mode_, name());
   dimension_ = x.cols();
@@ -204,7 +204,7 @@ void KernelNaiveBayes::fit(const Matrix& x, const std::vector<int>& y, int class
 
 Matrix KernelNaiveBayes::scores(const Matrix& x) const {
   if (priors_.size() == 0) throw Error(name(), "not fitted");
-  support::check_query_input(x, dimension_, name());
+  check_query(x, dimension_, name());
   Matrix log_likelihood = Matrix::Zero(x.rows(), priors_.size());
   for (Eigen::Index k = 0; k < priors_.size(); ++k) {
     const Matrix& members = samples_[static_cast<size_t>(k)];

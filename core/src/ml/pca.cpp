@@ -20,7 +20,7 @@ Pca fit_pca(const Matrix& x, const PcaOptions& options) {
   const std::string where = "pca";
   if (x.rows() < 2) throw Error(where, "needs at least 2 samples, got " + std::to_string(x.rows()));
   if (x.cols() < 1) throw Error(where, "no features");
-  support::check_query_input(x, x.cols(), where);
+  check_query(x, x.cols(), where);
   if (options.components < 0 || options.components > x.cols())
     throw Error(where, "components=" + std::to_string(options.components) + ": expected 0.." +
                            std::to_string(x.cols()));
@@ -72,7 +72,7 @@ Vector Pca::cumulative_ratio() const {
 
 Matrix Pca::transform(const Matrix& x) const {
   if (kept == 0) throw Error("pca", "not fitted");
-  support::check_query_input(x, loadings.rows(), "pca");
+  check_query(x, loadings.rows(), "pca");
   return standardizer.transform(x) * loadings.leftCols(kept);
 }
 

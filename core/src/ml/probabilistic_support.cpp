@@ -8,41 +8,6 @@
 
 namespace tactile::ml::support {
 
-namespace {
-
-void check_finite(const Matrix& x, const std::string& where) {
-  if (x.allFinite()) return;
-  for (Eigen::Index column = 0; column < x.cols(); ++column)
-    for (Eigen::Index row = 0; row < x.rows(); ++row)
-      if (!std::isfinite(x(row, column)))
-        throw Error(where, "row " + std::to_string(row) + " feature " + std::to_string(column) +
-                               " is not a finite number");
-}
-
-}  // namespace
-
-void check_training_input(const Matrix& x, const std::vector<int>& y, int class_count,
-                          const std::string& where) {
-  if (x.rows() == 0) throw Error(where, "no training samples");
-  if (x.cols() == 0) throw Error(where, "no features");
-  if (static_cast<Eigen::Index>(y.size()) != x.rows())
-    throw Error(where, std::to_string(x.rows()) + " training rows but " + std::to_string(y.size()) +
-                           " labels");
-  if (class_count < 1) throw Error(where, "class count must be at least 1");
-  for (size_t row = 0; row < y.size(); ++row)
-    if (y[row] < 0 || y[row] >= class_count)
-      throw Error(where, "row " + std::to_string(row) + " has class " + std::to_string(y[row]) +
-                             ", expected 0.." + std::to_string(class_count - 1));
-  check_finite(x, where);
-}
-
-void check_query_input(const Matrix& x, Eigen::Index columns, const std::string& where) {
-  if (x.cols() != columns)
-    throw Error(where, "expected " + std::to_string(columns) + " features, got " +
-                           std::to_string(x.cols()));
-  check_finite(x, where);
-}
-
 std::vector<std::vector<Eigen::Index>> rows_by_class(const std::vector<int>& y, int class_count) {
   std::vector<std::vector<Eigen::Index>> members(static_cast<size_t>(class_count));
   for (size_t row = 0; row < y.size(); ++row)

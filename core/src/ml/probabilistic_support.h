@@ -10,17 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "tactile/ml/checks.h"
 #include "tactile/ml/classifier.h"
 
 namespace tactile::ml::support {
-
-// Throws tactile::Error (where = `where`) on zero samples, a label count that differs from
-// the row count, a label outside 0..class_count-1, or a NaN / infinite value (naming its
-// row and column).
-void check_training_input(const Matrix& x, const std::vector<int>& y, int class_count,
-                          const std::string& where);
-// Throws tactile::Error when x has not `columns` columns or holds a non-finite value.
-void check_query_input(const Matrix& x, Eigen::Index columns, const std::string& where);
 
 // Row indices of each class, in row order.
 std::vector<std::vector<Eigen::Index>> rows_by_class(const std::vector<int>& y, int class_count);

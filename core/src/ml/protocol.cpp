@@ -113,6 +113,9 @@ Protocol Protocol::parse(const std::string& text) {
   if (kind == "kfold") {
     if (!has_argument) throw Error(kWhere, "'" + text + "': expected kfold:K or kfold:KxR");
     const auto [folds, repetitions] = split_times(argument);
+    if (folds.empty() || repetitions.empty())
+      throw Error(kWhere,
+                  "'" + text + "': expected kfold:K or kfold:KxR, e.g. kfold:10 or kfold:5x10");
     protocol.kind = Kind::kKFold;
     const int64_t k = parse_whole(folds, text, "the fold count");
     const int64_t r = parse_whole(repetitions, text, "the repetition count");

@@ -5,9 +5,9 @@
 #include <limits>
 #include <numeric>
 
-#include "input_checks.h"
 #include "model_json.h"
 #include "tactile/error.h"
+#include "tactile/ml/checks.h"
 #include "tactile/sim/sim_util.h"
 
 namespace tactile::ml {
@@ -145,7 +145,7 @@ Matrix SomClassifier::scale(const Matrix& x) const {
 
 void SomClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                         uint64_t seed) {
-  input_checks::require_training_data(kWhere, x, y, class_count);
+  check_training_set(x, y, class_count, kWhere);
   minimum_ = x.colwise().minCoeff().transpose();
   range_ = x.colwise().maxCoeff().transpose() - minimum_;
   class_count_ = class_count;
@@ -242,7 +242,8 @@ void SomClassifier::label_neurons(const Matrix& scaled, const std::vector<int>& 
 }
 
 Matrix SomClassifier::scores(const Matrix& x) const {
-  input_checks::require_query(kWhere, x, minimum_.size(), !map_.hits.empty());
+  check_fitted(!map_.hits.empty(), kWhere);
+  check_query(x, minimum_.size(), kWhere);
   const Matrix scaled = scale(x);
   Matrix values = Matrix::Constant(x.rows(), class_count_, std::numeric_limits<double>::lowest());
   for (Eigen::Index row = 0; row < scaled.rows(); ++row) {
@@ -258,7 +259,8 @@ Matrix SomClassifier::scores(const Matrix& x) const {
 
 // Spec §5.12: the winner's label.
 std::vector<int> SomClassifier::predict(const Matrix& x) const {
-  input_checks::require_query(kWhere, x, minimum_.size(), !map_.hits.empty());
+  check_fitted(!map_.hits.empty(), kWhere);
+  check_query(x, minimum_.size(), kWhere);
   const Matrix scaled = scale(x);
   std::vector<int> classes(static_cast<size_t>(x.rows()));
   for (Eigen::Index row = 0; row < scaled.rows(); ++row)

@@ -15,5 +15,7 @@ void check_training_set(const Matrix& x, const std::vector<int>& y, int class_co
                         const std::string& where);
 // Throws tactile::Error(where, ...) unless x has `features` columns and only finite values.
 void check_query(const Matrix& x, Eigen::Index features, const std::string& where);
+// Throws tactile::Error(where, ...) when scores are asked of a classifier never fitted or loaded.
+void check_fitted(bool fitted, const std::string& where);
 
 }  // namespace tactile::ml
