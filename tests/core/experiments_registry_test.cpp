@@ -9,9 +9,12 @@
 namespace tactile::test {
 namespace {
 
-TEST(ExperimentRegistry, ListsTheFourNonKaboliExperiments) {
+TEST(ExperimentRegistry, ListsEveryPapersExperiment) {
   const std::vector<std::string> names = experiments::experiment_names();
-  for (const char* name : {"tsa-classifiers", "fur-ml", "robovie-clafic", "flux-som"})
+  EXPECT_EQ(names.size(), 9u);
+  for (const char* name :
+       {"kaboli-location", "kaboli-motion", "kaboli-multitouch", "kaboli-em", "kaboli-compare",
+        "tsa-classifiers", "fur-ml", "robovie-clafic", "flux-som"})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
 }
 

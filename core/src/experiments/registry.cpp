@@ -8,6 +8,7 @@
 #include "tactile/experiments/experiment.h"
 #include "tactile/experiments/flux.h"
 #include "tactile/experiments/fur.h"
+#include "tactile/experiments/kaboli.h"
 #include "tactile/experiments/robovie.h"
 #include "tactile/experiments/tsa.h"
 
@@ -18,6 +19,11 @@ namespace {
 // In the order `experiment_names` lists them; each paper's engineer adds their lines here.
 const std::vector<std::pair<std::string, ExperimentRunner>>& runner_table() {
   static const std::vector<std::pair<std::string, ExperimentRunner>> table = {
+      {"kaboli-location", run_kaboli_location},
+      {"kaboli-motion", run_kaboli_motion},
+      {"kaboli-multitouch", run_kaboli_multitouch},
+      {"kaboli-em", run_kaboli_em},
+      {"kaboli-compare", run_kaboli_compare},
       {"tsa-classifiers", run_tsa_classifiers},
       {"fur-ml", run_fur_ml},
       {"robovie-clafic", run_robovie_clafic},
