@@ -107,6 +107,14 @@ Matrix with_feature_ridge(const Matrix& covariance, const Vector& all_rows_varia
   return ridged;
 }
 
+// The ridge is in the matrix. The scalar only grows (x10) if rounding defeats Cholesky, and
+// starts far below the smallest variance so that it does not bring the units back.
+void set_with_feature_ridge(GaussianDensity& density, const Vector& mean, const Matrix& covariance,
+                            const Vector& all_rows_variance, double factor) {
+  const Matrix ridged = with_feature_ridge(covariance, all_rows_variance, factor);
+  density.set(mean, ridged, 1e-12 * ridged.diagonal().minCoeff());
+}
+
 //---- gaussian-ml (spec §3.6) --------------------------------------------------------------
 
 GaussianMaximumLikelihood::GaussianMaximumLikelihood(const Parameters& parameters) {
@@ -250,13 +258,10 @@ void QuadraticDiscriminant::fit(const Matrix& x, const std::vector<int>& y, int 
       const Matrix samples = support::select_rows(x, rows);
       const Matrix covariance =
           scatter_covariance(samples, mean, static_cast<double>(rows.size()) - 1.0);
-      // The ridge is in the matrix; the scalar only grows (x10) if rounding defeats Cholesky.
-      density.set(mean, with_feature_ridge(covariance, all_rows_variance, ridge_factor_),
-                  1e-6 * relative_ridge(covariance, ridge_factor_));
+      set_with_feature_ridge(density, mean, covariance, all_rows_variance, ridge_factor_);
     } else if (pooled_degrees > 0.0) {
       const Matrix pooled = pooled_scatter / pooled_degrees;
-      density.set(mean, with_feature_ridge(pooled, all_rows_variance, ridge_factor_),
-                  1e-6 * relative_ridge(pooled, ridge_factor_));
+      set_with_feature_ridge(density, mean, pooled, all_rows_variance, ridge_factor_);
     } else {
       density.set(mean, Matrix::Zero(dimension, dimension),
                   ridge_factor_ * std::max(mean_global_variance(x), 1e-12));
