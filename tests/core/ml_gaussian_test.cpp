@@ -231,6 +231,34 @@ TEST(QuadraticDiscriminant, SingularAndSingleSampleClassesAreRegularised) {
   EXPECT_EQ(restored.parameters().text("priors", ""), "empirical");
 }
 
+// Found against scikit-learn (bench/compare): a ridge of 1e-6 · tr(Σ)/d on every feature
+// buried a feature of small units under one of large units, so a unit change flipped decisions.
+TEST(QuadraticDiscriminant, DecisionsDoNotDependOnFeatureUnits) {
+  // Feature 0: noise of large units, the same in both classes. Feature 1: small units, and
+  // the only one that separates the classes (means 0 and 0.02, deviation 0.004).
+  Eigen::MatrixXd covariance(2, 2);
+  covariance << 1e6, 0.0, 0.0, 1.6e-5;
+  const std::vector<test_data::Blob> blobs = {{Eigen::Vector2d(0, 0), covariance},
+                                              {Eigen::Vector2d(0, 0.02), covariance}};
+  std::mt19937_64 random(5);
+  Matrix train, test;
+  std::vector<int> train_labels, test_labels;
+  test_data::draw_classes(blobs, 400, random, train, train_labels);
+  test_data::draw_classes(blobs, 400, random, test, test_labels);
+  QuadraticDiscriminant classifier;
+  classifier.fit(train, train_labels, 2, 0);
+  const std::vector<int> predicted = classifier.predict(test);
+  EXPECT_GE(test_data::agreement(predicted, test_labels), 0.95);
+
+  // The noise feature in a unit 1000 times smaller: the same decisions.
+  Matrix train_rescaled = train, test_rescaled = test;
+  train_rescaled.col(0) *= 1000.0;
+  test_rescaled.col(0) *= 1000.0;
+  QuadraticDiscriminant rescaled;
+  rescaled.fit(train_rescaled, train_labels, 2, 0);
+  EXPECT_EQ(rescaled.predict(test_rescaled), predicted);
+}
+
 TEST(QuadraticDiscriminant, RejectsUnknownParametersAndNaN) {
   EXPECT_THROW(QuadraticDiscriminant(Parameters::parse("prior=uniform", "test")), Error);
   EXPECT_THROW(QuadraticDiscriminant(Parameters::parse("priors=flat", "test")), Error);

@@ -91,6 +91,30 @@ double relative_ridge(const Matrix& covariance, double factor) {
   return factor * std::max(covariance.trace() / dimension, 1e-12);
 }
 
+// QDA's ridge: factor times each feature's own variance. A ridge of factor · tr(Σ)/d on every
+// feature swamps features of small units (fur: 0.07 against 2100) and made the decisions
+// depend on the units (area in mm² vs µm²); λ·diag(Σ) scales with each feature, so z-scoring
+// or changing a unit changes nothing. A feature constant in the class takes its variance
+// over all training rows instead (same unit), or 1 when it is constant everywhere.
+Matrix with_feature_ridge(const Matrix& covariance, const Vector& all_rows_variance,
+                          double factor) {
+  Matrix ridged = covariance;
+  for (Eigen::Index feature = 0; feature < covariance.rows(); ++feature) {
+    const double own = covariance(feature, feature);
+    const double all = all_rows_variance(feature);
+    ridged(feature, feature) += factor * (own > 1e-12 * all ? own : all > 0.0 ? all : 1.0);
+  }
+  return ridged;
+}
+
+// The ridge is in the matrix. The scalar only grows (x10) if rounding defeats Cholesky, and
+// starts far below the smallest variance so that it does not bring the units back.
+void set_with_feature_ridge(GaussianDensity& density, const Vector& mean, const Matrix& covariance,
+                            const Vector& all_rows_variance, double factor) {
+  const Matrix ridged = with_feature_ridge(covariance, all_rows_variance, factor);
+  density.set(mean, ridged, 1e-12 * ridged.diagonal().minCoeff());
+}
+
 //---- gaussian-ml (spec §3.6) --------------------------------------------------------------
 
 GaussianMaximumLikelihood::GaussianMaximumLikelihood(const Parameters& parameters) {
@@ -219,6 +243,10 @@ void QuadraticDiscriminant::fit(const Matrix& x, const std::vector<int>& y, int 
     pooled_degrees += static_cast<double>(rows.size()) - 1.0;
   }
 
+  const Vector all_rows_mean = x.colwise().mean().transpose();
+  const Vector all_rows_variance =
+      (x.rowwise() - all_rows_mean.transpose()).array().square().colwise().sum().transpose() /
+      static_cast<double>(x.rows());
   densities_.clear();
   densities_.resize(static_cast<size_t>(class_count));
   for (int k = 0; k < class_count; ++k) {
@@ -230,10 +258,10 @@ void QuadraticDiscriminant::fit(const Matrix& x, const std::vector<int>& y, int 
       const Matrix samples = support::select_rows(x, rows);
       const Matrix covariance =
           scatter_covariance(samples, mean, static_cast<double>(rows.size()) - 1.0);
-      density.set(mean, covariance, relative_ridge(covariance, ridge_factor_));
+      set_with_feature_ridge(density, mean, covariance, all_rows_variance, ridge_factor_);
     } else if (pooled_degrees > 0.0) {
       const Matrix pooled = pooled_scatter / pooled_degrees;
-      density.set(mean, pooled, relative_ridge(pooled, ridge_factor_));
+      set_with_feature_ridge(density, mean, pooled, all_rows_variance, ridge_factor_);
     } else {
       density.set(mean, Matrix::Zero(dimension, dimension),
                   ridge_factor_ * std::max(mean_global_variance(x), 1e-12));
