@@ -250,7 +250,8 @@ std::string svm_specification(bool quick) {
     char text[32];
     std::snprintf(text, sizeof(text), "%.6g",
                   std::pow(10.0, -3.0 + 6.0 * k / static_cast<double>(values - 1)));
-    grid += (k == 0 ? "" : "|") + std::string(text);
+    if (k > 0) grid += '|';
+    grid += text;
   }
   return "grid:base=linear-svm,c=" + grid + ",inner=" + (quick ? "kfold:3" : "kfold:5x10");
 }
