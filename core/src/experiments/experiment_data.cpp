@@ -8,8 +8,10 @@
 #include "tactile/error.h"
 #include "tactile/features/corpus.h"
 #include "tactile/features/feature_extractor.h"
+#include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/segment/segmenter.h"
 #include "tactile/sim/workspace.h"
 
 namespace tactile::experiments {
@@ -20,7 +22,8 @@ void report_progress(const ExperimentOptions& options, const std::string& stage,
 }
 
 Dataset experiment_dataset(const ExperimentOptions& options, const std::string& skin,
-                           const SimulationOptions& simulation, const std::string& pipeline) {
+                           const SimulationOptions& simulation, const std::string& pipeline,
+                           const std::string& segmenter) {
   std::filesystem::path folder;
   if (options.data_dir.empty()) {
     if (options.work_dir.empty())
@@ -41,7 +44,6 @@ Dataset experiment_dataset(const ExperimentOptions& options, const std::string& 
   filter.source = LabelSource::kGroundTruth;
   const std::vector<Label> labels = store.list(filter);
   if (labels.empty()) throw Error(database, "no ground-truth labels");
-  // Ground-truth segments give the rows, as the papers' protocols used hand-checked gestures.
   std::map<std::string, size_t> index;
   std::vector<CorpusRecording> recordings;
   for (const Label& label : labels) {
@@ -57,6 +59,23 @@ Dataset experiment_dataset(const ExperimentOptions& options, const std::string& 
     }
     recordings[found->second].segments.push_back(label);
     recordings[found->second].ground_truth.push_back(label);
+  }
+  if (!segmenter.empty()) {
+    // The papers cut their gestures with these segmenters; the simulator's ground truth
+    // only names the class of each segment found.
+    int done = 0;
+    for (CorpusRecording& recording : recordings) {
+      const Recording samples = read_recording(recording.path);
+      std::vector<Label> found =
+          segment_recording(segmenter, samples, load_layout(samples.layout_id));
+      recording.segments.clear();
+      for (Label& segment : found) {
+        segment.recording = recording.id;
+        segment.class_name = segment_class(segment, recording.ground_truth);
+        if (segment.class_name != kUnknownClass) recording.segments.push_back(std::move(segment));
+      }
+      report_progress(options, "segment", ++done, static_cast<int>(recordings.size()));
+    }
   }
   const auto extractor = make_feature_extractor(pipeline);
   CorpusOptions corpus_options;

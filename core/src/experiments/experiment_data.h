@@ -14,12 +14,16 @@
 
 namespace tactile::experiments {
 
-// Feature rows of every ground-truth segment of one skin. With options.data_dir empty the
-// skin is first simulated into options.work_dir/<skin> with `simulation`; otherwise the
-// recordings and labels.db of options.data_dir are used as they are. Stages are reported
-// through options.progress. Throws tactile::Error when the corpus is unreadable or empty.
+// Feature rows of one skin's touches. With options.data_dir empty the skin is first
+// simulated into options.work_dir/<skin> with `simulation`; otherwise the recordings and
+// labels.db of options.data_dir are used as they are. With a `segmenter` method the rows are
+// the segments it finds, each given the class of the ground-truth gesture it overlaps most
+// (segments overlapping none are not rows); with "" they are the ground-truth segments.
+// Stages are reported through options.progress. Throws tactile::Error when the corpus is
+// unreadable or empty.
 Dataset experiment_dataset(const ExperimentOptions& options, const std::string& skin,
-                           const SimulationOptions& simulation, const std::string& pipeline);
+                           const SimulationOptions& simulation, const std::string& pipeline,
+                           const std::string& segmenter);
 
 // The dataset's classes in the order of the skin layout's class list (the paper's table
 // order), followed by any class the layout does not list, in first-seen order.

@@ -31,7 +31,7 @@ ExperimentReport run_flux_som(const ExperimentOptions& options) {
   simulation.subjects = options.quick ? 2 : 5;
   simulation.trials = options.quick ? 1 : 3;
   simulation.repetitions = options.quick ? 5 : 10;
-  const Dataset dataset = experiment_dataset(options, "flux", simulation, "flux");
+  const Dataset dataset = experiment_dataset(options, "flux", simulation, "flux", "excitation");
   const std::vector<std::string> classes = ordered_classes(dataset, "flux");
   const std::vector<int> labels = class_indices(dataset, classes);
   const int class_count = static_cast<int>(classes.size());

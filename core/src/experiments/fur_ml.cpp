@@ -74,7 +74,7 @@ ExperimentReport run_fur_ml(const ExperimentOptions& options) {
   simulation.subjects = options.quick ? 3 : 5;
   simulation.trials = options.quick ? 1 : 3;
   simulation.repetitions = options.quick ? 5 : 0;
-  const Dataset dataset = experiment_dataset(options, "fur", simulation, "fur");
+  const Dataset dataset = experiment_dataset(options, "fur", simulation, "fur", "threshold");
   const std::vector<std::string> classes = ordered_classes(dataset, "fur");
   const std::vector<int> labels = class_indices(dataset, classes);
   const int class_count = static_cast<int>(classes.size());

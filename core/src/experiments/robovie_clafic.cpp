@@ -63,7 +63,8 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
   simulation.seed = options.seed;
   simulation.subjects = options.quick ? 4 : 8;
   simulation.trials = options.quick ? 1 : 2;
-  const Dataset dataset = experiment_dataset(options, "robovie", simulation, "robovie_xcorr");
+  const Dataset dataset =
+      experiment_dataset(options, "robovie", simulation, "robovie_xcorr", "scenario");
   const std::vector<std::string> classes = ordered_classes(dataset, "robovie");
   const std::vector<int> labels = class_indices(dataset, classes);
   const int class_count = static_cast<int>(classes.size());

@@ -50,7 +50,7 @@ ExperimentReport run_tsa_classifiers(const ExperimentOptions& options) {
   simulation.subjects = options.quick ? 4 : 10;
   simulation.trials = 1;
   simulation.repetitions = options.quick ? 4 : 17;
-  const Dataset dataset = experiment_dataset(options, "tsa", simulation, "tsa_event");
+  const Dataset dataset = experiment_dataset(options, "tsa", simulation, "tsa_event", "frame-edge");
   const std::vector<std::string> classes = ordered_classes(dataset, "tsa");
   const std::vector<int> labels = class_indices(dataset, classes);
   const int class_count = static_cast<int>(classes.size());
