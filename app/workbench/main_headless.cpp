@@ -1,31 +1,40 @@
-// The workbench rendered off-screen with OSMesa: screenshots without a display, for
-// `make run` on a machine with no X and for `tactile-workbench --headless`.
+// The workbench rendered off-screen with OSMesa: screenshots and scripts without a
+// display, for `make run` on a machine with no X and for `tactile-workbench --headless`.
+#include <imgui.h>
+
 #include <iostream>
 
+#include "frame_loop.h"
 #include "osmesa_renderer.h"
+#include "script.h"
 #include "workbench.h"
 #include "workbench_args.h"
 
 int main(int argc, char** argv) {
   tactile::WorkbenchArgs args;
   if (auto code = tactile::parse_workbench_args(argc, argv, args)) return *code;
-  if (args.screenshot.empty()) {
-    std::cerr << "tactile-workbench-headless: --screenshot OUT.png is required without a display\n";
+  if (args.screenshot.empty() && args.script.empty()) {
+    std::cerr << "tactile-workbench-headless: --screenshot OUT.png or --script FILE is required "
+                 "without a display\n";
     return 2;
   }
   try {
     tactile::OffscreenRenderer renderer(args.width, args.height);
+    tactile::install_glfw_key_map(ImGui::GetIO());
     tactile::Workbench workbench(args.options);
     if (!workbench.error().empty()) std::cerr << "tactile-workbench: " << workbench.error() << "\n";
-    tactile::Image image;
-    for (int frame = 0; frame < args.frames; ++frame) {
-      renderer.new_frame(1.0f / 60.0f);
-      workbench.frame(frame == 0 ? 0.0 : 1.0 / 60.0);
-      image = renderer.render();
+    tactile::FrameLoop loop(workbench, args);
+    // A script may play or sleep for long; a frame cap keeps a broken one from spinning forever.
+    constexpr int kMaxFrames = 10'000'000;
+    for (int frame = 0; frame < kMaxFrames; ++frame) {
+      renderer.prepare_frame(1.0f / 60.0f);
+      const double seconds = loop.begin(frame == 0 ? 0.0 : 1.0 / 60.0);
+      ImGui::NewFrame();
+      workbench.frame(seconds);
+      const tactile::Image image = renderer.render();
+      if (!loop.end([&] { return image; })) break;
     }
-    tactile::write_png(args.screenshot, image);
-    std::cout << "wrote " << args.screenshot << "\n";
-    return workbench.error().empty() ? 0 : 1;
+    return loop.exit_code();
   } catch (const std::exception& error) {
     std::cerr << "tactile-workbench: " << error.what() << "\n";
     return 1;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_loop.h"
 #include "tactile/widgets/image.h"
 #include "workbench.h"
 #include "workbench_args.h"
@@ -39,7 +40,7 @@ int run_headless(int argc, char** argv, const std::vector<std::string>& extra) {
   return 1;
 }
 
-void write_framebuffer(const std::string& path, int width, int height) {
+tactile::Image read_framebuffer(int width, int height) {
   tactile::Image image;
   image.width = width;
   image.height = height;
@@ -47,7 +48,7 @@ void write_framebuffer(const std::string& path, int width, int height) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
   image.flip_vertically();
-  tactile::write_png(path, image);
+  return image;
 }
 
 }  // namespace
@@ -63,12 +64,13 @@ int main(int argc, char** argv) {
   if (!has_display || !glfwInit()) {
     std::vector<std::string> extra;
     std::string target = args.screenshot;
-    if (target.empty()) {
+    if (target.empty() && args.script.empty()) {
       target = (program_folder().parent_path() / "screenshot.png").string();
       extra = {"--screenshot", target};
     }
-    std::cerr << "tactile-workbench: no display; rendering the main window headless to " << target
-              << "\n";
+    if (args.script.empty())
+      std::cerr << "tactile-workbench: no display; rendering the main window headless to "
+                << target << "\n";
     return run_headless(argc, argv, extra);
   }
 
@@ -94,14 +96,16 @@ int main(int argc, char** argv) {
   try {
     tactile::Workbench workbench(args.options);
     if (!workbench.error().empty()) std::cerr << "tactile-workbench: " << workbench.error() << "\n";
+    tactile::FrameLoop loop(workbench, args);
     double last = glfwGetTime();
-    for (int frame = 0; !glfwWindowShouldClose(window) && !workbench.quit_requested(); ++frame) {
+    while (!glfwWindowShouldClose(window)) {
       glfwPollEvents();
       const double now = glfwGetTime();
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
+      const double seconds = loop.begin(now - last);
       ImGui::NewFrame();
-      workbench.frame(now - last);
+      workbench.frame(seconds);
       last = now;
       ImGui::Render();
       int width = 0, height = 0;
@@ -110,14 +114,10 @@ int main(int argc, char** argv) {
       glClearColor(0.09f, 0.09f, 0.1f, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-      if (!args.screenshot.empty() && frame + 1 >= args.frames) {
-        write_framebuffer(args.screenshot, width, height);
-        std::cout << "wrote " << args.screenshot << "\n";
-        if (!workbench.error().empty()) exit_code = 1;
-        break;
-      }
+      if (!loop.end([&] { return read_framebuffer(width, height); })) break;
       glfwSwapBuffers(window);
     }
+    exit_code = loop.exit_code();
   } catch (const std::exception& error) {
     std::cerr << "tactile-workbench: " << error.what() << "\n";
     exit_code = 1;

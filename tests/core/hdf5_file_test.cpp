@@ -144,7 +144,7 @@ TEST(Hdf5File, PartialReadsEqualTheSliceOfTheFullMatrix) {
   stream.name = "skin";
   stream.rate_hz = 1000.0;
   stream.channels = {"a", "b", "c"};
-  // Longer than one chunk of 65536 samples, so a range straddles two chunks.
+  // Longer than several chunks of 8192 samples, so a range straddles chunks.
   stream.samples = random_samples(70000, 3, 3);
   recording.streams = {stream};
   write_recording(path, recording);
@@ -236,7 +236,7 @@ TEST(Hdf5File, SamplesAreChunkedPerChannelAndCompressed) {
   hsize_t chunk[2] = {0, 0};
   EXPECT_EQ(H5Pget_chunk(properties, 2, chunk), 2);
   EXPECT_EQ(chunk[0], 1u);
-  EXPECT_EQ(chunk[1], 65536u);
+  EXPECT_EQ(chunk[1], 8192u);
   std::vector<H5Z_filter_t> filters;
   for (int index = 0; index < H5Pget_nfilters(properties); ++index)
     filters.push_back(H5Pget_filter2(properties, unsigned(index), nullptr, nullptr, nullptr, 0,

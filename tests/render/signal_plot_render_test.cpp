@@ -30,11 +30,23 @@ std::vector<float> sine(int64_t count) {
   return samples;
 }
 
+// One channel at kRate starting at `start_time`, held in memory.
+std::unique_ptr<MemorySampleSource> source_of(const std::vector<float>& samples,
+                                              double start_time = 0.0) {
+  Stream stream;
+  stream.name = "test";
+  stream.rate_hz = kRate;
+  stream.start_time = start_time;
+  stream.channels = {"x"};
+  stream.samples = Eigen::Map<const SampleMatrix>(samples.data(), static_cast<Eigen::Index>(samples.size()), 1);
+  return std::make_unique<MemorySampleSource>(std::move(stream));
+}
+
 struct PlotFixture : ::testing::Test {
   OffscreenRenderer renderer{800, 400};
   std::vector<float> samples = sine(10'000);  // 10 s
-  MinMaxPyramid pyramid{samples};
-  std::vector<PlotChannel> channels{{"sine", &pyramid, kRate, 0.0, kSineColour}};
+  std::unique_ptr<MemorySampleSource> source = source_of(samples);
+  std::vector<PlotChannel> channels{{"sine", source.get(), 0, kSineColour}};
 
   SignalPlotResult frame(SignalPlotState& state, double cursor_time = -1.0,
                          std::span<const PlotSpan> spans = {}) {
@@ -138,9 +150,9 @@ TEST_F(PlotFixture, StackedLanesGiveEachChannelItsOwnBand) {
   // first lives in the top half and the second in the bottom half.
   std::vector<float> inverted = samples;
   for (float& value : inverted) value = -value;
-  const MinMaxPyramid inverted_pyramid(inverted);
+  const auto inverted_source = source_of(inverted);
   const uint32_t inverted_colour = IM_COL32(64, 220, 64, 255);
-  channels.push_back({"inverted", &inverted_pyramid, kRate, 0.0, inverted_colour});
+  channels.push_back({"inverted", inverted_source.get(), 0, inverted_colour});
   SignalPlotState state{.view_t0 = 0.0, .view_t1 = 4.0, .fitted = true, .stacked = true};
   const SignalPlotResult result = frame(state);
   const Image image = renderer.render();
@@ -163,9 +175,9 @@ TEST_F(PlotFixture, StackedLanesGiveEachChannelItsOwnBand) {
 TEST(SignalPlot, VertexCountStaysBoundedForTenMillionSamples) {
   OffscreenRenderer renderer(800, 300);
   const std::vector<float> samples = sine(10'000'000);
-  const MinMaxPyramid pyramid(samples);
-  const std::vector<PlotChannel> channels = {{"a", &pyramid, kRate, 0.0, 0},
-                                             {"b", &pyramid, kRate, 5.0, 0}};
+  const auto a = source_of(samples);
+  const auto b = source_of(samples, 5.0);
+  const std::vector<PlotChannel> channels = {{"a", a.get(), 0, 0}, {"b", b.get(), 0, 0}};
   for (double span : {10'005.0, 100.0, 1.0}) {
     SignalPlotState state{.view_t0 = 0.0, .view_t1 = span, .fitted = true};
     renderer.new_frame();

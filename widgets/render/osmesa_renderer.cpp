@@ -43,12 +43,16 @@ OffscreenRenderer::~OffscreenRenderer() {
 }
 
 void OffscreenRenderer::new_frame(float seconds) {
+  prepare_frame(seconds);
+  ImGui::NewFrame();
+}
+
+void OffscreenRenderer::prepare_frame(float seconds) {
   ImGui_ImplOpenGL3_NewFrame();
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(width_), static_cast<float>(height_));
   io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
   io.DeltaTime = seconds > 0 ? seconds : 1.0f / 60.0f;
-  ImGui::NewFrame();
 }
 
 Image OffscreenRenderer::render(float clear_r, float clear_g, float clear_b) {

@@ -23,6 +23,9 @@ class OffscreenRenderer {
 
   // Starts an ImGui frame of the renderer's size; `seconds` is the frame's delta time.
   void new_frame(float seconds = 1.0f / 60.0f);
+  // The backend's part of new_frame without ImGui::NewFrame, so that input (a script)
+  // can be set in between.
+  void prepare_frame(float seconds = 1.0f / 60.0f);
   // Ends the frame, draws it and reads the pixels back.
   Image render(float clear_r = 0.09f, float clear_g = 0.09f, float clear_b = 0.1f);
 

@@ -22,6 +22,20 @@ void Image::flip_vertically() {
                      rgba.begin() + (height - 1 - y) * row_bytes);
 }
 
+Image Image::crop(int x, int y, int crop_width, int crop_height) const {
+  const int x0 = std::clamp(x, 0, width), y0 = std::clamp(y, 0, height);
+  const int x1 = std::clamp(x + crop_width, x0, width), y1 = std::clamp(y + crop_height, y0, height);
+  Image part;
+  part.width = x1 - x0;
+  part.height = y1 - y0;
+  part.rgba.resize(static_cast<size_t>(part.width) * part.height * 4);
+  for (int row = 0; row < part.height; ++row)
+    std::copy_n(rgba.begin() + ((static_cast<size_t>(y0 + row) * width + x0) * 4),
+                static_cast<size_t>(part.width) * 4,
+                part.rgba.begin() + static_cast<size_t>(row) * part.width * 4);
+  return part;
+}
+
 void write_png(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0) throw Error(path, "cannot write an empty image");
   // Write beside the target and rename, so a failed write leaves no half PNG behind.

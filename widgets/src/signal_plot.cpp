@@ -31,51 +31,35 @@ struct ChannelView {
   MinMax extent;                // visible value range
 };
 
-double sample_count_duration(const PlotChannel& channel) {
-  if (!channel.pyramid || !(channel.rate_hz > 0)) return 0.0;
-  return static_cast<double>(channel.pyramid->sample_count()) / channel.rate_hz;
-}
-
-// Index of the first sample at or after time t, clamped so casts cannot overflow.
-int64_t first_sample_at(const PlotChannel& channel, double t) {
-  const double position = std::ceil((t - channel.start_time) * channel.rate_hz);
-  const double limit = static_cast<double>(channel.pyramid->sample_count()) + 1.0;
-  return static_cast<int64_t>(std::clamp(position, -1.0, limit));
+bool has_data(const PlotChannel& channel) {
+  return channel.source && channel.channel >= 0 && channel.channel < channel.source->channel_count() &&
+         channel.source->rate_hz() > 0;
 }
 
 ChannelView view_channel(const PlotChannel& channel, double t0, double t1, int columns) {
   ChannelView view;
-  if (!channel.pyramid || !(channel.rate_hz > 0) || columns <= 0) return view;
-  const MinMaxPyramid& pyramid = *channel.pyramid;
-  const double column_time = (t1 - t0) / columns;
-  const double samples_per_column = column_time * channel.rate_hz;
-  if (samples_per_column < 1.5) {
-    // Fewer samples than pixels: draw the samples themselves, one beyond each edge
+  if (!has_data(channel) || columns <= 0) return view;
+  const SampleSource& source = *channel.source;
+  const double samples_per_column = (t1 - t0) / columns * source.rate_hz();
+  if (samples_per_column <= 1.0) {
+    // No more samples than pixels: draw the samples themselves, one beyond each edge
     // so the line runs out of the view rather than stopping short.
-    const int64_t first = std::max<int64_t>(first_sample_at(channel, t0) - 1, 0);
-    const int64_t last = std::min(first_sample_at(channel, t1) + 1, pyramid.sample_count());
+    const int64_t count = source.sample_count();
+    const int64_t first = std::max<int64_t>(source.first_index_at_or_after(t0) - 1, 0);
+    const int64_t last = std::min(source.first_index_at_or_after(t1) + 1, count);
     view.raw = true;
     if (first >= last) return view;
-    const std::vector<MinMax> samples = pyramid.query(first, last, static_cast<int>(last - first));
+    const int channels[1] = {channel.channel};
+    const SampleMatrix samples = source.read(channels, first, last - first);
     for (int64_t index = first; index < last; ++index) {
-      const MinMax& sample = samples[index - first];
-      view.times.push_back(channel.start_time + static_cast<double>(index) / channel.rate_hz);
-      view.values.push_back(sample.empty() ? std::numeric_limits<float>::quiet_NaN() : sample.min);
-      view.extent.merge(sample);
+      const float value = samples(index - first, 0);
+      view.times.push_back(source.time_of(index));
+      view.values.push_back(value);
+      view.extent.add(value);
     }
     return view;
   }
-  // Column edges on bucket boundaries when a column spans more than a bucket: the
-  // error stays under a pixel and the pyramid then needs no raw sample at all.
-  const int64_t bucket = pyramid.finest_bucket();
-  const bool align = samples_per_column >= static_cast<double>(bucket);
-  std::vector<int64_t> edges(static_cast<size_t>(columns) + 1);
-  for (int column = 0; column <= columns; ++column) {
-    const int64_t edge = first_sample_at(channel, t0 + column * column_time);
-    edges[column] = align ? (edge >= 0 ? edge / bucket * bucket : edge) : edge;
-  }
-  view.columns.resize(static_cast<size_t>(columns));
-  pyramid.query_edges(edges, view.columns);
+  view.columns = source.minmax_over_time(channel.channel, t0, t1, columns);
   for (const MinMax& column : view.columns) view.extent.merge(column);
   return view;
 }
@@ -102,9 +86,9 @@ void fit_view(std::span<const PlotChannel> channels, SignalPlotState& state) {
   double t0 = std::numeric_limits<double>::infinity();
   double t1 = -std::numeric_limits<double>::infinity();
   for (const PlotChannel& channel : channels) {
-    if (!channel.pyramid || !(channel.rate_hz > 0)) continue;
-    t0 = std::min(t0, channel.start_time);
-    t1 = std::max(t1, channel.start_time + sample_count_duration(channel));
+    if (!has_data(channel)) continue;
+    t0 = std::min(t0, channel.source->start_time());
+    t1 = std::max(t1, channel.source->end_time());
   }
   if (!(t0 < t1)) {
     // No data, or a single instant: a one-second window around it.
@@ -351,7 +335,7 @@ SignalPlotResult draw_signal_plot(const char* id, std::span<const PlotChannel> c
     result.clicked_time = mouse_time;
   }
 
-  //---- Data through the pyramids
+  //---- Data through the sources
   const double t0 = state.view_t0;
   const double t1 = state.view_t1;
   const int columns = std::max(1, static_cast<int>(std::floor(width)));

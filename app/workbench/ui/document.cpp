@@ -3,43 +3,36 @@
 #include <filesystem>
 
 #include "tactile/error.h"
-#include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 
 namespace tactile {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<Document> open_document(const std::string& path, const std::string& labels_path) {
+std::unique_ptr<Document> open_document(const std::string& path, const DocumentOptions& options) {
   auto document = std::make_unique<Document>();
-  document->path = path;
-  document->recording = read_recording(path);
-  if (document->recording.streams.empty()) throw Error(path, "the recording has no stream");
-  document->layout = load_layout(document->recording.layout_id);
-  document->labels_path = labels_path;
+  std::error_code error;
+  const fs::path absolute = fs::absolute(path, error);
+  document->path = error ? path : absolute.lexically_normal().string();
+  FileSourceOptions source_options;
+  source_options.stream = options.stream;
+  source_options.cache_bytes = options.cache_bytes;
+  auto source = std::make_unique<FileSampleSource>(document->path, source_options);
+  document->streams = source->stream_names();
+  document->source = std::move(source);
+  document->layout = load_layout(document->source->info().layout_id);
+  document->labels_path = options.labels_path;
   if (document->labels_path.empty()) {
-    const fs::path beside = fs::path(path).parent_path() / "labels.db";
-    std::error_code error;
+    const fs::path beside = fs::path(document->path).parent_path() / "labels.db";
     if (fs::exists(beside, error)) document->labels_path = beside.string();
   }
   if (!document->labels_path.empty()) {
     LabelStore store(document->labels_path);
     LabelFilter filter;
-    filter.recording = document->recording.id;
+    filter.recording = document->recording_id();
     document->labels = store.list(filter);
   }
-  select_stream(*document, 0);
   return document;
-}
-
-void select_stream(Document& document, int stream_index) {
-  document.stream_index = stream_index;
-  const Stream& stream = document.stream();
-  document.pyramids.clear();
-  document.pyramids.reserve(static_cast<size_t>(stream.channel_count()));
-  for (int64_t column = 0; column < stream.channel_count(); ++column)
-    document.pyramids.emplace_back(std::span<const float>(
-        stream.samples.col(column).data(), static_cast<size_t>(stream.sample_count())));
 }
 
 }  // namespace tactile

@@ -1,35 +1,37 @@
 #pragma once
-// The recording open in the workbench: its samples, its layout, the plot pyramids of
-// its channels and its labels.
+// The recording open in the workbench: where its samples come from (a SampleSource,
+// never the whole file in memory), its layout and its labels.
 
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "tactile/io/label.h"
-#include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
-#include "tactile/signal/minmax_pyramid.h"
+#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 
 struct Document {
-  std::string path;
+  std::string path;         // absolute
   std::string labels_path;  // "" when the recording has no label database beside it
-  Recording recording;
+  std::unique_ptr<SampleSource> source;
+  std::vector<std::string> streams;  // the file's streams, to choose from
   SkinLayout layout;
-  int stream_index = 0;
-  std::vector<MinMaxPyramid> pyramids;  // one per channel of the current stream
   std::vector<Label> labels;
 
-  const Stream& stream() const { return recording.streams[static_cast<size_t>(stream_index)]; }
+  const SampleSource& samples() const { return *source; }
+  const std::string& recording_id() const { return source->info().recording_id; }
 };
 
-// Reads a recording (HDF5) and its layout; labels come from `labels_path`, or else
-// from labels.db in the recording's folder when there is one. Throws tactile::Error.
-std::unique_ptr<Document> open_document(const std::string& path,
-                                        const std::string& labels_path = {});
-// Selects another stream and rebuilds the pyramids.
-void select_stream(Document& document, int stream_index);
+struct DocumentOptions {
+  std::string labels_path;  // "" = labels.db beside the recording when there is one
+  std::string stream;       // "" = the first stream
+  int64_t cache_bytes = int64_t{96} << 20;
+};
+
+// Opens a recording (HDF5) through a file-backed source, with its layout and labels.
+// Throws tactile::Error.
+std::unique_ptr<Document> open_document(const std::string& path, const DocumentOptions& options);
 
 }  // namespace tactile

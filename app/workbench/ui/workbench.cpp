@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
-#include <numeric>
+#include <fstream>
 
 #include "tactile/error.h"
 #include "tactile/layout/taxel_values.h"
-#include "tactile/widgets/skin_view.h"
+#include "views.h"
 
 namespace tactile {
 
@@ -17,439 +18,437 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr float kSidebarWidth = 250.0f;
 constexpr int kMaxDefaultPlotChannels = 8;
-constexpr double kSpeeds[] = {0.25, 0.5, 1.0, 2.0, 4.0};
+constexpr float kSplitterThickness = 6.0f;
+constexpr float kMinimumPanel = 80.0f;
+// A label longer than this is searched for its peak only in its first part.
+constexpr int64_t kPeakSearchSamples = 20000;
 
-// Tableau 10: distinct hues for up to ten plotted channels, then repeated.
-constexpr uint32_t kChannelColours[] = {IM_COL32(31, 119, 180, 255),  IM_COL32(255, 127, 14, 255),
-                                        IM_COL32(44, 160, 44, 255),   IM_COL32(214, 39, 40, 255),
-                                        IM_COL32(148, 103, 189, 255), IM_COL32(140, 86, 75, 255),
-                                        IM_COL32(227, 119, 194, 255), IM_COL32(127, 127, 127, 255),
-                                        IM_COL32(188, 189, 34, 255),  IM_COL32(23, 190, 207, 255)};
-
-uint32_t class_colour(const std::string& class_name) {
-  const size_t hash = std::hash<std::string>{}(class_name);
-  const uint32_t base = kChannelColours[hash % std::size(kChannelColours)];
-  return (base & 0x00FFFFFFu) | (70u << 24);  // translucent, so signals show through
+// A bar between two panels; dragging it moves the boundary. Returns true while dragged.
+bool splitter(WorkbenchState& state, const char* id, bool vertical, float length, float& value,
+              float minimum, float maximum, float direction = 1.0f) {
+  const ImVec2 size = vertical ? ImVec2(kSplitterThickness, length) : ImVec2(length, kSplitterThickness);
+  ImGui::InvisibleButton(id, size);
+  remember_item(state, std::string("splitter:") + id);
+  const bool active = ImGui::IsItemActive();
+  if (ImGui::IsItemHovered() || active)
+    ImGui::SetMouseCursor(vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
+  const ImU32 colour = active ? IM_COL32(110, 110, 130, 255)
+                              : (ImGui::IsItemHovered() ? IM_COL32(80, 80, 95, 255)
+                                                        : IM_COL32(45, 45, 52, 255));
+  ImGui::GetWindowDrawList()->AddRectFilled(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
+                                            colour);
+  if (active) {
+    const ImVec2 delta = ImGui::GetIO().MouseDelta;
+    value = std::clamp(value + direction * (vertical ? delta.x : delta.y), minimum,
+                       std::max(minimum, maximum));
+  }
+  return ImGui::IsItemDeactivated();
 }
 
-std::string format_seconds(double seconds) {
-  char text[32];
-  const int minutes = static_cast<int>(seconds / 60.0);
-  std::snprintf(text, sizeof(text), "%d:%06.3f", minutes, seconds - minutes * 60.0);
-  return text;
+std::string view_title(const std::string& name) {
+  const ViewSpec* view = find_view(name);
+  return view ? view->title : name;
 }
 
 }  // namespace
 
-Workbench::Workbench(const WorkbenchOptions& options) : options_(options) {
-  if (options_.open_path.empty()) return;
+Workbench::Workbench(const WorkbenchOptions& options) {
+  state_.options = options;
+  load_settings();
+  if (options.open_path.empty()) return;
   std::error_code error;
-  if (fs::is_directory(options_.open_path, error)) {
-    set_workspace(options_.open_path);
-    if (!workspace_files_.empty()) open(workspace_files_.front());
+  if (fs::is_directory(options.open_path, error)) {
+    set_workspace(options.open_path);
+    if (!state_.workspace_files.empty()) open(state_.workspace_files.front());
   } else {
-    open(options_.open_path);
+    open(options.open_path);
   }
-  if (document_ && options_.time) clock_.seek(*options_.time);
-  if (document_ && options_.play) clock_.play();
+  if (state_.document && options.time) state_.clock.seek(*options.time);
+  if (state_.document && options.play) state_.clock.play();
 }
 
 void Workbench::set_workspace(const std::string& folder) {
-  workspace_ = folder;
-  workspace_files_.clear();
   std::error_code error;
-  for (fs::recursive_directory_iterator it(folder, error), end; !error && it != end;
+  const fs::path absolute = fs::absolute(folder, error);
+  state_.workspace = (error ? fs::path(folder) : absolute).lexically_normal().string();
+  while (state_.workspace.size() > 1 && state_.workspace.back() == '/') state_.workspace.pop_back();
+  state_.workspace_files.clear();
+  for (fs::recursive_directory_iterator it(state_.workspace, error), end; !error && it != end;
        it.increment(error))
-    if (it->path().extension() == ".h5") workspace_files_.push_back(it->path().string());
-  std::sort(workspace_files_.begin(), workspace_files_.end());
+    if (it->path().extension() == ".h5") state_.workspace_files.push_back(it->path().string());
+  std::sort(state_.workspace_files.begin(), state_.workspace_files.end());
 }
 
 void Workbench::open(const std::string& path) {
+  DocumentOptions options;
+  options.labels_path = state_.options.labels_path;
+  options.cache_bytes = state_.options.cache_bytes;
   try {
-    document_ = open_document(path, options_.labels_path);
-    error_.clear();
+    state_.document = open_document(path, options);
+    state_.error.clear();
   } catch (const std::exception& failure) {
-    error_ = failure.what();
+    state_.error = failure.what();
     return;
   }
-  if (workspace_.empty()) set_workspace(fs::path(path).parent_path().string());
-  clock_.pause();
-  clock_.set_range(0.0, document_->recording.duration());
+  if (state_.workspace.empty() ||
+      fs::path(state_.document->path).lexically_relative(state_.workspace).string().starts_with(".."))
+    set_workspace(fs::path(state_.document->path).parent_path().string());
+  state_.selection = {};
   choose_default_view();
 }
 
-// Shows the skin's display modality, plots the channels of that modality that move the
-// most, and puts the cursor inside the first labelled touch so the skin is lit on opening.
-void Workbench::choose_default_view() {
-  const Document& document = *document_;
-  const Stream& stream = document.stream();
-  modality_ = std::max(0, document.layout.modality_index(document.layout.display_modality));
-  rest_scale_modality_ = -1;
-  skin_zoom_ = SkinViewZoom{};
-  plotted_.assign(static_cast<size_t>(stream.channel_count()), 0);
-  const std::vector<int> columns = taxel_columns(document.layout, stream.channels, modality_);
-  std::vector<std::pair<float, int>> spread;
-  for (int column : columns) {
-    if (column < 0 || stream.sample_count() == 0) continue;
-    const auto values = stream.samples.col(column);
-    spread.emplace_back(values.maxCoeff() - values.minCoeff(), column);
-  }
-  if (spread.empty())
-    for (int column = 0; column < std::min<int>(kMaxDefaultPlotChannels, stream.channel_count());
-         ++column)
-      spread.emplace_back(0.0f, column);
-  std::stable_sort(spread.begin(), spread.end(),
-                   [](auto& a, auto& b) { return a.first > b.first; });
-  for (size_t k = 0; k < spread.size() && k < kMaxDefaultPlotChannels; ++k)
-    plotted_[spread[k].second] = 1;
-  plot_state_ = SignalPlotState{};
-  plot_state_.view_t0 = 0.0;
-  plot_state_.view_t1 = std::max(1e-3, document.recording.duration());
-  plot_state_.fitted = true;
-  if (document.labels.empty()) {
-    clock_.seek(0.0);
+void Workbench::select_stream(const std::string& stream) {
+  DocumentOptions options;
+  options.labels_path = state_.document->labels_path;
+  options.stream = stream;
+  options.cache_bytes = state_.options.cache_bytes;
+  try {
+    state_.document = open_document(state_.document->path, options);
+  } catch (const std::exception& failure) {
+    state_.error = failure.what();
     return;
   }
-  // The instant of the first labelled touch where the skin changes most from rest.
-  const Label& first = document.labels.front();
-  const RestScale scale = rest_scale(stream, columns);
-  const int64_t start = stream.index_at(first.t0);
-  const int64_t end = stream.index_at(first.t1);
-  int64_t best = (start + end) / 2;
-  double best_change = -1.0;
-  for (int64_t sample = start; sample <= end; ++sample) {
-    double change = 0.0;
-    for (size_t k = 0; k < columns.size(); ++k)
-      if (columns[k] >= 0 && std::isfinite(scale.rest[k]))
-        change += std::abs(stream.samples(sample, columns[k]) - scale.rest[k]);
-    if (change > best_change) best_change = change, best = sample;
-  }
-  clock_.seek(stream.time_of(best));
+  choose_default_view();
 }
 
-void Workbench::toggle_taxel_channels(int64_t taxel_id) {
-  const Taxel* taxel = document_->layout.find_taxel(taxel_id);
-  if (!taxel || modality_ >= static_cast<int>(taxel->channels.size())) return;
-  const int channel = taxel->channels[modality_];
-  if (channel < 0) return;
-  const std::string& name = document_->layout.channels[channel].name;
-  const auto& names = document_->stream().channels;
-  const auto found = std::find(names.begin(), names.end(), name);
-  if (found != names.end()) {
-    char& flag = plotted_[static_cast<size_t>(found - names.begin())];
-    flag = !flag;
+void Workbench::seek(double time) { state_.clock.seek(time); }
+
+// Shows the skin's display modality, plots the channels of that modality that move the
+// most, and puts the cursor inside the first labelled touch so the skin is lit on opening.
+// Reads the coarse overview and at most one label's samples: opening is as fast for a
+// day of data as for a minute.
+void Workbench::choose_default_view() {
+  const Document& document = *state_.document;
+  const SampleSource& source = document.samples();
+  state_.clock.pause();
+  state_.clock.set_range(source.start_time(), source.end_time());
+  state_.modality = std::max(0, document.layout.modality_index(document.layout.display_modality));
+  state_.rest_scale_modality = -1;
+  state_.skin_zoom = SkinViewZoom{};
+  state_.plotted.assign(static_cast<size_t>(source.channel_count()), 0);
+  const std::vector<int> columns = taxel_columns(document.layout, source.info().channels, state_.modality);
+  std::vector<std::pair<float, int>> spread;
+  for (int column : columns) {
+    if (column < 0) continue;
+    const MinMax extent = source.channel_extent(column);
+    spread.emplace_back(extent.empty() ? 0.0f : extent.max - extent.min, column);
+  }
+  if (spread.empty())
+    for (int column = 0; column < std::min(kMaxDefaultPlotChannels, source.channel_count()); ++column)
+      spread.emplace_back(0.0f, column);
+  std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
+  for (size_t k = 0; k < spread.size() && k < kMaxDefaultPlotChannels; ++k)
+    state_.plotted[static_cast<size_t>(spread[k].second)] = 1;
+  state_.plot = SignalPlotState{};
+  state_.plot.view_t0 = source.start_time();
+  state_.plot.view_t1 = source.start_time() + std::max(1e-3, source.duration());
+  state_.plot.fitted = true;
+  state_.clock.seek(source.start_time());
+  if (document.labels.empty() || source.sample_count() == 0) return;
+  // The instant of the first labelled touch where the skin changes most from rest.
+  const Label& first = document.labels.front();
+  std::vector<int> present;
+  for (int column : columns)
+    if (column >= 0) present.push_back(column);
+  if (present.empty()) return;
+  const RestScale scale = rest_scale(source, present);
+  const int64_t start = source.index_at(first.t0);
+  const int64_t end = std::min(source.index_at(first.t1), start + kPeakSearchSamples);
+  try {
+    const SampleMatrix samples = source.read(present, start, end - start + 1);
+    int64_t best = (start + end) / 2;
+    double best_change = -1.0;
+    for (int64_t row = 0; row < samples.rows(); ++row) {
+      double change = 0.0;
+      for (size_t k = 0; k < present.size(); ++k)
+        if (std::isfinite(scale.rest[k]))
+          change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - scale.rest[k]);
+      if (change > best_change) best_change = change, best = start + row;
+    }
+    state_.clock.seek(source.time_of(best));
+  } catch (const Error& failure) {
+    state_.error = failure.what();
   }
 }
 
 //---------------------------------------------------------------------------------------------
 void Workbench::frame(double seconds) {
-  clock_.advance(seconds);
-  if (!ImGui::GetIO().WantTextInput &&
-      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
-    clock_.toggle();
+  ++state_.frame;
+  state_.clock.advance(seconds);
+  ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
+    state_.clock.toggle();
+  state_.targets = UiTargets{};
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
   ImGui::SetNextWindowPos(viewport->WorkPos);
   ImGui::SetNextWindowSize(viewport->WorkSize);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_MenuBar |
-                                 ImGuiWindowFlags_NoBringToFrontOnFocus |
-                                 ImGuiWindowFlags_NoSavedSettings;
+  const bool single = !state_.options.only_view.empty();
+  ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoBringToFrontOnFocus |
+                           ImGuiWindowFlags_NoSavedSettings;
+  if (!single) flags |= ImGuiWindowFlags_MenuBar;
   ImGui::PushStyleVar(ImGuiStyleVar_WindowRounding, 0.0f);
   ImGui::Begin("Tactile Workbench", nullptr, flags);
   ImGui::PopStyleVar();
-  draw_menu_bar();
-
-  const ImVec2 area = ImGui::GetContentRegionAvail();
-  const float status_height = ImGui::GetFrameHeightWithSpacing();
-  const float main_height = area.y - status_height;
-  draw_sidebar(kSidebarWidth, main_height);
-  ImGui::SameLine();
-  ImGui::BeginGroup();
-  const float right_width = area.x - kSidebarWidth - ImGui::GetStyle().ItemSpacing.x;
-  if (document_) {
-    const float transport_height = ImGui::GetFrameHeightWithSpacing();
-    const float labels_height = std::max(90.0f, main_height * 0.22f);
-    const float views_height =
-        main_height - transport_height - labels_height - ImGui::GetStyle().ItemSpacing.y * 2;
-    const float skin_width = std::floor(right_width * 0.42f);
-    draw_skin_panel(skin_width, views_height);
-    ImGui::SameLine();
-    draw_plot_panel(right_width - skin_width - ImGui::GetStyle().ItemSpacing.x, views_height);
-    draw_transport(right_width);
-    draw_labels_panel(right_width, labels_height);
+  if (single) {
+    draw_view(state_.options.only_view.c_str(), ImGui::GetContentRegionAvail());
   } else {
-    ImGui::BeginChild("welcome", ImVec2(right_width, main_height), true);
+    draw_menu_bar();
+    const ImVec2 area = ImGui::GetContentRegionAvail();
+    draw_arrangement(ImVec2(area.x, area.y - ImGui::GetFrameHeightWithSpacing()));
+    draw_status_bar();
+  }
+  ImGui::End();
+  if (auto chosen = state_.file_browser.draw()) state_.open_request = *chosen;
+  carry_out_requests();
+}
+
+void Workbench::carry_out_requests() {
+  if (auto path = std::exchange(state_.open_request, std::nullopt)) open(*path);
+  if (auto stream = std::exchange(state_.stream_request, std::nullopt))
+    if (state_.document) select_stream(*stream);
+  if (auto view = std::exchange(state_.export_request, std::nullopt)) {
+    const auto found = state_.targets.items.find("view:" + *view);
+    if (found == state_.targets.items.end()) {
+      state_.error = "cannot export view " + *view + ": it is not shown";
+    } else {
+      const fs::path folder =
+          state_.document ? fs::path(state_.document->path).parent_path() : fs::current_path();
+      const std::string stem = state_.document ? state_.document->recording_id() : "workbench";
+      char name[256];
+      std::snprintf(name, sizeof name, "%s-%s-%.3fs.png", stem.c_str(), view->c_str(),
+                    state_.clock.time());
+      export_ = ViewExport{*view, (folder / name).string(), found->second};
+    }
+  }
+}
+
+std::optional<ViewExport> Workbench::take_export() { return std::exchange(export_, std::nullopt); }
+
+void Workbench::draw_view(const char* name, ImVec2 size) {
+  const ViewSpec* view = find_view(name);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  state_.targets.items[std::string("view:") + name] =
+      to_rect(origin, ImVec2(origin.x + size.x, origin.y + size.y));
+  if (!view) {
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "no view %s (views: %s)", name,
+                       view_names().c_str());
+    return;
+  }
+  if (view->needs_recording && !state_.document) {
+    ImGui::BeginChild(name, size, false);
+    ImGui::TextDisabled("No recording open.");
+    ImGui::EndChild();
+    return;
+  }
+  view->draw(state_, size);
+}
+
+void Workbench::draw_arrangement(ImVec2 area) {
+  PanelSizes& sizes = state_.sizes;
+  bool released = false;
+  // Left: workspace and recording, as tabs.
+  ImGui::BeginChild("left", ImVec2(sizes.sidebar_width, area.y), true);
+  if (ImGui::BeginTabBar("left_tabs")) {
+    for (const char* name : {"workspace", "info"}) {
+      if (ImGui::BeginTabItem(view_title(name).c_str())) {
+        draw_view(name, ImGui::GetContentRegionAvail());
+        ImGui::EndTabItem();
+      }
+      remember_item(state_, std::string("tab:") + name);
+    }
+    ImGui::EndTabBar();
+  }
+  ImGui::EndChild();
+  ImGui::SameLine(0.0f, 0.0f);
+  released |= splitter(state_, "sidebar", true, area.y, sizes.sidebar_width, kMinimumPanel,
+                       area.x - 3 * kMinimumPanel);
+  ImGui::SameLine(0.0f, 0.0f);
+  ImGui::BeginGroup();
+  const float right_width = area.x - sizes.sidebar_width - kSplitterThickness;
+  if (!state_.document) {
+    ImGui::BeginChild("welcome", ImVec2(right_width, area.y), true);
     ImGui::TextUnformatted("No recording open.");
     ImGui::TextUnformatted("File > Open... (Ctrl+O), or pick one from the workspace on the left.");
     ImGui::TextUnformatted("Make one with: tactile simulate --demo DIR");
     ImGui::EndChild();
+  } else {
+    sizes.timeline_height =
+        std::clamp(sizes.timeline_height, kMinimumPanel, std::max(kMinimumPanel, area.y - 2 * kMinimumPanel));
+    const float top_height = area.y - sizes.timeline_height - kSplitterThickness;
+    const float skin_width = std::floor(right_width * sizes.skin_fraction);
+    ImGui::BeginChild("skin_frame", ImVec2(skin_width, top_height), true);
+    draw_view("skin", ImGui::GetContentRegionAvail());
+    ImGui::EndChild();
+    ImGui::SameLine(0.0f, 0.0f);
+    float skin_pixels = skin_width;
+    released |= splitter(state_, "skin", true, top_height, skin_pixels, kMinimumPanel,
+                         right_width - kMinimumPanel);
+    sizes.skin_fraction = skin_pixels / std::max(1.0f, right_width);
+    ImGui::SameLine(0.0f, 0.0f);
+    ImGui::BeginChild("signals_frame", ImVec2(right_width - skin_width - kSplitterThickness, top_height), true);
+    draw_view("signals", ImGui::GetContentRegionAvail());
+    ImGui::EndChild();
+    released |= splitter(state_, "timeline", false, right_width, sizes.timeline_height, kMinimumPanel,
+                         area.y - 2 * kMinimumPanel, -1.0f);
+    ImGui::BeginChild("timeline_frame", ImVec2(right_width, sizes.timeline_height), true);
+    draw_view("timeline", ImGui::GetContentRegionAvail());
+    ImGui::EndChild();
   }
   ImGui::EndGroup();
-  draw_status_bar();
-  ImGui::End();
-
-  if (auto chosen = file_browser_.draw()) open(*chosen);
+  if (released) save_settings();
 }
 
 void Workbench::draw_menu_bar() {
   const ImGuiIO& io = ImGui::GetIO();
+  const std::string start = state_.workspace.empty() ? "." : state_.workspace;
   // ImGui 1.86 indexes keys by the backend's native codes; GLFW's letter keys are their ASCII.
   const bool open_shortcut = io.KeyCtrl && ImGui::IsKeyPressed('O', false);
   if (ImGui::BeginMenuBar()) {
     if (ImGui::BeginMenu("File")) {
-      if (ImGui::MenuItem("Open...", "Ctrl+O"))
-        file_browser_.open(workspace_.empty() ? "." : workspace_, {".h5"});
-      if (ImGui::MenuItem("Quit", "Ctrl+Q")) quit_ = true;
-      ImGui::EndMenu();
-    }
-    if (ImGui::BeginMenu("View")) {
-      ImGui::MenuItem("Stacked lanes", nullptr, &plot_state_.stacked);
-      if (ImGui::MenuItem("Fit time axis", nullptr, false, document_ != nullptr)) {
-        plot_state_.view_t0 = 0.0;
-        plot_state_.view_t1 = std::max(1e-3, document_->recording.duration());
+      if (ImGui::MenuItem("Open...", "Ctrl+O")) state_.file_browser.open(start, {".h5"});
+      remember_item(state_, "menu:File/Open...");
+      if (ImGui::BeginMenu("Export view as PNG", state_.document != nullptr)) {
+        for (const ViewSpec& view : all_views()) {
+          if (ImGui::MenuItem(view.title)) state_.export_request = view.name;
+          remember_item(state_, std::string("menu:File/Export view as PNG/") + view.title);
+        }
+        ImGui::EndMenu();
       }
+      remember_item(state_, "menu:File/Export view as PNG");
+      if (ImGui::MenuItem("Quit", "Ctrl+Q")) state_.quit = true;
+      remember_item(state_, "menu:File/Quit");
       ImGui::EndMenu();
     }
+    remember_item(state_, "menu:File");
+    if (ImGui::BeginMenu("View")) {
+      ImGui::MenuItem("Stacked lanes", nullptr, &state_.plot.stacked);
+      remember_item(state_, "menu:View/Stacked lanes");
+      if (ImGui::MenuItem("Fit time axis", nullptr, false, state_.document != nullptr)) {
+        state_.plot.view_t0 = state_.document->samples().start_time();
+        state_.plot.view_t1 = state_.plot.view_t0 + std::max(1e-3, state_.document->samples().duration());
+      }
+      remember_item(state_, "menu:View/Fit time axis");
+      if (ImGui::MenuItem("Reset panel sizes")) {
+        state_.sizes = PanelSizes{};
+        save_settings();
+      }
+      remember_item(state_, "menu:View/Reset panel sizes");
+      ImGui::EndMenu();
+    }
+    remember_item(state_, "menu:View");
     ImGui::EndMenuBar();
   }
-  if (open_shortcut) file_browser_.open(workspace_.empty() ? "." : workspace_, {".h5"});
-  if (io.KeyCtrl && ImGui::IsKeyPressed('Q', false)) quit_ = true;
-}
-
-//---------------------------------------------------------------------------------------------
-void Workbench::draw_sidebar(float width, float height) {
-  ImGui::BeginChild("sidebar", ImVec2(width, height), true);
-  if (ImGui::CollapsingHeader("Workspace", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (workspace_files_.empty()) ImGui::TextDisabled("(no recordings)");
-    ImGui::BeginChild("files",
-                      ImVec2(0, std::min(height * 0.45f, 22.0f * (workspace_files_.size() + 1))));
-    for (const std::string& file : workspace_files_) {
-      const std::string shown = fs::relative(file, workspace_).string();
-      const bool selected = document_ && document_->path == file;
-      if (ImGui::Selectable(shown.c_str(), selected) && !selected) open(file);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", file.c_str());
-    }
-    ImGui::EndChild();
-  }
-  if (document_ && ImGui::CollapsingHeader("Recording", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const Recording& recording = document_->recording;
-    ImGui::Text("%s", recording.id.c_str());
-    if (ImGui::BeginTable("metadata", 2)) {
-      ImGui::TableSetupColumn("key", ImGuiTableColumnFlags_WidthFixed);
-      ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch);
-      auto row = [](const char* key, const std::string& value) {
-        ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::TextDisabled("%s", key);
-        ImGui::TableNextColumn();
-        // Long values (per-channel calibration lists) are cut; the tooltip has them whole.
-        constexpr size_t kShown = 48;
-        if (value.size() <= kShown) {
-          ImGui::TextWrapped("%s", value.c_str());
-        } else {
-          ImGui::TextWrapped("%s...", value.substr(0, kShown).c_str());
-          if (ImGui::IsItemHovered()) {
-            ImGui::BeginTooltip();
-            ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
-            ImGui::TextUnformatted(value.c_str());
-            ImGui::PopTextWrapPos();
-            ImGui::EndTooltip();
-          }
-        }
-      };
-      row("layout", document_->layout.name.empty() ? recording.layout_id : document_->layout.name);
-      for (const auto& [key, value] : recording.metadata) row(key.c_str(), value);
-      ImGui::EndTable();
-    }
-    ImGui::Separator();
-    for (size_t k = 0; k < recording.streams.size(); ++k) {
-      const Stream& stream = recording.streams[k];
-      char text[160];
-      std::snprintf(text, sizeof(text), "%s  %g Hz  %lld ch  %s", stream.name.c_str(),
-                    stream.rate_hz, static_cast<long long>(stream.channel_count()),
-                    format_seconds(stream.duration()).c_str());
-      if (ImGui::RadioButton(text, document_->stream_index == static_cast<int>(k))) {
-        select_stream(*document_, static_cast<int>(k));
-        choose_default_view();
-      }
-    }
-  }
-  if (document_ && ImGui::CollapsingHeader("Channels")) {
-    const Stream& stream = document_->stream();
-    if (ImGui::SmallButton("none")) std::fill(plotted_.begin(), plotted_.end(), 0);
-    ImGui::SameLine();
-    ImGui::TextDisabled("click a taxel to add its channel");
-    ImGuiListClipper clipper;  // thousands of channels stay cheap to list
-    clipper.Begin(static_cast<int>(stream.channel_count()));
-    while (clipper.Step())
-      for (int column = clipper.DisplayStart; column < clipper.DisplayEnd; ++column) {
-        bool shown = plotted_[column] != 0;
-        if (ImGui::Checkbox(stream.channels[column].c_str(), &shown)) plotted_[column] = shown;
-      }
-  }
-  ImGui::EndChild();
-}
-
-void Workbench::draw_skin_panel(float width, float height) {
-  ImGui::BeginChild("skin", ImVec2(width, height), true);
-  const SkinLayout& layout = document_->layout;
-  ImGui::SetNextItemWidth(140);
-  const char* current = layout.modalities.empty() ? "" : layout.modalities[modality_].c_str();
-  if (ImGui::BeginCombo("modality", current)) {
-    for (int k = 0; k < static_cast<int>(layout.modalities.size()); ++k)
-      if (ImGui::Selectable(layout.modalities[k].c_str(), k == modality_)) modality_ = k;
-    ImGui::EndCombo();
-  }
-  ImGui::SameLine();
-  ImGui::Checkbox("raw values", &show_raw_values_);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "Off: each taxel's change from its rest level (median), scaled to the\n"
-        "recording's touches. On: raw values in the layout's display range.");
-  const Stream& stream = document_->stream();
-  const std::vector<int> columns = taxel_columns(layout, stream.channels, modality_);
-  std::vector<float> values = taxel_values(stream, columns, stream.index_at(clock_.time()));
-  double value_min = 0.0;
-  double value_max = 1.0;
-  std::string legend = current;
-  if (show_raw_values_) {
-    // The layout's display range belongs to its display modality; others scale to their data.
-    value_min = layout.display_min;
-    value_max = layout.display_max;
-    if (layout.modalities.empty() || layout.modalities[modality_] != layout.display_modality) {
-      value_min = std::numeric_limits<double>::max();
-      value_max = std::numeric_limits<double>::lowest();
-      for (int column : columns) {
-        if (column < 0 || stream.sample_count() == 0) continue;
-        value_min = std::min<double>(value_min, stream.samples.col(column).minCoeff());
-        value_max = std::max<double>(value_max, stream.samples.col(column).maxCoeff());
-      }
-      if (value_min > value_max) value_min = 0.0, value_max = 1.0;
-    }
-  } else {
-    if (rest_scale_modality_ != modality_) {
-      rest_scale_ = rest_scale(stream, columns);
-      rest_scale_modality_ = modality_;
-    }
-    values = change_from_rest(values, rest_scale_);
-    value_max = rest_scale_.max_change;
-  }
-  SkinViewStyle style;
-  style.modality_label = legend;
-  style.zoom = &skin_zoom_;
-  const ImVec2 size = ImGui::GetContentRegionAvail();
-  const SkinViewResult result =
-      draw_skin_view("skin_view", layout, values, value_min, value_max, size, style);
-  if (result.clicked_taxel >= 0) toggle_taxel_channels(result.clicked_taxel);
-  ImGui::EndChild();
-}
-
-void Workbench::draw_plot_panel(float width, float height) {
-  ImGui::BeginChild("plot", ImVec2(width, height), true);
-  const Stream& stream = document_->stream();
-  std::vector<PlotChannel> channels;
-  for (int64_t column = 0; column < stream.channel_count(); ++column) {
-    if (!plotted_[column]) continue;
-    PlotChannel channel;
-    channel.name = stream.channels[column];
-    channel.pyramid = &document_->pyramids[column];
-    channel.rate_hz = stream.rate_hz;
-    channel.start_time = stream.start_time;
-    channel.colour = kChannelColours[channels.size() % std::size(kChannelColours)];
-    channels.push_back(std::move(channel));
-  }
-  std::vector<PlotSpan> spans;
-  for (const Label& label : document_->labels)
-    spans.push_back({label.t0, label.t1, class_colour(label.class_name), label.class_name});
-  const SignalPlotResult result = draw_signal_plot("signals", channels, spans, plot_state_,
-                                                   clock_.time(), ImGui::GetContentRegionAvail());
-  if (result.clicked_time) clock_.seek(*result.clicked_time);
-  ImGui::EndChild();
-}
-
-void Workbench::draw_transport(float width) {
-  ImGui::BeginChild("transport", ImVec2(width, ImGui::GetFrameHeight()), false);
-  if (ImGui::Button(clock_.playing() ? "Pause" : "Play", ImVec2(70, 0))) clock_.toggle();
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(80);
-  char speed_text[16];
-  std::snprintf(speed_text, sizeof(speed_text), "%gx", clock_.speed());
-  if (ImGui::BeginCombo("##speed", speed_text)) {
-    for (double speed : kSpeeds) {
-      std::snprintf(speed_text, sizeof(speed_text), "%gx", speed);
-      if (ImGui::Selectable(speed_text, speed == clock_.speed())) clock_.set_speed(speed);
-    }
-    ImGui::EndCombo();
-  }
-  ImGui::SameLine();
-  bool looping = clock_.looping();
-  if (ImGui::Checkbox("loop", &looping)) clock_.set_looping(looping);
-  ImGui::SameLine();
-  const std::string now = format_seconds(clock_.time()) + " / " + format_seconds(clock_.end());
-  ImGui::SetNextItemWidth(-1);
-  float time = static_cast<float>(clock_.time());
-  if (ImGui::SliderFloat("##time", &time, static_cast<float>(clock_.start()),
-                         static_cast<float>(clock_.end()), now.c_str()))
-    clock_.seek(time);
-  ImGui::EndChild();
-}
-
-void Workbench::draw_labels_panel(float width, float height) {
-  ImGui::BeginChild("labels", ImVec2(width, height), true);
-  const auto& labels = document_->labels;
-  if (document_->labels_path.empty()) {
-    ImGui::TextDisabled("No label database beside this recording.");
-  } else if (labels.empty()) {
-    ImGui::TextDisabled("No labels for this recording in %s.", document_->labels_path.c_str());
-  } else if (ImGui::BeginTable("label_table", 6,
-                               ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
-                                   ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable)) {
-    ImGui::TableSetupScrollFreeze(0, 1);
-    for (const char* header : {"class", "region", "t0", "t1", "source", "annotator"})
-      ImGui::TableSetupColumn(header);
-    ImGui::TableHeadersRow();
-    ImGuiListClipper clipper;
-    clipper.Begin(static_cast<int>(labels.size()));
-    while (clipper.Step())
-      for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
-        const Label& label = labels[row];
-        const bool current = clock_.time() >= label.t0 && clock_.time() < label.t1;
-        ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::PushID(row);
-        if (ImGui::Selectable(label.class_name.c_str(), current,
-                              ImGuiSelectableFlags_SpanAllColumns))
-          clock_.seek(label.t0);
-        ImGui::PopID();
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(label.region.c_str());
-        ImGui::TableNextColumn();
-        ImGui::Text("%.3f", label.t0);
-        ImGui::TableNextColumn();
-        ImGui::Text("%.3f", label.t1);
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(to_string(label.source));
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(label.annotator.c_str());
-      }
-    ImGui::EndTable();
-  }
-  ImGui::EndChild();
+  if (open_shortcut) state_.file_browser.open(start, {".h5"});
+  if (io.KeyCtrl && ImGui::IsKeyPressed('Q', false)) state_.quit = true;
 }
 
 void Workbench::draw_status_bar() {
-  if (!error_.empty()) {
-    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error_.c_str());
-  } else if (document_) {
+  if (!state_.error.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", state_.error.c_str());
+  } else if (!state_.notice.empty()) {
+    ImGui::TextUnformatted(state_.notice.c_str());
+  } else if (state_.document) {
     ImGui::TextDisabled(
         "%s   %zu labels   space: play/pause   wheel: zoom   drag (skin: right-drag): pan   "
         "double-click: fit",
-        document_->path.c_str(), document_->labels.size());
+        state_.document->path.c_str(), state_.document->labels.size());
   } else {
     ImGui::TextDisabled("Tactile Workbench");
   }
+}
+
+//---- Settings: the panel sizes, per user
+
+std::string Workbench::settings_path() const {
+  if (!state_.options.settings_path.empty()) return state_.options.settings_path;
+  const char* config = std::getenv("XDG_CONFIG_HOME");
+  const char* home = std::getenv("HOME");
+  fs::path folder = config && *config ? fs::path(config) : fs::path(home ? home : ".") / ".config";
+  return (folder / "tactile-workbench" / "settings.json").string();
+}
+
+void Workbench::load_settings() {
+  std::ifstream in(settings_path());
+  if (!in) return;
+  const nlohmann::json settings = nlohmann::json::parse(in, nullptr, false);
+  if (settings.is_discarded() || !settings.is_object() || !settings.contains("panels")) {
+    state_.notice = "ignored unreadable settings file " + settings_path();
+    return;
+  }
+  const nlohmann::json& panels = settings["panels"];
+  PanelSizes sizes;
+  sizes.sidebar_width = panels.value("sidebar_width", sizes.sidebar_width);
+  sizes.skin_fraction = std::clamp(panels.value("skin_fraction", sizes.skin_fraction), 0.05f, 0.95f);
+  sizes.timeline_height = panels.value("timeline_height", sizes.timeline_height);
+  state_.sizes = sizes;
+}
+
+void Workbench::save_settings() const {
+  const fs::path path = settings_path();
+  std::error_code error;
+  fs::create_directories(path.parent_path(), error);
+  nlohmann::json settings;
+  settings["panels"] = {{"sidebar_width", state_.sizes.sidebar_width},
+                        {"skin_fraction", state_.sizes.skin_fraction},
+                        {"timeline_height", state_.sizes.timeline_height}};
+  // Written beside and renamed over, so a crash never leaves half a settings file.
+  const fs::path temporary = path.string() + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << settings.dump(2) << "\n";
+    if (!out) return;
+  }
+  fs::rename(temporary, path, error);
+}
+
+//---- State as JSON
+
+nlohmann::json Workbench::state_json() const {
+  nlohmann::json json;
+  const Document* document = state_.document.get();
+  json["recording"] = document ? nlohmann::json(document->recording_id()) : nlohmann::json(nullptr);
+  json["path"] = document ? nlohmann::json(document->path) : nlohmann::json(nullptr);
+  json["stream"] = document ? nlohmann::json(document->samples().info().stream) : nlohmann::json(nullptr);
+  json["layout"] = document ? nlohmann::json(document->layout.id) : nlohmann::json(nullptr);
+  json["time"] = state_.clock.time();
+  json["playing"] = state_.clock.playing();
+  json["speed"] = state_.clock.speed();
+  json["duration"] = document ? document->samples().duration() : 0.0;
+  json["selection"] = {{"labels", state_.selection.labels},
+                       {"taxels", state_.selection.taxels},
+                       {"segments", state_.selection.segments}};
+  nlohmann::json plotted = nlohmann::json::array();
+  if (document)
+    for (size_t k = 0; k < state_.plotted.size(); ++k)
+      if (state_.plotted[k]) plotted.push_back(document->samples().info().channels[k]);
+  json["plotted"] = plotted;
+  json["modality"] = document && !document->layout.modalities.empty()
+                         ? nlohmann::json(document->layout.modalities[static_cast<size_t>(state_.modality)])
+                         : nlohmann::json(nullptr);
+  json["plot"] = {{"t0", state_.plot.view_t0}, {"t1", state_.plot.view_t1}, {"stacked", state_.plot.stacked}};
+  json["skin_zoom"] = {{"zoom", state_.skin_zoom.zoom}, {"pan_x", state_.skin_zoom.pan_x},
+                       {"pan_y", state_.skin_zoom.pan_y}};
+  nlohmann::json views = nlohmann::json::object();
+  for (const auto& [name, rect] : state_.targets.items)
+    if (name.starts_with("view:"))
+      views[name.substr(5)] = {{"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+  json["views"] = views;
+  json["panels"] = {{"sidebar_width", state_.sizes.sidebar_width},
+                    {"skin_fraction", state_.sizes.skin_fraction},
+                    {"timeline_height", state_.sizes.timeline_height}};
+  json["labels"] = document ? document->labels.size() : 0;
+  json["workspace"] = state_.workspace;
+  nlohmann::json files = nlohmann::json::array();
+  for (const std::string& file : state_.workspace_files)
+    files.push_back(fs::path(file).lexically_relative(state_.workspace).string());
+  json["workspace_files"] = files;
+  json["memory_bytes"] = document ? document->samples().memory_bytes() : 0;
+  json["error"] = state_.error;
+  json["notice"] = state_.notice;
+  json["frame"] = state_.frame;
+  return json;
 }
 
 }  // namespace tactile

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "views.h"
+
 namespace tactile {
 
 std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& args) {
@@ -12,17 +14,40 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
                  "Label database (default: labels.db beside the recording)");
   app.add_option("--time", args.options.time, "Put the time cursor here (seconds)");
   app.add_flag("--play", args.options.play, "Start replaying at once");
-  app.add_option("--screenshot", args.screenshot, "Render the main window to this PNG and exit");
+  app.add_option("--screenshot", args.screenshot, "Render the window (or --view) to this PNG and exit");
+  app.add_option("--script", args.script, "Replay this input script (docs/SCRIPTING.md), then exit")
+      ->check(CLI::ExistingFile);
+  app.add_option("--view", args.options.only_view, "Draw only this view: " + view_names())
+      ->check([](const std::string& name) {
+        return find_view(name) ? std::string() : "no view '" + name + "' (views: " + view_names() + ")";
+      });
+  std::string size;
+  app.add_option("--size", size, "Window size WxH in pixels, e.g. 800x600");
   app.add_flag("--headless", args.headless, "Render off-screen with OSMesa (no display needed)");
   app.add_option("--width", args.width, "Window width in pixels")->check(CLI::Range(320, 8192));
   app.add_option("--height", args.height, "Window height in pixels")->check(CLI::Range(240, 8192));
   app.add_option("--frames", args.frames, "Frames drawn before the screenshot")
       ->check(CLI::Range(1, 1000));
+  double cache_mb = static_cast<double>(args.options.cache_bytes) / (1 << 20);
+  app.add_option("--cache-mb", cache_mb, "Memory for raw-sample chunks of the open recording (MiB)")
+      ->check(CLI::Range(1.0, 65536.0));
+  app.add_option("--settings", args.options.settings_path,
+                 "Settings file (default: ~/.config/tactile-workbench/settings.json)");
   try {
     app.parse(argc, argv);
+    if (!size.empty()) {
+      int width = 0, height = 0;
+      char extra = 0;
+      if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &extra) != 2 || width < 64 ||
+          height < 64 || width > 8192 || height > 8192)
+        throw CLI::ValidationError("--size", "expected WxH between 64x64 and 8192x8192, got '" + size + "'");
+      args.width = width;
+      args.height = height;
+    }
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   }
+  args.options.cache_bytes = static_cast<int64_t>(cache_mb * (1 << 20));
   return std::nullopt;
 }
 

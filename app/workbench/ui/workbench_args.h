@@ -4,13 +4,14 @@
 #include <optional>
 #include <string>
 
-#include "workbench.h"
+#include "workbench_state.h"
 
 namespace tactile {
 
 struct WorkbenchArgs {
   WorkbenchOptions options;
-  std::string screenshot;  // write the window to this PNG and exit
+  std::string screenshot;  // write the window (or --view) to this PNG and exit
+  std::string script;      // replay this script, then exit
   bool headless = false;   // render with OSMesa, no window system
   int width = 1600;
   int height = 900;

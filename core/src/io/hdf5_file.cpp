@@ -226,6 +226,38 @@ std::vector<float> RecordingFile::read_channel(const std::string& stream, int ch
   return values;
 }
 
+SampleMatrix RecordingFile::read_channels(const std::string& stream, int channel_first,
+                                          int channel_count, int64_t first, int64_t count) const {
+  hdf5::silence_errors();
+  const StreamInfo& info = this->stream(stream);
+  const std::string where = path_ + ":/streams/" + stream + "/samples";
+  if (channel_first < 0 || channel_count < 0 ||
+      channel_first + channel_count > static_cast<int>(info.channels.size()))
+    throw Error(where, "channels [" + std::to_string(channel_first) + ", " +
+                           std::to_string(channel_first + channel_count) + ") outside [0, " +
+                           std::to_string(info.channels.size()) + ")");
+  check_range(info, first, count, where);
+  SampleMatrix samples(count, channel_count);
+  Object dataset = hdf5::open_dataset(file_->file.id(), "streams/" + stream + "/samples", where);
+  read_block(dataset.id(), H5T_NATIVE_FLOAT, 2, static_cast<hsize_t>(channel_first),
+             static_cast<hsize_t>(channel_count), static_cast<hsize_t>(first),
+             static_cast<hsize_t>(count), samples.data(), where);
+  return samples;
+}
+
+int64_t RecordingFile::chunk_samples(const std::string& stream) const {
+  hdf5::silence_errors();
+  this->stream(stream);
+  const std::string where = path_ + ":/streams/" + stream + "/samples";
+  Object dataset = hdf5::open_dataset(file_->file.id(), "streams/" + stream + "/samples", where);
+  Object properties =
+      checked(H5Dget_create_plist(dataset.id()), H5Pclose, where, "cannot read properties");
+  if (H5Pget_layout(properties.id()) != H5D_CHUNKED) return 0;
+  hsize_t chunk[2] = {0, 0};
+  if (H5Pget_chunk(properties.id(), 2, chunk) != 2) return 0;
+  return static_cast<int64_t>(chunk[1]);
+}
+
 std::vector<double> RecordingFile::read_timestamps(const std::string& stream) const {
   hdf5::silence_errors();
   const StreamInfo& info = this->stream(stream);

@@ -18,8 +18,12 @@ using hdf5::checked;
 using hdf5::fail;
 using hdf5::Object;
 
-// Samples per chunk along time: 65536 float32 = 256 KiB, so a short time range of a
-// few channels touches a few chunks and a whole channel is still few reads.
+// Samples per chunk along time: 8192 float32 = 32 KiB. A reader decompresses whole
+// chunks, so the skin at one instant (one chunk of every channel) costs about the
+// same for a minute or a day of data, and a zoomed-in plot reads little beyond
+// what it shows.
+constexpr hsize_t kSampleChunk = 8192;
+// Overview and time stamps are read whole or in long runs: bigger chunks.
 constexpr hsize_t kChunkSamples = 65536;
 constexpr unsigned kDeflateLevel = 4;
 
@@ -131,7 +135,7 @@ void write_stream(hid_t streams, const Stream& stream, const std::string& file_w
   // Eigen's column-major matrix is channel after channel: exactly [channels][samples].
   write_chunked(group.id(), "samples", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, stream.samples.data(),
                 static_cast<hsize_t>(stream.channel_count()),
-                static_cast<hsize_t>(stream.sample_count()), kChunkSamples, where + "/samples");
+                static_cast<hsize_t>(stream.sample_count()), kSampleChunk, where + "/samples");
   if (!stream.timestamps.empty())
     write_timestamps(group.id(), stream.timestamps, where + "/timestamps");
   write_overview(group.id(), stream, where);

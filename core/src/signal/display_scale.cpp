@@ -15,7 +15,63 @@ float median_of(std::vector<float>& values) {
   return *middle;
 }
 
+// Top of the scale: the 99th percentile of the changes beyond the noise band.
+double top_of_changes(std::vector<float>& excess) {
+  if (excess.empty()) return 1.0;
+  auto top =
+      excess.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(excess.size() - 1));
+  std::nth_element(excess.begin(), top, excess.end());
+  return std::max(1e-6f, *top);
+}
+
 }  // namespace
+
+RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns, int probes) {
+  const int64_t count = source.sample_count();
+  if (count <= kRestScaleExactSamples) {
+    // Few samples: the exact probe estimate over the samples themselves.
+    std::vector<int> present;
+    for (int column : columns)
+      if (column >= 0 && column < source.channel_count()) present.push_back(column);
+    Stream stream;
+    stream.samples = source.read(present, 0, count);
+    std::vector<int> mapped(columns.size(), -1);
+    for (size_t k = 0, next = 0; k < columns.size(); ++k)
+      if (columns[k] >= 0 && columns[k] < source.channel_count())
+        mapped[k] = static_cast<int>(next++);
+    return rest_scale(stream, mapped, probes);
+  }
+  RestScale scale;
+  scale.rest.assign(columns.size(), std::numeric_limits<float>::quiet_NaN());
+  scale.noise_band.assign(columns.size(), 0.0f);
+  if (probes < 1) return scale;
+  std::vector<float> centres, halves, excess;
+  for (size_t k = 0; k < columns.size(); ++k) {
+    const int column = columns[k];
+    if (column < 0 || column >= source.channel_count()) continue;
+    const std::vector<MinMax> buckets =
+        source.minmax_over_time(column, source.start_time(), source.end_time(), probes);
+    centres.clear();
+    halves.clear();
+    for (const MinMax& bucket : buckets) {
+      if (bucket.empty()) continue;
+      centres.push_back(0.5f * (bucket.min + bucket.max));
+      halves.push_back(0.5f * (bucket.max - bucket.min));
+    }
+    if (centres.empty()) continue;
+    const float rest = median_of(centres);
+    const float band = median_of(halves);
+    scale.rest[k] = rest;
+    scale.noise_band[k] = band;
+    for (const MinMax& bucket : buckets) {
+      if (bucket.empty()) continue;
+      const float beyond = std::max(std::abs(bucket.max - rest), std::abs(bucket.min - rest)) - band;
+      if (beyond > 0.0f) excess.push_back(beyond);
+    }
+  }
+  scale.max_change = top_of_changes(excess);
+  return scale;
+}
 
 RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int probes) {
   RestScale scale;
@@ -48,12 +104,7 @@ RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int 
       if (beyond > 0.0f) excess.push_back(beyond);
     }
   }
-  if (!excess.empty()) {
-    auto top =
-        excess.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(excess.size() - 1));
-    std::nth_element(excess.begin(), top, excess.end());
-    scale.max_change = std::max(1e-6f, *top);
-  }
+  if (!excess.empty()) scale.max_change = top_of_changes(excess);
   return scale;
 }
 

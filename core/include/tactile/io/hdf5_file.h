@@ -67,6 +67,13 @@ class RecordingFile {
   SampleMatrix read(const std::string& stream, int64_t first, int64_t count) const;
   std::vector<float> read_channel(const std::string& stream, int channel, int64_t first,
                                   int64_t count) const;
+  // Samples [first, first + count) of channels [channel_first, channel_first +
+  // channel_count): rows = samples, cols = channels.
+  SampleMatrix read_channels(const std::string& stream, int channel_first, int channel_count,
+                             int64_t first, int64_t count) const;
+  // Samples per stored chunk along time (the unit a reader decompresses); 0 when the
+  // samples are not chunked.
+  int64_t chunk_samples(const std::string& stream) const;
   // Empty for a regularly sampled stream (as Stream::timestamps).
   std::vector<double> read_timestamps(const std::string& stream) const;
   // Per-block {min, max}: rows = blocks of overview_block() samples, cols = channels.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tactile/io/recording.h"
+#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 
@@ -22,6 +23,16 @@ struct RestScale {
 // band, so a quiet taxel stays dark, a touch shows whatever the skin's rest level, and a
 // single spike does not wash the map out. Columns < 0 are skipped.
 RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int probes = 2048);
+
+// The same through a SampleSource, reading no more than a bounded number of samples:
+// a source of at most kRestScaleExactSamples samples is probed as above; a longer one is
+// cut into `probes` equal time buckets whose min/max come from its coarse data (a file's
+// overview), and then rest = median of the bucket centres, noise band = median of the
+// bucket half-ranges (about 3 sigma for a few hundred samples of Gaussian noise), and a
+// bucket's change = its farthest value from rest less the band.
+inline constexpr int64_t kRestScaleExactSamples = 32768;
+RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns,
+                     int probes = 2048);
 
 // max(0, |value - rest| - noise band) per entry; NaN stays NaN.
 std::vector<float> change_from_rest(const std::vector<float>& values, const RestScale& scale);

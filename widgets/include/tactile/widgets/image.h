@@ -19,6 +19,8 @@ struct Image {
   Rgba at(int x, int y) const;
   // Flips rows in place: OpenGL reads the bottom row first.
   void flip_vertically();
+  // The part [x, x + width) x [y, y + height), clipped to the image.
+  Image crop(int x, int y, int crop_width, int crop_height) const;
 };
 
 // Writes an RGBA image to PNG; throws tactile::Error naming the path on failure.

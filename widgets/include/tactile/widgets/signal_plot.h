@@ -1,7 +1,8 @@
 #pragma once
 // SignalPlot: several channels over time, overlaid or in stacked lanes, drawn with
-// ImGui draw lists. Each frame asks each channel's min/max pyramid for one min/max
-// per pixel column, so a frame costs the same for a minute or a day of data.
+// ImGui draw lists. Each frame asks each channel's SampleSource for one min/max per
+// pixel column (4 vertices a column), so a frame costs the same for a minute or a day
+// of data; zoomed in to a sample or less per pixel it draws the samples as a line.
 //
 // Mouse: wheel zooms about the cursor, drag pans, a click sets the time cursor
 // (returned to the caller), a double click fits all data.
@@ -13,16 +14,15 @@
 #include <span>
 #include <string>
 
-#include "tactile/signal/minmax_pyramid.h"
+#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 
 struct PlotChannel {
   std::string name;
-  const MinMaxPyramid* pyramid = nullptr;  // not owned; null draws nothing
-  double rate_hz = 0.0;
-  double start_time = 0.0;  // time of sample 0, seconds
-  uint32_t colour = 0;      // IM_COL32; 0 picks plot_colour(index)
+  const SampleSource* source = nullptr;  // not owned; null draws nothing
+  int channel = 0;                       // channel of the source
+  uint32_t colour = 0;                   // IM_COL32; 0 picks plot_colour(index)
 };
 
 // A shaded time span [t0, t1), e.g. a label segment, with its class name.

@@ -1,0 +1,63 @@
+#include "frame_loop.h"
+
+#include <cmath>
+#include <iostream>
+
+namespace tactile {
+
+FrameLoop::FrameLoop(Workbench& workbench, const WorkbenchArgs& args)
+    : workbench_(workbench), args_(args) {
+  if (!args.script.empty())
+    player_ = std::make_unique<ScriptPlayer>(read_script(args.script), args.script);
+}
+
+double FrameLoop::begin(double wall_seconds) {
+  ++frame_;
+  return player_ ? player_->before_frame(workbench_) : wall_seconds;
+}
+
+bool FrameLoop::end(const std::function<Image()>& grab) {
+  std::optional<Image> frame;
+  auto image = [&]() -> const Image& {
+    if (!frame) frame = grab();
+    return *frame;
+  };
+  if (auto request = workbench_.take_export()) {
+    const ScreenRect& area = request->area;
+    try {
+      write_png(request->path, image().crop(static_cast<int>(std::floor(area.x0)),
+                                            static_cast<int>(std::floor(area.y0)),
+                                            static_cast<int>(std::ceil(area.width())),
+                                            static_cast<int>(std::ceil(area.height()))));
+      workbench_.state().notice = "wrote " + request->path;
+      std::cout << "wrote " << request->path << "\n";
+    } catch (const std::exception& failure) {
+      workbench_.fail(failure.what());
+    }
+  }
+  if (player_) {
+    player_->after_frame(workbench_, image);
+    if (player_->failed()) {
+      std::cerr << "tactile-workbench: " << player_->error() << "\n";
+      exit_code_ = 1;
+      return false;
+    }
+    if (player_->done()) {
+      if (!args_.screenshot.empty()) {
+        write_png(args_.screenshot, image());
+        std::cout << "wrote " << args_.screenshot << "\n";
+      }
+      return false;
+    }
+    return !workbench_.quit_requested();
+  }
+  if (!args_.screenshot.empty() && frame_ >= args_.frames) {
+    write_png(args_.screenshot, image());
+    std::cout << "wrote " << args_.screenshot << "\n";
+    if (!workbench_.error().empty()) exit_code_ = 1;
+    return false;
+  }
+  return !workbench_.quit_requested();
+}
+
+}  // namespace tactile

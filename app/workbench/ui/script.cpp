@@ -1,0 +1,501 @@
+#include "script.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "tactile/error.h"
+
+namespace tactile {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// GLFW's key codes (glfw3.h); printable keys are their ASCII upper case.
+constexpr int kKeyTab = 258, kKeyLeft = 263, kKeyRight = 262, kKeyUp = 265, kKeyDown = 264,
+              kKeyPageUp = 266, kKeyPageDown = 267, kKeyHome = 268, kKeyEnd = 269,
+              kKeyInsert = 260, kKeyDelete = 261, kKeyBackspace = 259, kKeySpace = 32,
+              kKeyEnter = 257, kKeyEscape = 256, kKeyPadEnter = 335, kKeyF1 = 290;
+
+const std::map<std::string, int>& named_keys() {
+  static const std::map<std::string, int> keys = {
+      {"tab", kKeyTab},         {"left", kKeyLeft},         {"right", kKeyRight},
+      {"up", kKeyUp},           {"down", kKeyDown},         {"pageup", kKeyPageUp},
+      {"pagedown", kKeyPageDown}, {"home", kKeyHome},       {"end", kKeyEnd},
+      {"insert", kKeyInsert},   {"delete", kKeyDelete},     {"backspace", kKeyBackspace},
+      {"space", kKeySpace},     {"enter", kKeyEnter},       {"return", kKeyEnter},
+      {"escape", kKeyEscape},   {"esc", kKeyEscape}};
+  return keys;
+}
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+struct KeyChord {
+  bool ctrl = false, shift = false, alt = false, super = false;
+  int code = 0;
+  unsigned character = 0;  // text the key types, 0 for none
+};
+
+// "Ctrl+Shift+Z", "2", "[", "Enter", "F5". Throws std::invalid_argument with a reason.
+KeyChord parse_chord(const std::string& text) {
+  KeyChord chord;
+  std::string rest = text;
+  // Split at '+' except a trailing '+' that is the key itself ("Ctrl++").
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (start < rest.size()) {
+    size_t plus = rest.find('+', start);
+    if (plus == start) plus = rest.find('+', start + 1);
+    if (plus == std::string::npos) plus = rest.size();
+    parts.push_back(rest.substr(start, plus - start));
+    start = plus + 1;
+  }
+  if (parts.empty()) throw std::invalid_argument("no key");
+  for (size_t k = 0; k + 1 < parts.size(); ++k) {
+    const std::string modifier = lower(parts[k]);
+    if (modifier == "ctrl" || modifier == "control") chord.ctrl = true;
+    else if (modifier == "shift") chord.shift = true;
+    else if (modifier == "alt") chord.alt = true;
+    else if (modifier == "super" || modifier == "cmd") chord.super = true;
+    else throw std::invalid_argument("unknown modifier '" + parts[k] + "' (Ctrl, Shift, Alt, Super)");
+  }
+  const std::string key = parts.back();
+  const auto named = named_keys().find(lower(key));
+  if (named != named_keys().end()) {
+    chord.code = named->second;
+    if (chord.code == kKeySpace) chord.character = ' ';
+    return chord;
+  }
+  if (key.size() >= 2 && (key[0] == 'F' || key[0] == 'f') &&
+      std::all_of(key.begin() + 1, key.end(), ::isdigit)) {
+    const int number = std::stoi(key.substr(1));
+    if (number < 1 || number > 12) throw std::invalid_argument("F1 to F12 only");
+    chord.code = kKeyF1 + number - 1;
+    return chord;
+  }
+  if (key.size() != 1 || static_cast<unsigned char>(key[0]) < 33 ||
+      static_cast<unsigned char>(key[0]) > 126)
+    throw std::invalid_argument("unknown key '" + key + "'");
+  const char c = key[0];
+  chord.code = std::toupper(static_cast<unsigned char>(c));
+  chord.character = static_cast<unsigned char>(chord.shift ? std::toupper(c) : c);
+  return chord;
+}
+
+double parse_number(const ScriptStep& step, size_t index, const std::string& where) {
+  if (index >= step.words.size())
+    throw Error(where + ":" + std::to_string(step.line), step.command + ": a number is missing");
+  const std::string& word = step.words[index];
+  try {
+    size_t used = 0;
+    const double value = std::stod(word, &used);
+    if (used != word.size() || !std::isfinite(value)) throw std::invalid_argument(word);
+    return value;
+  } catch (const std::exception&) {
+    throw Error(where + ":" + std::to_string(step.line),
+                step.command + ": '" + word + "' is not a number");
+  }
+}
+
+// The "in VIEW" suffix of click time / drag time; "signals" by default.
+std::string time_view(const ScriptStep& step, size_t index) {
+  if (step.words.size() > index + 1 && step.words[index] == "in") return step.words[index + 1];
+  return "signals";
+}
+
+ImVec2 centre_of(const ScreenRect& rect) {
+  return ImVec2(0.5f * (rect.x0 + rect.x1), 0.5f * (rect.y0 + rect.y1));
+}
+
+}  // namespace
+
+//---- Parsing
+
+std::vector<ScriptStep> parse_script(const std::string& text, const std::string& where) {
+  static const std::map<std::string, std::pair<size_t, size_t>> kArity = {
+      {"open", {1, 99}},  {"time", {1, 1}},  {"key", {1, 99}},   {"type", {1, 99}},
+      {"click", {2, 4}},  {"drag", {3, 5}},  {"menu", {1, 99}},  {"wait", {1, 1}},
+      {"play", {1, 1}},   {"sleep", {1, 1}}, {"screenshot", {1, 99}}, {"state", {1, 99}}};
+  std::vector<ScriptStep> steps;
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
+    ScriptStep step;
+    step.line = number;
+    std::istringstream words(line.substr(first));
+    words >> step.command;
+    const size_t after = line.find_first_not_of(" \t", first + step.command.size());
+    step.rest = after == std::string::npos ? "" : line.substr(after);
+    while (!step.rest.empty() && (step.rest.back() == ' ' || step.rest.back() == '\t'))
+      step.rest.pop_back();
+    for (std::string word; words >> word;) step.words.push_back(word);
+    const std::string place = where + ":" + std::to_string(number);
+    const auto arity = kArity.find(step.command);
+    if (arity == kArity.end())
+      throw Error(place, "unknown command '" + step.command +
+                             "' (open, time, key, type, click, drag, menu, wait, play, sleep, "
+                             "screenshot, state)");
+    if (step.words.size() < arity->second.first || step.words.size() > arity->second.second)
+      throw Error(place, step.command + ": wrong number of arguments (docs/SCRIPTING.md)");
+    // Check what can be checked before anything runs.
+    if (step.command == "time" || step.command == "wait" || step.command == "play" ||
+        step.command == "sleep") {
+      const double value = parse_number(step, 0, where);
+      if (value < 0) throw Error(place, step.command + ": must not be negative");
+    } else if (step.command == "key") {
+      for (const std::string& word : step.words) {
+        try {
+          parse_chord(word);
+        } catch (const std::invalid_argument& reason) {
+          throw Error(place, "key " + word + ": " + reason.what());
+        }
+      }
+    } else if (step.command == "click") {
+      const std::string& what = step.words[0];
+      if (what == "taxel") {
+        parse_number(step, 1, where);
+      } else if (what == "time") {
+        parse_number(step, 1, where);
+      } else if (step.words.size() == 3) {
+        parse_number(step, 1, where), parse_number(step, 2, where);
+      } else {
+        throw Error(place, "click: expected 'taxel ID', 'time T [in VIEW]' or 'VIEW X Y'");
+      }
+    } else if (step.command == "drag") {
+      if (step.words[0] != "time") throw Error(place, "drag: expected 'time T0 T1 [in VIEW]'");
+      parse_number(step, 1, where), parse_number(step, 2, where);
+    }
+    steps.push_back(std::move(step));
+  }
+  return steps;
+}
+
+std::vector<ScriptStep> read_script(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path, "cannot read the script");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_script(text.str(), path);
+}
+
+void install_glfw_key_map(ImGuiIO& io) {
+  io.KeyMap[ImGuiKey_Tab] = kKeyTab;
+  io.KeyMap[ImGuiKey_LeftArrow] = kKeyLeft;
+  io.KeyMap[ImGuiKey_RightArrow] = kKeyRight;
+  io.KeyMap[ImGuiKey_UpArrow] = kKeyUp;
+  io.KeyMap[ImGuiKey_DownArrow] = kKeyDown;
+  io.KeyMap[ImGuiKey_PageUp] = kKeyPageUp;
+  io.KeyMap[ImGuiKey_PageDown] = kKeyPageDown;
+  io.KeyMap[ImGuiKey_Home] = kKeyHome;
+  io.KeyMap[ImGuiKey_End] = kKeyEnd;
+  io.KeyMap[ImGuiKey_Insert] = kKeyInsert;
+  io.KeyMap[ImGuiKey_Delete] = kKeyDelete;
+  io.KeyMap[ImGuiKey_Backspace] = kKeyBackspace;
+  io.KeyMap[ImGuiKey_Space] = kKeySpace;
+  io.KeyMap[ImGuiKey_Enter] = kKeyEnter;
+  io.KeyMap[ImGuiKey_Escape] = kKeyEscape;
+  io.KeyMap[ImGuiKey_KeyPadEnter] = kKeyPadEnter;
+  io.KeyMap[ImGuiKey_A] = 'A';
+  io.KeyMap[ImGuiKey_C] = 'C';
+  io.KeyMap[ImGuiKey_V] = 'V';
+  io.KeyMap[ImGuiKey_X] = 'X';
+  io.KeyMap[ImGuiKey_Y] = 'Y';
+  io.KeyMap[ImGuiKey_Z] = 'Z';
+}
+
+//---- Playing
+
+ScriptPlayer::ScriptPlayer(std::vector<ScriptStep> steps, std::string where)
+    : steps_(steps.begin(), steps.end()), where_(std::move(where)) {}
+
+void ScriptPlayer::fail(const ScriptStep& step, const std::string& message) {
+  if (error_.empty()) error_ = where_ + ":" + std::to_string(step.line) + ": " + message;
+  actions_.clear();
+  steps_.clear();
+}
+
+// Moves the mouse onto the target, presses, releases, and lets one frame see the release.
+void ScriptPlayer::click_at(std::function<std::optional<ImVec2>(Workbench&, std::string&)> where,
+                            const ScriptStep& step) {
+  auto position = std::make_shared<ImVec2>();
+  actions_.push_back([this, where, step, position](Workbench& workbench, ImGuiIO& io) {
+    std::string problem;
+    const std::optional<ImVec2> point = where(workbench, problem);
+    if (!point) {
+      fail(step, problem);
+      return true;
+    }
+    *position = *point;
+    io.MousePos = *point;
+    io.MouseDown[0] = false;
+    return true;
+  });
+  actions_.push_back([position](Workbench&, ImGuiIO& io) {
+    io.MousePos = *position;
+    io.MouseDown[0] = true;
+    return true;
+  });
+  actions_.push_back([position](Workbench&, ImGuiIO& io) {
+    io.MousePos = *position;
+    io.MouseDown[0] = false;
+    return true;
+  });
+  actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
+}
+
+void ScriptPlayer::expand(const ScriptStep& step) {
+  const std::string& command = step.command;
+  auto once = [this](std::function<void(Workbench&, ImGuiIO&)> work) {
+    actions_.push_back([work](Workbench& workbench, ImGuiIO& io) {
+      work(workbench, io);
+      return true;
+    });
+  };
+  if (command == "open") {
+    once([this, step](Workbench& workbench, ImGuiIO&) {
+      workbench.open(step.rest);
+      if (!workbench.error().empty()) fail(step, workbench.error());
+    });
+  } else if (command == "time") {
+    const double t = std::stod(step.words[0]);
+    once([t](Workbench& workbench, ImGuiIO&) { workbench.seek(t); });
+  } else if (command == "wait") {
+    const int frames = static_cast<int>(std::stod(step.words[0]));
+    for (int k = 0; k < frames; ++k) once([](Workbench&, ImGuiIO&) {});
+  } else if (command == "key") {
+    for (const std::string& word : step.words) {
+      const KeyChord chord = parse_chord(word);
+      once([chord](Workbench&, ImGuiIO& io) {
+        io.KeyCtrl = chord.ctrl;
+        io.KeyShift = chord.shift;
+        io.KeyAlt = chord.alt;
+        io.KeySuper = chord.super;
+        io.KeysDown[chord.code] = true;
+        if (chord.character && !chord.ctrl && !chord.alt && !chord.super)
+          io.AddInputCharacter(chord.character);
+      });
+      once([chord](Workbench&, ImGuiIO& io) {
+        io.KeysDown[chord.code] = false;
+        io.KeyCtrl = io.KeyShift = io.KeyAlt = io.KeySuper = false;
+      });
+    }
+  } else if (command == "type") {
+    once([text = step.rest](Workbench&, ImGuiIO& io) { io.AddInputCharactersUTF8(text.c_str()); });
+    once([](Workbench&, ImGuiIO&) {});
+  } else if (command == "click" && step.words[0] == "taxel") {
+    const auto id = static_cast<int64_t>(std::stod(step.words[1]));
+    click_at(
+        [id](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+          const UiTargets& targets = workbench.state().targets;
+          const auto found = targets.taxels.find(id);
+          if (found == targets.taxels.end()) {
+            problem = "no taxel " + std::to_string(id) + " in the skin view";
+            return std::nullopt;
+          }
+          const ImVec2 point(found->second.first, found->second.second);
+          if (!targets.skin_map.contains(point.x, point.y)) {
+            problem = "taxel " + std::to_string(id) + " is outside the visible skin view";
+            return std::nullopt;
+          }
+          return point;
+        },
+        step);
+  } else if (command == "click" && step.words[0] == "time") {
+    const double t = std::stod(step.words[1]);
+    const std::string view = time_view(step, 2);
+    click_at(
+        [t, view](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+          const auto& axes = workbench.state().targets.time_axes;
+          const auto found = axes.find(view);
+          if (found == axes.end()) {
+            problem = "no time axis in view '" + view + "'";
+            return std::nullopt;
+          }
+          const TimeAxis& axis = found->second;
+          if (t < axis.t0 || t > axis.t1) {
+            problem = "time " + std::to_string(t) + " s is outside the visible range [" +
+                      std::to_string(axis.t0) + ", " + std::to_string(axis.t1) + "] of " + view;
+            return std::nullopt;
+          }
+          const float x = axis.area.x0 + static_cast<float>((t - axis.t0) / (axis.t1 - axis.t0)) *
+                                             axis.area.width();
+          return ImVec2(std::min(x, axis.area.x1 - 1.0f), 0.5f * (axis.area.y0 + axis.area.y1));
+        },
+        step);
+  } else if (command == "click") {
+    const std::string view = step.words[0];
+    const float fx = std::stof(step.words[1]), fy = std::stof(step.words[2]);
+    click_at(
+        [view, fx, fy](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+          const auto& items = workbench.state().targets.items;
+          const auto found = items.find("view:" + view);
+          if (found == items.end()) {
+            problem = "no view '" + view + "' on screen";
+            return std::nullopt;
+          }
+          const ScreenRect& rect = found->second;
+          return ImVec2(rect.x0 + fx * rect.width(), rect.y0 + fy * rect.height());
+        },
+        step);
+  } else if (command == "drag") {
+    const double t0 = std::stod(step.words[1]), t1 = std::stod(step.words[2]);
+    const std::string view = time_view(step, 3);
+    auto ends = std::make_shared<std::pair<ImVec2, ImVec2>>();
+    actions_.push_back([this, step, t0, t1, view, ends](Workbench& workbench, ImGuiIO& io) {
+      const auto& axes = workbench.state().targets.time_axes;
+      const auto found = axes.find(view);
+      if (found == axes.end()) {
+        fail(step, "no time axis in view '" + view + "'");
+        return true;
+      }
+      const TimeAxis& axis = found->second;
+      auto x_of = [&](double t) {
+        return axis.area.x0 + static_cast<float>((t - axis.t0) / (axis.t1 - axis.t0)) * axis.area.width();
+      };
+      for (double t : {t0, t1})
+        if (t < axis.t0 || t > axis.t1) {
+          fail(step, "time " + std::to_string(t) + " s is outside the visible range of " + view);
+          return true;
+        }
+      const float y = 0.5f * (axis.area.y0 + axis.area.y1);
+      *ends = {ImVec2(x_of(t0), y), ImVec2(x_of(t1), y)};
+      io.MousePos = ends->first;
+      io.MouseDown[0] = false;
+      return true;
+    });
+    actions_.push_back([ends](Workbench&, ImGuiIO& io) {
+      io.MousePos = ends->first;
+      io.MouseDown[0] = true;
+      return true;
+    });
+    constexpr int kDragSteps = 8;
+    for (int k = 1; k <= kDragSteps; ++k)
+      actions_.push_back([ends, k](Workbench&, ImGuiIO& io) {
+        const float f = static_cast<float>(k) / kDragSteps;
+        io.MousePos = ImVec2(ends->first.x + f * (ends->second.x - ends->first.x), ends->first.y);
+        io.MouseDown[0] = true;
+        return true;
+      });
+    actions_.push_back([ends](Workbench&, ImGuiIO& io) {
+      io.MousePos = ends->second;
+      io.MouseDown[0] = false;
+      return true;
+    });
+    actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
+  } else if (command == "menu") {
+    // "File/Export view as PNG/Skin": click the bar entry, hover each submenu, click the item.
+    std::vector<std::string> parts;
+    std::stringstream path(step.rest);
+    for (std::string part; std::getline(path, part, '/');) parts.push_back(part);
+    std::string name = "menu:";
+    for (size_t k = 0; k < parts.size(); ++k) {
+      name += (k ? "/" : "") + parts[k];
+      const bool hover_only = k > 0 && k + 1 < parts.size();
+      auto resolve = [name](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+        const auto& items = workbench.state().targets.items;
+        const auto found = items.find(name);
+        if (found == items.end()) {
+          problem = "no menu item '" + name.substr(5) + "'";
+          return std::nullopt;
+        }
+        return centre_of(found->second);
+      };
+      if (hover_only) {
+        actions_.push_back([this, step, resolve](Workbench& workbench, ImGuiIO& io) {
+          std::string problem;
+          const auto point = resolve(workbench, problem);
+          if (!point) fail(step, problem);
+          else io.MousePos = *point;
+          return true;
+        });
+        actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
+      } else {
+        click_at(resolve, step);
+      }
+    }
+  } else if (command == "play") {
+    const double seconds = std::stod(step.words[0]);
+    auto remaining = std::make_shared<double>(seconds);
+    auto started = std::make_shared<bool>(false);
+    actions_.push_back([remaining, started, this](Workbench& workbench, ImGuiIO&) {
+      PlaybackClock& clock = workbench.state().clock;
+      if (!*started) {
+        *started = true;
+        clock.play();
+      }
+      if (*remaining <= 1e-12 || !clock.playing()) {
+        clock.pause();
+        frame_seconds_ = 1.0 / 60.0;
+        return true;
+      }
+      const double recording_step = std::min(*remaining, clock.speed() / 30.0);
+      frame_seconds_ = recording_step / clock.speed();
+      *remaining -= recording_step;
+      return false;
+    });
+  } else if (command == "sleep") {
+    const double seconds = std::stod(step.words[0]);
+    auto deadline = std::make_shared<std::optional<Clock::time_point>>();
+    actions_.push_back([seconds, deadline](Workbench&, ImGuiIO&) {
+      const auto now = Clock::now();
+      if (!*deadline)
+        *deadline = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+      if (now >= **deadline) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(15));
+      return false;
+    });
+  } else if (command == "screenshot" || command == "state") {
+    const bool screenshot = command == "screenshot";
+    once([this, path = step.rest, screenshot](Workbench&, ImGuiIO&) {
+      pending_outputs_.emplace_back(path, screenshot);
+    });
+  }
+}
+
+double ScriptPlayer::before_frame(Workbench& workbench) {
+  ImGuiIO& io = ImGui::GetIO();
+  frame_seconds_ = 1.0 / 60.0;
+  while (actions_.empty() && !steps_.empty()) {
+    current_ = steps_.front();
+    steps_.pop_front();
+    expand(*current_);
+  }
+  if (!actions_.empty()) {
+    Action action = actions_.front();
+    if (action(workbench, io) && !actions_.empty()) actions_.pop_front();
+  }
+  return frame_seconds_;
+}
+
+void ScriptPlayer::after_frame(Workbench& workbench, const std::function<Image()>& grab) {
+  for (const auto& [path, screenshot] : pending_outputs_) {
+    try {
+      if (screenshot) {
+        write_png(path, grab());
+      } else {
+        std::ofstream out(path);
+        out << workbench.state_json().dump(2) << "\n";
+        if (!out) throw Error(path, "cannot write the state");
+      }
+    } catch (const std::exception& failure) {
+      if (error_.empty()) error_ = where_ + ": " + failure.what();
+      steps_.clear();
+      actions_.clear();
+    }
+  }
+  pending_outputs_.clear();
+}
+
+}  // namespace tactile

@@ -1,0 +1,69 @@
+#pragma once
+// Scripted input (docs/SCRIPTING.md): a text file of commands replayed frame by frame
+// through ImGui's real input path (mouse position and buttons, keys, text), naming
+// targets (a taxel, a time, a view, a menu item) rather than pixels. Used by the render
+// tests and by users (`tactile-workbench ... --script FILE`), windowed or headless.
+
+#include <imgui.h>
+
+#include <deque>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/widgets/image.h"
+#include "workbench.h"
+
+namespace tactile {
+
+struct ScriptStep {
+  int line = 0;
+  std::string command;  // "click", "key", ...
+  std::vector<std::string> words;  // the arguments, split at spaces
+  std::string rest;                // everything after the command, as written
+};
+
+// Parses a script; throws tactile::Error naming "FILE:LINE" for an unknown command or
+// a wrong argument.
+std::vector<ScriptStep> parse_script(const std::string& text, const std::string& where);
+std::vector<ScriptStep> read_script(const std::string& path);
+
+// The key codes of the GLFW backend, so that scripted keys mean the same headless and
+// in a window; the headless program installs them as ImGui's key map.
+void install_glfw_key_map(ImGuiIO& io);
+
+class ScriptPlayer {
+ public:
+  ScriptPlayer(std::vector<ScriptStep> steps, std::string where);
+
+  // Before ImGui::NewFrame (after the backend's own new frame): sets this frame's input
+  // and carries out commands. Returns the seconds the workbench's clock advances by.
+  double before_frame(Workbench& workbench);
+  // After the frame is rendered: writes screenshots and states asked for. `grab` reads
+  // the rendered frame.
+  void after_frame(Workbench& workbench, const std::function<Image()>& grab);
+
+  bool done() const { return steps_.empty() && actions_.empty() && !failed(); }
+  bool failed() const { return !error_.empty(); }
+  // "script.txt:12: no taxel 999 in the skin view"; "" when none.
+  const std::string& error() const { return error_; }
+
+ private:
+  using Action = std::function<bool(Workbench&, ImGuiIO&)>;  // true: done, next one
+  void expand(const ScriptStep& step);
+  void fail(const ScriptStep& step, const std::string& message);
+  void click_at(std::function<std::optional<ImVec2>(Workbench&, std::string&)> where,
+                const ScriptStep& step);
+
+  std::deque<ScriptStep> steps_;
+  std::deque<Action> actions_;
+  std::string where_;
+  std::string error_;
+  std::optional<ScriptStep> current_;
+  std::vector<std::pair<std::string, bool>> pending_outputs_;  // path, is screenshot
+  std::vector<int> released_keys_;
+  double frame_seconds_ = 1.0 / 60.0;
+};
+
+}  // namespace tactile

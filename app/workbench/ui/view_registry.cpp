@@ -1,0 +1,101 @@
+// The list of views and what the views share.
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <limits>
+
+#include "tactile/layout/taxel_values.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+constexpr ViewSpec kViews[] = {
+    {"workspace", "Workspace", false, draw_workspace_view},
+    {"info", "Recording", true, draw_info_view},
+    {"skin", "Skin", true, draw_skin_panel_view},
+    {"signals", "Signals", true, draw_signals_view},
+    {"timeline", "Timeline", true, draw_timeline_view},
+};
+
+// Tableau 10: distinct hues for up to ten plotted channels, then repeated.
+constexpr uint32_t kChannelColours[] = {IM_COL32(31, 119, 180, 255),  IM_COL32(255, 127, 14, 255),
+                                        IM_COL32(44, 160, 44, 255),   IM_COL32(214, 39, 40, 255),
+                                        IM_COL32(148, 103, 189, 255), IM_COL32(140, 86, 75, 255),
+                                        IM_COL32(227, 119, 194, 255), IM_COL32(127, 127, 127, 255),
+                                        IM_COL32(188, 189, 34, 255),  IM_COL32(23, 190, 207, 255)};
+
+}  // namespace
+
+std::span<const ViewSpec> all_views() { return kViews; }
+
+const ViewSpec* find_view(const std::string& name) {
+  for (const ViewSpec& view : kViews)
+    if (name == view.name) return &view;
+  return nullptr;
+}
+
+std::string view_names() {
+  std::string names;
+  for (const ViewSpec& view : kViews) names += (names.empty() ? "" : ", ") + std::string(view.name);
+  return names;
+}
+
+uint32_t channel_colour(int index) {
+  return kChannelColours[static_cast<size_t>(index) % std::size(kChannelColours)];
+}
+
+uint32_t class_colour(const std::string& class_name) {
+  const size_t hash = std::hash<std::string>{}(class_name);
+  const uint32_t base = kChannelColours[hash % std::size(kChannelColours)];
+  return (base & 0x00FFFFFFu) | (70u << 24);  // translucent, so signals show through
+}
+
+std::string format_seconds(double seconds) {
+  char text[32];
+  const int minutes = static_cast<int>(seconds / 60.0);
+  std::snprintf(text, sizeof(text), "%d:%06.3f", minutes, seconds - minutes * 60.0);
+  return text;
+}
+
+ScreenRect to_rect(ImVec2 min, ImVec2 max) { return {min.x, min.y, max.x, max.y}; }
+
+void remember_item(WorkbenchState& state, const std::string& name) {
+  state.targets.items[name] = to_rect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
+}
+
+std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, double& value_max) {
+  const Document& document = *state.document;
+  const SampleSource& source = document.samples();
+  const SkinLayout& layout = document.layout;
+  const std::vector<int> columns = taxel_columns(layout, source.info().channels, state.modality);
+  const std::vector<float> all = source.values_at_time(state.clock.time());
+  std::vector<float> values(columns.size(), std::numeric_limits<float>::quiet_NaN());
+  for (size_t k = 0; k < columns.size(); ++k)
+    if (columns[k] >= 0) values[k] = all[static_cast<size_t>(columns[k])];
+  value_min = 0.0;
+  value_max = 1.0;
+  if (state.show_raw_values) {
+    // The layout's display range belongs to its display modality; others scale to their data.
+    value_min = layout.display_min;
+    value_max = layout.display_max;
+    if (layout.modalities.empty() ||
+        layout.modalities[static_cast<size_t>(state.modality)] != layout.display_modality) {
+      MinMax extent;
+      for (int column : columns)
+        if (column >= 0) extent.merge(source.channel_extent(column));
+      value_min = extent.empty() ? 0.0 : extent.min;
+      value_max = extent.empty() ? 1.0 : extent.max;
+    }
+    return values;
+  }
+  if (state.rest_scale_modality != state.modality) {
+    state.rest_scale = rest_scale(source, columns);
+    state.rest_scale_modality = state.modality;
+  }
+  value_max = state.rest_scale.max_change;
+  return change_from_rest(values, state.rest_scale);
+}
+
+}  // namespace tactile

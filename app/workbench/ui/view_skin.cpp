@@ -1,0 +1,72 @@
+// Skin view: the layout lit by each taxel's value at the time cursor; a click on a taxel
+// selects it (shift: adds to the selection) and toggles its channel in the plot.
+#include <algorithm>
+
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+void toggle_taxel_channel(WorkbenchState& state, int64_t taxel_id) {
+  const Document& document = *state.document;
+  const Taxel* taxel = document.layout.find_taxel(taxel_id);
+  if (!taxel || state.modality >= static_cast<int>(taxel->channels.size())) return;
+  const int channel = taxel->channels[static_cast<size_t>(state.modality)];
+  if (channel < 0) return;
+  const int column = document.samples().channel_index(document.layout.channels[channel].name);
+  if (column >= 0) state.plotted[static_cast<size_t>(column)] ^= 1;
+}
+
+void select_taxel(WorkbenchState& state, int64_t taxel_id, bool add) {
+  auto& taxels = state.selection.taxels;
+  if (!add) taxels.clear();
+  const auto found = std::find(taxels.begin(), taxels.end(), taxel_id);
+  if (found == taxels.end())
+    taxels.push_back(taxel_id);
+  else if (add)
+    taxels.erase(found);
+}
+
+}  // namespace
+
+void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("skin_panel", size, false);
+  const SkinLayout& layout = state.document->layout;
+  ImGui::SetNextItemWidth(140);
+  const char* current =
+      layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)].c_str();
+  if (ImGui::BeginCombo("modality", current)) {
+    for (int k = 0; k < static_cast<int>(layout.modalities.size()); ++k)
+      if (ImGui::Selectable(layout.modalities[static_cast<size_t>(k)].c_str(), k == state.modality))
+        state.modality = k;
+    ImGui::EndCombo();
+  }
+  ImGui::SameLine();
+  ImGui::Checkbox("raw values", &state.show_raw_values);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Off: each taxel's change from its rest level (median), scaled to the\n"
+        "recording's touches. On: raw values in the layout's display range.");
+  double value_min = 0.0, value_max = 1.0;
+  const std::vector<float> values = skin_values_now(state, value_min, value_max);
+  SkinViewStyle style;
+  style.modality_label = current;
+  style.zoom = &state.skin_zoom;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 available = ImGui::GetContentRegionAvail();
+  const SkinViewResult result =
+      draw_skin_view("skin_view", layout, values, value_min, value_max, available, style);
+  state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));
+  for (const Taxel& taxel : layout.taxels) {
+    const ImVec2 centre = result.transform.apply(taxel.position);
+    state.targets.taxels[taxel.id] = {centre.x, centre.y};
+  }
+  if (result.clicked_taxel >= 0) {
+    select_taxel(state, result.clicked_taxel, ImGui::GetIO().KeyShift);
+    toggle_taxel_channel(state, result.clicked_taxel);
+  }
+  ImGui::EndChild();
+}
+
+}  // namespace tactile

@@ -1,0 +1,46 @@
+#pragma once
+// The workbench's views, one file each (view_*.cpp). Each draws into the space it is
+// given at the current ImGui cursor, reads samples only through the document's
+// SampleSource, and changes only the WorkbenchState. The window (workbench.cpp)
+// arranges them; `--view NAME` draws one alone, e.g. for a PNG.
+
+#include <imgui.h>
+
+#include <span>
+#include <string>
+
+#include "workbench_state.h"
+
+namespace tactile {
+
+struct ViewSpec {
+  const char* name;   // for scripts and --view: "skin", "signals", ...
+  const char* title;  // shown in tabs and menus
+  bool needs_recording;
+  void (*draw)(WorkbenchState& state, ImVec2 size);
+};
+
+void draw_workspace_view(WorkbenchState& state, ImVec2 size);
+void draw_info_view(WorkbenchState& state, ImVec2 size);
+void draw_skin_panel_view(WorkbenchState& state, ImVec2 size);
+void draw_signals_view(WorkbenchState& state, ImVec2 size);
+void draw_timeline_view(WorkbenchState& state, ImVec2 size);
+
+// Every view, in menu order.
+std::span<const ViewSpec> all_views();
+const ViewSpec* find_view(const std::string& name);
+// Comma-separated names, for error messages.
+std::string view_names();
+
+//---- Shared by the views
+uint32_t channel_colour(int index);
+uint32_t class_colour(const std::string& class_name);
+std::string format_seconds(double seconds);
+// Remembers the last ImGui item's rectangle under `name` for scripts.
+void remember_item(WorkbenchState& state, const std::string& name);
+ScreenRect to_rect(ImVec2 min, ImVec2 max);
+// The skin's values of the current modality at the time cursor, scaled for display:
+// fills value_min/value_max.
+std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, double& value_max);
+
+}  // namespace tactile

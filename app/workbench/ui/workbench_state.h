@@ -1,0 +1,95 @@
+#pragma once
+// WorkbenchState: plain data of what the workbench shows: the open recording, the time
+// cursor, the selection, the view arrangement, and where things were drawn on the last
+// frame (so a script can name a taxel or a time instead of a pixel). Views read and
+// change it; `state PATH` in a script writes it as JSON.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "document.h"
+#include "file_browser.h"
+#include "tactile/live/playback.h"
+#include "tactile/signal/display_scale.h"
+#include "tactile/widgets/signal_plot.h"
+#include "tactile/widgets/skin_view.h"
+
+namespace tactile {
+
+struct ScreenRect {
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  float width() const { return x1 - x0; }
+  float height() const { return y1 - y0; }
+  bool contains(float x, float y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+};
+
+// A view whose horizontal axis is time: where the axis lay on the last frame.
+struct TimeAxis {
+  ScreenRect area;
+  double t0 = 0.0, t1 = 1.0;
+};
+
+// Where things were drawn on the last frame (screen pixels), by name.
+struct UiTargets {
+  std::map<std::string, ScreenRect> items;  // "view:skin", "menu:File", "menu:File/Open..."
+  std::map<std::string, TimeAxis> time_axes;  // view name -> axis
+  std::map<int64_t, std::pair<float, float>> taxels;  // taxel id -> centre on screen
+  ScreenRect skin_map;                                // the skin view's drawing area
+};
+
+// Sizes of the arrangement, kept per user between runs (settings file).
+struct PanelSizes {
+  float sidebar_width = 250.0f;
+  float skin_fraction = 0.42f;      // of the width right of the sidebar
+  float timeline_height = 200.0f;   // transport, label lane and label table
+};
+
+struct Selection {
+  std::vector<int64_t> labels;    // label ids
+  std::vector<int64_t> taxels;    // taxel ids
+  std::vector<int64_t> segments;  // segment ids (classifier views)
+};
+
+struct WorkbenchOptions {
+  std::string open_path;    // a recording, or a folder (workspace) whose first recording opens
+  std::string labels_path;  // label database; default labels.db beside the recording
+  std::optional<double> time;
+  bool play = false;
+  int64_t cache_bytes = int64_t{96} << 20;  // chunk cache of the open recording
+  std::string settings_path;                // "" = the user's settings file
+  std::string only_view;                    // draw just this view over the whole window
+};
+
+struct WorkbenchState {
+  WorkbenchOptions options;
+  std::unique_ptr<Document> document;
+  std::string workspace;                     // absolute folder
+  std::vector<std::string> workspace_files;  // absolute paths of its recordings
+  PlaybackClock clock;
+  SignalPlotState plot;
+  std::vector<char> plotted;  // per channel of the source
+  int modality = 0;
+  SkinViewZoom skin_zoom;
+  bool show_raw_values = false;  // the skin shows change from rest unless raw is asked for
+  RestScale rest_scale;
+  int rest_scale_modality = -1;  // modality rest_scale was computed for; -1: stale
+  Selection selection;
+  PanelSizes sizes;
+  std::string error;   // the last error, shown in the status bar
+  std::string notice;  // the last message (an export written, ...)
+  UiTargets targets;   // last frame's
+  int64_t frame = 0;
+
+  // Requests from views, carried out by the workbench after the frame.
+  std::optional<std::string> open_request;
+  std::optional<std::string> stream_request;
+  std::optional<std::string> export_request;  // view name to export as PNG
+  bool quit = false;
+  FileBrowser file_browser;
+};
+
+}  // namespace tactile
