@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "tactile/error.h"
+#include "tactile/ml/svm.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"tactile: headless jobs on touch recordings from robot skins"};
@@ -33,5 +34,8 @@ int main(int argc, char** argv) {
     std::cerr << "tactile: " << error.what() << "\n";
     return 1;
   }
+  if (const int64_t warnings = tactile::ml::svm_iteration_limit_warnings())
+    std::cerr << "tactile: libsvm stopped at its iteration limit in " << warnings
+              << " training run(s); those SVMs may be less accurate\n";
   return 0;
 }

@@ -27,7 +27,7 @@ struct Document {
 struct DocumentOptions {
   std::string labels_path;  // "" = labels.db beside the recording when there is one
   std::string stream;       // "" = the first stream
-  int64_t cache_bytes = int64_t{96} << 20;
+  int64_t cache_bytes = int64_t{32} << 20;
 };
 
 // Opens a recording (HDF5) through a file-backed source, with its layout and labels.

@@ -59,7 +59,7 @@ struct WorkbenchOptions {
   std::string labels_path;  // label database; default labels.db beside the recording
   std::optional<double> time;
   bool play = false;
-  int64_t cache_bytes = int64_t{96} << 20;  // chunk cache of the open recording
+  int64_t cache_bytes = int64_t{32} << 20;  // chunk cache of the open recording
   std::string settings_path;                // "" = the user's settings file
   std::string only_view;                    // draw just this view over the whole window
 };

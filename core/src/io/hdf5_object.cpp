@@ -61,9 +61,18 @@ Object open_dataset(hid_t location, const std::string& name, const std::string& 
                  "cannot open dataset");
 }
 
+Object untimed_dataset_properties(const std::string& where) {
+  Object properties =
+      checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
+  if (H5Pset_obj_track_times(properties.id(), false) < 0) fail(where, "cannot turn off time stamps");
+  return properties;
+}
+
 Object create_group(hid_t location, const std::string& name, bool track_order,
                     const std::string& where) {
   Object properties = checked(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, where, "property list");
+  // No modification times in object headers: the same recording writes the same bytes.
+  if (H5Pset_obj_track_times(properties.id(), false) < 0) fail(where, "cannot turn off time stamps");
   // Tracking creation order lets a reader list streams in the order they were written.
   if (track_order && H5Pset_link_creation_order(properties.id(),
                                                 H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0)
@@ -216,8 +225,9 @@ void write_strings(hid_t location, const std::string& name, const std::vector<st
   const hsize_t count = values.size();
   Object space = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, where, "dataspace");
   Object type = string_type();
+  Object properties = untimed_dataset_properties(where);
   Object dataset = checked(H5Dcreate2(location, name.c_str(), type.id(), space.id(), H5P_DEFAULT,
-                                      H5P_DEFAULT, H5P_DEFAULT),
+                                      properties.id(), H5P_DEFAULT),
                            H5Dclose, where, "cannot create dataset");
   std::vector<const char*> pointers;
   pointers.reserve(values.size());

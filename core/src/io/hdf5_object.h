@@ -99,4 +99,7 @@ void write_strings(hid_t location, const std::string& name, const std::vector<st
 std::vector<std::string> read_strings(hid_t location, const std::string& name,
                                       const std::string& where);
 
+// Dataset creation properties with object modification times off (same data, same bytes).
+Object untimed_dataset_properties(const std::string& where);
+
 }  // namespace tactile::hdf5

@@ -61,7 +61,7 @@ void write_chunked(hid_t location, const std::string& name, hid_t file_type, hid
   const hsize_t shape[2] = {rows, columns};
   Object space = checked(H5Screate_simple(2, shape, nullptr), H5Sclose, where, "dataspace");
   Object properties =
-      checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
+      hdf5::untimed_dataset_properties(where);
   // Chunk dimensions must be positive and within a fixed extent: empty data stays contiguous.
   if (rows > 0 && columns > 0) {
     const hsize_t chunk[2] = {1, std::min(columns, chunk_columns)};
@@ -82,7 +82,7 @@ void write_timestamps(hid_t location, const std::vector<double>& timestamps,
   const hsize_t count = timestamps.size();
   Object space = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, where, "dataspace");
   Object properties =
-      checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
+      hdf5::untimed_dataset_properties(where);
   const hsize_t chunk = std::min<hsize_t>(count, kChunkSamples / 2);
   if (H5Pset_chunk(properties.id(), 1, &chunk) < 0 || H5Pset_shuffle(properties.id()) < 0 ||
       H5Pset_deflate(properties.id(), kDeflateLevel) < 0)
@@ -167,7 +167,10 @@ void write_recording(const std::string& path, const Recording& recording) {
   // Same directory as the target, so the rename below is atomic on one file system.
   const std::string temporary = temporary_path(path);
   try {
-    Object file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT),
+    // The root group's header carries no modification time either.
+    Object creation = checked(H5Pcreate(H5P_FILE_CREATE), H5Pclose, path, "property list");
+    if (H5Pset_obj_track_times(creation.id(), false) < 0) hdf5::fail(path, "cannot turn off time stamps");
+    Object file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, creation.id(), H5P_DEFAULT),
                           H5Fclose, path, "cannot create file");
     write_contents(file.id(), path, recording);
     file.close(path);

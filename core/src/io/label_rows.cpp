@@ -209,12 +209,13 @@ int64_t next_batch(sqlite3* database, const std::string& path) {
 
 void write_journal(sqlite3* database, const std::string& path, int64_t batch,
                    const std::string& annotator, const std::string& action, int64_t label_id,
-                   const std::string& before_json, const std::string& after_json) {
+                   const std::string& before_json, const std::string& after_json,
+                   const std::string& time) {
   sqlite::Statement insert(database, where_label(path, label_id),
                            "INSERT INTO journal (batch, time, annotator, action, label_id, "
                            "before_json, after_json) VALUES (?, ?, ?, ?, ?, ?, ?)");
   insert.bind(1, batch)
-      .bind(2, now_utc())
+      .bind(2, time.empty() ? now_utc() : time)
       .bind(3, annotator)
       .bind(4, action)
       .bind(5, label_id)

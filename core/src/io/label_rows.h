@@ -57,9 +57,11 @@ std::optional<Label> state_from_json(const std::string& text, const std::string&
 
 // The number shared by the journal rows of one call.
 int64_t next_batch(sqlite3* database, const std::string& path);
+// `time` "" = now.
 void write_journal(sqlite3* database, const std::string& path, int64_t batch,
                    const std::string& annotator, const std::string& action, int64_t label_id,
-                   const std::string& before_json, const std::string& after_json);
+                   const std::string& before_json, const std::string& after_json,
+                   const std::string& time = {});
 // A new edit makes the undone edits unrecoverable by redo.
 void clear_redo_chain(sqlite3* database, const std::string& path);
 

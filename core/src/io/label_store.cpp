@@ -103,14 +103,16 @@ void prepare_schema(sqlite3* database, const std::string& path) {
   transaction.commit();
 }
 
-// Inserts a new label (id and times assigned here) and journals it.
+// Inserts a new label (id assigned here) and journals it. Its time is now, unless the
+// label brings one (simulated ground truth has no wall-clock time: same seed, same bytes).
 int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch) {
   label.id = 0;
-  label.created = label.modified = label_rows::now_utc();
+  if (label.created.empty()) label.created = label_rows::now_utc();
+  label.modified = label.created;
   label_rows::store(database, path, label);
   label.id = sqlite3_last_insert_rowid(database);
   label_rows::write_journal(database, path, batch, label.annotator, "insert", label.id, "",
-                            label_rows::state_json(label));
+                            label_rows::state_json(label), label.created);
   return label.id;
 }
 

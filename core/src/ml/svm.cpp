@@ -3,6 +3,8 @@
 #include <svm.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstring>
 #include <charconv>
 #include <cmath>
 #include <memory>
@@ -60,10 +62,17 @@ bool parse_positive(const std::string& text, double& value) {
          value > 0.0;
 }
 
-// libsvm prints its progress to stdout through one global function pointer.
+std::atomic<int64_t> iteration_limit_warnings{0};
+
+// libsvm prints its progress to stdout through one global function pointer: progress is
+// dropped, the iteration-limit warning counted.
 void silence_libsvm() {
   static std::once_flag once;
-  std::call_once(once, [] { svm_set_print_string_function([](const char*) {}); });
+  std::call_once(once, [] {
+    svm_set_print_string_function([](const char* text) {
+      if (std::strstr(text, "max number of iterations")) ++iteration_limit_warnings;
+    });
+  });
 }
 
 Matrix gather_rows(const Matrix& x, const std::vector<int64_t>& rows) {
@@ -190,6 +199,8 @@ Parameters SupportVectorMachine::parameters() const {
   parameters.set("scale", scale_.to_string());
   return parameters;
 }
+
+int64_t svm_iteration_limit_warnings() { return iteration_limit_warnings.load(); }
 
 //---- Training ----------------------------------------------------------------------------------
 

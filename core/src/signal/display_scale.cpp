@@ -45,6 +45,9 @@ RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns
   scale.rest.assign(columns.size(), std::numeric_limits<float>::quiet_NaN());
   scale.noise_band.assign(columns.size(), 0.0f);
   if (probes < 1) return scale;
+  // Buckets of at least one coarse block, so that a file answers from its overview alone.
+  const int64_t block = std::max<int64_t>(1, source.coarse_block());
+  probes = static_cast<int>(std::clamp<int64_t>(count / block, 1, probes));
   std::vector<float> centres, halves, excess;
   for (size_t k = 0; k < columns.size(); ++k) {
     const int column = columns[k];

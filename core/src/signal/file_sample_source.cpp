@@ -45,6 +45,13 @@ struct FileSampleSource::Cache {
     return &found->second.samples;
   }
   const std::vector<float>& insert(uint64_t k, std::vector<float> samples, int64_t limit) {
+    const auto existing = entries.find(k);
+    if (existing != entries.end()) {
+      // Already held (a chunk row read over channels some of which were cached): replace.
+      bytes -= static_cast<int64_t>(existing->second.samples.size() * sizeof(float));
+      recent.erase(existing->second.age);
+      entries.erase(existing);
+    }
     bytes += static_cast<int64_t>(samples.size() * sizeof(float));
     recent.push_front(k);
     Entry& entry = entries[k];

@@ -71,10 +71,12 @@ std::vector<MinMax> SampleSource::minmax_over_time(int channel, double t0, doubl
   const double samples_per_column = rate_hz() > 0 ? column_time * rate_hz() : 0.0;
   const int64_t block = std::max<int64_t>(1, coarse_block());
   const bool snap = block > 1 && samples_per_column >= static_cast<double>(block);
+  const int64_t count = sample_count();
   std::vector<int64_t> edges(static_cast<size_t>(columns) + 1);
   for (int column = 0; column <= columns; ++column) {
     const int64_t edge = first_index_at_or_after(t0 + column * column_time);
-    edges[static_cast<size_t>(column)] = snap && edge > 0 ? edge / block * block : edge;
+    // The end of the data stays where it is: the overview covers its partial block.
+    edges[static_cast<size_t>(column)] = snap && edge > 0 && edge < count ? edge / block * block : edge;
   }
   minmax(channel, edges, out);
   return out;

@@ -16,6 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr const char* kSimulatedLabelTime = "1970-01-01T00:00:00.000Z";
+
 struct TrialJob {
   int subject = 0;
   int trial = 0;
@@ -90,6 +92,8 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
     previous.recording = labels[index].front().recording;
     previous.source = LabelSource::kGroundTruth;
     store.remove_where(previous);
+    // Simulated ground truth carries no wall-clock time: the same seed writes the same bytes.
+    for (Label& label : labels[index]) label.created = kSimulatedLabelTime;
     store.add_many(labels[index]);
     summary.labels += static_cast<int64_t>(labels[index].size());
   }

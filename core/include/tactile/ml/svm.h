@@ -109,4 +109,9 @@ std::unique_ptr<Classifier> make_fine_gaussian_svm_classifier(const Parameters& 
 std::unique_ptr<Classifier> make_medium_gaussian_svm_classifier(const Parameters& parameters);
 std::unique_ptr<Classifier> make_coarse_gaussian_svm_classifier(const Parameters& parameters);
 
+// libsvm's own messages are kept off stdout (they would land in the middle of tables);
+// its warnings that training stopped at the iteration limit are counted here instead, so
+// a program can say so once. Counted over the whole process.
+int64_t svm_iteration_limit_warnings();
+
 }  // namespace tactile::ml

@@ -121,7 +121,7 @@ class MemorySampleSource final : public SampleSource {
 
 struct FileSourceOptions {
   std::string stream;                          // "" = the first stream
-  int64_t cache_bytes = int64_t{96} << 20;    // raw-sample chunk cache limit
+  int64_t cache_bytes = int64_t{32} << 20;    // raw-sample chunk cache limit
 };
 
 class FileSampleSource final : public SampleSource {

@@ -1,0 +1,36 @@
+// `tactile simulate` twice with one seed: the same bytes, recordings and label database.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli_test_support.h"
+
+namespace tactile {
+namespace {
+
+TEST(SimulateCommand, TheSameSeedWritesTheSameBytes) {
+  test::TempFolder folder{"tactile-simulate-bytes"};
+  for (const char* run : {"first", "second"}) {
+    const auto result = test::run_program(
+        "tactile", "simulate --skin fur --subjects 2 --trials 1 --seed 5 --out " + folder.file(run),
+        folder);
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+  }
+  int compared = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder.file("first"))) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(test::read_text(entry.path()), test::read_text(folder.file("second") + "/" + name))
+        << name << " differs between two runs with the same seed";
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3);  // two recordings and labels.db
+  const auto other = test::run_program(
+      "tactile", "simulate --skin fur --subjects 2 --trials 1 --seed 6 --out " + folder.file("third"),
+      folder);
+  ASSERT_EQ(other.exit_code, 0) << other.err;
+  EXPECT_NE(test::read_text(folder.file("first") + "/fur-s01-t01.h5"),
+            test::read_text(folder.file("third") + "/fur-s01-t01.h5"));
+}
+
+}  // namespace
+}  // namespace tactile

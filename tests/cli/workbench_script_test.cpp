@@ -1,0 +1,162 @@
+// The workbench driven by scripts (docs/SCRIPTING.md) through ImGui's real input path,
+// headless under OSMesa: clicks on named targets, keys, playback, menus, views as PNG.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cli_test_support.h"
+#include "png_test_support.h"
+
+namespace tactile {
+namespace {
+
+class WorkbenchScript : public ::testing::Test {
+ protected:
+  // grid:2x2, 4 s at 10 Hz; ch3 pressed from 1 s to 2 s.
+  void SetUp() override {
+    std::ofstream csv(folder.file("press.csv"));
+    csv << "t,ch0,ch1,ch2,ch3\n";
+    for (int k = 0; k < 40; ++k)
+      csv << k / 10.0 << ",0,0.1,0.2," << (k >= 10 && k < 20 ? 1.0 : 0.0) << "\n";
+    csv.close();
+    const auto imported = test::run_program(
+        "tactile", "import " + folder.file("press.csv") + " --layout grid:2x2 --out " + recording(),
+        folder);
+    ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  }
+  std::string recording() const { return folder.file("press.h5"); }
+  // Writes a script; "@" stands for this test's folder.
+  std::string script(std::string text) {
+    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
+      text.replace(at, 1, folder.path().string() + "/");
+    const std::string path = folder.file("script.txt");
+    std::ofstream(path) << text;
+    return path;
+  }
+  test::CommandResult run(const std::string& arguments) {
+    return test::run_program("tactile-workbench-headless",
+                             arguments + " --settings " + folder.file("settings.json"), folder);
+  }
+  nlohmann::json state(const std::string& name) {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+
+  test::TempFolder folder{"tactile-workbench-script"};
+};
+
+TEST_F(WorkbenchScript, ClickingATaxelSelectsItAndTakesItsChannelOutOfThePlot) {
+  const auto result = run(recording() + " --size 1000x700 --script " +
+                          script("wait 2\nclick taxel 3\nstate @one.json\nclick taxel 0\nkey Shift+A\n"
+                                 "state @two.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json one = state("one.json");
+  EXPECT_EQ(one["selection"]["taxels"], nlohmann::json::array({3}));
+  const auto plotted = one["plotted"].get<std::vector<std::string>>();
+  EXPECT_EQ(std::count(plotted.begin(), plotted.end(), "ch3"), 0) << one["plotted"];
+  EXPECT_EQ(std::count(plotted.begin(), plotted.end(), "ch0"), 1) << one["plotted"];
+  EXPECT_EQ(state("two.json")["selection"]["taxels"], nlohmann::json::array({0}));
+}
+
+TEST_F(WorkbenchScript, ClickingATimeMovesTheCursorThereAndPlaybackAdvancesIt) {
+  const auto result = run(recording() + " --size 1000x700 --script " +
+                          script("wait 2\nclick time 1.25\nstate @clicked.json\nclick time 0.5 in timeline\n"
+                                 "state @lane.json\nplay 1.5\nstate @played.json\nkey Space\nwait 3\n"
+                                 "state @toggled.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json clicked = state("clicked.json");
+  const double pixel = 4.0 / clicked["views"]["signals"]["width"].get<double>();
+  EXPECT_NEAR(clicked["time"].get<double>(), 1.25, 2 * pixel);
+  EXPECT_NEAR(state("lane.json")["time"].get<double>(), 0.5, 2 * pixel);
+  const nlohmann::json played = state("played.json");
+  EXPECT_NEAR(played["time"].get<double>(), 2.0, 2 * pixel);
+  EXPECT_FALSE(played["playing"].get<bool>());
+  EXPECT_TRUE(state("toggled.json")["playing"].get<bool>());  // space plays
+}
+
+TEST_F(WorkbenchScript, MenusAreChosenByName) {
+  const auto result = run(recording() + " --script " +
+                          script("wait 2\nmenu View/Stacked lanes\nstate @stacked.json\n"
+                                 "menu File/Export view as PNG/Skin\nwait 2\nstate @exported.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(state("stacked.json")["plot"]["stacked"].get<bool>());
+  const nlohmann::json exported = state("exported.json");
+  const std::string notice = exported["notice"];
+  ASSERT_EQ(notice.rfind("wrote ", 0), 0u) << exported.dump(2);
+  const Png png = read_png(notice.substr(6));
+  ASSERT_TRUE(png.pixels) << notice;
+  EXPECT_NEAR(png.width, exported["views"]["skin"]["width"].get<double>(), 1.0);
+  EXPECT_NEAR(png.height, exported["views"]["skin"]["height"].get<double>(), 1.0);
+}
+
+// Distinct colours of an image: a view that drew nothing has two or three.
+size_t colours_in(const Png& png) {
+  std::set<uint32_t> colours;
+  for (int y = 0; y < png.height; y += 2)
+    for (int x = 0; x < png.width; x += 2) {
+      const unsigned char* p = png.at(x, y);
+      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
+    }
+  return colours.size();
+}
+
+TEST_F(WorkbenchScript, EveryViewRendersAloneToAPngOfTheAskedSize) {
+  for (const char* view : {"workspace", "info", "skin", "signals", "timeline"}) {
+    const std::string png_path = folder.file(std::string(view) + ".png");
+    const auto result = run(recording() + " --time 1.5 --view " + view + " --size 640x360 --screenshot " + png_path);
+    ASSERT_EQ(result.exit_code, 0) << view << ": " << result.err;
+    const Png png = read_png(png_path);
+    ASSERT_TRUE(png.pixels) << view;
+    EXPECT_EQ(png.width, 640);
+    EXPECT_EQ(png.height, 360);
+    // A blank view is one or two colours (background, frame); text is anti-aliased.
+    EXPECT_GT(colours_in(png), 4u) << view << " looks empty";
+    if (std::string(view) == "signals") {
+      EXPECT_GT(colours_in(png), 20u) << "no signal drawn";
+    }
+    if (std::string(view) == "skin") {
+      EXPECT_GT(count_viridis_top(png), 500);  // ch3 pressed
+    }
+  }
+  const auto wrong = run(recording() + " --view nowhere --screenshot " + folder.file("x.png"));
+  EXPECT_NE(wrong.exit_code, 0);
+  EXPECT_NE(wrong.err.find("nowhere"), std::string::npos) << wrong.err;
+}
+
+TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
+  auto result = run(recording() + " --script " + script("wait 1\njump 3\n"));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("script.txt:2"), std::string::npos) << result.err;
+  result = run(recording() + " --script " + script("wait 1\n\nclick taxel 99\n"));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("script.txt:3: no taxel 99"), std::string::npos) << result.err;
+  result = run(recording() + " --script " + script("key Hyper+Q\n"));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("Hyper"), std::string::npos) << result.err;
+}
+
+TEST_F(WorkbenchScript, ARelativePathListsItsFolderAsTheWorkspace) {
+  const std::string command = "cd '" + folder.path().string() + "' && " + TACTILE_BIN_DIR +
+                              "/tactile-workbench-headless press.h5 --settings settings.json --script " +
+                              script("state @relative.json\n") + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const nlohmann::json relative = state("relative.json");
+  EXPECT_EQ(relative["workspace_files"], nlohmann::json::array({"press.h5"}));
+  EXPECT_EQ(relative["recording"], "press");
+}
+
+TEST_F(WorkbenchScript, PanelSizesPersistBetweenRuns) {
+  std::ofstream(folder.file("settings.json"))
+      << R"({"panels": {"sidebar_width": 333, "skin_fraction": 0.5, "timeline_height": 150}})";
+  const auto result = run(recording() + " --script " + script("wait 1\nstate @sized.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json sized = state("sized.json");
+  EXPECT_EQ(sized["panels"]["sidebar_width"].get<double>(), 333.0);
+  EXPECT_NEAR(sized["views"]["timeline"]["height"].get<double>(), 150.0, 20.0);
+}
+
+}  // namespace
+}  // namespace tactile
