@@ -103,12 +103,11 @@ void prepare_schema(sqlite3* database, const std::string& path) {
   transaction.commit();
 }
 
-// Inserts a new label (id assigned here) and journals it. Its time is now, unless the
-// label brings one (simulated ground truth has no wall-clock time: same seed, same bytes).
-int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch) {
+// Inserts a new label (id and times assigned here) and journals it. `time` "" = now.
+int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch,
+                   const std::string& time) {
   label.id = 0;
-  if (label.created.empty()) label.created = label_rows::now_utc();
-  label.modified = label.created;
+  label.created = label.modified = time.empty() ? label_rows::now_utc() : time;
   label_rows::store(database, path, label);
   label.id = sqlite3_last_insert_rowid(database);
   label_rows::write_journal(database, path, batch, label.annotator, "insert", label.id, "",
@@ -184,7 +183,8 @@ std::string LabelStore::integrity_check() const {
 int64_t LabelStore::add(const Label& label) {
   label_rows::validate(label, path_ + " new label");
   sqlite::Transaction transaction(database_, path_);
-  const int64_t id = insert_new(database_, path_, label, label_rows::next_batch(database_, path_));
+  const int64_t id = insert_new(database_, path_, label, label_rows::next_batch(database_, path_),
+                                  fixed_time_);
   label_rows::clear_redo_chain(database_, path_);
   transaction.commit();
   return id;
@@ -200,7 +200,7 @@ std::vector<int64_t> LabelStore::add_many(const std::vector<Label>& labels) {
   ids.reserve(labels.size());
   sqlite::Transaction transaction(database_, path_);
   const int64_t batch = label_rows::next_batch(database_, path_);
-  for (const Label& label : labels) ids.push_back(insert_new(database_, path_, label, batch));
+  for (const Label& label : labels) ids.push_back(insert_new(database_, path_, label, batch, fixed_time_));
   label_rows::clear_redo_chain(database_, path_);
   transaction.commit();
   return ids;

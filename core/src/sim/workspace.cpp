@@ -85,6 +85,8 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
   if (failure) std::rethrow_exception(failure);
 
   LabelStore store((fs::path(folder) / "labels.db").string());
+  // Simulated ground truth carries no wall-clock time: the same seed writes the same bytes.
+  store.use_fixed_time(kSimulatedLabelTime);
   store.set_classes(skin, layout.classes);
   for (size_t index = 0; index < jobs.size(); ++index) {
     if (labels[index].empty()) continue;
@@ -92,8 +94,6 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
     previous.recording = labels[index].front().recording;
     previous.source = LabelSource::kGroundTruth;
     store.remove_where(previous);
-    // Simulated ground truth carries no wall-clock time: the same seed writes the same bytes.
-    for (Label& label : labels[index]) label.created = kSimulatedLabelTime;
     store.add_many(labels[index]);
     summary.labels += static_cast<int64_t>(labels[index].size());
   }

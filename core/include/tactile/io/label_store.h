@@ -65,6 +65,10 @@ class LabelStore {
   // label.created and label.modified are ignored. Validates t0 < t1 (finite),
   // confidence in [0, 1], non-empty recording, region and class.
   int64_t add(const Label& label);
+  // Labels added from now on through this store are stamped `iso_time` (ISO 8601 UTC)
+  // instead of the wall clock: for outputs that must be reproducible, such as simulated
+  // ground truth (same seed, same bytes). "" returns to the wall clock.
+  void use_fixed_time(std::string iso_time) { fixed_time_ = std::move(iso_time); }
   // Replaces the label with id label.id (keeping its created time); throws if absent.
   void update(const Label& label);
   // `annotator` is who removed it, for the journal; "" = the label's own annotator.
@@ -111,6 +115,7 @@ class LabelStore {
  private:
   sqlite3* database_ = nullptr;
   std::string path_;
+  std::string fixed_time_;  // "" = the wall clock
 };
 
 }  // namespace tactile
