@@ -46,3 +46,18 @@ TEST(TaxelValues, TaxelWithoutTheModalityIsNaN) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+TEST(TaxelValuesOfAnInstant, PickEachTaxelsChannelAndNaNWhereThereIsNone) {
+  const std::vector<float> channels = {10.0f, 11.0f, 12.0f};
+  const std::vector<float> values = taxel_values(channels, {2, -1, 0, 7});
+  EXPECT_EQ(values[0], 12.0f);
+  EXPECT_TRUE(std::isnan(values[1]));
+  EXPECT_EQ(values[2], 10.0f);
+  EXPECT_TRUE(std::isnan(values[3]));  // a column beyond the channels given
+}
+
+}  // namespace
+}  // namespace tactile

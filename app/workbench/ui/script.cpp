@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -110,6 +111,32 @@ double parse_number(const ScriptStep& step, size_t index, const std::string& whe
 std::string time_view(const ScriptStep& step, size_t index) {
   if (step.words.size() > index + 1 && step.words[index] == "in") return step.words[index + 1];
   return "signals";
+}
+
+std::string seconds_text(double t) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g s", t);
+  return text;
+}
+
+// Where time t lies on the time axis of `view` as last drawn, in its vertical middle.
+std::optional<ImVec2> time_point(Workbench& workbench, const std::string& view, double t,
+                                 std::string& problem) {
+  const auto& axes = workbench.state().targets.time_axes;
+  const auto found = axes.find(view);
+  if (found == axes.end()) {
+    problem = "no time axis in view '" + view + "'";
+    return std::nullopt;
+  }
+  const TimeAxis& axis = found->second;
+  if (t < axis.t0 || t > axis.t1) {
+    problem = "time " + seconds_text(t) + " is outside the visible range [" +
+              seconds_text(axis.t0) + ", " + seconds_text(axis.t1) + "] of " + view;
+    return std::nullopt;
+  }
+  const float x =
+      axis.area.x0 + static_cast<float>((t - axis.t0) / (axis.t1 - axis.t0)) * axis.area.width();
+  return ImVec2(std::min(x, axis.area.x1 - 1.0f), 0.5f * (axis.area.y0 + axis.area.y1));
 }
 
 ImVec2 centre_of(const ScreenRect& rect) {
@@ -316,22 +343,8 @@ void ScriptPlayer::expand(const ScriptStep& step) {
     const double t = std::stod(step.words[1]);
     const std::string view = time_view(step, 2);
     click_at(
-        [t, view](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
-          const auto& axes = workbench.state().targets.time_axes;
-          const auto found = axes.find(view);
-          if (found == axes.end()) {
-            problem = "no time axis in view '" + view + "'";
-            return std::nullopt;
-          }
-          const TimeAxis& axis = found->second;
-          if (t < axis.t0 || t > axis.t1) {
-            problem = "time " + std::to_string(t) + " s is outside the visible range [" +
-                      std::to_string(axis.t0) + ", " + std::to_string(axis.t1) + "] of " + view;
-            return std::nullopt;
-          }
-          const float x = axis.area.x0 + static_cast<float>((t - axis.t0) / (axis.t1 - axis.t0)) *
-                                             axis.area.width();
-          return ImVec2(std::min(x, axis.area.x1 - 1.0f), 0.5f * (axis.area.y0 + axis.area.y1));
+        [t, view](Workbench& workbench, std::string& problem) {
+          return time_point(workbench, view, t, problem);
         },
         step);
   } else if (command == "click") {
@@ -354,23 +367,14 @@ void ScriptPlayer::expand(const ScriptStep& step) {
     const std::string view = time_view(step, 3);
     auto ends = std::make_shared<std::pair<ImVec2, ImVec2>>();
     actions_.push_back([this, step, t0, t1, view, ends](Workbench& workbench, ImGuiIO& io) {
-      const auto& axes = workbench.state().targets.time_axes;
-      const auto found = axes.find(view);
-      if (found == axes.end()) {
-        fail(step, "no time axis in view '" + view + "'");
+      std::string problem;
+      const auto from = time_point(workbench, view, t0, problem);
+      const auto to = from ? time_point(workbench, view, t1, problem) : std::nullopt;
+      if (!from || !to) {
+        fail(step, problem);
         return true;
       }
-      const TimeAxis& axis = found->second;
-      auto x_of = [&](double t) {
-        return axis.area.x0 + static_cast<float>((t - axis.t0) / (axis.t1 - axis.t0)) * axis.area.width();
-      };
-      for (double t : {t0, t1})
-        if (t < axis.t0 || t > axis.t1) {
-          fail(step, "time " + std::to_string(t) + " s is outside the visible range of " + view);
-          return true;
-        }
-      const float y = 0.5f * (axis.area.y0 + axis.area.y1);
-      *ends = {ImVec2(x_of(t0), y), ImVec2(x_of(t1), y)};
+      *ends = {*from, *to};
       io.MousePos = ends->first;
       io.MouseDown[0] = false;
       return true;

@@ -19,13 +19,6 @@ constexpr ViewSpec kViews[] = {
     {"timeline", "Timeline", true, draw_timeline_view},
 };
 
-// Tableau 10: distinct hues for up to ten plotted channels, then repeated.
-constexpr uint32_t kChannelColours[] = {IM_COL32(31, 119, 180, 255),  IM_COL32(255, 127, 14, 255),
-                                        IM_COL32(44, 160, 44, 255),   IM_COL32(214, 39, 40, 255),
-                                        IM_COL32(148, 103, 189, 255), IM_COL32(140, 86, 75, 255),
-                                        IM_COL32(227, 119, 194, 255), IM_COL32(127, 127, 127, 255),
-                                        IM_COL32(188, 189, 34, 255),  IM_COL32(23, 190, 207, 255)};
-
 }  // namespace
 
 std::span<const ViewSpec> all_views() { return kViews; }
@@ -42,13 +35,9 @@ std::string view_names() {
   return names;
 }
 
-uint32_t channel_colour(int index) {
-  return kChannelColours[static_cast<size_t>(index) % std::size(kChannelColours)];
-}
-
 uint32_t class_colour(const std::string& class_name) {
   const size_t hash = std::hash<std::string>{}(class_name);
-  const uint32_t base = kChannelColours[hash % std::size(kChannelColours)];
+  const uint32_t base = plot_colour(static_cast<int>(hash % 10));
   return (base & 0x00FFFFFFu) | (70u << 24);  // translucent, so signals show through
 }
 
@@ -65,15 +54,20 @@ void remember_item(WorkbenchState& state, const std::string& name) {
   state.targets.items[name] = to_rect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
 }
 
+const RestScale& current_rest_scale(WorkbenchState& state, const std::vector<int>& columns) {
+  if (state.rest_scale_modality != state.modality) {
+    state.rest_scale = rest_scale(state.document->samples(), columns);
+    state.rest_scale_modality = state.modality;
+  }
+  return state.rest_scale;
+}
+
 std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, double& value_max) {
   const Document& document = *state.document;
   const SampleSource& source = document.samples();
   const SkinLayout& layout = document.layout;
   const std::vector<int> columns = taxel_columns(layout, source.info().channels, state.modality);
-  const std::vector<float> all = source.values_at_time(state.clock.time());
-  std::vector<float> values(columns.size(), std::numeric_limits<float>::quiet_NaN());
-  for (size_t k = 0; k < columns.size(); ++k)
-    if (columns[k] >= 0) values[k] = all[static_cast<size_t>(columns[k])];
+  const std::vector<float> values = taxel_values(source.values_at_time(state.clock.time()), columns);
   value_min = 0.0;
   value_max = 1.0;
   if (state.show_raw_values) {
@@ -90,12 +84,9 @@ std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, dou
     }
     return values;
   }
-  if (state.rest_scale_modality != state.modality) {
-    state.rest_scale = rest_scale(source, columns);
-    state.rest_scale_modality = state.modality;
-  }
-  value_max = state.rest_scale.max_change;
-  return change_from_rest(values, state.rest_scale);
+  const RestScale& scale = current_rest_scale(state, columns);
+  value_max = scale.max_change;
+  return change_from_rest(values, scale);
 }
 
 }  // namespace tactile

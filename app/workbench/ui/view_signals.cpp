@@ -14,7 +14,7 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
     channel.name = source.info().channels[static_cast<size_t>(column)];
     channel.source = &source;
     channel.channel = column;
-    channel.colour = channel_colour(static_cast<int>(channels.size()));
+    channel.colour = plot_colour(static_cast<int>(channels.size()));
     channels.push_back(std::move(channel));
   }
   std::vector<PlotSpan> spans;

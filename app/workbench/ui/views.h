@@ -33,12 +33,14 @@ const ViewSpec* find_view(const std::string& name);
 std::string view_names();
 
 //---- Shared by the views
-uint32_t channel_colour(int index);
 uint32_t class_colour(const std::string& class_name);
 std::string format_seconds(double seconds);
 // Remembers the last ImGui item's rectangle under `name` for scripts.
 void remember_item(WorkbenchState& state, const std::string& name);
 ScreenRect to_rect(ImVec2 min, ImVec2 max);
+// The rest scale of the current modality (`columns`: its taxel columns), computed once
+// per recording and modality.
+const RestScale& current_rest_scale(WorkbenchState& state, const std::vector<int>& columns);
 // The skin's values of the current modality at the time cursor, scaled for display:
 // fills value_min/value_max.
 std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, double& value_max);

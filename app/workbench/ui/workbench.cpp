@@ -80,12 +80,17 @@ void Workbench::set_workspace(const std::string& folder) {
   std::sort(state_.workspace_files.begin(), state_.workspace_files.end());
 }
 
-void Workbench::open(const std::string& path) {
+DocumentOptions Workbench::document_options(const std::string& stream) const {
   DocumentOptions options;
   options.labels_path = state_.options.labels_path;
+  options.stream = stream;
   options.cache_bytes = state_.options.cache_bytes;
+  return options;
+}
+
+void Workbench::open(const std::string& path) {
   try {
-    state_.document = open_document(path, options);
+    state_.document = open_document(path, document_options({}));
     state_.error.clear();
   } catch (const std::exception& failure) {
     state_.error = failure.what();
@@ -99,12 +104,8 @@ void Workbench::open(const std::string& path) {
 }
 
 void Workbench::select_stream(const std::string& stream) {
-  DocumentOptions options;
-  options.labels_path = state_.document->labels_path;
-  options.stream = stream;
-  options.cache_bytes = state_.options.cache_bytes;
   try {
-    state_.document = open_document(state_.document->path, options);
+    state_.document = open_document(state_.document->path, document_options(stream));
   } catch (const std::exception& failure) {
     state_.error = failure.what();
     return;
@@ -148,11 +149,13 @@ void Workbench::choose_default_view() {
   if (document.labels.empty() || source.sample_count() == 0) return;
   // The instant of the first labelled touch where the skin changes most from rest.
   const Label& first = document.labels.front();
+  // The skin's own rest scale, kept for it (the same modality).
+  const RestScale& scale = current_rest_scale(state_, columns);
   std::vector<int> present;
-  for (int column : columns)
-    if (column >= 0) present.push_back(column);
+  std::vector<float> rest;
+  for (size_t k = 0; k < columns.size(); ++k)
+    if (columns[k] >= 0) present.push_back(columns[k]), rest.push_back(scale.rest[k]);
   if (present.empty()) return;
-  const RestScale scale = rest_scale(source, present);
   const int64_t start = source.index_at(first.t0);
   const int64_t end = std::min(source.index_at(first.t1), start + kPeakSearchSamples);
   try {
@@ -162,8 +165,8 @@ void Workbench::choose_default_view() {
     for (int64_t row = 0; row < samples.rows(); ++row) {
       double change = 0.0;
       for (size_t k = 0; k < present.size(); ++k)
-        if (std::isfinite(scale.rest[k]))
-          change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - scale.rest[k]);
+        if (std::isfinite(rest[k]))
+          change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - rest[k]);
       if (change > best_change) best_change = change, best = start + row;
     }
     state_.clock.seek(source.time_of(best));

@@ -42,6 +42,7 @@ class Workbench {
  private:
   void set_workspace(const std::string& folder);
   void select_stream(const std::string& stream);
+  DocumentOptions document_options(const std::string& stream) const;
   void choose_default_view();
   void draw_menu_bar();
   void draw_arrangement(ImVec2 area);

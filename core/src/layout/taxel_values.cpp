@@ -34,4 +34,13 @@ std::vector<float> taxel_values(const Stream& stream, const std::vector<int>& co
   return values;
 }
 
+std::vector<float> taxel_values(const std::vector<float>& channel_values,
+                                const std::vector<int>& columns) {
+  std::vector<float> values(columns.size(), std::numeric_limits<float>::quiet_NaN());
+  for (size_t k = 0; k < columns.size(); ++k)
+    if (columns[k] >= 0 && columns[k] < static_cast<int>(channel_values.size()))
+      values[k] = channel_values[static_cast<size_t>(columns[k])];
+  return values;
+}
+
 }  // namespace tactile

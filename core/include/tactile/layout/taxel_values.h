@@ -17,5 +17,7 @@ std::vector<int> taxel_columns(const SkinLayout& layout, const std::vector<std::
 
 // Values of those columns at one sample; NaN for taxels without a column.
 std::vector<float> taxel_values(const Stream& stream, const std::vector<int>& columns, int64_t sample);
+// The same from every channel's value at one instant (SampleSource::values_at).
+std::vector<float> taxel_values(const std::vector<float>& channel_values, const std::vector<int>& columns);
 
 }  // namespace tactile
