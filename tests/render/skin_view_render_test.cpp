@@ -78,6 +78,29 @@ TEST_F(GridFixture, EachTaxelCentreHasTheViridisColourOfItsValue) {
       close_to(image.at(static_cast<int>(gap.x), static_cast<int>(gap.y)), viridis(0.0f), 20));
 }
 
+// Orange pixels (the selection outline) on the vertical line through a taxel's centre,
+// between the centres of the taxels above and below it.
+int selection_pixels_across(const Image& image, const SkinViewResult& result,
+                            const SkinLayout& layout, int taxel) {
+  const Point2 centre = layout.taxels[taxel].position;
+  const ImVec2 top = result.transform.apply({centre.x, centre.y - 9.0});
+  const ImVec2 bottom = result.transform.apply({centre.x, centre.y + 9.0});
+  int count = 0;
+  for (int y = static_cast<int>(top.y); y <= static_cast<int>(bottom.y); ++y)
+    count += testing::close_to_packed(image.at(static_cast<int>(top.x), y), IM_COL32(255, 140, 40, 255), 30);
+  return count;
+}
+
+TEST_F(GridFixture, SelectedTaxelsAreOutlined) {
+  const std::vector<int64_t> selected = {layout.taxels[4].id};
+  const SkinViewResult result =
+      frame(0.0, 1.0, {.show_group_names = false, .selected_taxels = selected});
+  const Image image = renderer.render();
+  write_png(testing::png_path("skin_grid_selected"), image);
+  EXPECT_GE(selection_pixels_across(image, result, layout, 4), 4);  // top and bottom edges
+  EXPECT_EQ(selection_pixels_across(image, result, layout, 0), 0);  // not selected
+}
+
 TEST_F(GridFixture, ReversedRangeReversesTheColours) {
   const SkinViewResult result = frame(1.0, 0.0, {.show_group_names = false});
   const Image image = renderer.render();

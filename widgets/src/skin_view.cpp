@@ -21,6 +21,8 @@ constexpr int kLegendSteps = 32;
 constexpr float kOutlineMinPixels = 6.0f;  // smaller taxels: outlines would hide the fill
 
 const ImU32 kOutline = IM_COL32(18, 18, 22, 255);
+// Selected taxels: the colour of the time cursor, so "what is selected" reads as one thing.
+const ImU32 kSelection = IM_COL32(255, 140, 40, 255);
 const ImU32 kHighlight = IM_COL32(255, 255, 255, 255);
 const ImU32 kText = IM_COL32(225, 225, 230, 255);
 const ImU32 kTextShadow = IM_COL32(0, 0, 0, 200);
@@ -320,6 +322,15 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
       result.hovered_taxel = taxel.id;
       hovered_outline = &screen;
     }
+  }
+  // Selected taxels: a thick white outline, drawn over the fills of their neighbours.
+  for (size_t index = 0; index < layout.taxels.size(); ++index) {
+    const auto& selected = style.selected_taxels;
+    if (std::find(selected.begin(), selected.end(), layout.taxels[index].id) == selected.end())
+      continue;
+    const ScreenTaxel& screen = screens[index];
+    draw.AddPolyline(screen.points.data(), static_cast<int>(screen.points.size()), kSelection,
+                     ImDrawFlags_Closed, 3.0f);
   }
   if (hovered_outline) {
     draw.AddPolyline(hovered_outline->points.data(),

@@ -53,6 +53,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   SkinViewStyle style;
   style.modality_label = current;
   style.zoom = &state.skin_zoom;
+  style.selected_taxels = state.selection.taxels;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
   const SkinViewResult result =

@@ -44,6 +44,7 @@ struct SkinViewStyle {
   bool show_group_names = true;     // names of "body-part", "location" and "side" groups
   std::string modality_label = {};  // legend title; empty: the layout's display modality
   SkinViewZoom* zoom = nullptr;     // interactive zoom and pan when given
+  std::span<const int64_t> selected_taxels = {};  // outlined (taxel ids)
 };
 
 struct SkinViewResult {
