@@ -101,6 +101,28 @@ TEST_F(GridFixture, SelectedTaxelsAreOutlined) {
   EXPECT_EQ(selection_pixels_across(image, result, layout, 0), 0);  // not selected
 }
 
+TEST_F(GridFixture, ABodyPartNameWiderThanThePartIsLeftOut) {
+  // Row 1 becomes a one-taxel-wide part (the middle taxel) with a long name: no room.
+  layout.groups[1].name = "a much longer name than one taxel";
+  layout.groups[1].taxels = {4};
+  const SkinViewResult result = frame(0.0, 1.0, {});
+  const Image with_names = renderer.render();
+  frame(0.0, 1.0, {.show_group_names = false});
+  const Image plain = renderer.render();
+  auto changed_around = [&](Point2 map_point) {
+    const ImVec2 centre = result.transform.apply(map_point);
+    int changed = 0;
+    for (int dy = -6; dy <= 6; ++dy)
+      for (int dx = -20; dx <= 20; ++dx) {
+        const int x = static_cast<int>(centre.x) + dx, y = static_cast<int>(centre.y) + dy;
+        changed += with_names.at(x, y).r != plain.at(x, y).r;
+      }
+    return changed;
+  };
+  EXPECT_EQ(changed_around({15.0, 15.0}), 0);  // the narrow part: no name
+  EXPECT_GT(changed_around({15.0, 25.0}), 30);  // row 2, three taxels wide: "row 2" fits
+}
+
 TEST_F(GridFixture, ReversedRangeReversesTheColours) {
   const SkinViewResult result = frame(1.0, 0.0, {.show_group_names = false});
   const Image image = renderer.render();

@@ -98,13 +98,15 @@ void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTrans
     for (int64_t id : layout.groups[index].taxels) side_of.emplace(id, index);
   }
   // Names are placed greedily, biggest group first, and a name that would overlap one
-  // already drawn is left out (the tooltip still names every taxel's groups).
+  // already drawn, or (a body part) is wider than its part on screen, is left out: zoom
+  // in to see it; the tooltip still names every taxel's groups.
   struct Placed {
     ImVec2 min, max;
   };
   std::vector<Placed> placed;
-  auto place = [&](ImVec2 centre, const std::string& text) {
+  auto place = [&](ImVec2 centre, const std::string& text, float max_width) {
     const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(font_size, FLT_MAX, 0.0f, text.c_str());
+    if (extent.x > max_width) return;
     const ImVec2 low(centre.x - 0.5f * extent.x - 2.0f, centre.y - 0.5f * extent.y);
     const ImVec2 high(centre.x + 0.5f * extent.x + 2.0f, centre.y + 0.5f * extent.y);
     for (const Placed& other : placed)
@@ -130,7 +132,7 @@ void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTrans
       }
       if (!std::isfinite(top)) continue;
       const ImVec2 anchor = transform.apply({0.5 * (left + right), top});
-      place(ImVec2(anchor.x, anchor.y - 0.6f * ImGui::GetFontSize()), group_label(group));
+      place(ImVec2(anchor.x, anchor.y - 0.6f * ImGui::GetFontSize()), group_label(group), FLT_MAX);
     } else if (is_part_group(group)) {
       parts.push_back(&group);
     }
@@ -139,19 +141,29 @@ void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTrans
     return a->taxels.size() > b->taxels.size();
   });
   for (const Group* group : parts) {
-    std::map<size_t, std::pair<Point2, int>> sums;  // side -> (sum of centres, members)
+    struct Part {
+      Point2 sum{0.0, 0.0};  // of the members' centres
+      int members = 0;
+      double left = std::numeric_limits<double>::infinity();
+      double right = -std::numeric_limits<double>::infinity();
+    };
+    std::map<size_t, Part> by_side;  // the part's taxels on each side of the map
     for (int64_t id : group->taxels) {
       const Taxel* taxel = layout.find_taxel(id);
       if (!taxel) continue;
       const auto side = side_of.find(id);
-      auto& [sum, members] = sums[side == side_of.end() ? SIZE_MAX : side->second];
-      sum.x += taxel->position.x;
-      sum.y += taxel->position.y;
-      ++members;
+      Part& part = by_side[side == side_of.end() ? SIZE_MAX : side->second];
+      part.sum.x += taxel->position.x;
+      part.sum.y += taxel->position.y;
+      ++part.members;
+      part.left = std::min(part.left, taxel->position.x - 0.5 * taxel->size.x);
+      part.right = std::max(part.right, taxel->position.x + 0.5 * taxel->size.x);
     }
-    for (const auto& [side, sum] : sums) {
-      const Point2 centroid{sum.first.x / sum.second, sum.first.y / sum.second};
-      place(transform.apply(centroid), group_label(*group));
+    for (const auto& [side, part] : by_side) {
+      const Point2 centroid{part.sum.x / part.members, part.sum.y / part.members};
+      const float width = static_cast<float>((part.right - part.left) * transform.scale);
+      // A little wider than the part is still read as its name.
+      place(transform.apply(centroid), group_label(*group), 1.2f * width + 8.0f);
     }
   }
 }
