@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev nlohmann-json3-dev libcli11-dev
-  libhdf5-dev libsqlite3-dev libsvm-dev
+  libhdf5-dev libsqlite3-dev zlib1g-dev libsvm-dev
   libimgui-dev libstb-dev libglfw3-dev libgl-dev libgl1-mesa-dri libosmesa6-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth

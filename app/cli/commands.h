@@ -18,5 +18,6 @@ void register_stream_sim(CLI::App& app);
 void register_stream_listen(CLI::App& app);
 void register_evaluate(CLI::App& app);
 void register_experiment(CLI::App& app);
+void register_verify(CLI::App& app);
 
 }  // namespace tactile::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   tactile::cli::register_stream_listen(app);
   tactile::cli::register_evaluate(app);
   tactile::cli::register_experiment(app);
+  tactile::cli::register_verify(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

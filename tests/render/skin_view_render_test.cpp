@@ -86,8 +86,12 @@ int selection_pixels_across(const Image& image, const SkinViewResult& result,
   const ImVec2 top = result.transform.apply({centre.x, centre.y - 9.0});
   const ImVec2 bottom = result.transform.apply({centre.x, centre.y + 9.0});
   int count = 0;
-  for (int y = static_cast<int>(top.y); y <= static_cast<int>(bottom.y); ++y)
-    count += testing::close_to_packed(image.at(static_cast<int>(top.x), y), IM_COL32(255, 140, 40, 255), 30);
+  // A taxel on the map's edge has no neighbour there: stay inside the image.
+  const int first = std::max(0, static_cast<int>(top.y));
+  const int last = std::min(image.height - 1, static_cast<int>(bottom.y));
+  for (int y = first; y <= last; ++y)
+    count += testing::close_to_packed(image.at(static_cast<int>(top.x), y),
+                                      IM_COL32(255, 140, 40, 255), 30);
   return count;
 }
 

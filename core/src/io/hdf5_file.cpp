@@ -78,7 +78,7 @@ std::vector<std::string> stream_names(hid_t streams, const std::string& where) {
 }
 
 StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::string& path,
-                            int64_t& overview_block) {
+                            int format_version, int64_t& overview_block) {
   const std::string where = path + ":/streams/" + name;
   Object group = hdf5::open_group(streams, name, where);
   StreamInfo info;
@@ -96,8 +96,11 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
                                                          std::to_string(overview_block) +
                                                          " in an earlier stream");
   overview_block = block;
-  info.channels = hdf5::read_strings(group.id(), "channels", where + "/channels");
-  info.units = hdf5::read_strings(group.id(), "units", where + "/units");
+  const bool variable_strings = format_version == 1;
+  info.channels =
+      hdf5::read_strings(group.id(), "channels", where + "/channels", variable_strings);
+  hdf5::check_unique_names(info.channels, where + "/channels");
+  info.units = hdf5::read_strings(group.id(), "units", where + "/units", variable_strings);
   if (info.units.size() != info.channels.size())
     throw Error(where + "/units", std::to_string(info.units.size()) + " units for " +
                                       std::to_string(info.channels.size()) + " channels");
@@ -111,14 +114,16 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
     throw Error(where + "/samples", "shape " + shape_text(shape) + ", expected [" +
                                         std::to_string(info.channels.size()) +
                                         "][samples] for the channels listed");
-  info.sample_count = static_cast<int64_t>(shape[1]);
   const auto channels = static_cast<hsize_t>(info.channels.size());
-  const auto samples_count = static_cast<hsize_t>(info.sample_count);
+  const auto samples_count = shape[1];
+  hdf5::check_declared_size(samples.id(), 4.0 * channels * samples_count, where + "/samples");
+  info.sample_count = static_cast<int64_t>(samples_count);
 
   info.has_timestamps = hdf5::has_link(group.id(), "timestamps");
   if (info.has_timestamps) {
     const std::string place = where + "/timestamps";
     Object timestamps = open_checked(group.id(), "timestamps", {samples_count}, place);
+    hdf5::check_declared_size(timestamps.id(), 8.0 * samples_count, place);
     if (samples_count > 0) {
       read_block(timestamps.id(), H5T_NATIVE_DOUBLE, 1, 0, 1, 0, 1, &info.first_timestamp, place);
       read_block(timestamps.id(), H5T_NATIVE_DOUBLE, 1, 0, 1, samples_count - 1, 1,
@@ -127,8 +132,11 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
   }
   const auto block_size = static_cast<hsize_t>(block);
   const hsize_t blocks = (samples_count + block_size - 1) / block_size;
-  open_checked(group.id(), "overview_min", {channels, blocks}, where + "/overview_min");
-  open_checked(group.id(), "overview_max", {channels, blocks}, where + "/overview_max");
+  for (const char* overview : {"overview_min", "overview_max"}) {
+    const std::string place = where + "/" + overview;
+    Object dataset = open_checked(group.id(), overview, {channels, blocks}, place);
+    hdf5::check_declared_size(dataset.id(), 4.0 * channels * blocks, place);
+  }
   return info;
 }
 
@@ -153,26 +161,32 @@ RecordingFile::RecordingFile(const std::string& path)
                         "cannot open HDF5 file");
   const hid_t file = file_->file.id();
   const std::string root = path + ":/";
-  const std::string format = hdf5::read_string_attribute(file, "format", root);
+  if (!hdf5::has_attribute(file, "format"))
+    throw Error(root, std::string("no attribute format: not a ") + hdf5::kFormatName + " file");
+  // The version decides how strings are read, so it comes first.
+  const int64_t version = hdf5::read_int_attribute(file, "format_version", root);
+  if (version < 1 || version > kRecordingFormatVersion)
+    throw Error(root + " attribute format_version",
+                "version " + std::to_string(version) + " is not supported (this program reads " +
+                    "1 to " + std::to_string(kRecordingFormatVersion) + ")");
+  format_version_ = static_cast<int>(version);
+  const bool variable_strings = version == 1;
+  const std::string format = hdf5::read_string_attribute(file, "format", root, variable_strings);
   if (format != hdf5::kFormatName)
     throw Error(root + " attribute format",
                 "'" + format + "' is not a " + hdf5::kFormatName + " file");
-  const int64_t version = hdf5::read_int_attribute(file, "format_version", root);
-  if (version != kRecordingFormatVersion)
-    throw Error(root + " attribute format_version",
-                "version " + std::to_string(version) + " is not supported (this program reads " +
-                    std::to_string(kRecordingFormatVersion) + ")");
-  layout_id_ = hdf5::read_string_attribute(file, "layout", root);
-  recording_id_ = hdf5::read_string_attribute(file, "recording_id", root);
+  layout_id_ = hdf5::read_string_attribute(file, "layout", root, variable_strings);
+  recording_id_ = hdf5::read_string_attribute(file, "recording_id", root, variable_strings);
 
   Object metadata = hdf5::open_group(file, "metadata", path + ":/metadata");
   for (const std::string& key : hdf5::attribute_names(metadata.id(), path + ":/metadata"))
-    metadata_[key] = hdf5::read_string_attribute(metadata.id(), key, path + ":/metadata");
+    metadata_[key] =
+        hdf5::read_string_attribute(metadata.id(), key, path + ":/metadata", variable_strings);
 
   Object streams = hdf5::open_group(file, "streams", path + ":/streams");
   int64_t block = 0;
   for (const std::string& name : stream_names(streams.id(), path + ":/streams"))
-    streams_.push_back(read_stream_info(streams.id(), name, path, block));
+    streams_.push_back(read_stream_info(streams.id(), name, path, format_version_, block));
   if (block > 0) overview_block_ = block;
 }
 

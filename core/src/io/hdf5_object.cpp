@@ -1,6 +1,8 @@
 #include "hdf5_object.h"
 
+#include <algorithm>
 #include <cstring>
+#include <map>
 
 namespace tactile::hdf5 {
 
@@ -61,11 +63,42 @@ Object open_dataset(hid_t location, const std::string& name, const std::string& 
                  "cannot open dataset");
 }
 
+namespace {
+
+// Attributes (and links) stay in the object header, which carries a checksum, up
+// to this many; beyond, HDF5 would move them to its dense storage.
+constexpr unsigned kMaxCompact = 65535;
+constexpr unsigned kDeflateLevel = 4;
+
+void keep_attributes_compact(hid_t properties, const std::string& where) {
+  if (H5Pset_attr_phase_change(properties, kMaxCompact, 0) < 0)
+    fail(where, "cannot keep attributes in the object header");
+}
+
+}  // namespace
+
 Object untimed_dataset_properties(const std::string& where) {
   Object properties =
       checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
   if (H5Pset_obj_track_times(properties.id(), false) < 0) fail(where, "cannot turn off time stamps");
+  keep_attributes_compact(properties.id(), where);
   return properties;
+}
+
+void add_checked_storage(hid_t properties, int rank, const hsize_t* shape, const hsize_t* chunk,
+                         bool compress, const std::string& where) {
+  bool empty = false;
+  for (int d = 0; d < rank; ++d) empty = empty || shape[d] == 0;
+  if (empty) {
+    // No data: the object header (checksummed) is all there is.
+    if (H5Pset_layout(properties, H5D_COMPACT) < 0) fail(where, "cannot set compact layout");
+    return;
+  }
+  if (H5Pset_chunk(properties, rank, chunk) < 0) fail(where, "cannot set chunking");
+  if (compress && (H5Pset_shuffle(properties) < 0 || H5Pset_deflate(properties, kDeflateLevel) < 0))
+    fail(where, "cannot set compression");
+  // Last in the pipeline: the checksum covers the bytes as stored.
+  if (H5Pset_fletcher32(properties) < 0) fail(where, "cannot set the Fletcher32 checksum");
 }
 
 Object create_group(hid_t location, const std::string& name, bool track_order,
@@ -73,12 +106,23 @@ Object create_group(hid_t location, const std::string& name, bool track_order,
   Object properties = checked(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, where, "property list");
   // No modification times in object headers: the same recording writes the same bytes.
   if (H5Pset_obj_track_times(properties.id(), false) < 0) fail(where, "cannot turn off time stamps");
+  keep_attributes_compact(properties.id(), where);
+  if (H5Pset_link_phase_change(properties.id(), kMaxCompact, 0) < 0)
+    fail(where, "cannot keep links in the object header");
   // Tracking creation order lets a reader list streams in the order they were written.
   if (track_order && H5Pset_link_creation_order(properties.id(),
                                                 H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0)
     fail(where, "cannot track link order");
   return checked(H5Gcreate2(location, name.c_str(), H5P_DEFAULT, properties.id(), H5P_DEFAULT),
                  H5Gclose, where, "cannot create group");
+}
+
+Object fixed_string_type(size_t size) {
+  Object type = checked(H5Tcopy(H5T_C_S1), H5Tclose, "", "cannot copy string type");
+  if (H5Tset_size(type.id(), std::max<size_t>(size, 1)) < 0 ||
+      H5Tset_strpad(type.id(), H5T_STR_NULLPAD) < 0 || H5Tset_cset(type.id(), H5T_CSET_UTF8) < 0)
+    fail("", "cannot make a fixed-length UTF-8 string type");
+  return type;
 }
 
 Object string_type() {
@@ -135,9 +179,10 @@ void read_numeric_attribute(hid_t location, const std::string& name, hid_t memor
 
 void write_string_attribute(hid_t location, const std::string& name, const std::string& value,
                             const std::string& where) {
-  Object type = string_type();
-  const char* text = value.c_str();
-  write_attribute(location, name, type.id(), type.id(), &text, where);
+  Object type = fixed_string_type(value.size());
+  std::string padded = value;
+  padded.resize(std::max<size_t>(value.size(), 1), '\0');
+  write_attribute(location, name, type.id(), type.id(), padded.data(), where);
 }
 
 void write_double_attribute(hid_t location, const std::string& name, double value,
@@ -151,12 +196,14 @@ void write_int_attribute(hid_t location, const std::string& name, int64_t value,
 }
 
 std::string read_string_attribute(hid_t location, const std::string& name,
-                                  const std::string& where) {
+                                  const std::string& where, bool allow_variable) {
   const std::string place = where + " attribute " + name;
   Object attribute = open_scalar_attribute(location, name, place);
   Object file_type = checked(H5Aget_type(attribute.id()), H5Tclose, place, "cannot read type");
   if (H5Tget_class(file_type.id()) != H5T_STRING) throw Error(place, "expected a string");
   if (H5Tis_variable_str(file_type.id()) > 0) {
+    if (!allow_variable)
+      throw Error(place, "a variable-length string, which this format version does not use");
     Object type = string_type();
     char* text = nullptr;
     if (H5Aread(attribute.id(), type.id(), &text) < 0) fail(place, "cannot read attribute");
@@ -165,9 +212,14 @@ std::string read_string_attribute(hid_t location, const std::string& name,
     return value;
   }
   const size_t size = H5Tget_size(file_type.id());
+  // An attribute lives in its object header, which cannot exceed the file.
+  if (size == 0 || size > file_size(location, place))
+    throw Error(place, "string of " + std::to_string(size) + " bytes in a file of " +
+                           std::to_string(file_size(location, place)));
   Object type = checked(H5Tcopy(H5T_C_S1), H5Tclose, place, "cannot copy string type");
   H5Tset_size(type.id(), size);
   H5Tset_strpad(type.id(), H5T_STR_NULLPAD);
+  H5Tset_cset(type.id(), H5Tget_cset(file_type.id()));  // HDF5 converts no character sets
   std::string value(size, '\0');
   if (H5Aread(attribute.id(), type.id(), value.data()) < 0) fail(place, "cannot read attribute");
   value.resize(std::strlen(value.c_str()));
@@ -205,6 +257,52 @@ std::vector<std::string> attribute_names(hid_t location, const std::string& wher
 
 //---- Datasets
 
+void check_unique_names(const std::vector<std::string>& names, const std::string& where) {
+  std::map<std::string, size_t> first;
+  for (size_t index = 0; index < names.size(); ++index) {
+    const auto [at, inserted] = first.emplace(names[index], index);
+    if (!inserted)
+      throw Error(where, "channel name '" + names[index] + "' is used by channels " +
+                             std::to_string(at->second) + " and " + std::to_string(index));
+  }
+}
+
+uint64_t file_size(hid_t location, const std::string& where) {
+  const hid_t file = H5Iget_file_id(location);
+  if (file < 0) fail(where, "cannot find the file");
+  hsize_t size = 0;
+  const herr_t status = H5Fget_filesize(file, &size);
+  H5Fclose(file);
+  if (status < 0) fail(where, "cannot read the file's size");
+  return size;
+}
+
+void check_declared_size(hid_t dataset, double bytes, const std::string& where) {
+  Object properties =
+      checked(H5Dget_create_plist(dataset), H5Pclose, where, "cannot read dataset properties");
+  double expansion = 1.0;
+  const int filters = H5Pget_nfilters(properties.id());
+  if (filters < 0) fail(where, "cannot read filters");
+  for (int index = 0; index < filters; ++index) {
+    unsigned flags = 0;
+    size_t values = 0;
+    unsigned config = 0;
+    const H5Z_filter_t filter =
+        H5Pget_filter2(properties.id(), static_cast<unsigned>(index), &flags, &values, nullptr, 0,
+                       nullptr, &config);
+    if (filter == H5Z_FILTER_DEFLATE)
+      expansion = 1032.0;  // deflate's largest compression ratio
+    else if (filter != H5Z_FILTER_SHUFFLE && filter != H5Z_FILTER_FLETCHER32)
+      throw Error(where, "stored through HDF5 filter " + std::to_string(filter) +
+                             ", which this program does not read");
+  }
+  const double limit = static_cast<double>(file_size(dataset, where)) * expansion;
+  if (bytes > limit)
+    throw Error(where, "declares " + std::to_string(static_cast<uint64_t>(bytes)) +
+                           " bytes of data, more than a file of " +
+                           std::to_string(file_size(dataset, where)) + " bytes can hold");
+}
+
 std::vector<hsize_t> dataset_shape(hid_t dataset, const std::string& where) {
   Object space = checked(H5Dget_space(dataset), H5Sclose, where, "cannot read dataspace");
   const int rank = H5Sget_simple_extent_ndims(space.id());
@@ -223,32 +321,44 @@ H5T_class_t dataset_class(hid_t dataset, const std::string& where) {
 void write_strings(hid_t location, const std::string& name, const std::vector<std::string>& values,
                    const std::string& where) {
   const hsize_t count = values.size();
+  size_t size = 1;
+  for (const std::string& value : values) size = std::max(size, value.size());
   Object space = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, where, "dataspace");
-  Object type = string_type();
+  Object type = fixed_string_type(size);
   Object properties = untimed_dataset_properties(where);
+  // Not compressed: a reader can check the declared size against the file's.
+  add_checked_storage(properties.id(), 1, &count, &count, false, where);
   Object dataset = checked(H5Dcreate2(location, name.c_str(), type.id(), space.id(), H5P_DEFAULT,
                                       properties.id(), H5P_DEFAULT),
                            H5Dclose, where, "cannot create dataset");
-  std::vector<const char*> pointers;
-  pointers.reserve(values.size());
-  for (const std::string& value : values) pointers.push_back(value.c_str());
+  std::vector<char> buffer(size * values.size(), '\0');
+  for (size_t index = 0; index < values.size(); ++index)
+    std::copy(values[index].begin(), values[index].end(), buffer.begin() + index * size);
   if (count > 0 &&
-      H5Dwrite(dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0)
+      H5Dwrite(dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0)
     fail(where, "cannot write dataset");
 }
 
 std::vector<std::string> read_strings(hid_t location, const std::string& name,
-                                      const std::string& where) {
+                                      const std::string& where, bool allow_variable) {
   Object dataset = open_dataset(location, name, where);
   const std::vector<hsize_t> shape = dataset_shape(dataset.id(), where);
   if (shape.size() != 1) throw Error(where, "expected a 1-D dataset of strings");
   Object file_type = checked(H5Dget_type(dataset.id()), H5Tclose, where, "cannot read type");
   if (H5Tget_class(file_type.id()) != H5T_STRING) throw Error(where, "expected strings");
+  const bool variable = H5Tis_variable_str(file_type.id()) > 0;
+  if (variable && !allow_variable)
+    throw Error(where, "variable-length strings, which this format version does not use");
   const size_t count = shape[0];
+  // A variable-length string takes at least 16 bytes in the dataset (length and heap id).
+  const size_t element = variable ? 16 : H5Tget_size(file_type.id());
+  if (element == 0) throw Error(where, "strings of 0 bytes");
+  check_declared_size(dataset.id(), static_cast<double>(count) * static_cast<double>(element),
+                      where);
   std::vector<std::string> values;
   values.reserve(count);
   if (count == 0) return values;
-  if (H5Tis_variable_str(file_type.id()) > 0) {
+  if (variable) {
     Object type = string_type();
     std::vector<char*> pointers(count, nullptr);
     if (H5Dread(dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0)
@@ -262,6 +372,7 @@ std::vector<std::string> read_strings(hid_t location, const std::string& name,
   Object type = checked(H5Tcopy(H5T_C_S1), H5Tclose, where, "cannot copy string type");
   H5Tset_size(type.id(), size);
   H5Tset_strpad(type.id(), H5T_STR_NULLPAD);
+  H5Tset_cset(type.id(), H5Tget_cset(file_type.id()));  // HDF5 converts no character sets
   std::vector<char> buffer(size * count, '\0');
   if (H5Dread(dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0)
     fail(where, "cannot read dataset");

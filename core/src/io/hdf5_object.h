@@ -67,8 +67,10 @@ Object open_group(hid_t location, const std::string& name, const std::string& wh
 Object open_dataset(hid_t location, const std::string& name, const std::string& where);
 Object create_group(hid_t location, const std::string& name, bool track_order,
                     const std::string& where);
-// A variable-length UTF-8 string type.
+// A variable-length UTF-8 string type (read from files of format 1 only).
 Object string_type();
+// A fixed-length UTF-8 string type of `size` bytes (at least 1), padded with NULs.
+Object fixed_string_type(size_t size);
 
 bool has_link(hid_t location, const std::string& name);
 bool has_attribute(hid_t location, const std::string& name);
@@ -83,23 +85,43 @@ void write_int_attribute(hid_t location, const std::string& name, int64_t value,
                          const std::string& where);
 // Missing or mistyped attributes throw tactile::Error naming `where` and the attribute.
 std::string read_string_attribute(hid_t location, const std::string& name,
-                                  const std::string& where);
+                                  const std::string& where, bool allow_variable);
 double read_double_attribute(hid_t location, const std::string& name, const std::string& where);
 int64_t read_int_attribute(hid_t location, const std::string& name, const std::string& where);
 std::vector<std::string> attribute_names(hid_t location, const std::string& where);
 
 //---- Datasets
 
+// Throws tactile::Error(where, ...) naming both positions when a channel name repeats:
+// two channels of one name make every lookup by name ambiguous.
+void check_unique_names(const std::vector<std::string>& names, const std::string& where);
+
+// The size of the file `location` belongs to, in bytes.
+uint64_t file_size(hid_t location, const std::string& where);
+// Throws unless a dataset that declares `bytes` of data (uncompressed) can hold them:
+// stored without compression it needs as many bytes of the file; deflated, at most
+// 1032 times as many (deflate's largest ratio). Refuses filters other than shuffle,
+// deflate and Fletcher32. Call before allocating anything for the whole dataset.
+void check_declared_size(hid_t dataset, double bytes, const std::string& where);
+
 // Dimensions of a dataset's extent.
 std::vector<hsize_t> dataset_shape(hid_t dataset, const std::string& where);
 H5T_class_t dataset_class(hid_t dataset, const std::string& where);
 void write_strings(hid_t location, const std::string& name, const std::vector<std::string>& values,
                    const std::string& where);
-// Reads a 1-D dataset of fixed- or variable-length strings.
+// Reads a 1-D dataset of fixed- or variable-length strings; variable-length ones
+// only when `allow_variable` (files of format 1: their bytes live in HDF5's global
+// heap, which carries no checksum).
 std::vector<std::string> read_strings(hid_t location, const std::string& name,
-                                      const std::string& where);
+                                      const std::string& where, bool allow_variable);
 
-// Dataset creation properties with object modification times off (same data, same bytes).
+// Dataset creation properties with object modification times off (same data, same
+// bytes), attributes kept in the checksummed object header however many there are.
 Object untimed_dataset_properties(const std::string& where);
+// Makes `properties` (dataset creation) store data of `elements` elements covered by
+// a check: in the object header when empty (compact), else in chunks of
+// `chunk` (per dimension) with Fletcher32 after the optional shuffle and deflate.
+void add_checked_storage(hid_t properties, int rank, const hsize_t* shape, const hsize_t* chunk,
+                         bool compress, const std::string& where);
 
 }  // namespace tactile::hdf5

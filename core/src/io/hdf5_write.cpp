@@ -25,7 +25,6 @@ using hdf5::Object;
 constexpr hsize_t kSampleChunk = 8192;
 // Overview and time stamps are read whole or in long runs: bigger chunks.
 constexpr hsize_t kChunkSamples = 65536;
-constexpr unsigned kDeflateLevel = 4;
 
 void check_recording(const std::string& path, const Recording& recording) {
   std::set<std::string> names;
@@ -37,6 +36,7 @@ void check_recording(const std::string& path, const Recording& recording) {
     if (stream.name.empty() || stream.name == "." || stream.name.find('/') != std::string::npos)
       throw Error(where, "invalid stream name '" + stream.name + "'");
     if (!names.insert(stream.name).second) throw Error(where, "duplicate stream name");
+    hdf5::check_unique_names(stream.channels, where + "/channels");
     if (static_cast<int64_t>(stream.channels.size()) != stream.channel_count())
       throw Error(where, std::to_string(stream.channels.size()) + " channel names for " +
                              std::to_string(stream.channel_count()) + " sample columns");
@@ -54,21 +54,15 @@ void check_recording(const std::string& path, const Recording& recording) {
 }
 
 // A [rows][columns] dataset written from contiguous memory (row after row), chunked
-// along the second dimension and deflate-compressed with shuffle.
+// along the second dimension, shuffled, deflated and checksummed.
 void write_chunked(hid_t location, const std::string& name, hid_t file_type, hid_t memory_type,
                    const void* data, hsize_t rows, hsize_t columns, hsize_t chunk_columns,
                    const std::string& where) {
   const hsize_t shape[2] = {rows, columns};
   Object space = checked(H5Screate_simple(2, shape, nullptr), H5Sclose, where, "dataspace");
-  Object properties =
-      hdf5::untimed_dataset_properties(where);
-  // Chunk dimensions must be positive and within a fixed extent: empty data stays contiguous.
-  if (rows > 0 && columns > 0) {
-    const hsize_t chunk[2] = {1, std::min(columns, chunk_columns)};
-    if (H5Pset_chunk(properties.id(), 2, chunk) < 0 || H5Pset_shuffle(properties.id()) < 0 ||
-        H5Pset_deflate(properties.id(), kDeflateLevel) < 0)
-      fail(where, "cannot set chunking and compression");
-  }
+  Object properties = hdf5::untimed_dataset_properties(where);
+  const hsize_t chunk[2] = {1, std::min(columns, chunk_columns)};
+  hdf5::add_checked_storage(properties.id(), 2, shape, chunk, true, where);
   Object dataset = checked(H5Dcreate2(location, name.c_str(), file_type, space.id(), H5P_DEFAULT,
                                       properties.id(), H5P_DEFAULT),
                            H5Dclose, where, "cannot create dataset");
@@ -81,17 +75,14 @@ void write_timestamps(hid_t location, const std::vector<double>& timestamps,
                       const std::string& where) {
   const hsize_t count = timestamps.size();
   Object space = checked(H5Screate_simple(1, &count, nullptr), H5Sclose, where, "dataspace");
-  Object properties =
-      hdf5::untimed_dataset_properties(where);
+  Object properties = hdf5::untimed_dataset_properties(where);
   const hsize_t chunk = std::min<hsize_t>(count, kChunkSamples / 2);
-  if (H5Pset_chunk(properties.id(), 1, &chunk) < 0 || H5Pset_shuffle(properties.id()) < 0 ||
-      H5Pset_deflate(properties.id(), kDeflateLevel) < 0)
-    fail(where, "cannot set chunking and compression");
+  hdf5::add_checked_storage(properties.id(), 1, &count, &chunk, true, where);
   Object dataset = checked(H5Dcreate2(location, "timestamps", H5T_IEEE_F64LE, space.id(),
                                       H5P_DEFAULT, properties.id(), H5P_DEFAULT),
                            H5Dclose, where, "cannot create dataset");
-  if (H5Dwrite(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, timestamps.data()) <
-      0)
+  if (count > 0 && H5Dwrite(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                            timestamps.data()) < 0)
     fail(where, "cannot write dataset");
 }
 
@@ -170,7 +161,12 @@ void write_recording(const std::string& path, const Recording& recording) {
     // The root group's header carries no modification time either.
     Object creation = checked(H5Pcreate(H5P_FILE_CREATE), H5Pclose, path, "property list");
     if (H5Pset_obj_track_times(creation.id(), false) < 0) hdf5::fail(path, "cannot turn off time stamps");
-    Object file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, creation.id(), H5P_DEFAULT),
+    // The file format of HDF5 1.10: superblock, object headers and chunk indexes all
+    // carry checksums (docs/FILE_FORMAT.md, format 2).
+    Object access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, path, "property list");
+    if (H5Pset_libver_bounds(access.id(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0)
+      hdf5::fail(path, "cannot select the HDF5 1.10 file format");
+    Object file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, creation.id(), access.id()),
                           H5Fclose, path, "cannot create file");
     write_contents(file.id(), path, recording);
     file.close(path);

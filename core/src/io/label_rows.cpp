@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 
+#include "row_checksum.h"
 #include "tactile/error.h"
 
 namespace tactile::label_rows {
@@ -17,6 +18,41 @@ std::string number_text(double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   return std::string(buffer, result.ptr);
+}
+
+using row_checksum::Field;
+
+std::vector<Field> label_fields(const Label& label, const std::string& source) {
+  return {{"recording", label.recording}, {"t0", label.t0},
+          {"t1", label.t1},               {"region", label.region},
+          {"class", label.class_name},    {"annotator", label.annotator},
+          {"source", source},             {"confidence", label.confidence},
+          {"note", label.note},           {"created", label.created},
+          {"modified", label.modified}};
+}
+
+std::string label_checksum(const Label& label) {
+  return row_checksum::compute("labels", label.id,
+                               label_fields(label, std::string(to_string(label.source))));
+}
+
+StoreProblem row_problem(const char* table, int64_t row, std::string field, std::string what) {
+  return StoreProblem{table, row, std::move(field), std::move(what)};
+}
+
+// The first field that disagrees with its checksum, as a problem.
+std::optional<StoreProblem> checksum_problem(const char* table, int64_t row,
+                                             const std::vector<Field>& fields,
+                                             const std::string& stored) {
+  const std::vector<std::string> fields_wrong =
+      row_checksum::mismatches(table, row, fields, stored);
+  if (fields_wrong.empty()) return std::nullopt;
+  if (fields_wrong.size() == fields.size())
+    return row_problem(table, row, "", "no field matches the row's checksum (row id or checksum damaged)");
+  std::string names;
+  for (const std::string& name : fields_wrong) names += (names.empty() ? "" : ", ") + name;
+  return row_problem(table, row, fields_wrong.front(),
+                     "value does not match its checksum (damaged: " + names + ")");
 }
 
 }  // namespace
@@ -53,26 +89,87 @@ void validate(const Label& label, const std::string& where) {
     throw Error(where, "confidence " + number_text(label.confidence) + " is outside [0, 1]");
 }
 
-Label read_label(const sqlite::Statement& statement, const std::string& path) {
+bool is_iso_time(const std::string& text) {
+  // YYYY-MM-DDTHH:MM:SS[.fff]Z
+  if (text.size() < 20 || text.back() != 'Z') return false;
+  const char* pattern = "dddd-dd-ddTdd:dd:dd";
+  for (size_t index = 0; pattern[index] != '\0'; ++index) {
+    const char expected = pattern[index];
+    const char actual = text[index];
+    if (expected == 'd' ? (actual < '0' || actual > '9') : actual != expected) return false;
+  }
+  const size_t rest = 19;
+  if (text.size() > rest + 1) {
+    if (text[rest] != '.' || text.size() < rest + 3) return false;
+    for (size_t index = rest + 1; index + 1 < text.size(); ++index)
+      if (text[index] < '0' || text[index] > '9') return false;
+  }
+  auto number = [&text](size_t first, size_t count) { return std::stoi(text.substr(first, count)); };
+  const int month = number(5, 2), day = number(8, 2), hour = number(11, 2), minute = number(14, 2),
+            second = number(17, 2);
+  return month >= 1 && month <= 12 && day >= 1 && day <= 31 && hour < 24 && minute < 60 &&
+         second <= 60;
+}
+
+KnownClasses known_classes(sqlite3* database, const std::string& path) {
+  sqlite::Statement select(database, path,
+                           "SELECT name FROM classes UNION SELECT name FROM label_classes");
+  KnownClasses names;
+  while (select.step()) names.insert(select.text(0));
+  return names;
+}
+
+CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& classes) {
+  CheckedLabel row;
   Label label;
-  label.id = statement.integer(0);
-  label.recording = statement.text(1);
+  label.id = row.id = statement.integer(0);
+  label.recording = row.recording = statement.text(1);
   label.t0 = statement.real(2);
   label.t1 = statement.real(3);
   label.region = statement.text(4);
   label.class_name = statement.text(5);
   label.annotator = statement.text(6);
   const std::string source = statement.text(7);
-  try {
-    label.source = parse_label_source(source);
-  } catch (const Error& error) {
-    throw Error(where_label(path, label.id), error.message());
-  }
   label.confidence = statement.real(8);
   label.note = statement.text(9);
   label.created = statement.text(10);
   label.modified = statement.text(11);
-  return label;
+  row.checksum = statement.text(12);
+  row.problem = checksum_problem("labels", label.id, label_fields(label, source), row.checksum);
+  if (row.problem) return row;
+  // Intact as written; still, only valid values pass as labels.
+  try {
+    label.source = parse_label_source(source);
+  } catch (const Error& error) {
+    row.problem = row_problem("labels", label.id, "source", error.message());
+    return row;
+  }
+  try {
+    validate(label, "");
+  } catch (const Error& error) {
+    row.problem = row_problem("labels", label.id, "", error.message());
+    return row;
+  }
+  if (classes.count(label.class_name) == 0)
+    row.problem = row_problem("labels", label.id, "class",
+                              "'" + label.class_name + "' is in no vocabulary of the store");
+  else if (!is_iso_time(label.created))
+    row.problem = row_problem("labels", label.id, "created", "'" + label.created + "' is not a time");
+  else if (!is_iso_time(label.modified))
+    row.problem =
+        row_problem("labels", label.id, "modified", "'" + label.modified + "' is not a time");
+  else
+    row.label = std::move(label);
+  return row;
+}
+
+Error problem_error(const StoreProblem& problem, const std::string& path) {
+  return Error(problem.where(path), problem.what + "; the row is left as it is");
+}
+
+Label require(const CheckedLabel& row, const std::string& path) {
+  if (row.problem) throw problem_error(*row.problem, path);
+  return *row.label;
 }
 
 nlohmann::json to_json(const Label& label) {
@@ -151,19 +248,37 @@ std::optional<Label> load(sqlite3* database, const std::string& path, int64_t id
                            std::string("SELECT ") + kColumns + " FROM labels WHERE id = ?");
   select.bind(1, id);
   if (!select.step()) return std::nullopt;
-  return read_label(select, path);
+  return require(read_label(select, known_classes(database, path)), path);
 }
 
-void store(sqlite3* database, const std::string& path, const Label& label) {
+namespace {
+
+// Takes a row out of its recording's digest; refuses a row that is damaged.
+void forget_row(sqlite3* database, const std::string& path, int64_t id) {
+  sqlite::Statement select(database, where_label(path, id),
+                           std::string("SELECT ") + kColumns + " FROM labels WHERE id = ?");
+  select.bind(1, id);
+  if (!select.step()) return;
+  const CheckedLabel row = read_label(select, known_classes(database, path));
+  require(row, path);
+  adjust_digest(database, path, label_scope(row.recording), -1,
+                0 - row_checksum::row_hash(row.id, row.checksum));
+}
+
+}  // namespace
+
+int64_t store(sqlite3* database, const std::string& path, const Label& label) {
+  if (label.id != 0) forget_row(database, path, label.id);
   sqlite::Statement upsert(database, where_label(path, label.id),
                            std::string("INSERT OR REPLACE INTO labels (") + kColumns +
-                               ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                               ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   // Id 0 means "new": a NULL id lets AUTOINCREMENT pick one that was never used,
-  // so an id freed by a delete stays free for that label's undo.
+  // so an id freed by a delete stays free for that label's undo. The checksum
+  // covers the id, so a new row gets its checksum once the id is known.
   if (label.id == 0)
-    upsert.bind_null(1);
+    upsert.bind_null(1).bind(13, std::string());
   else
-    upsert.bind(1, label.id);
+    upsert.bind(1, label.id).bind(13, label_checksum(label));
   upsert.bind(2, label.recording)
       .bind(3, label.t0)
       .bind(4, label.t1)
@@ -176,12 +291,106 @@ void store(sqlite3* database, const std::string& path, const Label& label) {
       .bind(11, label.created)
       .bind(12, label.modified);
   upsert.run();
+  Label stored = label;
+  if (stored.id == 0) {
+    stored.id = sqlite3_last_insert_rowid(database);
+    sqlite::Statement update(database, where_label(path, stored.id),
+                             "UPDATE labels SET checksum = ? WHERE id = ?");
+    update.bind(1, label_checksum(stored)).bind(2, stored.id);
+    update.run();
+  }
+  adjust_digest(database, path, label_scope(stored.recording), 1,
+                row_checksum::row_hash(stored.id, label_checksum(stored)));
+  sqlite::Statement known(database, path, "INSERT OR IGNORE INTO label_classes (name) VALUES (?)");
+  known.bind(1, stored.class_name);
+  known.run();
+  return stored.id;
 }
 
 void erase(sqlite3* database, const std::string& path, int64_t id) {
+  forget_row(database, path, id);
   sqlite::Statement remove(database, where_label(path, id), "DELETE FROM labels WHERE id = ?");
   remove.bind(1, id);
   remove.run();
+}
+
+//---- Digests
+
+namespace {
+
+std::vector<Field> digest_fields(const std::string& scope, int64_t rows, uint64_t sum) {
+  return {{"scope", scope}, {"rows", rows}, {"sum", static_cast<int64_t>(sum)}};
+}
+
+}  // namespace
+
+void adjust_digest(sqlite3* database, const std::string& path, const std::string& scope,
+                   int64_t rows, uint64_t sum) {
+  Digest digest;
+  {
+    sqlite::Statement select(database, path,
+                             "SELECT rows, sum, checksum FROM digests WHERE scope = ?");
+    select.bind(1, scope);
+    if (select.step()) {
+      digest.rows = select.integer(0);
+      digest.sum = static_cast<uint64_t>(select.integer(1));
+      if (const auto problem = checksum_problem(
+              "digests", 0, digest_fields(scope, digest.rows, digest.sum), select.text(2)))
+        throw Error(path + " digest of " + scope,
+                    problem->what + "; run tactile verify, nothing was written");
+    }
+  }
+  digest.rows += rows;
+  digest.sum += sum;  // modulo 2^64
+  sqlite::Statement upsert(database, path,
+                           "INSERT OR REPLACE INTO digests (scope, rows, sum, checksum) "
+                           "VALUES (?, ?, ?, ?)");
+  upsert.bind(1, scope)
+      .bind(2, digest.rows)
+      .bind(3, static_cast<int64_t>(digest.sum))
+      .bind(4, row_checksum::compute("digests", 0, digest_fields(scope, digest.rows, digest.sum)));
+  upsert.run();
+}
+
+std::map<std::string, Digest> read_digests(sqlite3* database, const std::string& prefix,
+                                           std::vector<StoreProblem>& problems) {
+  sqlite::Statement select(database, "",
+                           "SELECT scope, rows, sum, checksum FROM digests WHERE "
+                           "substr(scope, 1, length(?1)) = ?1");
+  select.bind(1, prefix);
+  std::map<std::string, Digest> digests;
+  while (select.step()) {
+    const std::string scope = select.text(0);
+    Digest digest{select.integer(1), static_cast<uint64_t>(select.integer(2))};
+    if (auto problem = checksum_problem("digests", 0, digest_fields(scope, digest.rows, digest.sum),
+                                        select.text(3))) {
+      problem->field = scope;
+      problems.push_back(*problem);
+      continue;
+    }
+    digests[scope] = digest;
+  }
+  return digests;
+}
+
+void compare_digests(const std::map<std::string, Digest>& found,
+                     const std::map<std::string, Digest>& stored, bool all_scopes,
+                     std::vector<StoreProblem>& problems) {
+  auto compare = [&problems](const std::string& scope, const Digest& seen, const Digest& kept) {
+    if (seen.rows == kept.rows && seen.sum == kept.sum) return;
+    problems.push_back(StoreProblem{
+        "digests", 0, scope,
+        std::to_string(seen.rows) + " rows read, " + std::to_string(kept.rows) +
+            " written" + (seen.rows == kept.rows ? " (the rows differ)" : "") +
+            ": rows lost, added or changed on disk"});
+  };
+  for (const auto& [scope, seen] : found) {
+    const auto kept = stored.find(scope);
+    compare(scope, seen, kept == stored.end() ? Digest{} : kept->second);
+  }
+  if (!all_scopes) return;
+  for (const auto& [scope, kept] : stored)
+    if (found.count(scope) == 0) compare(scope, Digest{}, kept);
 }
 
 //---- Journal
@@ -207,26 +416,210 @@ int64_t next_batch(sqlite3* database, const std::string& path) {
   return select.integer(0);
 }
 
+namespace {
+
+std::vector<Field> journal_fields(int64_t batch, const std::string& time,
+                                  const std::string& annotator, const std::string& action,
+                                  int64_t label_id, const std::string& before_json,
+                                  const std::string& after_json, bool undone,
+                                  std::optional<int64_t> undone_by) {
+  return {{"batch", batch},
+          {"time", time},
+          {"annotator", annotator},
+          {"action", action},
+          {"label_id", label_id},
+          {"before_json", before_json},
+          {"after_json", after_json},
+          {"undone", int64_t{undone ? 1 : 0}},
+          {"undone_by", undone_by ? row_checksum::Value(*undone_by) : row_checksum::Value()}};
+}
+
+std::vector<Field> journal_fields(const JournalEntry& entry, std::optional<int64_t> undone_by) {
+  return journal_fields(entry.batch, entry.time, entry.annotator, entry.action, entry.label_id,
+                        entry.before_json, entry.after_json, entry.undone, undone_by);
+}
+
+// Writes the checksum of a journal row and adds it to the journal's digest.
+void seal_journal_row(sqlite3* database, const std::string& path, const JournalEntry& entry,
+                      std::optional<int64_t> undone_by) {
+  const std::string checksum =
+      row_checksum::compute("journal", entry.sequence, journal_fields(entry, undone_by));
+  sqlite::Statement update(database, path, "UPDATE journal SET checksum = ? WHERE sequence = ?");
+  update.bind(1, checksum).bind(2, entry.sequence);
+  update.run();
+  adjust_digest(database, path, kJournalScope, 1, row_checksum::row_hash(entry.sequence, checksum));
+}
+
+CheckedJournal load_journal(sqlite3* database, const std::string& path, int64_t sequence) {
+  sqlite::Statement select(database, path,
+                           std::string("SELECT ") + kJournalColumns +
+                               " FROM journal WHERE sequence = ?");
+  select.bind(1, sequence);
+  if (!select.step()) throw Error(path + " journal row " + std::to_string(sequence), "missing");
+  return read_journal(select);
+}
+
+}  // namespace
+
 void write_journal(sqlite3* database, const std::string& path, int64_t batch,
                    const std::string& annotator, const std::string& action, int64_t label_id,
                    const std::string& before_json, const std::string& after_json,
                    const std::string& time) {
-  sqlite::Statement insert(database, where_label(path, label_id),
-                           "INSERT INTO journal (batch, time, annotator, action, label_id, "
-                           "before_json, after_json) VALUES (?, ?, ?, ?, ?, ?, ?)");
-  insert.bind(1, batch)
-      .bind(2, time.empty() ? now_utc() : time)
-      .bind(3, annotator)
-      .bind(4, action)
-      .bind(5, label_id)
-      .bind(6, before_json)
-      .bind(7, after_json);
-  insert.run();
+  JournalEntry entry;
+  entry.batch = batch;
+  entry.time = time.empty() ? now_utc() : time;
+  entry.annotator = annotator;
+  entry.action = action;
+  entry.label_id = label_id;
+  entry.before_json = before_json;
+  entry.after_json = after_json;
+  {
+    sqlite::Statement insert(database, where_label(path, label_id),
+                             "INSERT INTO journal (batch, time, annotator, action, label_id, "
+                             "before_json, after_json, checksum) VALUES (?, ?, ?, ?, ?, ?, ?, '')");
+    insert.bind(1, batch)
+        .bind(2, entry.time)
+        .bind(3, annotator)
+        .bind(4, action)
+        .bind(5, label_id)
+        .bind(6, before_json)
+        .bind(7, after_json);
+    insert.run();
+  }
+  entry.sequence = sqlite3_last_insert_rowid(database);
+  seal_journal_row(database, path, entry, std::nullopt);
+}
+
+CheckedJournal read_journal(const sqlite::Statement& statement) {
+  CheckedJournal row;
+  JournalEntry entry;
+  entry.sequence = row.sequence = statement.integer(0);
+  entry.batch = statement.integer(1);
+  entry.time = statement.text(2);
+  entry.annotator = statement.text(3);
+  entry.action = statement.text(4);
+  entry.label_id = statement.integer(5);
+  entry.before_json = statement.text(6);
+  entry.after_json = statement.text(7);
+  const int64_t undone = statement.integer(8);
+  entry.undone = undone != 0;
+  if (!statement.is_null(9)) row.undone_by = statement.integer(9);
+  row.checksum = statement.text(10);
+  row.problem = checksum_problem("journal", entry.sequence, journal_fields(entry, row.undone_by),
+                                 row.checksum);
+  auto bad = [&row, &entry](const char* field, const std::string& what) {
+    row.problem = row_problem("journal", entry.sequence, field, what);
+  };
+  static const std::set<std::string> kActions = {"insert", "update", "delete", "undo", "redo"};
+  if (row.problem) return row;
+  if (undone != 0 && undone != 1) return bad("undone", "neither 0 nor 1"), row;
+  if (!is_iso_time(entry.time)) return bad("time", "'" + entry.time + "' is not a time"), row;
+  if (kActions.count(entry.action) == 0)
+    return bad("action", "'" + entry.action + "' is not an action"), row;
+  for (const auto& [field, text] :
+       {std::pair{"before_json", &entry.before_json}, std::pair{"after_json", &entry.after_json}}) {
+    try {
+      state_from_json(*text, "");
+    } catch (const Error& error) {
+      return bad(field, error.message()), row;
+    }
+  }
+  row.entry = std::move(entry);
+  return row;
+}
+
+void set_undone(sqlite3* database, const std::string& path, int64_t sequence, bool undone,
+                std::optional<int64_t> undone_by) {
+  const CheckedJournal row = load_journal(database, path, sequence);
+  if (row.problem) throw problem_error(*row.problem, path);
+  adjust_digest(database, path, kJournalScope, -1,
+                0 - row_checksum::row_hash(sequence, row.checksum));
+  sqlite::Statement update(database, path,
+                           "UPDATE journal SET undone = ?, undone_by = ? WHERE sequence = ?");
+  update.bind(1, int64_t{undone ? 1 : 0});
+  if (undone_by)
+    update.bind(2, *undone_by);
+  else
+    update.bind_null(2);
+  update.bind(3, sequence);
+  update.run();
+  JournalEntry entry = *row.entry;
+  entry.undone = undone;
+  seal_journal_row(database, path, entry, undone_by);
 }
 
 void clear_redo_chain(sqlite3* database, const std::string& path) {
-  sqlite::execute(database, path,
-                  "UPDATE journal SET undone_by = NULL WHERE undone_by IS NOT NULL");
+  std::vector<std::pair<int64_t, bool>> rows;
+  {
+    sqlite::Statement select(database, path,
+                             "SELECT sequence, undone FROM journal WHERE undone_by IS NOT NULL");
+    while (select.step()) rows.emplace_back(select.integer(0), select.integer(1) != 0);
+  }
+  for (const auto& [sequence, undone] : rows)
+    set_undone(database, path, sequence, undone, std::nullopt);
+}
+
+void add_checksums(sqlite3* database, const std::string& path) {
+  sqlite::execute(database, path, R"sql(
+ALTER TABLE labels ADD COLUMN checksum TEXT NOT NULL DEFAULT '';
+ALTER TABLE journal ADD COLUMN checksum TEXT NOT NULL DEFAULT '';
+CREATE TABLE digests (scope TEXT PRIMARY KEY, rows INTEGER NOT NULL, sum INTEGER NOT NULL,
+                      checksum TEXT NOT NULL);
+CREATE TABLE label_classes (name TEXT PRIMARY KEY);
+INSERT OR IGNORE INTO label_classes (name) SELECT DISTINCT class FROM labels;
+)sql");
+  std::vector<std::pair<Label, std::string>> labels;
+  {
+    sqlite::Statement select(database, path,
+                             std::string("SELECT ") + kColumns + " FROM labels ORDER BY id");
+    while (select.step()) {
+      Label label;
+      label.id = select.integer(0);
+      label.recording = select.text(1);
+      label.t0 = select.real(2);
+      label.t1 = select.real(3);
+      label.region = select.text(4);
+      label.class_name = select.text(5);
+      label.annotator = select.text(6);
+      const std::string source = select.text(7);
+      label.confidence = select.real(8);
+      label.note = select.text(9);
+      label.created = select.text(10);
+      label.modified = select.text(11);
+      labels.emplace_back(std::move(label), source);
+    }
+  }
+  sqlite::Statement update(database, path, "UPDATE labels SET checksum = ? WHERE id = ?");
+  for (const auto& [label, source] : labels) {
+    const std::string checksum =
+        row_checksum::compute("labels", label.id, label_fields(label, source));
+    update.reset();
+    update.bind(1, checksum).bind(2, label.id);
+    update.run();
+    adjust_digest(database, path, label_scope(label.recording), 1,
+                  row_checksum::row_hash(label.id, checksum));
+  }
+  std::vector<std::pair<JournalEntry, std::optional<int64_t>>> entries;
+  {
+    sqlite::Statement select(database, path,
+                             std::string("SELECT ") + kJournalColumns + " FROM journal");
+    while (select.step()) {
+      JournalEntry entry;
+      entry.sequence = select.integer(0);
+      entry.batch = select.integer(1);
+      entry.time = select.text(2);
+      entry.annotator = select.text(3);
+      entry.action = select.text(4);
+      entry.label_id = select.integer(5);
+      entry.before_json = select.text(6);
+      entry.after_json = select.text(7);
+      entry.undone = select.integer(8) != 0;
+      std::optional<int64_t> undone_by;
+      if (!select.is_null(9)) undone_by = select.integer(9);
+      entries.emplace_back(std::move(entry), undone_by);
+    }
+  }
+  for (const auto& [entry, undone_by] : entries) seal_journal_row(database, path, entry, undone_by);
 }
 
 }  // namespace tactile::label_rows

@@ -3,20 +3,38 @@
 // validation, filters as SQL, and the journal rows every edit writes.
 
 #include <nlohmann/json.hpp>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "sqlite_statement.h"
+#include "tactile/error.h"
 #include "tactile/io/label.h"
 #include "tactile/io/label_store.h"
 
 namespace tactile::label_rows {
 
-// The labels table's columns in the order read_label() expects.
+// The labels table's columns in the order read_label() expects (schema 2: with the
+// row's checksum, row_checksum.h).
 inline constexpr const char* kColumns =
-    "id, recording, t0, t1, region, class, annotator, source, confidence, note, created, modified";
+    "id, recording, t0, t1, region, class, annotator, source, confidence, note, created, "
+    "modified, checksum";
+
+// Class names a label read back may carry: the skins' vocabularies and every class
+// ever written to the store (a damaged name is none of them).
+using KnownClasses = std::set<std::string>;
+KnownClasses known_classes(sqlite3* database, const std::string& path);
+
+// A row read and checked: its label, or what is wrong with it.
+struct CheckedLabel {
+  std::optional<Label> label;
+  std::optional<StoreProblem> problem;
+  int64_t id = 0;
+  std::string recording, checksum;  // as stored, for the digests
+};
 
 // The current time as ISO 8601 UTC with milliseconds, e.g. "2024-05-01T12:00:00.250Z".
 std::string now_utc();
@@ -26,9 +44,17 @@ std::string where_label(const std::string& path, int64_t id);
 
 // Throws tactile::Error(where, ...) naming the first invalid field.
 void validate(const Label& label, const std::string& where);
+// True for the ISO 8601 UTC times the store writes ("2024-05-01T12:00:00.250Z",
+// fraction optional).
+bool is_iso_time(const std::string& text);
 
-// Reads the kColumns of the current row.
-Label read_label(const sqlite::Statement& statement, const std::string& path);
+// Reads the kColumns of the current row and checks its checksum and values.
+CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& classes);
+// The label, or tactile::Error naming the store, the row and the field: a damaged
+// row is never overwritten.
+Label require(const CheckedLabel& row, const std::string& path);
+// The problem as an error.
+Error problem_error(const StoreProblem& problem, const std::string& path);
 
 // The export's JSON object for one label, and back.
 nlohmann::json to_json(const Label& label);
@@ -42,12 +68,33 @@ struct FilterClause {
 };
 FilterClause filter_clause(const LabelFilter& filter);
 
-// Row access inside an open transaction.
+// Row access inside an open transaction. load() throws for a damaged row.
 std::optional<Label> load(sqlite3* database, const std::string& path, int64_t id);
 // Inserts the label with its own id, or replaces the row with that id; id 0
-// inserts a new row (its id is sqlite3_last_insert_rowid).
-void store(sqlite3* database, const std::string& path, const Label& label);
+// inserts a new row. Returns the id. Writes the row's checksum, keeps its
+// recording's digest and registers its class.
+int64_t store(sqlite3* database, const std::string& path, const Label& label);
 void erase(sqlite3* database, const std::string& path, int64_t id);
+
+//---- Digests: per scope ("labels:RECORDING", "journal") the number of rows and the
+// sum of their row hashes, kept by every write, compared by every read of a whole scope.
+
+inline std::string label_scope(const std::string& recording) { return "labels:" + recording; }
+inline constexpr const char* kJournalScope = "journal";
+void adjust_digest(sqlite3* database, const std::string& path, const std::string& scope,
+                   int64_t rows, uint64_t sum);
+struct Digest {
+  int64_t rows = 0;
+  uint64_t sum = 0;
+};
+// Every digest whose scope starts with `prefix`, checked; damaged ones go to `problems`.
+std::map<std::string, Digest> read_digests(sqlite3* database, const std::string& prefix,
+                                           std::vector<StoreProblem>& problems);
+// Compares what a read of whole scopes found with the stored digests; a scope in
+// `stored` that was not found at all is lost rows too when `all_scopes`.
+void compare_digests(const std::map<std::string, Digest>& found,
+                     const std::map<std::string, Digest>& stored, bool all_scopes,
+                     std::vector<StoreProblem>& problems);
 
 //---- Journal
 
@@ -64,5 +111,25 @@ void write_journal(sqlite3* database, const std::string& path, int64_t batch,
                    const std::string& time = {});
 // A new edit makes the undone edits unrecoverable by redo.
 void clear_redo_chain(sqlite3* database, const std::string& path);
+
+// The journal's columns in the order read_journal() expects.
+inline constexpr const char* kJournalColumns =
+    "sequence, batch, time, annotator, action, label_id, before_json, after_json, undone, "
+    "undone_by, checksum";
+struct CheckedJournal {
+  std::optional<JournalEntry> entry;
+  std::optional<int64_t> undone_by;
+  std::optional<StoreProblem> problem;
+  int64_t sequence = 0;
+  std::string checksum;
+};
+CheckedJournal read_journal(const sqlite::Statement& statement);
+// Marks a journal row undone (by the undo batch) or not; refuses a damaged row.
+void set_undone(sqlite3* database, const std::string& path, int64_t sequence, bool undone,
+                std::optional<int64_t> undone_by);
+
+// Schema 1 to 2: checksums for every row, digests, the classes written. Inside the
+// caller's transaction.
+void add_checksums(sqlite3* database, const std::string& path);
 
 }  // namespace tactile::label_rows

@@ -1,12 +1,17 @@
 #include "tactile/io/label_store.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cstdio>
+#include <map>
 #include <filesystem>
 #include <set>
 #include <thread>
 #include <utility>
 
 #include "label_rows.h"
+#include "row_checksum.h"
 #include "sqlite_statement.h"
 #include "tactile/error.h"
 
@@ -15,7 +20,9 @@ namespace tactile {
 namespace {
 
 // Version 1: tables store_schema, labels, classes, journal.
-constexpr int64_t kSchemaVersion = 1;
+// Version 2: a checksum column in labels and journal (row_checksum.h), tables
+// digests and label_classes. A store of version 1 is upgraded when opened.
+constexpr int64_t kSchemaVersion = 2;
 
 // How long a writer waits for another process's transaction before failing.
 constexpr std::chrono::milliseconds kBusyTimeout(5000);
@@ -35,6 +42,7 @@ CREATE TABLE labels (
   note TEXT NOT NULL,
   created TEXT NOT NULL,
   modified TEXT NOT NULL,
+  checksum TEXT NOT NULL DEFAULT '',
   CHECK (t0 < t1 AND confidence BETWEEN 0 AND 1));
 CREATE INDEX labels_by_time ON labels (recording, t0, id);
 CREATE TABLE classes (
@@ -53,9 +61,13 @@ CREATE TABLE journal (
   before_json TEXT NOT NULL,
   after_json TEXT NOT NULL,
   undone INTEGER NOT NULL DEFAULT 0,
-  undone_by INTEGER);
+  undone_by INTEGER,
+  checksum TEXT NOT NULL DEFAULT '');
 CREATE INDEX journal_by_batch ON journal (batch);
 CREATE INDEX journal_by_undo ON journal (undone_by);
+CREATE TABLE digests (scope TEXT PRIMARY KEY, rows INTEGER NOT NULL, sum INTEGER NOT NULL,
+                      checksum TEXT NOT NULL);
+CREATE TABLE label_classes (name TEXT PRIMARY KEY);
 )sql";
 
 int64_t single_integer(sqlite3* database, const std::string& where, const std::string& sql) {
@@ -78,8 +90,37 @@ void enable_wal(sqlite3* database, const std::string& path) {
   }
 }
 
-// Creates the schema in an empty database, or checks the version of ours.
-void prepare_schema(sqlite3* database, const std::string& path) {
+// A path as the path part of a file: URI (RFC 3986): reserved bytes percent-encoded.
+std::string uri_path(const std::string& path) {
+  std::string text;
+  for (unsigned char c : path) {
+    if (std::isalnum(c) || c == '/' || c == '-' || c == '_' || c == '.' || c == '~') {
+      text += static_cast<char>(c);
+    } else {
+      char escaped[4];
+      std::snprintf(escaped, sizeof(escaped), "%%%02X", c);
+      text += escaped;
+    }
+  }
+  return text;
+}
+
+// Creates the schema in an empty database, or checks the version of ours and
+// upgrades version 1. Returns the version found (the current one for a new store).
+int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_only) {
+  int64_t found = kSchemaVersion;
+  if (read_only) {
+    if (single_integer(database, path,
+                       "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' AND "
+                       "name = 'store_schema'") == 0)
+      throw Error(path, "not a label store (no store_schema table)");
+    found = single_integer(database, path, "SELECT MAX(version) FROM store_schema");
+    if (found != kSchemaVersion)
+      throw Error(path, "label store schema version " + std::to_string(found) +
+                            (found < kSchemaVersion ? " carries no checksums; `tactile upgrade` adds them"
+                                                    : " is not supported by this program"));
+    return found;
+  }
   sqlite::Transaction transaction(database, path);
   const bool ours = single_integer(database, path,
                                    "SELECT COUNT(*) FROM sqlite_master WHERE type = 'table' "
@@ -93,14 +134,20 @@ void prepare_schema(sqlite3* database, const std::string& path) {
     insert.run();
   } else {
     const int64_t version = single_integer(database, path, "SELECT MAX(version) FROM store_schema");
+    found = version;
     if (version > kSchemaVersion)
       throw Error(path, "label store schema version " + std::to_string(version) +
                             " is newer than this program reads (" + std::to_string(kSchemaVersion) +
                             "); update tactile");
     if (version < 1)
       throw Error(path, "label store schema version " + std::to_string(version) + " is invalid");
+    if (version == 1) {
+      label_rows::add_checksums(database, path);
+      sqlite::execute(database, path, "UPDATE store_schema SET version = 2");
+    }
   }
   transaction.commit();
+  return found;
 }
 
 // Inserts a new label (id and times assigned here) and journals it. `time` "" = now.
@@ -108,8 +155,7 @@ int64_t insert_new(sqlite3* database, const std::string& path, Label label, int6
                    const std::string& time) {
   label.id = 0;
   label.created = label.modified = time.empty() ? label_rows::now_utc() : time;
-  label_rows::store(database, path, label);
-  label.id = sqlite3_last_insert_rowid(database);
+  label.id = label_rows::store(database, path, label);
   label_rows::write_journal(database, path, batch, label.annotator, "insert", label.id, "",
                             label_rows::state_json(label), label.created);
   return label.id;
@@ -128,23 +174,33 @@ void delete_existing(sqlite3* database, const std::string& path, const Label& la
 //---- Opening
 
 LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
-  if (mode == OpenMode::kExisting && !std::filesystem::exists(path))
+  if (mode != OpenMode::kCreate && !std::filesystem::exists(path))
     throw Error(path, "no such label database");
-  int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX;
+  const bool read_only = mode == OpenMode::kReadOnly;
+  int flags = (read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE) | SQLITE_OPEN_FULLMUTEX;
   if (mode == OpenMode::kCreate) flags |= SQLITE_OPEN_CREATE;
-  const int code = sqlite3_open_v2(path.c_str(), &database_, flags, nullptr);
+  // Read-only and no write-ahead log beside the file: the file is the whole store,
+  // so SQLite may treat it as immutable and create no -wal or -shm file beside it.
+  std::string name = path;
+  if (read_only && !std::filesystem::exists(path + "-wal")) {
+    flags |= SQLITE_OPEN_URI;
+    name = "file:" + uri_path(std::filesystem::absolute(path).string()) + "?immutable=1";
+  }
+  const int code = sqlite3_open_v2(name.c_str(), &database_, flags, nullptr);
   try {
     if (code != SQLITE_OK) sqlite::fail(database_, path_, "cannot open", code);
     sqlite3_extended_result_codes(database_, 1);
     // Another process writing waits up to 5 s for us, and we for it.
     sqlite3_busy_timeout(database_, static_cast<int>(kBusyTimeout.count()));
-    // The first read of the file: a file that is not a database fails here.
-    enable_wal(database_, path_);
-    // WAL with synchronous=NORMAL survives a killed process but may lose the last
-    // commits on power loss; FULL syncs the WAL at every commit, so an edit that
-    // returned is on disk.
-    sqlite::execute(database_, path_, "PRAGMA synchronous = FULL");
-    prepare_schema(database_, path_);
+    if (!read_only) {
+      // The first read of the file: a file that is not a database fails here.
+      enable_wal(database_, path_);
+      // WAL with synchronous=NORMAL survives a killed process but may lose the last
+      // commits on power loss; FULL syncs the WAL at every commit, so an edit that
+      // returned is on disk.
+      sqlite::execute(database_, path_, "PRAGMA synchronous = FULL");
+    }
+    opened_version_ = prepare_schema(database_, path_, read_only);
   } catch (...) {
     sqlite3_close_v2(database_);
     database_ = nullptr;
@@ -155,15 +211,37 @@ LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
 LabelStore::~LabelStore() { sqlite3_close_v2(database_); }
 
 LabelStore::LabelStore(LabelStore&& other) noexcept
-    : database_(std::exchange(other.database_, nullptr)), path_(std::move(other.path_)) {}
+    : database_(std::exchange(other.database_, nullptr)),
+      path_(std::move(other.path_)),
+      fixed_time_(std::move(other.fixed_time_)),
+      problems_(std::move(other.problems_)),
+      opened_version_(other.opened_version_) {}
 
 LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
   if (this != &other) {
     sqlite3_close_v2(database_);
     database_ = std::exchange(other.database_, nullptr);
     path_ = std::move(other.path_);
+    fixed_time_ = std::move(other.fixed_time_);
+    problems_ = std::move(other.problems_);
+    opened_version_ = other.opened_version_;
   }
   return *this;
+}
+
+std::string StoreProblem::where(const std::string& path) const {
+  std::string text = path + ": " + table;
+  if (row != 0) text += " row " + std::to_string(row);
+  if (!field.empty()) text += (table == "digests" ? " of " : " field ") + field;
+  return text;
+}
+
+std::vector<StoreProblem> LabelStore::check() const {
+  const std::string integrity = integrity_check();
+  if (integrity != "ok") note_problems({StoreProblem{"database", 0, "", integrity}});
+  list();
+  journal(-1);
+  return problems_;
 }
 
 const std::string& LabelStore::path() const { return path_; }
@@ -241,7 +319,8 @@ int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& a
                              std::string("SELECT ") + label_rows::kColumns + " FROM labels" +
                                  clause.sql + " ORDER BY recording, t0, id");
     clause.bind(select);
-    while (select.step()) doomed.push_back(label_rows::read_label(select, path_));
+    const label_rows::KnownClasses classes = label_rows::known_classes(database_, path_);
+    while (select.step()) doomed.push_back(label_rows::require(label_rows::read_label(select, classes), path_));
   }
   if (doomed.empty()) return 0;
   const int64_t batch = label_rows::next_batch(database_, path_);
@@ -263,9 +342,45 @@ std::vector<Label> LabelStore::list(const LabelFilter& filter) const {
                            std::string("SELECT ") + label_rows::kColumns + " FROM labels" +
                                clause.sql + " ORDER BY recording, t0, id");
   clause.bind(select);
+  const label_rows::KnownClasses classes = label_rows::known_classes(database_, path_);
+  // A read of whole recordings can be checked against their digests.
+  const bool whole = !filter.region && !filter.class_name && !filter.source &&
+                     !filter.overlapping_t0 && !filter.overlapping_t1;
+  std::map<std::string, label_rows::Digest> found;
+  if (whole && filter.recording) found[label_rows::label_scope(*filter.recording)];
+  std::vector<StoreProblem> problems;
   std::vector<Label> labels;
-  while (select.step()) labels.push_back(label_rows::read_label(select, path_));
+  while (select.step()) {
+    label_rows::CheckedLabel row = label_rows::read_label(select, classes);
+    label_rows::Digest& digest = found[label_rows::label_scope(row.recording)];
+    ++digest.rows;
+    digest.sum += row_checksum::row_hash(row.id, row.checksum);
+    if (row.problem)
+      problems.push_back(*row.problem);
+    else
+      labels.push_back(std::move(*row.label));
+  }
+  if (whole) {
+    const std::string prefix =
+        filter.recording ? label_rows::label_scope(*filter.recording) : "labels:";
+    std::map<std::string, label_rows::Digest> stored =
+        label_rows::read_digests(database_, prefix, problems);
+    // A prefix also matches longer recording names: keep the one asked for.
+    if (filter.recording)
+      std::erase_if(stored, [&](const auto& entry) { return entry.first != prefix; });
+    label_rows::compare_digests(found, stored, true, problems);
+  }
+  note_problems(problems);
   return labels;
+}
+
+void LabelStore::note_problems(const std::vector<StoreProblem>& problems) const {
+  for (const StoreProblem& problem : problems) {
+    const bool known = std::any_of(problems_.begin(), problems_.end(), [&](const StoreProblem& seen) {
+      return seen.table == problem.table && seen.row == problem.row && seen.field == problem.field;
+    });
+    if (!known) problems_.push_back(problem);
+  }
 }
 
 int64_t LabelStore::count(const std::string& recording) const {

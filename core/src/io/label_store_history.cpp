@@ -1,6 +1,7 @@
 // The LabelStore's undo, redo and journal. Every edit writes journal rows with
 // the label's state before and after; undo walks them back, redo forward.
 #include "label_rows.h"
+#include "row_checksum.h"
 #include "sqlite_statement.h"
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
@@ -18,18 +19,22 @@ struct EditRow {
   std::string before_json, after_json;
 };
 
+// The journal rows an undo or redo replays; a damaged one stops it, changing nothing.
 std::vector<EditRow> edit_rows(sqlite3* database, const std::string& path,
                                const std::string& condition, int64_t value, const char* order) {
-  sqlite::Statement select(
-      database, path,
-      std::string("SELECT sequence, annotator, action, label_id, before_json, after_json "
-                  "FROM journal WHERE ") +
-          kEditActions + " AND " + condition + " ORDER BY sequence " + order);
+  sqlite::Statement select(database, path,
+                           std::string("SELECT ") + label_rows::kJournalColumns +
+                               " FROM journal WHERE " + kEditActions + " AND " + condition +
+                               " ORDER BY sequence " + order);
   select.bind(1, value);
   std::vector<EditRow> rows;
-  while (select.step())
-    rows.push_back({select.integer(0), select.text(1), select.text(2), select.integer(3),
-                    select.text(4), select.text(5)});
+  while (select.step()) {
+    const label_rows::CheckedJournal row = label_rows::read_journal(select);
+    if (row.problem) throw label_rows::problem_error(*row.problem, path);
+    const JournalEntry& entry = *row.entry;
+    rows.push_back({entry.sequence, entry.annotator, entry.action, entry.label_id,
+                    entry.before_json, entry.after_json});
+  }
   return rows;
 }
 
@@ -74,16 +79,12 @@ bool LabelStore::undo(const std::string& annotator) {
     target_batch = find.integer(0);
   }
   const int64_t undo_batch = label_rows::next_batch(database_, path_);
-  sqlite::Statement mark(database_, path_,
-                         "UPDATE journal SET undone = 1, undone_by = ? WHERE sequence = ?");
   // Newest first, so a label edited twice in one batch steps back in order.
   for (const EditRow& row :
        edit_rows(database_, path_, "undone = 0 AND batch = ?", target_batch, "DESC")) {
     move_label(database_, path_, row, row.after_json, row.before_json, "undo", undo_batch,
                annotator);
-    mark.reset();
-    mark.bind(1, undo_batch).bind(2, row.sequence);
-    mark.run();
+    label_rows::set_undone(database_, path_, row.sequence, true, undo_batch);
   }
   transaction.commit();
   return true;
@@ -103,14 +104,10 @@ bool LabelStore::redo(const std::string& annotator) {
     undo_batch = find.integer(0);
   }
   const int64_t redo_batch = label_rows::next_batch(database_, path_);
-  sqlite::Statement mark(database_, path_,
-                         "UPDATE journal SET undone = 0, undone_by = NULL WHERE sequence = ?");
   for (const EditRow& row : edit_rows(database_, path_, "undone_by = ?", undo_batch, "ASC")) {
     move_label(database_, path_, row, row.before_json, row.after_json, "redo", redo_batch,
                annotator);
-    mark.reset();
-    mark.bind(1, row.sequence);
-    mark.run();
+    label_rows::set_undone(database_, path_, row.sequence, false, std::nullopt);
   }
   transaction.commit();
   return true;
@@ -118,23 +115,27 @@ bool LabelStore::redo(const std::string& annotator) {
 
 std::vector<JournalEntry> LabelStore::journal(int64_t limit) const {
   sqlite::Statement select(database_, path_,
-                           "SELECT sequence, time, annotator, action, label_id, before_json, "
-                           "after_json, undone, batch FROM journal ORDER BY sequence DESC LIMIT ?");
+                           std::string("SELECT ") + label_rows::kJournalColumns +
+                               " FROM journal ORDER BY sequence DESC LIMIT ?");
   select.bind(1, limit);
   std::vector<JournalEntry> entries;
+  std::vector<StoreProblem> problems;
+  label_rows::Digest found;
   while (select.step()) {
-    JournalEntry entry;
-    entry.sequence = select.integer(0);
-    entry.time = select.text(1);
-    entry.annotator = select.text(2);
-    entry.action = select.text(3);
-    entry.label_id = select.integer(4);
-    entry.before_json = select.text(5);
-    entry.after_json = select.text(6);
-    entry.undone = select.integer(7) != 0;
-    entry.batch = select.integer(8);
-    entries.push_back(std::move(entry));
+    label_rows::CheckedJournal row = label_rows::read_journal(select);
+    ++found.rows;
+    found.sum += row_checksum::row_hash(row.sequence, row.checksum);
+    if (row.problem)
+      problems.push_back(*row.problem);
+    else
+      entries.push_back(std::move(*row.entry));
   }
+  // The whole journal read: its digest says whether rows were lost.
+  if (limit < 0)
+    label_rows::compare_digests(
+        {{label_rows::kJournalScope, found}},
+        label_rows::read_digests(database_, label_rows::kJournalScope, problems), true, problems);
+  note_problems(problems);
   return entries;
 }
 

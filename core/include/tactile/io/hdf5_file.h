@@ -14,8 +14,10 @@
 
 namespace tactile {
 
-// Current value of the root attribute `format_version`.
-inline constexpr int kRecordingFormatVersion = 1;
+// Current value of the root attribute `format_version`. Format 2 (HDF5 1.10 file
+// format, Fletcher32 on every chunk, fixed-length strings) lets every damaged byte
+// be caught; files of format 1 are still read (`tactile upgrade` rewrites them).
+inline constexpr int kRecordingFormatVersion = 2;
 // Samples per block of the min/max overview written by write_recording.
 inline constexpr int64_t kOverviewBlock = 256;
 
@@ -56,6 +58,8 @@ class RecordingFile {
   RecordingFile& operator=(const RecordingFile&) = delete;
 
   const std::string& path() const { return path_; }
+  // The file's format_version: 1 (no checksums) or 2.
+  int format_version() const { return format_version_; }
   const std::string& layout_id() const { return layout_id_; }
   const std::string& recording_id() const { return recording_id_; }
   const Metadata& metadata() const { return metadata_; }
@@ -90,6 +94,7 @@ class RecordingFile {
   Metadata metadata_;
   std::vector<StreamInfo> streams_;
   int64_t overview_block_ = kOverviewBlock;
+  int format_version_ = kRecordingFormatVersion;
 };
 
 }  // namespace tactile

@@ -41,6 +41,18 @@ struct JournalEntry {
   int64_t batch = 0;  // rows written by one call (add_many, remove_where, undo) share a batch
 };
 
+// A row of the store whose stored values no longer match their checksum, or are
+// not valid (a time not finite or out of order, a class in no vocabulary, a date
+// that does not parse), or rows lost or added on disk (a digest that disagrees).
+struct StoreProblem {
+  std::string table;  // "labels", "journal", "digests" or "database"
+  int64_t row = 0;    // the row id (label id, journal sequence); 0 for a table or a digest
+  std::string field;  // the damaged field or digest scope; "" when not one field
+  std::string what;
+  // "labels.db: labels row 17 field t1"
+  std::string where(const std::string& path) const;
+};
+
 // The JSON export's document for these labels: {"labels": [...]}, indented.
 std::string labels_json(const std::vector<Label>& labels);
 
@@ -48,7 +60,9 @@ class LabelStore {
  public:
   enum class OpenMode {
     kCreate,   // create the database file when it is missing
-    kExisting  // a missing file is an error (command-line readers must not create one)
+    kExisting,  // a missing file is an error (command-line readers must not create one)
+    kReadOnly   // existing, and never written: no schema upgrade, no journal mode change
+                // (tactile verify); edits throw
   };
 
   // Opens or creates the database: WAL journal, synchronous=FULL, 5 s busy
@@ -110,12 +124,27 @@ class LabelStore {
 
   // Result of PRAGMA integrity_check: "ok" for a sound database.
   std::string integrity_check() const;
+
+  // Every read checks each row it meets against its checksum and its values; a
+  // damaged row is left out of what a read returns (get() throws for it) and is
+  // never overwritten (update, remove, undo and redo throw naming it). The rows
+  // met so far that are damaged, once each:
+  const std::vector<StoreProblem>& problems() const { return problems_; }
+  // Reads every row of every table and runs SQLite's integrity check: all
+  // problems of the store.
+  std::vector<StoreProblem> check() const;
+  // The schema version the store had when opened (1 = no checksums, upgraded on open).
+  int64_t opened_version() const { return opened_version_; }
   const std::string& path() const;
 
  private:
+  void note_problems(const std::vector<StoreProblem>& problems) const;
+
   sqlite3* database_ = nullptr;
   std::string path_;
   std::string fixed_time_;  // "" = the wall clock
+  mutable std::vector<StoreProblem> problems_;
+  int64_t opened_version_ = 0;
 };
 
 }  // namespace tactile

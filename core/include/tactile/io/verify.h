@@ -1,0 +1,68 @@
+#pragma once
+// Checking files for damage: every chunk and attribute of a recording, every row of
+// a label store, and what they must agree on. And rewriting files of earlier
+// versions in the current, checked format. `tactile verify` and `tactile upgrade`.
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tactile {
+
+enum class FileKind { kRecording, kLabelStore, kUnknown };
+
+// By the file's first bytes (HDF5 or SQLite signature), else by its extension
+// (.h5 .hdf5 / .db .sqlite .sqlite3): a file damaged at its start is still checked.
+FileKind file_kind(const std::string& path);
+
+struct FileProblem {
+  std::string file;
+  std::string message;  // "FILE:PLACE: what is wrong"
+};
+
+// Time spans of recordings by recording id, for checking labels against them.
+using RecordingSpans = std::map<std::string, std::pair<double, double>>;
+
+// Opens the recording, reads every attribute and every chunk of every dataset,
+// recomputes the min/max overview from the samples and compares, checks the time
+// stamps; in format 2 also that every chunked dataset carries Fletcher32 and no
+// string is variable-length. Adds the recording's span to `spans` when it opens.
+std::vector<FileProblem> verify_recording(const std::string& path, RecordingSpans* spans = nullptr);
+
+// Every row of every table against its checksum and values, SQLite's integrity
+// check, the digests, and labels inside the spans of the recordings in `spans`.
+// Never changes the file (a store of schema 1 is reported, not upgraded).
+std::vector<FileProblem> verify_label_store(const std::string& path,
+                                            const RecordingSpans& spans = {});
+
+struct VerifiedFile {
+  std::string path;
+  FileKind kind = FileKind::kUnknown;
+  size_t problems = 0;
+};
+
+struct VerifyReport {
+  std::vector<VerifiedFile> files;
+  std::vector<FileProblem> problems;
+};
+
+// Files and folders (walked recursively for .h5/.hdf5/.db/.sqlite/.sqlite3);
+// recordings first, so label stores are checked against their spans.
+VerifyReport verify_paths(const std::vector<std::string>& paths);
+
+struct UpgradeResult {
+  FileKind kind = FileKind::kUnknown;
+  int from_version = 0;
+  int to_version = 0;
+  bool rewritten() const { return from_version != to_version; }
+};
+
+// A recording of an earlier format is read, written beside itself in the current
+// format, verified (checks and the same content, bit for bit), and only then
+// renamed over the original: until that moment the original is untouched. A label
+// store of schema 1 gets its checksums in one transaction. Throws tactile::Error
+// naming the file when anything fails; the original then stays as it was.
+UpgradeResult upgrade_file(const std::string& path);
+
+}  // namespace tactile
