@@ -11,6 +11,7 @@ packages=(
   libimgui-dev libstb-dev libglfw3-dev libgl-dev libgl1-mesa-dri libosmesa6-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
+  python3-h5py  # a test reads our recordings with h5py, as users do
 )
 
 missing=()

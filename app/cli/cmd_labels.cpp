@@ -84,6 +84,16 @@ void print_table(const std::vector<Label>& labels, std::ostream& out) {
   out << labels.size() << (labels.size() == 1 ? " label" : " labels") << "\n";
 }
 
+// Damaged rows met by a read were left out of its output: each is named on stderr
+// and the command fails, so a script never takes a partial export for the whole.
+void report_damage(const LabelStore& store) {
+  if (store.problems().empty()) return;
+  for (const StoreProblem& problem : store.problems())
+    std::cerr << "tactile: " << problem.where(store.path()) << ": " << problem.what << "\n";
+  throw Error(store.path(), std::to_string(store.problems().size()) +
+                                " damaged row(s) or digest(s); the output leaves them out");
+}
+
 void run_export(const LabelsOptions& options) {
   if (options.csv.empty() == options.json.empty())
     throw Error("--csv/--json", "give exactly one of --csv OUT or --json OUT");
@@ -93,6 +103,7 @@ void run_export(const LabelsOptions& options) {
     store.export_csv(options.csv, filter);
   else
     store.export_json(options.json, filter);
+  report_damage(store);
 }
 
 void run_list(const LabelsOptions& options) {
@@ -103,6 +114,7 @@ void run_list(const LabelsOptions& options) {
     std::cout << labels_json(labels);
   else
     print_table(labels, std::cout);
+  report_damage(store);
 }
 
 void run_classes(const LabelsOptions& options) {

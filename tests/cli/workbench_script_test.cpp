@@ -160,3 +160,86 @@ TEST_F(WorkbenchScript, PanelSizesPersistBetweenRuns) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// A workspace with damaged recordings: each is marked in the list with its reason,
+// the workbench opens what it can and draws a damaged chunk as a gap, not numbers.
+class WorkbenchDamage : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // 30 s of noise on 4 channels: the compressed samples are most of each file.
+    std::ofstream csv(folder.file("noise.csv"));
+    csv << "t,ch0,ch1,ch2,ch3\n";
+    uint32_t state = 12345;
+    for (int k = 0; k < 3000; ++k) {
+      csv << k / 100.0;
+      for (int c = 0; c < 4; ++c) {
+        state = state * 1664525u + 1013904223u;
+        csv << "," << (state >> 8) % 10000 / 1000.0;
+      }
+      csv << "\n";
+    }
+    csv.close();
+    std::filesystem::create_directories(folder.file("ws"));
+    for (const char* name : {"a", "b", "c"}) {
+      const auto imported = test::run_program(
+          "tactile",
+          "import " + folder.file("noise.csv") + " --layout grid:2x2 --recording-id " + name +
+              " --out " + folder.file(std::string("ws/") + name + ".h5"),
+          folder);
+      ASSERT_EQ(imported.exit_code, 0) << imported.err;
+    }
+    flip(folder.file("ws/a.h5"), 20);  // the superblock: a.h5 does not open
+    const std::string c = folder.file("ws/c.h5");
+    flip(c, static_cast<std::streamoff>(std::filesystem::file_size(c) / 2));  // a sample chunk
+  }
+  static void flip(const std::string& path, std::streamoff offset) {
+    std::fstream file(path, std::ios::binary | std::ios::in | std::ios::out);
+    file.seekg(offset);
+    char byte = 0;
+    file.get(byte);
+    file.seekp(offset);
+    file.put(static_cast<char>(byte ^ 0x04));
+  }
+  nlohmann::json state(const std::string& name) {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+
+  test::TempFolder folder{"tactile-workbench-damage"};
+};
+
+TEST_F(WorkbenchDamage, DamagedRecordingsAreMarkedWithTheirReasonAndTheRestOpens) {
+  const std::string script = folder.file("script.txt");
+  std::ofstream(script) << "wait 2\nstate " << folder.file("first.json")
+                        << "\nclick recording a.h5\nwait 2\nstate " << folder.file("clicked_a.json")
+                        << "\nclick recording c.h5\nwait 3\nstate " << folder.file("opened_c.json")
+                        << "\nscreenshot " << folder.file("damaged.png") << "\n";
+  const auto result =
+      test::run_program("tactile-workbench-headless",
+                        folder.file("ws") + " --size 1000x700 --time 12 --script " + script +
+                            " --settings " + folder.file("settings.json"),
+                        folder);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // a.h5 is first but does not open: marked, and b.h5 opens instead.
+  const nlohmann::json first = state("first.json");
+  EXPECT_EQ(first["recording"], "b");
+  ASSERT_TRUE(first["damaged"].contains("a.h5")) << first.dump(2);
+  EXPECT_NE(first["damaged"]["a.h5"].get<std::string>().find("a.h5"), std::string::npos);
+  // Clicking it keeps b open and says why.
+  const nlohmann::json clicked = state("clicked_a.json");
+  EXPECT_EQ(clicked["recording"], "b");
+  EXPECT_NE(clicked["error"].get<std::string>().find("cannot open"), std::string::npos);
+  // c.h5 opens (its metadata is intact); the damaged chunk is named, not shown as data.
+  const nlohmann::json opened = state("opened_c.json");
+  EXPECT_EQ(opened["recording"], "c");
+  ASSERT_TRUE(opened["damaged"].contains("c.h5")) << opened.dump(2);
+  const std::string reason = opened["damaged"]["c.h5"];
+  EXPECT_NE(reason.find(":/streams/"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("checksum"), std::string::npos) << reason;
+}
+
+}  // namespace
+}  // namespace tactile

@@ -214,3 +214,43 @@ TEST(RecordingFormat1, AFailedUpgradeLeavesTheOriginalAsItWas) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// h5py (python3-h5py, Debian's) reads the file as docs/FILE_FORMAT.md says.
+TEST(RecordingFormat2, H5pyReadsTheFileAsDocumented) {
+  const std::string python = "/usr/bin/python3";
+  if (std::system((python + " -c 'import h5py' 2>/dev/null").c_str()) != 0)
+    GTEST_SKIP() << "python3-h5py is not installed";
+  TemporaryDirectory directory;
+  const std::string path = directory.file("ramp.h5");
+  const Recording recording = ramp_recording();
+  write_recording(path, recording);
+  const std::string script = directory.file("read.py");
+  testing::write_text(script,
+                      "import h5py, sys\n"
+                      "f = h5py.File(sys.argv[1], 'r')\n"
+                      "x = f['streams/skin/samples'][:]\n"
+                      "names = f['streams/skin/channels'].asstr()[:]\n"
+                      "units = f['streams/skin/units'].asstr()[:]\n"
+                      "rate = f['streams/skin'].attrs['rate_hz']\n"
+                      "print(x.shape[0], x.shape[1], x.dtype, ','.join(names), ','.join(units),\n"
+                      "      rate, repr(float(x[1, 12345])), f.attrs['format'].decode(),\n"
+                      "      f.attrs['format_version'], f['metadata'].attrs['note'].decode())\n");
+  const std::string command = python + " " + script + " " + path;
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buffer[512] = {};
+  const size_t got = fread(buffer, 1, sizeof(buffer) - 1, pipe);
+  ASSERT_EQ(pclose(pipe), 0) << std::string(buffer, got);
+  const float sample = recording.streams[0].samples(12345, 1);
+  char expected_sample[64];
+  std::snprintf(expected_sample, sizeof(expected_sample), "%.1f", static_cast<double>(sample));
+  EXPECT_EQ(std::string(buffer, got), "3 20000 float32 alpha,beta,gamma N,N, 100.0 " +
+                                          std::string(expected_sample) +
+                                          " tactile-workbench 2 ünïcödé\n");
+}
+
+}  // namespace
+}  // namespace tactile

@@ -17,6 +17,7 @@ std::unique_ptr<Document> open_document(const std::string& path, const DocumentO
   FileSourceOptions source_options;
   source_options.stream = options.stream;
   source_options.cache_bytes = options.cache_bytes;
+  source_options.damaged_chunks_as_gaps = true;
   auto source = std::make_unique<FileSampleSource>(document->path, source_options);
   document->streams = source->stream_names();
   document->source = std::move(source);
@@ -27,10 +28,17 @@ std::unique_ptr<Document> open_document(const std::string& path, const DocumentO
     if (fs::exists(beside, error)) document->labels_path = beside.string();
   }
   if (!document->labels_path.empty()) {
-    LabelStore store(document->labels_path);
-    LabelFilter filter;
-    filter.recording = document->recording_id();
-    document->labels = store.list(filter);
+    // A damaged label store costs the labels, not the recording.
+    try {
+      LabelStore store(document->labels_path);
+      LabelFilter filter;
+      filter.recording = document->recording_id();
+      document->labels = store.list(filter);
+      for (const StoreProblem& problem : store.problems())
+        document->label_problems.push_back(problem.where(store.path()) + ": " + problem.what);
+    } catch (const Error& failure) {
+      document->label_problems.push_back(failure.what());
+    }
   }
   return document;
 }

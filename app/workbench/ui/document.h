@@ -19,6 +19,9 @@ struct Document {
   std::vector<std::string> streams;  // the file's streams, to choose from
   SkinLayout layout;
   std::vector<Label> labels;
+  // Damaged label rows left out of `labels`, or why the label store did not open,
+  // each "STORE: place: what". Damaged samples are the source's damage().
+  std::vector<std::string> label_problems;
 
   const SampleSource& samples() const { return *source; }
   const std::string& recording_id() const { return source->info().recording_id; }
@@ -31,7 +34,8 @@ struct DocumentOptions {
 };
 
 // Opens a recording (HDF5) through a file-backed source, with its layout and labels.
-// Throws tactile::Error.
+// Throws tactile::Error when the recording cannot be opened; damaged chunks read as
+// gaps (the source's damage()) and damaged label rows are left out and named.
 std::unique_ptr<Document> open_document(const std::string& path, const DocumentOptions& options);
 
 }  // namespace tactile

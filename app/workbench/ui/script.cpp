@@ -195,10 +195,13 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
         parse_number(step, 1, where);
       } else if (what == "time") {
         parse_number(step, 1, where);
+      } else if (what == "recording" && step.words.size() == 2) {
       } else if (step.words.size() == 3) {
         parse_number(step, 1, where), parse_number(step, 2, where);
       } else {
-        throw Error(place, "click: expected 'taxel ID', 'time T [in VIEW]' or 'VIEW X Y'");
+        throw Error(place,
+                    "click: expected 'taxel ID', 'time T [in VIEW]', 'recording NAME' or "
+                    "'VIEW X Y'");
       }
     } else if (step.command == "drag") {
       if (step.words[0] != "time") throw Error(place, "drag: expected 'time T0 T1 [in VIEW]'");
@@ -337,6 +340,19 @@ void ScriptPlayer::expand(const ScriptStep& step) {
             return std::nullopt;
           }
           return point;
+        },
+        step);
+  } else if (command == "click" && step.words[0] == "recording") {
+    const std::string name = "recording:" + step.words[1];
+    click_at(
+        [name](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+          const auto& items = workbench.state().targets.items;
+          const auto found = items.find(name);
+          if (found == items.end()) {
+            problem = "no " + name.substr(10) + " in the workspace list";
+            return std::nullopt;
+          }
+          return centre_of(found->second);
         },
         step);
   } else if (command == "click" && step.words[0] == "time") {

@@ -23,9 +23,17 @@ void draw_workspace_view(WorkbenchState& state, ImVec2 size) {
       const std::string& file = state.workspace_files[static_cast<size_t>(row)];
       const std::string shown = fs::path(file).lexically_relative(state.workspace).string();
       const bool selected = state.document && state.document->path == file;
-      if (ImGui::Selectable(shown.c_str(), selected) && !selected) state.open_request = file;
+      const auto damaged = state.damaged.find(file);
+      // A damaged recording stays listed, marked, with the reason on hover.
+      if (damaged != state.damaged.end())
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+      const std::string label = (damaged != state.damaged.end() ? "! " : "") + shown;
+      if (ImGui::Selectable(label.c_str(), selected) && !selected) state.open_request = file;
+      if (damaged != state.damaged.end()) ImGui::PopStyleColor();
       remember_item(state, "recording:" + shown);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", file.c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s%s%s", file.c_str(), damaged != state.damaged.end() ? "\ndamaged: " : "",
+                          damaged != state.damaged.end() ? damaged->second.c_str() : "");
     }
   ImGui::EndChild();
 }

@@ -60,7 +60,9 @@ Workbench::Workbench(const WorkbenchOptions& options) {
   std::error_code error;
   if (fs::is_directory(options.open_path, error)) {
     set_workspace(options.open_path);
-    if (!state_.workspace_files.empty()) open(state_.workspace_files.front());
+    // The first recording that opens; the damaged ones before it are marked.
+    for (const std::string& file : state_.workspace_files)
+      if (open(file)) break;
   } else {
     open(options.open_path);
   }
@@ -71,8 +73,10 @@ Workbench::Workbench(const WorkbenchOptions& options) {
 void Workbench::set_workspace(const std::string& folder) {
   std::error_code error;
   const fs::path absolute = fs::absolute(folder, error);
-  state_.workspace = (error ? fs::path(folder) : absolute).lexically_normal().string();
-  while (state_.workspace.size() > 1 && state_.workspace.back() == '/') state_.workspace.pop_back();
+  std::string workspace = (error ? fs::path(folder) : absolute).lexically_normal().string();
+  while (workspace.size() > 1 && workspace.back() == '/') workspace.pop_back();
+  if (workspace != state_.workspace) state_.damaged.clear();
+  state_.workspace = workspace;
   state_.workspace_files.clear();
   for (fs::recursive_directory_iterator it(state_.workspace, error), end; !error && it != end;
        it.increment(error))
@@ -88,19 +92,25 @@ DocumentOptions Workbench::document_options(const std::string& stream) const {
   return options;
 }
 
-void Workbench::open(const std::string& path) {
+bool Workbench::open(const std::string& path) {
+  std::error_code ignored;
+  const std::string absolute = fs::absolute(path, ignored).lexically_normal().string();
   try {
     state_.document = open_document(path, document_options({}));
     state_.error.clear();
   } catch (const std::exception& failure) {
-    state_.error = failure.what();
-    return;
+    // Marked in the workspace list instead of failing the workbench.
+    state_.damaged[absolute] = failure.what();
+    state_.error = std::string("cannot open: ") + failure.what();
+    if (state_.workspace.empty()) set_workspace(fs::path(absolute).parent_path().string());
+    return false;
   }
   if (state_.workspace.empty() ||
       fs::path(state_.document->path).lexically_relative(state_.workspace).string().starts_with(".."))
     set_workspace(fs::path(state_.document->path).parent_path().string());
   state_.selection = {};
   choose_default_view();
+  return true;
 }
 
 void Workbench::select_stream(const std::string& stream) {
@@ -205,6 +215,16 @@ void Workbench::frame(double seconds) {
   ImGui::End();
   if (auto chosen = state_.file_browser.draw()) state_.open_request = *chosen;
   carry_out_requests();
+  note_damage();
+}
+
+void Workbench::note_damage() {
+  if (!state_.document) return;
+  const std::vector<std::string> damage = state_.document->source->damage();
+  if (damage.empty()) return;
+  std::string reason = damage.front();
+  if (damage.size() > 1) reason += " (and " + std::to_string(damage.size() - 1) + " more)";
+  state_.damaged[state_.document->path] = reason;
 }
 
 void Workbench::carry_out_requests() {
@@ -352,6 +372,19 @@ void Workbench::draw_status_bar() {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", state_.error.c_str());
   } else if (!state_.notice.empty()) {
     ImGui::TextUnformatted(state_.notice.c_str());
+  } else if (state_.document && (state_.damaged.count(state_.document->path) > 0 ||
+                                 !state_.document->label_problems.empty())) {
+    // Damage is named until the user moves on: gaps in the plot are not data.
+    const auto found = state_.damaged.find(state_.document->path);
+    const std::string& what = found != state_.damaged.end()
+                                  ? found->second
+                                  : state_.document->label_problems.front();
+    ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "damaged: %s", what.c_str());
+    if (ImGui::IsItemHovered() && !state_.document->label_problems.empty()) {
+      std::string all;
+      for (const std::string& problem : state_.document->label_problems) all += problem + "\n";
+      ImGui::SetTooltip("%s", all.c_str());
+    }
   } else if (state_.document) {
     ImGui::TextDisabled(
         "%s   %zu labels   space: play/pause   wheel: zoom   drag (skin: right-drag): pan   "
@@ -447,6 +480,11 @@ nlohmann::json Workbench::state_json() const {
   for (const std::string& file : state_.workspace_files)
     files.push_back(fs::path(file).lexically_relative(state_.workspace).string());
   json["workspace_files"] = files;
+  nlohmann::json damaged = nlohmann::json::object();
+  for (const auto& [file, reason] : state_.damaged)
+    damaged[fs::path(file).lexically_relative(state_.workspace).string()] = reason;
+  json["damaged"] = damaged;
+  json["label_problems"] = document ? document->label_problems : std::vector<std::string>{};
   json["memory_bytes"] = document ? document->samples().memory_bytes() : 0;
   json["error"] = state_.error;
   json["notice"] = state_.notice;

@@ -31,7 +31,8 @@ class Workbench {
   const WorkbenchState& state() const { return state_; }
 
   // Commands (scripts and menus go through these too).
-  void open(const std::string& path);
+  // False when the recording cannot be opened: it is marked damaged, with the reason.
+  bool open(const std::string& path);
   void seek(double time);
   void fail(const std::string& message) { state_.error = message; }
   // A view export requested this frame (File > Export view as PNG), taken once.
@@ -49,6 +50,8 @@ class Workbench {
   void draw_view(const char* name, ImVec2 size);
   void draw_status_bar();
   void carry_out_requests();
+  // Marks the open recording damaged when its source read a damaged chunk as a gap.
+  void note_damage();
   void load_settings();
   void save_settings() const;
   std::string settings_path() const;

@@ -69,6 +69,7 @@ struct WorkbenchState {
   std::unique_ptr<Document> document;
   std::string workspace;                     // absolute folder
   std::vector<std::string> workspace_files;  // absolute paths of its recordings
+  std::map<std::string, std::string> damaged;  // recording path -> why it is damaged
   PlaybackClock clock;
   SignalPlotState plot;
   std::vector<char> plotted;  // per channel of the source

@@ -32,6 +32,7 @@ struct FileSampleSource::Cache {
   std::list<uint64_t> recent;  // most recently used first
   int64_t bytes = 0;
   int64_t misses = 0;
+  std::vector<std::string> damage;  // chunks that failed, read as NaN
 
   explicit Cache(const std::string& path) : file(path) {}
 
@@ -70,6 +71,7 @@ struct FileSampleSource::Cache {
 
 FileSampleSource::FileSampleSource(const std::string& path, const FileSourceOptions& options)
     : cache_limit_(std::max<int64_t>(options.cache_bytes, 0)),
+      damaged_as_gaps_(options.damaged_chunks_as_gaps),
       cache_(std::make_unique<Cache>(path)) {
   const RecordingFile& file = cache_->file;
   if (file.streams().empty()) throw Error(path, "the recording has no stream");
@@ -120,8 +122,19 @@ void FileSampleSource::copy_samples(int channel, int64_t first, std::span<float>
       const int64_t chunk_first = chunk * chunk_samples_;
       const int64_t chunk_count = std::min(chunk_samples_, sample_count_ - chunk_first);
       ++cache.misses;
-      samples = &cache.insert(
-          k, cache.file.read_channel(info_.stream, channel, chunk_first, chunk_count), cache_limit_);
+      std::vector<float> read;
+      try {
+        read = cache.file.read_channel(info_.stream, channel, chunk_first, chunk_count);
+      } catch (const Error& error) {
+        if (!damaged_as_gaps_) throw;
+        // Kept as a gap in the cache, so a damaged chunk is read (and named) once.
+        read.assign(static_cast<size_t>(chunk_count), std::numeric_limits<float>::quiet_NaN());
+        cache.damage.push_back(std::string(error.what()) + " (channel " +
+                               info_.channels[static_cast<size_t>(channel)] + ", samples " +
+                               std::to_string(chunk_first) + " to " +
+                               std::to_string(chunk_first + chunk_count) + ")");
+      }
+      samples = &cache.insert(k, std::move(read), cache_limit_);
     }
     const int64_t offset = index - chunk * chunk_samples_;
     const int64_t n = std::min(total - done, static_cast<int64_t>(samples->size()) - offset);
@@ -153,8 +166,18 @@ std::vector<float> FileSampleSource::values_at(int64_t index) const {
     // One read of the chunk row of every channel instead of one read per channel.
     const int64_t chunk_first = chunk * chunk_samples_;
     const int64_t chunk_count = std::min(chunk_samples_, sample_count_ - chunk_first);
-    const SampleMatrix block =
-        cache.file.read_channels(info_.stream, 0, channels, chunk_first, chunk_count);
+    SampleMatrix block;
+    try {
+      block = cache.file.read_channels(info_.stream, 0, channels, chunk_first, chunk_count);
+    } catch (const Error&) {
+      if (!damaged_as_gaps_) throw;
+      block.resize(0, 0);  // some chunk is damaged: channel by channel below names it
+    }
+    if (block.size() == 0) {
+      for (int channel = 0; channel < channels; ++channel)
+        copy_samples(channel, index, std::span<float>(&values[static_cast<size_t>(channel)], 1));
+      return values;
+    }
     cache.misses += channels;
     for (int channel = 0; channel < channels; ++channel) {
       const float* column = block.col(channel).data();
@@ -192,6 +215,11 @@ int64_t FileSampleSource::memory_bytes() const {
   int64_t bytes = cache_->bytes + static_cast<int64_t>(timestamps_.size() * sizeof(double));
   for (const MinMaxPyramid& pyramid : cache_->pyramids) bytes += pyramid.memory_bytes();
   return bytes;
+}
+
+std::vector<std::string> FileSampleSource::damage() const {
+  std::lock_guard lock(mutex_);
+  return cache_->damage;
 }
 
 int64_t FileSampleSource::chunks_read() const {

@@ -64,6 +64,9 @@ class SampleSource {
   virtual int64_t memory_bytes() const = 0;
   // Time of each sample for an irregularly sampled stream; null when regular.
   virtual const std::vector<double>* timestamps() const { return nullptr; }
+  // Places of the data found damaged so far and read as gaps (NaN) instead, each
+  // "FILE:PLACE: what"; empty for a source that throws instead (the default).
+  virtual std::vector<std::string> damage() const { return {}; }
 
   //---- Helpers over the virtual calls
   int channel_count() const { return static_cast<int>(info().channels.size()); }
@@ -122,6 +125,10 @@ class MemorySampleSource final : public SampleSource {
 struct FileSourceOptions {
   std::string stream;                          // "" = the first stream
   int64_t cache_bytes = int64_t{32} << 20;    // raw-sample chunk cache limit
+  // A chunk that fails its checksum reads as NaN (a gap, never numbers) and is
+  // listed by damage(), instead of throwing: a viewer keeps showing the rest of a
+  // damaged file and names the damage.
+  bool damaged_chunks_as_gaps = false;
 };
 
 class FileSampleSource final : public SampleSource {
@@ -148,6 +155,7 @@ class FileSampleSource final : public SampleSource {
   int64_t chunk_samples() const { return chunk_samples_; }
   // Chunks read from the file since opening (cache misses), for tests and benchmarks.
   int64_t chunks_read() const;
+  std::vector<std::string> damage() const override;
 
  private:
   struct Cache;
@@ -162,6 +170,7 @@ class FileSampleSource final : public SampleSource {
   int64_t overview_block_ = 256;
   int64_t chunk_samples_ = 8192;
   int64_t cache_limit_ = 0;
+  bool damaged_as_gaps_ = false;
   std::vector<double> timestamps_;
   std::unique_ptr<Cache> cache_;
   mutable std::mutex mutex_;
