@@ -12,7 +12,9 @@
 // must be reported by verify.
 //
 //   mutation_bench --recording FILE.h5 --labels FILE.db [--copies N] [--seed S]
-//                  [--timeout SECONDS] [--work DIR] [--sweep]
+//                  [--timeout SECONDS] [--work DIR] [--sweep] [--edit-labels]
+// --edit-labels: first gives the store an operator's history (edits, a removal,
+// undo and redo).
 // --sweep: instead of random copies, one copy per byte with its lowest bit flipped,
 // and the byte ranges whose change reads back the same listed (bytes that carry
 // nothing: free space, padding).
@@ -89,6 +91,25 @@ std::string store_content(const std::string& path) {
   if (!store.problems().empty())
     throw Error(path, store.problems().front().where(path) + ": " + store.problems().front().what);
   return content;
+}
+
+// Gives a simulated store the history an operator leaves: edits, removals, an undo
+// and a redo, so journal rows carry every field (undone, undone_by, before and after).
+void edit_store(const std::string& path) {
+  LabelStore store(path, LabelStore::OpenMode::kExisting);
+  store.use_fixed_time("2026-11-25T08:00:00.000Z");
+  const std::vector<Label> labels = store.list();
+  for (size_t index = 0; index < labels.size(); index += 3) {
+    Label edited = labels[index];
+    edited.t1 += 0.125;
+    edited.annotator = "operator";
+    edited.note = "checked";
+    store.update(edited);
+  }
+  if (labels.size() > 2) store.remove(labels[1].id, "operator");
+  store.undo();
+  store.redo();
+  store.undo();
 }
 
 struct Mutation {
@@ -295,10 +316,11 @@ int main(int argc, char** argv) {
   uint64_t seed = 1;
   double timeout = 30.0;
   bool sweep = false;
+  bool edit_labels = false;
   for (int index = 1; index < argc; index += 2) {
     const std::string option = argv[index];
-    if (option == "--sweep") {
-      sweep = true;
+    if (option == "--sweep" || option == "--edit-labels") {
+      (option == "--sweep" ? sweep : edit_labels) = true;
       --index;
       continue;
     }
@@ -324,6 +346,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::filesystem::create_directories(work);
+  if (edit_labels && !labels.empty()) edit_store(labels);
   std::cout << "| input (mutated copies) | refused | accepted, same | accepted, different (silent) "
                "| crash | hang > "
             << timeout << " s | verify reports the damaged |\n|---|---|---|---|---|---|---|\n";

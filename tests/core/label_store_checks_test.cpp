@@ -143,6 +143,17 @@ TEST_F(LabelStoreChecks, ReadOnlyOpeningChangesNothingBesideTheFile) {
   EXPECT_FALSE(std::filesystem::exists(path_ + "-shm"));
 }
 
+TEST_F(LabelStoreChecks, ADamagedSchemaIsNamedEvenWhereOnlyWritesWouldMeetIt) {
+  // A CHECK constraint naming a column that does not exist: reads work, writes fail.
+  tamper("PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, "
+         "'confidence BETWEEN', 'confidenbe BETWEEN') WHERE name = 'labels'");
+  const auto problems = verify_label_store(path_);
+  ASSERT_FALSE(problems.empty());
+  EXPECT_NE(problems[0].message.find(path_ + ": schema, table labels: missing or damaged"),
+            std::string::npos)
+      << problems[0].message;
+}
+
 TEST_F(LabelStoreChecks, VerifyNamesLabelsOutsideTheirRecordingsSpan) {
   const auto problems = verify_label_store(path_, {{"rec", {0.0, 3.5}}});
   ASSERT_EQ(problems.size(), 1u);

@@ -119,21 +119,34 @@ KnownClasses known_classes(sqlite3* database, const std::string& path) {
   return names;
 }
 
-CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& classes) {
-  CheckedLabel row;
+namespace {
+
+// The kColumns of the current row as stored; the source stays text until checked.
+Label label_from_row(const sqlite::Statement& statement, std::string& source) {
   Label label;
-  label.id = row.id = statement.integer(0);
-  label.recording = row.recording = statement.text(1);
+  label.id = statement.integer(0);
+  label.recording = statement.text(1);
   label.t0 = statement.real(2);
   label.t1 = statement.real(3);
   label.region = statement.text(4);
   label.class_name = statement.text(5);
   label.annotator = statement.text(6);
-  const std::string source = statement.text(7);
+  source = statement.text(7);
   label.confidence = statement.real(8);
   label.note = statement.text(9);
   label.created = statement.text(10);
   label.modified = statement.text(11);
+  return label;
+}
+
+}  // namespace
+
+CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& classes) {
+  CheckedLabel row;
+  std::string source;
+  Label label = label_from_row(statement, source);
+  row.id = label.id;
+  row.recording = label.recording;
   row.checksum = statement.text(12);
   row.problem = checksum_problem("labels", label.id, label_fields(label, source), row.checksum);
   if (row.problem) return row;
@@ -490,10 +503,13 @@ void write_journal(sqlite3* database, const std::string& path, int64_t batch,
   seal_journal_row(database, path, entry, std::nullopt);
 }
 
-CheckedJournal read_journal(const sqlite::Statement& statement) {
-  CheckedJournal row;
+namespace {
+
+// The kJournalColumns of the current row as stored.
+JournalEntry journal_from_row(const sqlite::Statement& statement,
+                              std::optional<int64_t>& undone_by) {
   JournalEntry entry;
-  entry.sequence = row.sequence = statement.integer(0);
+  entry.sequence = statement.integer(0);
   entry.batch = statement.integer(1);
   entry.time = statement.text(2);
   entry.annotator = statement.text(3);
@@ -501,9 +517,19 @@ CheckedJournal read_journal(const sqlite::Statement& statement) {
   entry.label_id = statement.integer(5);
   entry.before_json = statement.text(6);
   entry.after_json = statement.text(7);
+  entry.undone = statement.integer(8) != 0;
+  undone_by.reset();
+  if (!statement.is_null(9)) undone_by = statement.integer(9);
+  return entry;
+}
+
+}  // namespace
+
+CheckedJournal read_journal(const sqlite::Statement& statement) {
+  CheckedJournal row;
+  JournalEntry entry = journal_from_row(statement, row.undone_by);
+  row.sequence = entry.sequence;
   const int64_t undone = statement.integer(8);
-  entry.undone = undone != 0;
-  if (!statement.is_null(9)) row.undone_by = statement.integer(9);
   row.checksum = statement.text(10);
   row.problem = checksum_problem("journal", entry.sequence, journal_fields(entry, row.undone_by),
                                  row.checksum);
@@ -573,19 +599,8 @@ INSERT OR IGNORE INTO label_classes (name) SELECT DISTINCT class FROM labels;
     sqlite::Statement select(database, path,
                              std::string("SELECT ") + kColumns + " FROM labels ORDER BY id");
     while (select.step()) {
-      Label label;
-      label.id = select.integer(0);
-      label.recording = select.text(1);
-      label.t0 = select.real(2);
-      label.t1 = select.real(3);
-      label.region = select.text(4);
-      label.class_name = select.text(5);
-      label.annotator = select.text(6);
-      const std::string source = select.text(7);
-      label.confidence = select.real(8);
-      label.note = select.text(9);
-      label.created = select.text(10);
-      label.modified = select.text(11);
+      std::string source;
+      Label label = label_from_row(select, source);
       labels.emplace_back(std::move(label), source);
     }
   }
@@ -604,18 +619,8 @@ INSERT OR IGNORE INTO label_classes (name) SELECT DISTINCT class FROM labels;
     sqlite::Statement select(database, path,
                              std::string("SELECT ") + kJournalColumns + " FROM journal");
     while (select.step()) {
-      JournalEntry entry;
-      entry.sequence = select.integer(0);
-      entry.batch = select.integer(1);
-      entry.time = select.text(2);
-      entry.annotator = select.text(3);
-      entry.action = select.text(4);
-      entry.label_id = select.integer(5);
-      entry.before_json = select.text(6);
-      entry.after_json = select.text(7);
-      entry.undone = select.integer(8) != 0;
       std::optional<int64_t> undone_by;
-      if (!select.is_null(9)) undone_by = select.integer(9);
+      JournalEntry entry = journal_from_row(select, undone_by);
       entries.emplace_back(std::move(entry), undone_by);
     }
   }

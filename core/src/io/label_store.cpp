@@ -1,6 +1,7 @@
 #include "tactile/io/label_store.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -21,13 +22,16 @@ namespace {
 
 // Version 1: tables store_schema, labels, classes, journal.
 // Version 2: a checksum column in labels and journal (row_checksum.h), tables
-// digests and label_classes. A store of version 1 is upgraded when opened.
+// digests and label_classes (label_rows::add_checksums). A store of version 1 is
+// upgraded when opened; a new store is made the same way (version 1, then the
+// upgrade), so every store of version 2 has the very same schema text, which
+// check() compares.
 constexpr int64_t kSchemaVersion = 2;
 
 // How long a writer waits for another process's transaction before failing.
 constexpr std::chrono::milliseconds kBusyTimeout(5000);
 
-constexpr const char* kCreateSchema = R"sql(
+constexpr const char* kCreateSchemaVersion1 = R"sql(
 CREATE TABLE store_schema (version INTEGER NOT NULL);
 CREATE TABLE labels (
   id INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -42,7 +46,6 @@ CREATE TABLE labels (
   note TEXT NOT NULL,
   created TEXT NOT NULL,
   modified TEXT NOT NULL,
-  checksum TEXT NOT NULL DEFAULT '',
   CHECK (t0 < t1 AND confidence BETWEEN 0 AND 1));
 CREATE INDEX labels_by_time ON labels (recording, t0, id);
 CREATE TABLE classes (
@@ -61,14 +64,42 @@ CREATE TABLE journal (
   before_json TEXT NOT NULL,
   after_json TEXT NOT NULL,
   undone INTEGER NOT NULL DEFAULT 0,
-  undone_by INTEGER,
-  checksum TEXT NOT NULL DEFAULT '');
+  undone_by INTEGER);
 CREATE INDEX journal_by_batch ON journal (batch);
 CREATE INDEX journal_by_undo ON journal (undone_by);
-CREATE TABLE digests (scope TEXT PRIMARY KEY, rows INTEGER NOT NULL, sum INTEGER NOT NULL,
-                      checksum TEXT NOT NULL);
-CREATE TABLE label_classes (name TEXT PRIMARY KEY);
 )sql";
+
+// Creates the current schema in an empty database, inside the caller's transaction.
+void create_schema(sqlite3* database, const std::string& path) {
+  sqlite::execute(database, path, kCreateSchemaVersion1);
+  label_rows::add_checksums(database, path);
+  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (2)");
+}
+
+// The schema every store of the current version has: (type, name, table, sql).
+using SchemaRows = std::vector<std::array<std::string, 4>>;
+
+SchemaRows read_schema(sqlite3* database, const std::string& path) {
+  sqlite::Statement select(database, path,
+                           "SELECT type, name, tbl_name, COALESCE(sql, '') FROM sqlite_master "
+                           "ORDER BY type, name");
+  SchemaRows rows;
+  while (select.step())
+    rows.push_back({select.text(0), select.text(1), select.text(2), select.text(3)});
+  return rows;
+}
+
+const SchemaRows& expected_schema() {
+  static const SchemaRows rows = [] {
+    sqlite3* database = nullptr;
+    sqlite3_open(":memory:", &database);
+    create_schema(database, ":memory:");
+    SchemaRows schema = read_schema(database, ":memory:");
+    sqlite3_close(database);
+    return schema;
+  }();
+  return rows;
+}
 
 int64_t single_integer(sqlite3* database, const std::string& where, const std::string& sql) {
   sqlite::Statement select(database, where, sql);
@@ -128,10 +159,7 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
   if (!ours) {
     if (single_integer(database, path, "SELECT COUNT(*) FROM sqlite_master") > 0)
       throw Error(path, "a SQLite database, but not a label store (no store_schema table)");
-    sqlite::execute(database, path, kCreateSchema);
-    sqlite::Statement insert(database, path, "INSERT INTO store_schema (version) VALUES (?)");
-    insert.bind(1, kSchemaVersion);
-    insert.run();
+    create_schema(database, path);
   } else {
     const int64_t version = single_integer(database, path, "SELECT MAX(version) FROM store_schema");
     found = version;
@@ -232,13 +260,25 @@ LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
 std::string StoreProblem::where(const std::string& path) const {
   std::string text = path + ": " + table;
   if (row != 0) text += " row " + std::to_string(row);
-  if (!field.empty()) text += (table == "digests" ? " of " : " field ") + field;
+  if (!field.empty())
+    text += (table == "digests" ? " of " : table == "schema" ? ", " : " field ") + field;
   return text;
 }
 
 std::vector<StoreProblem> LabelStore::check() const {
   const std::string integrity = integrity_check();
   if (integrity != "ok") note_problems({StoreProblem{"database", 0, "", integrity}});
+  // Reads parse only what they use of the schema: compare it whole with the one
+  // every store of this version has (a damaged constraint would fail only writes).
+  const SchemaRows& expected = expected_schema();
+  const SchemaRows actual = read_schema(database_, path_);
+  for (const auto& row : expected)
+    if (std::find(actual.begin(), actual.end(), row) == actual.end())
+      note_problems({StoreProblem{"schema", 0, row[0] + " " + row[1], "missing or damaged"}});
+  for (const auto& row : actual)
+    if (std::find(expected.begin(), expected.end(), row) == expected.end())
+      note_problems(
+          {StoreProblem{"schema", 0, row[0] + " " + row[1], "not part of a label store"}});
   list();
   journal(-1);
   return problems_;

@@ -45,9 +45,9 @@ struct JournalEntry {
 // not valid (a time not finite or out of order, a class in no vocabulary, a date
 // that does not parse), or rows lost or added on disk (a digest that disagrees).
 struct StoreProblem {
-  std::string table;  // "labels", "journal", "digests" or "database"
+  std::string table;  // "labels", "journal", "digests", "schema" or "database"
   int64_t row = 0;    // the row id (label id, journal sequence); 0 for a table or a digest
-  std::string field;  // the damaged field or digest scope; "" when not one field
+  std::string field;  // the damaged field, digest scope or schema object; "" when not one
   std::string what;
   // "labels.db: labels row 17 field t1"
   std::string where(const std::string& path) const;
