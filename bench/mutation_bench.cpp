@@ -176,8 +176,7 @@ ChildResult run_child(const std::function<ChildResult()>& work, double timeout_s
   if (child == 0) {
     close(channel[0]);
     ChildResult result = work();
-    std::string answer(1, static_cast<char>(result.read));
-    answer += result.verify_flagged ? 'V' : '-';
+    std::string answer = {static_cast<char>(result.read), result.verify_flagged ? 'V' : '-'};
     answer += result.message.substr(0, 300);
     (void)!write(channel[1], answer.data(), answer.size());
     close(channel[1]);
@@ -229,6 +228,7 @@ struct Tally {
   std::map<char, int> outcomes;
   int copies = 0;
   int verify_missed = 0;  // refused or different, yet verify reported nothing
+  int unchanged = 0;      // copies whose mutation left every byte as it was (zeros zeroed)
   std::vector<std::string> examples;  // silent, crash, hang and verify misses
 };
 
@@ -283,6 +283,7 @@ Tally run(const std::string& original_path, bool recording, int copies, uint64_t
         timeout);
     ++tally.copies;
     ++tally.outcomes[result.read];
+    tally.unchanged += mutation.bytes == original;
     if (sweep && result.read == kSame) {
       const auto offset = static_cast<size_t>(copy);
       if (!same_ranges.empty() && same_ranges.back().second == offset)
@@ -296,9 +297,10 @@ Tally run(const std::string& original_path, bool recording, int copies, uint64_t
         tally.examples.size() < 20) {
       const std::string name = (work / ("example-" + std::to_string(copy) + extension)).string();
       write_bytes(name, mutation.bytes);
-      tally.examples.push_back(std::string(1, static_cast<char>(result.read)) +
-                               (missed ? " (verify missed)" : "") + " " + mutation.kind + ": " +
-                               name + " " + result.message);
+      std::string example(1, static_cast<char>(result.read));
+      if (missed) example += " (verify missed)";
+      example += " " + mutation.kind + ": " + name + " " + result.message;
+      tally.examples.push_back(std::move(example));
     }
   }
   if (sweep)
@@ -357,6 +359,8 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     const Tally tally = run(path, is_recording, copies, seed, timeout, work, sweep);
     print_row(std::filesystem::path(path).filename().string(), tally);
+    std::cerr << path << ": " << tally.unchanged
+              << " copies were left byte for byte unchanged by their mutation\n";
     std::cerr << path << ": " << tally.copies << " copies in "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
               << " s\n";
