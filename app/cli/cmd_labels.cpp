@@ -147,6 +147,8 @@ void register_labels(CLI::App& app) {
   CLI::App* list_command = labels->add_subcommand("list", "Print labels as a table or as JSON");
   list_command->add_option("db", options->database, "Label database (SQLite)")->required();
   list_command->add_option("--recording", options->recording, "Only this recording's labels");
+  list_command->add_option("--source", options->source,
+                           "Only labels from manual, segmenter, model or ground-truth");
   list_command->add_flag("--json", options->as_json, "Print the JSON export's document");
   list_command->callback([options] { run_list(*options); });
 

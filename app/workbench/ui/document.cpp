@@ -27,20 +27,41 @@ std::unique_ptr<Document> open_document(const std::string& path, const DocumentO
     const fs::path beside = fs::path(document->path).parent_path() / "labels.db";
     if (fs::exists(beside, error)) document->labels_path = beside.string();
   }
+  document->classes = document->layout.classes;
   if (!document->labels_path.empty()) {
     // A damaged label store costs the labels, not the recording.
     try {
-      LabelStore store(document->labels_path);
-      LabelFilter filter;
-      filter.recording = document->recording_id();
-      document->labels = store.list(filter);
-      for (const StoreProblem& problem : store.problems())
-        document->label_problems.push_back(problem.where(store.path()) + ": " + problem.what);
+      document->store = std::make_unique<LabelStore>(document->labels_path);
+      const std::vector<std::string> vocabulary = document->store->classes(document->layout.id);
+      if (!vocabulary.empty()) document->classes = vocabulary;
     } catch (const Error& failure) {
       document->label_problems.push_back(failure.what());
     }
   }
+  document->reload_labels();
   return document;
+}
+
+void Document::reload_labels() {
+  if (store) {
+    LabelFilter filter;
+    filter.recording = recording_id();
+    labels = store->list(filter);
+    label_problems.clear();
+    for (const StoreProblem& problem : store->problems())
+      label_problems.push_back(problem.where(store->path()) + ": " + problem.what);
+  }
+  lanes = group_into_lanes(labels);
+}
+
+LabelStore& Document::label_store() {
+  if (!store) {
+    if (labels_path.empty()) labels_path = (fs::path(path).parent_path() / "labels.db").string();
+    store = std::make_unique<LabelStore>(labels_path);
+    if (!layout.classes.empty() && store->classes(layout.id).empty())
+      store->set_classes(layout.id, layout.classes);
+  }
+  return *store;
 }
 
 }  // namespace tactile

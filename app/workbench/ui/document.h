@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "tactile/io/label.h"
+#include "tactile/io/label_store.h"
+#include "tactile/labels/lanes.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/signal/sample_source.h"
 
@@ -19,11 +21,22 @@ struct Document {
   std::vector<std::string> streams;  // the file's streams, to choose from
   SkinLayout layout;
   std::vector<Label> labels;
+  Lanes lanes;  // the labels by tier, indexed by time
+  // The label store, open while the document is (every edit is one transaction in it);
+  // null until there is one (created beside the recording by the first edit).
+  std::unique_ptr<LabelStore> store;
+  // The skin's class vocabulary: the store's for this layout, else the layout's own.
+  std::vector<std::string> classes;
   // Damaged label rows left out of `labels`, or why the label store did not open,
   // each "STORE: place: what". Damaged samples are the source's damage().
   std::vector<std::string> label_problems;
 
   const SampleSource& samples() const { return *source; }
+  // Re-reads this recording's labels from the store and rebuilds the lanes.
+  void reload_labels();
+  // The store, opened (or created beside the recording) on first need. Throws
+  // tactile::Error.
+  LabelStore& label_store();
   const std::string& recording_id() const { return source->info().recording_id; }
 };
 

@@ -2,6 +2,7 @@
 // selects it (shift: adds to the selection) and toggles its channel in the plot.
 #include <algorithm>
 
+#include "tactile/labels/region.h"
 #include "views.h"
 
 namespace tactile {
@@ -53,7 +54,14 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   SkinViewStyle style;
   style.modality_label = current;
   style.zoom = &state.skin_zoom;
-  style.selected_taxels = state.selection.taxels;
+  // The selected taxels, and the region of the selected label (a label on "all"
+  // outlines nothing).
+  std::vector<int64_t> outlined = state.selection.taxels;
+  if (!state.selection.labels.empty())
+    for (const Label& label : state.document->labels)
+      if (label.id == state.selection.labels.front() && label.region != "all")
+        for (int64_t taxel : taxels_of_region(layout, label.region)) outlined.push_back(taxel);
+  style.selected_taxels = outlined;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
   const SkinViewResult result =

@@ -1,5 +1,7 @@
-// Timeline view: transport (play, speed, loop, time), a lane of the labels over the
-// plot's time range (a click moves the cursor), and the table of labels.
+// Timeline view: transport (play, speed, loop, time), the classes with their keys and
+// the marks being made, one lane per tier of labels over the plot's time range (a
+// click moves the cursor and selects; right-click a lane's name to hide, collapse or
+// move it), and the table of labels.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +14,7 @@ namespace {
 
 constexpr double kSpeeds[] = {0.25, 0.5, 1.0, 2.0, 4.0};
 constexpr float kLaneHeight = 22.0f;
+constexpr float kCollapsedHeight = 7.0f;
 
 void draw_transport(WorkbenchState& state) {
   PlaybackClock& clock = state.clock;
@@ -40,42 +43,145 @@ void draw_transport(WorkbenchState& state) {
     clock.seek(time);
 }
 
-// The labels as blocks over the plot's visible range; a click moves the cursor and
-// selects the label under it.
-void draw_label_lane(WorkbenchState& state, float width) {
+// The lanes in the user's order (hidden ones left out); the operator's own lane is
+// always there, empty or not, because that is where new labels go.
+std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const WorkbenchState& state) {
+  static const LaneIndex kEmpty;
+  const Lanes& lanes = state.document->lanes;
+  std::vector<std::pair<std::string, const LaneIndex*>> all;
+  for (size_t k = 0; k < lanes.keys.size(); ++k) all.emplace_back(lanes.keys[k].id(), &lanes.lanes[k]);
+  const std::string own = state.labelling.active_lane();
+  if (std::none_of(all.begin(), all.end(), [&](const auto& lane) { return lane.first == own; }))
+    all.emplace_back(own, &kEmpty);
+  const std::vector<std::string>& order = state.labelling.lane_order;
+  auto rank = [&](const std::string& id) {
+    const auto found = std::find(order.begin(), order.end(), id);
+    return found == order.end() ? order.size() : static_cast<size_t>(found - order.begin());
+  };
+  std::stable_sort(all.begin(), all.end(),
+                   [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+  std::erase_if(all, [&](const auto& lane) { return state.labelling.hidden.count(lane.first) > 0; });
+  return all;
+}
+
+std::string lane_title(const std::string& id) {
+  if (id == "ground-truth") return "truth";
+  const size_t colon = id.find(':');
+  std::string title = colon == std::string::npos ? id : id.substr(colon + 1);
+  if (title.starts_with("segmenter:")) title = title.substr(10);
+  return title;
+}
+
+// Moves a lane one place up or down in the user's order.
+void move_lane(WorkbenchState& state, const std::vector<std::string>& shown, const std::string& id,
+               int step) {
+  std::vector<std::string>& order = state.labelling.lane_order;
+  for (const std::string& lane : shown)
+    if (std::find(order.begin(), order.end(), lane) == order.end()) order.push_back(lane);
+  const auto at = std::find(order.begin(), order.end(), id);
+  const auto to = at + step;
+  if (at == order.end() || to < order.begin() || to >= order.end()) return;
+  std::iter_swap(at, to);
+}
+
+// The skin's classes with their keys, the marks and who is labelling.
+void draw_legend(WorkbenchState& state) {
+  const Document& document = *state.document;
+  const LabellingState& labelling = state.labelling;
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  for (size_t k = 0; k < document.classes.size() && k < 9; ++k) {
+    if (k > 0) ImGui::SameLine(0, 10);
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const float size = ImGui::GetTextLineHeight();
+    draw.AddRectFilled(at, ImVec2(at.x + size, at.y + size), class_colour(document.classes[k]), 2.0f);
+    ImGui::Dummy(ImVec2(size, size));
+    ImGui::SameLine(0, 4);
+    const bool chosen = labelling.pending_class == document.classes[k];
+    ImGui::TextColored(chosen ? ImVec4(1, 1, 1, 1) : ImVec4(0.7f, 0.7f, 0.7f, 1), "%zu %s", k + 1,
+                       document.classes[k].c_str());
+  }
+  if (document.classes.size() > 9) {
+    ImGui::SameLine(0, 10);
+    ImGui::TextDisabled("(+%zu)", document.classes.size() - 9);
+  }
+  ImGui::SameLine(0, 20);
+  auto mark = [](const std::optional<double>& t) { return t ? format_seconds(*t) : std::string("-"); };
+  ImGui::TextDisabled("[ %s  ] %s  %s   %s", mark(labelling.mark_start).c_str(),
+                      mark(labelling.mark_end).c_str(),
+                      labelling.pending_class.empty() ? "" : labelling.pending_class.c_str(),
+                      labelling.annotator.c_str());
+}
+
+// One lane: its labels as blocks over the plot's visible range, merged per pixel when
+// dense; a click moves the cursor and selects the label under it.
+void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& lane, float left,
+               float right, const std::vector<std::string>& shown) {
   const double t0 = state.plot.view_t0;
   const double t1 = state.plot.view_t1;
+  const bool collapsed = state.labelling.collapsed.count(id) > 0;
+  const bool own = id == state.labelling.active_lane();
+  const float height = collapsed ? kCollapsedHeight : kLaneHeight;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  // Aligned under the plot's data area (its value axis takes the left strip).
-  const auto axis = state.targets.time_axes.find("signals");
-  const float left = axis != state.targets.time_axes.end() ? axis->second.area.x0 : origin.x;
-  const float right = axis != state.targets.time_axes.end() ? axis->second.area.x1 : origin.x + width;
-  ImGui::SetCursorScreenPos(ImVec2(left, origin.y));
-  ImGui::InvisibleButton("label_lane", ImVec2(std::max(1.0f, right - left), kLaneHeight));
-  const ImVec2 lane_min(left, origin.y);
-  const ImVec2 lane_max(right, origin.y + kLaneHeight);
-  state.targets.time_axes["timeline"] = {to_rect(lane_min, lane_max), t0, t1};
   ImDrawList& draw = *ImGui::GetWindowDrawList();
-  draw.AddRectFilled(lane_min, lane_max, IM_COL32(30, 30, 36, 255));
-  const double seconds_per_pixel = (t1 - t0) / std::max(1.0f, right - left);
-  const auto& labels = state.document->labels;
-  for (const Label& label : labels) {
-    if (!(label.t1 > t0 && label.t0 < t1)) continue;
-    const float x0 = left + static_cast<float>((std::max(label.t0, t0) - t0) / seconds_per_pixel);
-    const float x1 = left + static_cast<float>((std::min(label.t1, t1) - t0) / seconds_per_pixel);
+  // Header: the lane's name, and a menu on right-click.
+  ImGui::PushID(id.c_str());
+  ImGui::InvisibleButton("header", ImVec2(std::max(1.0f, left - origin.x - 2.0f), height));
+  remember_item(state, "lane-header:" + id);
+  if (ImGui::BeginPopupContextItem("lane_menu")) {
+    if (ImGui::MenuItem("Hide")) state.labelling.hidden.insert(id);
+    if (ImGui::MenuItem(collapsed ? "Expand" : "Collapse")) {
+      if (collapsed) state.labelling.collapsed.erase(id);
+      else state.labelling.collapsed.insert(id);
+    }
+    if (ImGui::MenuItem("Move up")) move_lane(state, shown, id, -1);
+    if (ImGui::MenuItem("Move down")) move_lane(state, shown, id, +1);
+    if (ImGui::MenuItem("Show all lanes")) state.labelling.hidden.clear();
+    ImGui::EndPopup();
+  }
+  if (!collapsed) {
+    const std::string title = lane_title(id);
+    draw.PushClipRect(origin, ImVec2(left - 2.0f, origin.y + height), true);
+    draw.AddText(ImVec2(origin.x + 2.0f, origin.y + 4.0f),
+                 own ? IM_COL32(255, 200, 120, 255) : IM_COL32(190, 190, 190, 255), title.c_str());
+    draw.PopClipRect();
+  }
+  ImGui::SetCursorScreenPos(ImVec2(left, origin.y));
+  ImGui::InvisibleButton("blocks", ImVec2(std::max(1.0f, right - left), height));
+  const ImVec2 lane_min(left, origin.y);
+  const ImVec2 lane_max(right, origin.y + height);
+  state.targets.time_axes["lane:" + id] = {to_rect(lane_min, lane_max), t0, t1};
+  if (own) state.targets.time_axes["timeline"] = {to_rect(lane_min, lane_max), t0, t1};
+  draw.AddRectFilled(lane_min, lane_max, own ? IM_COL32(40, 38, 34, 255) : IM_COL32(30, 30, 36, 255));
+  const int columns = std::max(1, static_cast<int>(right - left));
+  const double seconds_per_pixel = (t1 - t0) / columns;
+  for (const LaneSpan& span : lane_spans(lane, t0, t1, columns)) {
+    const Label& label = lane.labels()[span.label];
+    const float x0 = left + static_cast<float>(span.first);
+    const float x1 = left + static_cast<float>(span.last);
     const bool selected = std::find(state.selection.labels.begin(), state.selection.labels.end(),
                                     label.id) != state.selection.labels.end();
     const uint32_t colour = (class_colour(label.class_name) & 0x00FFFFFFu) | (200u << 24);
-    draw.AddRectFilled(ImVec2(x0, lane_min.y + 2), ImVec2(std::max(x1, x0 + 1), lane_max.y - 2),
-                       colour, 2.0f);
+    draw.AddRectFilled(ImVec2(x0, lane_min.y + 2), ImVec2(x1, lane_max.y - 2), colour, 2.0f);
     if (selected)
-      draw.AddRect(ImVec2(x0, lane_min.y + 1), ImVec2(std::max(x1, x0 + 1), lane_max.y - 1),
+      draw.AddRect(ImVec2(x0, lane_min.y + 1), ImVec2(x1, lane_max.y - 1),
                    IM_COL32(255, 255, 255, 255), 2.0f, 0, 2.0f);
-    if (x1 - x0 > ImGui::CalcTextSize(label.class_name.c_str()).x + 6.0f)
+    if (!collapsed && x1 - x0 > ImGui::CalcTextSize(label.class_name.c_str()).x + 6.0f)
       draw.AddText(ImVec2(x0 + 3.0f, lane_min.y + 4.0f), IM_COL32(240, 240, 240, 255),
                    label.class_name.c_str());
   }
-  const float cursor_x = left + static_cast<float>((state.clock.time() - t0) / seconds_per_pixel);
+  auto x_of = [&](double t) { return left + static_cast<float>((t - t0) / seconds_per_pixel); };
+  if (own && state.labelling.mark_start) {
+    // The label being made: from the start mark to the end mark (or the cursor).
+    const double end = state.labelling.mark_end.value_or(state.clock.time());
+    const float a = std::clamp(x_of(*state.labelling.mark_start), left, right);
+    const float b = std::clamp(x_of(end), left, right);
+    draw.AddRectFilled(ImVec2(std::min(a, b), lane_min.y), ImVec2(std::max(a, b), lane_max.y),
+                       IM_COL32(255, 200, 120, 70));
+    draw.AddLine(ImVec2(a, lane_min.y), ImVec2(a, lane_max.y), IM_COL32(255, 200, 120, 255), 2.0f);
+    if (state.labelling.mark_end)
+      draw.AddLine(ImVec2(b, lane_min.y), ImVec2(b, lane_max.y), IM_COL32(255, 200, 120, 255), 2.0f);
+  }
+  const float cursor_x = x_of(state.clock.time());
   if (cursor_x >= left && cursor_x <= right)
     draw.AddLine(ImVec2(cursor_x, lane_min.y), ImVec2(cursor_x, lane_max.y),
                  IM_COL32(255, 140, 40, 255), 2.0f);
@@ -83,8 +189,26 @@ void draw_label_lane(WorkbenchState& state, float width) {
     const double t = t0 + (ImGui::GetIO().MousePos.x - left) * seconds_per_pixel;
     state.clock.seek(t);
     state.selection.labels.clear();
-    for (const Label& label : labels)
-      if (t >= label.t0 && t < label.t1) state.selection.labels.push_back(label.id);
+    const int64_t under = lane.at(t);
+    if (under >= 0) state.selection.labels.push_back(lane.labels()[static_cast<size_t>(under)].id);
+  }
+  ImGui::PopID();
+}
+
+void draw_lanes(WorkbenchState& state, float width) {
+  draw_legend(state);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  // Aligned under the plot's data area (its value axis takes the left strip, where the
+  // lanes' names go).
+  const auto axis = state.targets.time_axes.find("signals");
+  const float left = axis != state.targets.time_axes.end() ? axis->second.area.x0 : origin.x + 60.0f;
+  const float right = axis != state.targets.time_axes.end() ? axis->second.area.x1 : origin.x + width;
+  const auto lanes = shown_lanes(state);
+  std::vector<std::string> ids;
+  for (const auto& [id, lane] : lanes) ids.push_back(id);
+  for (const auto& [id, lane] : lanes) {
+    ImGui::SetCursorScreenPos(ImVec2(origin.x, ImGui::GetCursorScreenPos().y));
+    draw_lane(state, id, *lane, left, right, ids);
   }
 }
 
@@ -142,7 +266,7 @@ void draw_label_table(WorkbenchState& state) {
 void draw_timeline_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("timeline_view", size, false);
   draw_transport(state);
-  draw_label_lane(state, ImGui::GetContentRegionAvail().x);
+  draw_lanes(state, ImGui::GetContentRegionAvail().x);
   draw_label_table(state);
   ImGui::EndChild();
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "labelling.h"
 #include "tactile/error.h"
 #include "tactile/layout/taxel_values.h"
 #include "views.h"
@@ -56,6 +57,12 @@ std::string view_title(const std::string& name) {
 Workbench::Workbench(const WorkbenchOptions& options) {
   state_.options = options;
   load_settings();
+  // Who edits: the command line, else the settings, else the login name.
+  if (!options.annotator.empty()) state_.labelling.annotator = options.annotator;
+  if (state_.labelling.annotator.empty()) {
+    const char* user = std::getenv("USER");
+    state_.labelling.annotator = user && *user ? user : "operator";
+  }
   if (options.open_path.empty()) return;
   std::error_code error;
   if (fs::is_directory(options.open_path, error)) {
@@ -192,6 +199,7 @@ void Workbench::frame(double seconds) {
   ImGuiIO& io = ImGui::GetIO();
   if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
     state_.clock.toggle();
+  handle_labelling_keys(state_);
   state_.targets = UiTargets{};
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
@@ -419,6 +427,21 @@ void Workbench::load_settings() {
   sizes.skin_fraction = std::clamp(panels.value("skin_fraction", sizes.skin_fraction), 0.05f, 0.95f);
   sizes.timeline_height = panels.value("timeline_height", sizes.timeline_height);
   state_.sizes = sizes;
+  if (settings.contains("labelling") && settings["labelling"].is_object()) {
+    const nlohmann::json& labelling = settings["labelling"];
+    LabellingState& state = state_.labelling;
+    state.annotator = labelling.value("annotator", std::string());
+    state.reaction_seconds = std::clamp(labelling.value("reaction_seconds", 0.25), 0.0, 2.0);
+    try {
+      state.lane_order = labelling.value("lane_order", std::vector<std::string>{});
+      const auto hidden = labelling.value("hidden", std::vector<std::string>{});
+      const auto collapsed = labelling.value("collapsed", std::vector<std::string>{});
+      state.hidden = {hidden.begin(), hidden.end()};
+      state.collapsed = {collapsed.begin(), collapsed.end()};
+    } catch (const nlohmann::json::exception&) {
+      state_.notice = "ignored the lane settings in " + settings_path();
+    }
+  }
 }
 
 void Workbench::save_settings() const {
@@ -429,6 +452,14 @@ void Workbench::save_settings() const {
   settings["panels"] = {{"sidebar_width", state_.sizes.sidebar_width},
                         {"skin_fraction", state_.sizes.skin_fraction},
                         {"timeline_height", state_.sizes.timeline_height}};
+  const LabellingState& labelling = state_.labelling;
+  settings["labelling"] = {
+      {"annotator", state_.options.annotator.empty() ? labelling.annotator : std::string()},
+      {"reaction_seconds", labelling.reaction_seconds},
+      {"lane_order", labelling.lane_order},
+      {"hidden", std::vector<std::string>(labelling.hidden.begin(), labelling.hidden.end())},
+      {"collapsed",
+       std::vector<std::string>(labelling.collapsed.begin(), labelling.collapsed.end())}};
   // Written beside and renamed over, so a crash never leaves half a settings file.
   const fs::path temporary = path.string() + ".tmp";
   {
@@ -475,6 +506,25 @@ nlohmann::json Workbench::state_json() const {
                     {"skin_fraction", state_.sizes.skin_fraction},
                     {"timeline_height", state_.sizes.timeline_height}};
   json["labels"] = document ? document->labels.size() : 0;
+  const LabellingState& labelling = state_.labelling;
+  auto optional_time = [](const std::optional<double>& t) {
+    return t ? nlohmann::json(*t) : nlohmann::json(nullptr);
+  };
+  json["annotator"] = labelling.annotator;
+  json["marks"] = {{"start", optional_time(labelling.mark_start)},
+                   {"end", optional_time(labelling.mark_end)},
+                   {"class", labelling.pending_class}};
+  nlohmann::json lanes = nlohmann::json::array();
+  if (document)
+    for (size_t k = 0; k < document->lanes.keys.size(); ++k) {
+      const std::string id = document->lanes.keys[k].id();
+      lanes.push_back({{"id", id},
+                       {"title", document->lanes.keys[k].title()},
+                       {"labels", document->lanes.lanes[k].size()},
+                       {"hidden", labelling.hidden.count(id) > 0},
+                       {"collapsed", labelling.collapsed.count(id) > 0}});
+    }
+  json["lanes"] = lanes;
   json["workspace"] = state_.workspace;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : state_.workspace_files)

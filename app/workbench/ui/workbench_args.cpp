@@ -31,6 +31,8 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
   double cache_mb = static_cast<double>(args.options.cache_bytes) / (1 << 20);
   app.add_option("--cache-mb", cache_mb, "Memory for raw-sample chunks of the open recording (MiB)")
       ->check(CLI::Range(1.0, 65536.0));
+  app.add_option("--annotator", args.options.annotator,
+                 "Name recorded with every label edit (default: the settings', else $USER)");
   app.add_option("--settings", args.options.settings_path,
                  "Settings file (default: ~/.config/tactile-workbench/settings.json)");
   try {

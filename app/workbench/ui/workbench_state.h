@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,18 @@ struct Selection {
   std::vector<int64_t> segments;  // segment ids (classifier views)
 };
 
+// The operator's labelling: marks set by `[` and `]`, the class chosen by a digit, the
+// lanes as the user arranged them (kept in the settings).
+struct LabellingState {
+  std::string annotator;          // --annotator, the settings, else $USER
+  double reaction_seconds = 0.25; // marks made while playing are moved back by this
+  std::optional<double> mark_start, mark_end;
+  std::string pending_class;      // chosen by 1-9, committed by Enter
+  std::vector<std::string> lane_order;  // lane ids in the user's order (others after)
+  std::set<std::string> hidden, collapsed;
+  std::string active_lane() const { return "manual:" + annotator; }
+};
+
 struct WorkbenchOptions {
   std::string open_path;    // a recording, or a folder (workspace) whose first recording opens
   std::string labels_path;  // label database; default labels.db beside the recording
@@ -61,6 +74,7 @@ struct WorkbenchOptions {
   bool play = false;
   int64_t cache_bytes = int64_t{32} << 20;  // chunk cache of the open recording
   std::string settings_path;                // "" = the user's settings file
+  std::string annotator;                    // "" = the settings' or $USER
   std::string only_view;                    // draw just this view over the whole window
 };
 
@@ -79,6 +93,7 @@ struct WorkbenchState {
   RestScale rest_scale;
   int rest_scale_modality = -1;  // modality rest_scale was computed for; -1: stale
   Selection selection;
+  LabellingState labelling;
   PanelSizes sizes;
   std::string error;   // the last error, shown in the status bar
   std::string notice;  // the last message (an export written, ...)

@@ -1,0 +1,198 @@
+#include "labelling.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tactile/error.h"
+#include "tactile/labels/region.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+bool pressed(int key) { return ImGui::IsKeyPressed(key, false); }
+bool pressed_named(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), true); }
+
+// A mark at the cursor; while playing, where the operator meant it: the reaction
+// time earlier.
+double mark_time(const WorkbenchState& state) {
+  double t = state.clock.time();
+  if (state.clock.playing()) t -= state.labelling.reaction_seconds;
+  return std::clamp(t, state.clock.start(), state.clock.end());
+}
+
+bool fail(WorkbenchState& state, const std::string& message) {
+  state.error = message;
+  return false;
+}
+
+// After an edit: the lanes are rebuilt from the store, what was made is selected.
+void after_edit(WorkbenchState& state, int64_t selected, const std::string& notice) {
+  state.document->reload_labels();
+  state.selection.labels.clear();
+  if (selected != 0) state.selection.labels.push_back(selected);
+  state.error.clear();
+  state.notice = notice;
+}
+
+std::optional<Label> selected_label(const WorkbenchState& state) {
+  if (!state.document || state.selection.labels.empty()) return std::nullopt;
+  for (const Label& label : state.document->labels)
+    if (label.id == state.selection.labels.front()) return label;
+  return std::nullopt;
+}
+
+bool own(const WorkbenchState& state, const Label& label) {
+  return label.source == LabelSource::kManual && label.annotator == state.labelling.annotator;
+}
+
+}  // namespace
+
+const LaneIndex* active_lane(const WorkbenchState& state) {
+  if (!state.document) return nullptr;
+  const int lane = state.document->lanes.find({LabelSource::kManual, state.labelling.annotator});
+  return lane < 0 ? nullptr : &state.document->lanes.lanes[static_cast<size_t>(lane)];
+}
+
+bool mark_start(WorkbenchState& state) {
+  if (!state.document) return false;
+  state.labelling.mark_start = mark_time(state);
+  if (state.labelling.mark_end && *state.labelling.mark_end <= *state.labelling.mark_start)
+    state.labelling.mark_end.reset();
+  return true;
+}
+
+bool mark_end(WorkbenchState& state) {
+  if (!state.document) return false;
+  const double t = mark_time(state);
+  if (state.labelling.mark_start && t <= *state.labelling.mark_start)
+    return fail(state, "the end mark must come after the start mark (" +
+                           format_seconds(*state.labelling.mark_start) + ")");
+  state.labelling.mark_end = t;
+  return true;
+}
+
+bool choose_class(WorkbenchState& state, int key) {
+  if (!state.document) return false;
+  const std::vector<std::string>& classes = state.document->classes;
+  if (key < 1 || key > static_cast<int>(classes.size()))
+    return fail(state, "no class on key " + std::to_string(key) + " (the skin has " +
+                           std::to_string(classes.size()) + ")");
+  state.labelling.pending_class = classes[static_cast<size_t>(key - 1)];
+  return true;
+}
+
+bool commit_label(WorkbenchState& state) {
+  if (!state.document) return false;
+  LabellingState& labelling = state.labelling;
+  Document& document = *state.document;
+  try {
+    if (labelling.mark_start && labelling.mark_end) {
+      if (labelling.pending_class.empty())
+        return fail(state, "choose the class with 1-9 before Enter");
+      Label label;
+      label.recording = document.recording_id();
+      label.t0 = *labelling.mark_start;
+      label.t1 = *labelling.mark_end;
+      label.region = region_of_taxels(document.layout, state.selection.taxels);
+      label.class_name = labelling.pending_class;
+      label.annotator = labelling.annotator;
+      label.source = LabelSource::kManual;
+      const int64_t id = document.label_store().add(label);
+      labelling.mark_start.reset();
+      labelling.mark_end.reset();
+      labelling.pending_class.clear();
+      after_edit(state, id, "labelled " + label.class_name + " " + format_seconds(label.t0) +
+                                " to " + format_seconds(label.t1));
+      return true;
+    }
+    // No marks: a class key then Enter changes the class of the selected own label.
+    const std::optional<Label> selected = selected_label(state);
+    if (selected && own(state, *selected) && !labelling.pending_class.empty()) {
+      Label changed = *selected;
+      changed.class_name = labelling.pending_class;
+      document.label_store().update(changed);
+      labelling.pending_class.clear();
+      after_edit(state, changed.id, "label " + std::to_string(changed.id) + " is now " +
+                                        changed.class_name);
+      return true;
+    }
+    return fail(state, "set the start and end with [ and ] first");
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+}
+
+bool remove_selected_label(WorkbenchState& state) {
+  const std::optional<Label> selected = selected_label(state);
+  if (!selected) return fail(state, "no label selected");
+  if (!own(state, *selected))
+    return fail(state, "only labels of your own lane (" + state.labelling.annotator +
+                           ") are removed with Delete");
+  try {
+    state.document->label_store().remove(selected->id, state.labelling.annotator);
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  after_edit(state, 0, "removed label " + std::to_string(selected->id));
+  return true;
+}
+
+bool undo_edit(WorkbenchState& state, bool redo) {
+  if (!state.document) return false;
+  try {
+    LabelStore& store = state.document->label_store();
+    const bool done = redo ? store.redo(state.labelling.annotator)
+                           : store.undo(state.labelling.annotator);
+    if (!done) return fail(state, redo ? "nothing to redo" : "nothing to undo");
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  after_edit(state, 0, redo ? "redone" : "undone");
+  return true;
+}
+
+bool walk_labels(WorkbenchState& state, int direction) {
+  const LaneIndex* lane = active_lane(state);
+  if (!lane) return fail(state, "your lane (" + state.labelling.annotator + ") has no labels yet");
+  // From the cursor; from the selected label's start when the cursor is inside it.
+  double from = state.clock.time();
+  if (const auto selected = selected_label(state);
+      selected && own(state, *selected) && from >= selected->t0 && from < selected->t1)
+    from = selected->t0;
+  const int64_t index = direction > 0 ? lane->next_after(from) : lane->previous_before(from);
+  if (index < 0) return fail(state, direction > 0 ? "no later label" : "no earlier label");
+  const Label& label = lane->labels()[static_cast<size_t>(index)];
+  state.selection.labels = {label.id};
+  state.clock.seek(label.t0);
+  state.error.clear();
+  return true;
+}
+
+void handle_labelling_keys(WorkbenchState& state) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!state.document || io.WantTextInput) return;
+  const bool plain = !io.KeyCtrl && !io.KeyAlt && !io.KeySuper;
+  if (plain && pressed('[')) mark_start(state);
+  if (plain && pressed(']')) mark_end(state);
+  for (int key = 1; key <= 9; ++key)
+    if (plain && !io.KeyShift && pressed('0' + key)) choose_class(state, key);
+  if (pressed_named(ImGuiKey_Enter) || pressed_named(ImGuiKey_KeyPadEnter)) commit_label(state);
+  if (pressed_named(ImGuiKey_Escape)) {
+    state.labelling.mark_start.reset();
+    state.labelling.mark_end.reset();
+    state.labelling.pending_class.clear();
+  }
+  if (pressed_named(ImGuiKey_Tab)) walk_labels(state, io.KeyShift ? -1 : +1);
+  if (pressed_named(ImGuiKey_Delete)) remove_selected_label(state);
+  const double rate = state.document->samples().info().rate_hz;
+  const double step = io.KeyShift ? 1.0 : (rate > 0 ? 1.0 / rate : 0.01);
+  if (pressed_named(ImGuiKey_LeftArrow)) state.clock.seek(state.clock.time() - step);
+  if (pressed_named(ImGuiKey_RightArrow)) state.clock.seek(state.clock.time() + step);
+  if (io.KeyCtrl && pressed('Z')) undo_edit(state, io.KeyShift);
+}
+
+}  // namespace tactile

@@ -1,0 +1,32 @@
+#pragma once
+// Labelling from the keyboard, ELAN's habits: `[` and `]` mark start and end at the
+// time cursor (moved back by the reaction time while playing), 1-9 choose the class
+// from the skin's vocabulary, Enter commits; Tab / Shift+Tab walk the labels of the
+// operator's lane, arrows step by a sample (Shift: a second), Delete removes,
+// Ctrl+Z / Ctrl+Shift+Z undo and redo through the store's journal, Escape drops the
+// marks. Each edit is one transaction in the label store the moment it is made.
+
+#include "workbench_state.h"
+
+namespace tactile {
+
+// Reads this frame's key presses (ImGui's input path) and carries out the edits.
+// Does nothing while a text field has the keyboard.
+void handle_labelling_keys(WorkbenchState& state);
+
+// The edits the keys make; also for mouse actions. Each reports failure in
+// state.error and returns false.
+bool mark_start(WorkbenchState& state);
+bool mark_end(WorkbenchState& state);
+bool choose_class(WorkbenchState& state, int key);  // 1-based position in the vocabulary
+bool commit_label(WorkbenchState& state);
+bool remove_selected_label(WorkbenchState& state);
+bool undo_edit(WorkbenchState& state, bool redo);
+// Selects the next (+1) or previous (-1) label of the operator's lane from the cursor
+// and moves the cursor to its start.
+bool walk_labels(WorkbenchState& state, int direction);
+
+// The labels of the operator's lane (manual, this annotator), or null when empty.
+const LaneIndex* active_lane(const WorkbenchState& state);
+
+}  // namespace tactile

@@ -1,0 +1,173 @@
+// Labelling in the workbench, driven by scripts through ImGui's real input path and
+// checked in the label database: keys make a label, undo and redo across restarts,
+// Tab walks and Delete removes, a label over selected taxels records that region,
+// marks made while playing are moved back by the reaction time, and a label
+// committed just before the process is killed is in the database.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "cli_test_support.h"
+
+extern char** environ;
+
+namespace tactile {
+namespace {
+
+class WorkbenchLabelling : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto made = test::run_program(
+        "tactile", "simulate --skin fur --subjects 1 --repetitions 1 --seed 3 --out " + folder.file("ws"),
+        folder);
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    const auto classes = test::run_program("tactile", "labels classes " + database() + " fur", folder);
+    ASSERT_EQ(classes.exit_code, 0) << classes.err;
+    std::istringstream lines(classes.out);
+    for (std::string line; std::getline(lines, line);) vocabulary.push_back(line);
+    ASSERT_GE(vocabulary.size(), 3u);
+  }
+  std::string recording() const { return folder.file("ws/fur-s01-t01.h5"); }
+  std::string database() const { return folder.file("ws/labels.db"); }
+  std::string script(std::string text) {
+    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
+      text.replace(at, 1, folder.path().string() + "/");
+    const std::string path = folder.file("script-" + std::to_string(++scripts) + ".txt");
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string arguments(const std::string& script_path) const {
+    return recording() + " --annotator ana --size 1200x760 --settings " +
+           folder.file("settings.json") + " --script " + script_path;
+  }
+  test::CommandResult workbench(const std::string& script_text) {
+    return test::run_program("tactile-workbench-headless", arguments(script(script_text)), folder);
+  }
+  // The manual labels in the database, as `tactile labels list --json` gives them.
+  nlohmann::json manual_labels() {
+    const auto listed = test::run_program(
+        "tactile", "labels list " + database() + " --source manual --json", folder);
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+    return nlohmann::json::parse(listed.out)["labels"];
+  }
+  nlohmann::json state(const std::string& name) {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+
+  test::TempFolder folder{"tactile-workbench-labelling"};
+  std::vector<std::string> vocabulary;
+  int scripts = 0;
+};
+
+TEST_F(WorkbenchLabelling, KeysMakeALabelThatIsInTheDatabaseAtOnce) {
+  const auto result =
+      workbench("wait 2\ntime 3\nkey [\ntime 4.5\nkey ]\nkey 2\nstate @marked.json\nkey Enter\n"
+                "wait 1\nstate @made.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json marked = state("marked.json");
+  EXPECT_DOUBLE_EQ(marked["marks"]["start"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(marked["marks"]["end"].get<double>(), 4.5);
+  EXPECT_EQ(marked["marks"]["class"], vocabulary[1]);
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["class"], vocabulary[1]);
+  EXPECT_DOUBLE_EQ(labels[0]["t0"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(labels[0]["t1"].get<double>(), 4.5);
+  EXPECT_EQ(labels[0]["annotator"], "ana");
+  EXPECT_EQ(labels[0]["region"], "all");
+  const nlohmann::json made = state("made.json");
+  EXPECT_TRUE(made["marks"]["start"].is_null());
+  EXPECT_EQ(made["selection"]["labels"][0], labels[0]["id"]);
+}
+
+TEST_F(WorkbenchLabelling, UndoAndRedoWorkAcrossRestarts) {
+  ASSERT_EQ(workbench("wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 1\nkey Enter\nwait 1\n").exit_code, 0);
+  ASSERT_EQ(manual_labels().size(), 1u);
+  // A new process: the journal in the database knows what to undo.
+  ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nstate @undone.json\n").exit_code, 0);
+  EXPECT_EQ(manual_labels().size(), 0u);
+  EXPECT_EQ(state("undone.json")["notice"], "undone");
+  ASSERT_EQ(workbench("wait 2\nkey Ctrl+Shift+Z\nwait 1\n").exit_code, 0);
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["class"], vocabulary[0]);
+}
+
+TEST_F(WorkbenchLabelling, TabWalksTheOwnLaneAndDeleteRemoves) {
+  const auto result = workbench(
+      "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 1\nkey Enter\ntime 5\nkey [\ntime 6\nkey ]\n"
+      "key 3\nkey Enter\ntime 0\nkey Escape\nkey Tab\nstate @first.json\nkey Tab\n"
+      "state @second.json\nkey Shift+Tab\nkey Delete\nwait 1\nstate @deleted.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_DOUBLE_EQ(state("first.json")["time"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(state("second.json")["time"].get<double>(), 5.0);
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);  // the first was removed
+  EXPECT_DOUBLE_EQ(labels[0]["t0"].get<double>(), 5.0);
+  EXPECT_EQ(labels[0]["class"], vocabulary[2]);
+}
+
+TEST_F(WorkbenchLabelling, ALabelOverSelectedTaxelsRecordsThatRegion) {
+  const auto result = workbench(
+      "wait 2\nclick taxel 10\nwait 1\ntime 7\nkey [\ntime 8\nkey ]\nkey 1\n"
+      "key Enter\nwait 1\nstate @region.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["region"], "taxels:10");
+}
+
+TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
+  const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json playing = state("playing.json");
+  ASSERT_TRUE(playing["playing"].get<bool>());
+  const double mark = playing["marks"]["start"].get<double>();
+  const double now = playing["time"].get<double>();
+  // The mark was made a frame or two before the state was written, 0.25 s back.
+  EXPECT_LT(mark, now - 0.25 + 1e-9);
+  EXPECT_GT(mark, now - 0.25 - 0.2);
+}
+
+TEST_F(WorkbenchLabelling, ALabelCommittedJustBeforeAKillIsInTheDatabase) {
+  const std::string script_path =
+      script("wait 2\ntime 3\nkey [\ntime 4\nkey ]\nkey 1\nkey Enter\nsleep 60\n");
+  const std::string program = std::string(TACTILE_BIN_DIR) + "/tactile-workbench-headless";
+  const std::string command = program + " " + arguments(script_path) + " >/dev/null 2>&1";
+  pid_t child = 0;
+  const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+  // exec, so that the pid is the workbench's own and SIGKILL reaches it.
+  const std::string exec_command = "exec " + command;
+  argv[2] = exec_command.c_str();
+  ASSERT_EQ(posix_spawn(&child, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  // Wait until the label is committed (the script sleeps after it), then kill -9.
+  bool found = false;
+  for (int attempt = 0; attempt < 200 && !found; ++attempt) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const auto listed = test::run_program(
+        "tactile", "labels list " + database() + " --source manual --json", folder);
+    found = listed.exit_code == 0 && !nlohmann::json::parse(listed.out)["labels"].empty();
+  }
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(found) << "the label never reached the database";
+  EXPECT_TRUE(WIFSIGNALED(status)) << "the workbench had ended before the kill";
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_DOUBLE_EQ(labels[0]["t0"].get<double>(), 3.0);
+  const auto verified = test::run_program("tactile", "verify " + database(), folder);
+  EXPECT_EQ(verified.exit_code, 0) << verified.out;
+}
+
+}  // namespace
+}  // namespace tactile
