@@ -126,6 +126,20 @@ TEST_F(WorkbenchLabelling, ALabelOverSelectedTaxelsRecordsThatRegion) {
   EXPECT_EQ(labels[0]["region"], "taxels:10");
 }
 
+TEST_F(WorkbenchLabelling, LanesShowEachTierAndAClickInOneSelectsItsLabel) {
+  const auto result = workbench(
+      "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 1\nkey Enter\nwait 1\n"
+      "click time 5 in lane:ground-truth\nstate @clicked.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json clicked = state("clicked.json");
+  ASSERT_EQ(clicked["lanes"].size(), 2u);
+  EXPECT_EQ(clicked["lanes"][0]["id"], "ground-truth");
+  EXPECT_EQ(clicked["lanes"][1]["id"], "manual:ana");
+  EXPECT_EQ(clicked["lanes"][1]["labels"], 1);
+  // The simulator's first touch runs from 2.2 s to 7.6 s: label 1.
+  EXPECT_EQ(clicked["selection"]["labels"], nlohmann::json::array({1}));
+}
+
 TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
   const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
