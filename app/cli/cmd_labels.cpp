@@ -5,6 +5,10 @@
 // Every subcommand opens an existing database only: a mistyped path must not
 // leave a new empty database behind.
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <charconv>
 #include <iostream>
 #include <memory>
@@ -13,14 +17,20 @@
 
 #include "commands.h"
 #include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_import.h"
 #include "tactile/io/label_store.h"
+#include "tactile/labels/agreement.h"
+#include "tactile/labels/lanes.h"
 
 namespace tactile::cli {
 
 namespace {
 
 struct LabelsOptions {
-  std::string database, csv, json, recording, source, skin;
+  std::string database, csv, json, recording, source, skin, file;
+  std::string a, b, recordings;
+  double iou = 0.5;
   bool as_json = false;
 };
 
@@ -117,6 +127,107 @@ void run_list(const LabelsOptions& options) {
   report_damage(store);
 }
 
+// All or nothing: the file is read and checked whole, then added in one transaction.
+void run_import(const LabelsOptions& options) {
+  const std::vector<Label> labels = read_label_file(options.file);
+  LabelStore store(options.database);
+  store.add_many(labels);
+  std::cout << "imported " << labels.size() << (labels.size() == 1 ? " label" : " labels")
+            << " into " << options.database << "\n";
+}
+
+// A lane as `--a` / `--b` name it: "ground-truth", "manual:NAME" (or just NAME),
+// "segmenter:METHOD", "model:NAME".
+std::vector<Label> lane_labels(const LabelStore& store, const LabelsOptions& options,
+                               const std::string& lane, const char* option) {
+  std::string id = lane;
+  if (lane != "ground-truth" && lane.find(':') == std::string::npos) id = "manual:" + lane;
+  // A segmenter's annotator is "segmenter:METHOD": its lane id repeats the source.
+  if (lane.starts_with("segmenter:") && !lane.starts_with("segmenter:segmenter:"))
+    id = "segmenter:" + lane;
+  LabelFilter filter;
+  if (!options.recording.empty()) filter.recording = options.recording;
+  std::vector<Label> labels;
+  for (const Label& label : store.list(filter))
+    if (lane_of(label).id() == id) labels.push_back(label);
+  if (labels.empty())
+    throw Error(option, "no labels in lane '" + id + "' of " + store.path());
+  return labels;
+}
+
+void run_agreement(const LabelsOptions& options) {
+  const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
+  const std::vector<Label> a = lane_labels(store, options, options.a, "--a");
+  const std::vector<Label> b = lane_labels(store, options, options.b, "--b");
+  report_damage(store);
+  // Each recording's span and rate from its file, when it is in the folder.
+  const std::filesystem::path folder =
+      options.recordings.empty() ? std::filesystem::path(options.database).parent_path()
+                                 : std::filesystem::path(options.recordings);
+  std::map<std::string, RecordingTiming> timing;
+  for (const auto* labels : {&a, &b})
+    for (const Label& label : *labels) {
+      if (timing.count(label.recording)) continue;
+      const std::filesystem::path file = folder / (label.recording + ".h5");
+      std::error_code error;
+      if (!std::filesystem::exists(file, error)) continue;
+      const RecordingFile recording(file.string());
+      if (recording.streams().empty()) continue;
+      const StreamInfo& stream = recording.streams().front();
+      const double start = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
+      timing[label.recording] = {start, start + stream.duration(), stream.rate_hz};
+    }
+  const Agreement agreement = compute_agreement(a, b, timing, options.iou);
+  if (options.as_json) {
+    nlohmann::json disagreements = nlohmann::json::array();
+    for (const Disagreement& d : agreement.disagreements)
+      disagreements.push_back({{"recording", d.recording}, {"t0", d.t0}, {"t1", d.t1},
+                               {"a", d.a_class}, {"b", d.b_class}, {"kind", d.kind}});
+    std::cout << nlohmann::json{{"a", options.a},
+                                {"b", options.b},
+                                {"kappa", agreement.kappa},
+                                {"observed", agreement.observed},
+                                {"expected", agreement.expected},
+                                {"samples", agreement.samples},
+                                {"iou", options.iou},
+                                {"a_segments", agreement.a_segments},
+                                {"b_segments", agreement.b_segments},
+                                {"matched", agreement.matched},
+                                {"precision", agreement.precision},
+                                {"recall", agreement.recall},
+                                {"f1", agreement.f1},
+                                {"classes", agreement.classes},
+                                {"confusion", agreement.confusion},
+                                {"disagreements", disagreements}}
+                     .dump(2)
+              << "\n";
+    return;
+  }
+  std::printf("A: %s (%lld labels)   B: %s (%lld labels)\n", options.a.c_str(),
+              static_cast<long long>(agreement.a_segments), options.b.c_str(),
+              static_cast<long long>(agreement.b_segments));
+  std::printf("kappa over time: %.3f (observed %.3f, chance %.3f, %lld samples)\n",
+              agreement.kappa, agreement.observed, agreement.expected,
+              static_cast<long long>(agreement.samples));
+  std::printf("segments at IoU >= %.2f: precision %.3f, recall %.3f, F1 %.3f (%lld matched)\n",
+              options.iou, agreement.precision, agreement.recall, agreement.f1,
+              static_cast<long long>(agreement.matched));
+  std::printf("classes of matched segments (rows A, columns B):\n%12s", "");
+  for (const std::string& name : agreement.classes) std::printf(" %10.10s", name.c_str());
+  std::printf("\n");
+  for (size_t row = 0; row < agreement.classes.size(); ++row) {
+    std::printf("%12.12s", agreement.classes[row].c_str());
+    for (int64_t count : agreement.confusion[row]) std::printf(" %10lld", static_cast<long long>(count));
+    std::printf("\n");
+  }
+  std::printf("%zu disagreements\n", agreement.disagreements.size());
+  for (const Disagreement& d : agreement.disagreements)
+    std::printf("  %s %.3f-%.3f s: %s%s%s\n", d.recording.c_str(), d.t0, d.t1,
+                d.kind == "class" ? ("class " + d.a_class + " vs " + d.b_class).c_str() : "",
+                d.kind == "missed" ? ("only in A: " + d.a_class).c_str() : "",
+                d.kind == "extra" ? ("only in B: " + d.b_class).c_str() : "");
+}
+
 void run_classes(const LabelsOptions& options) {
   LabelStore store(options.database, LabelStore::OpenMode::kExisting);
   const std::vector<std::string> names = store.classes(options.skin);
@@ -151,6 +262,30 @@ void register_labels(CLI::App& app) {
                            "Only labels from manual, segmenter, model or ground-truth");
   list_command->add_flag("--json", options->as_json, "Print the JSON export's document");
   list_command->callback([options] { run_list(*options); });
+
+  CLI::App* import_command = labels->add_subcommand(
+      "import", "Add the labels of a CSV or JSON file as `labels export` writes it");
+  import_command->add_option("db", options->database, "Label database (created if missing)")
+      ->required();
+  import_command->add_option("file", options->file, "FILE.csv or FILE.json")
+      ->required()
+      ->check(CLI::ExistingFile);
+  import_command->callback([options] { run_import(*options); });
+
+  CLI::App* agreement_command = labels->add_subcommand(
+      "agreement", "Agreement of two lanes: kappa over time, segment F1 at IoU, class confusion");
+  agreement_command->add_option("db", options->database, "Label database (SQLite)")->required();
+  agreement_command->add_option("--a", options->a,
+                                "Reference lane: ground-truth, an annotator, segmenter:METHOD, model:NAME")
+      ->required();
+  agreement_command->add_option("--b", options->b, "The lane compared with it")->required();
+  agreement_command->add_option("--recording", options->recording, "Only this recording");
+  agreement_command->add_option("--recordings", options->recordings,
+                                "Folder of RECORDING.h5 for spans and rates (default: the database's)");
+  agreement_command->add_option("--iou", options->iou, "Segments match at IoU >= this (default 0.5)")
+      ->check(CLI::Range(0.01, 1.0));
+  agreement_command->add_flag("--json", options->as_json, "Print JSON");
+  agreement_command->callback([options] { run_agreement(*options); });
 
   CLI::App* classes_command =
       labels->add_subcommand("classes", "Print a skin's class vocabulary, one per line");

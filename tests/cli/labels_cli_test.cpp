@@ -134,5 +134,92 @@ TEST_F(LabelsCommandTest, NotADatabaseIsReported) {
       << text_of("stderr.txt");
 }
 
+// Every field but the store's own (id, created, modified).
+nlohmann::json content_of(nlohmann::json labels) {
+  for (auto& label : labels) {
+    label.erase("id");
+    label.erase("created");
+    label.erase("modified");
+  }
+  return labels;
+}
+
+TEST_F(LabelsCommandTest, ImportRoundTripsWhatExportWrites) {
+  {
+    LabelStore store(database_);
+    Label label;
+    label.recording = "nao/s03";
+    label.t0 = 1.0 / 3.0;
+    label.t1 = 2.0;
+    label.class_name = "pat";
+    label.annotator = "zoë";
+    label.note = "two\r\nlines, \"quoted\"";
+    store.add(label);
+  }
+  ASSERT_EQ(run("labels export '" + database_ + "' --json '" + (directory_ / "all.json").string() + "'"), 0);
+  ASSERT_EQ(run("labels export '" + database_ + "' --csv '" + (directory_ / "all.csv").string() + "'"), 0);
+  const nlohmann::json original = nlohmann::json::parse(text_of("all.json"))["labels"];
+  for (const char* format : {"csv", "json"}) {
+    SCOPED_TRACE(format);
+    const std::string copy = (directory_ / (std::string("copy-") + format + ".db")).string();
+    ASSERT_EQ(run("labels import '" + copy + "' '" + (directory_ / (std::string("all.") + format)).string() + "'"), 0)
+        << text_of("stderr.txt");
+    EXPECT_EQ(text_of("stdout.txt"), "imported 4 labels into " + copy + "\n");
+    ASSERT_EQ(run("labels export '" + copy + "' --json '" + (directory_ / "back.json").string() + "'"), 0);
+    EXPECT_EQ(content_of(nlohmann::json::parse(text_of("back.json"))["labels"]), content_of(original));
+  }
+}
+
+TEST_F(LabelsCommandTest, ImportNamesTheLineOfABadLabelAndAddsNothing) {
+  std::ofstream(directory_ / "bad.csv")
+      << "id,recording,t0,t1,region,class,annotator,source,confidence,note,created,modified\r\n"
+      << "1,rec,0.5,1.5,all,pat,ana,manual,1,\"a\r\nnote\",,\r\n"
+      << "2,rec,2.5,1.5,all,pat,ana,manual,1,,,\r\n";
+  const std::string copy = (directory_ / "copy.db").string();
+  EXPECT_EQ(run("labels import '" + copy + "' '" + (directory_ / "bad.csv").string() + "'"), 1);
+  // The second label starts on line 4: the note of the first spans two lines.
+  EXPECT_NE(text_of("stderr.txt").find("bad.csv:4: t0 (2.5 s) must be before t1 (1.5 s)"),
+            std::string::npos)
+      << text_of("stderr.txt");
+  EXPECT_FALSE(std::filesystem::exists(copy));
+  std::ofstream(directory_ / "bad.json") << R"({"labels": [{"recording": "r", "t0": 1, "t1": 2, "region": "all", "class": "pat", "annotator": "a", "source": "sometimes"}]})";
+  EXPECT_EQ(run("labels import '" + copy + "' '" + (directory_ / "bad.json").string() + "'"), 1);
+  EXPECT_NE(text_of("stderr.txt").find("bad.json label 1"), std::string::npos) << text_of("stderr.txt");
+}
+
+TEST_F(LabelsCommandTest, AgreementComparesTwoLanes) {
+  const std::string database = (directory_ / "two.db").string();
+  {
+    LabelStore store(database);
+    auto add = [&](double t0, double t1, const char* class_name, LabelSource source,
+                   const char* annotator) {
+      Label label;
+      label.recording = "r";
+      label.t0 = t0;
+      label.t1 = t1;
+      label.class_name = class_name;
+      label.source = source;
+      label.annotator = annotator;
+      store.add(label);
+    };
+    add(1, 3, "pat", LabelSource::kGroundTruth, "simulator");
+    add(5, 7, "slap", LabelSource::kGroundTruth, "simulator");
+    add(1, 3, "pat", LabelSource::kManual, "ana");
+    add(5.5, 7, "stroke", LabelSource::kManual, "ana");
+    add(8, 9, "pat", LabelSource::kManual, "ana");
+  }
+  ASSERT_EQ(run("labels agreement '" + database + "' --a ground-truth --b ana --json"), 0)
+      << text_of("stderr.txt");
+  const nlohmann::json agreement = nlohmann::json::parse(text_of("stdout.txt"));
+  EXPECT_EQ(agreement["matched"], 2);
+  EXPECT_NEAR(agreement["f1"].get<double>(), 0.8, 1e-12);
+  EXPECT_EQ(agreement["disagreements"].size(), 2u);
+  EXPECT_EQ(agreement["disagreements"][0]["kind"], "class");
+  EXPECT_GT(agreement["kappa"].get<double>(), 0.0);
+  ASSERT_EQ(run("labels agreement '" + database + "' --a ground-truth --b bob"), 1);
+  EXPECT_NE(text_of("stderr.txt").find("--b: no labels in lane 'manual:bob'"), std::string::npos)
+      << text_of("stderr.txt");
+}
+
 }  // namespace
 }  // namespace tactile
