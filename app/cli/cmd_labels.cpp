@@ -22,6 +22,7 @@
 #include "tactile/io/label_store.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/lanes.h"
+#include "tactile/labels/quality.h"
 
 namespace tactile::cli {
 
@@ -228,6 +229,38 @@ void run_agreement(const LabelsOptions& options) {
                 d.kind == "extra" ? ("only in B: " + d.b_class).c_str() : "");
 }
 
+void run_check(const LabelsOptions& options) {
+  const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
+  LabelFilter filter;
+  if (!options.recording.empty()) filter.recording = options.recording;
+  const std::vector<Label> labels = store.list(filter);
+  QualityOptions quality;
+  // The skin's vocabulary, or every vocabulary the store holds.
+  for (const char* skin : {"nao", "tsa", "fur", "robovie", "flux"})
+    if (options.skin.empty() || options.skin == skin)
+      for (const std::string& name : store.classes(skin)) quality.vocabulary.insert(name);
+  if (!options.skin.empty())
+    for (const std::string& name : store.classes(options.skin)) quality.vocabulary.insert(name);
+  const std::vector<LabelIssue> issues = check_labels(labels, quality);
+  if (options.as_json) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const LabelIssue& issue : issues)
+      list.push_back({{"kind", issue.kind}, {"recording", issue.recording}, {"t0", issue.t0},
+                      {"t1", issue.t1}, {"label", issue.label}, {"what", issue.what}});
+    std::cout << nlohmann::json{{"labels", labels.size()}, {"issues", list}}.dump(2) << "\n";
+  } else {
+    for (const LabelIssue& issue : issues)
+      std::printf("%s %.3f-%.3f s: %s: %s\n", issue.recording.c_str(), issue.t0, issue.t1,
+                  issue.kind.c_str(), issue.what.c_str());
+    std::fprintf(stderr, "checked %zu labels: %zu issue(s)\n", labels.size(), issues.size());
+  }
+  report_damage(store);
+  if (!issues.empty()) {
+    std::cout.flush();
+    std::exit(1);
+  }
+}
+
 void run_classes(const LabelsOptions& options) {
   LabelStore store(options.database, LabelStore::OpenMode::kExisting);
   const std::vector<std::string> names = store.classes(options.skin);
@@ -271,6 +304,15 @@ void register_labels(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   import_command->callback([options] { run_import(*options); });
+
+  CLI::App* check_command = labels->add_subcommand(
+      "check", "Labels that overlap in a lane, last implausibly long or short, segmenter events "
+               "without a label, classes outside the vocabulary; exit 1 if any");
+  check_command->add_option("db", options->database, "Label database (SQLite)")->required();
+  check_command->add_option("--recording", options->recording, "Only this recording");
+  check_command->add_option("--skin", options->skin, "Check classes against this skin's vocabulary");
+  check_command->add_flag("--json", options->as_json, "Print JSON");
+  check_command->callback([options] { run_check(*options); });
 
   CLI::App* agreement_command = labels->add_subcommand(
       "agreement", "Agreement of two lanes: kappa over time, segment F1 at IoU, class confusion");

@@ -219,6 +219,21 @@ TEST_F(LabelsCommandTest, AgreementComparesTwoLanes) {
   ASSERT_EQ(run("labels agreement '" + database + "' --a ground-truth --b bob"), 1);
   EXPECT_NE(text_of("stderr.txt").find("--b: no labels in lane 'manual:bob'"), std::string::npos)
       << text_of("stderr.txt");
+  // ana's stroke [5.5, 7) and a second label over it on the same region: an overlap.
+  {
+    LabelStore store(database);
+    Label label;
+    label.recording = "r";
+    label.t0 = 6;
+    label.t1 = 6.5;
+    label.class_name = "pat";
+    label.annotator = "ana";
+    store.add(label);
+  }
+  ASSERT_EQ(run("labels check '" + database + "'"), 1);
+  EXPECT_NE(text_of("stdout.txt").find("r 6.000-6.500 s: overlap: label 6 overlaps label 4"),
+            std::string::npos)
+      << text_of("stdout.txt");
 }
 
 }  // namespace

@@ -1,0 +1,99 @@
+#include "tactile/labels/quality.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <tuple>
+
+#include "tactile/labels/lanes.h"
+
+namespace tactile {
+
+namespace {
+
+std::string seconds(double t) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3f s", t);
+  return text;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+}  // namespace
+
+std::vector<LabelIssue> check_labels(const std::vector<Label>& labels, const QualityOptions& options) {
+  std::vector<LabelIssue> issues;
+  // Overlaps within one lane, one recording and one region.
+  std::map<std::tuple<std::string, std::string, std::string>, std::vector<const Label*>> groups;
+  for (const Label& label : labels)
+    groups[{label.recording, lane_of(label).id(), label.region}].push_back(&label);
+  for (auto& [key, members] : groups) {
+    std::sort(members.begin(), members.end(),
+              [](const Label* a, const Label* b) { return std::tie(a->t0, a->id) < std::tie(b->t0, b->id); });
+    const Label* reaching = nullptr;  // the earlier label that ends last
+    for (const Label* label : members) {
+      if (reaching && label->t0 < reaching->t1)
+        issues.push_back({"overlap", label->recording, label->t0, std::min(label->t1, reaching->t1),
+                          label->id,
+                          "label " + std::to_string(label->id) + " overlaps label " +
+                              std::to_string(reaching->id) + " in lane " + std::get<1>(key) +
+                              ", region " + label->region});
+      if (!reaching || label->t1 > reaching->t1) reaching = label;
+    }
+  }
+  // Durations against each class's typical one.
+  std::map<std::string, std::vector<double>> truth, all;
+  for (const Label& label : labels) {
+    if (label.class_name == kUnknownClass) continue;
+    all[label.class_name].push_back(label.t1 - label.t0);
+    if (label.source == LabelSource::kGroundTruth) truth[label.class_name].push_back(label.t1 - label.t0);
+  }
+  std::map<std::string, double> typical;
+  for (const auto& [name, durations] : all) {
+    const auto found = truth.find(name);
+    const std::vector<double>& basis = found != truth.end() && found->second.size() >= 3 ? found->second : durations;
+    if (basis.size() >= 3) typical[name] = median(basis);
+  }
+  for (const Label& label : labels) {
+    const auto found = typical.find(label.class_name);
+    if (found == typical.end()) continue;
+    const double duration = label.t1 - label.t0;
+    if (duration < options.short_factor * found->second || duration > options.long_factor * found->second)
+      issues.push_back({"duration", label.recording, label.t0, label.t1, label.id,
+                        "label " + std::to_string(label.id) + " (" + label.class_name + ") lasts " +
+                            seconds(duration) + "; its class typically " + seconds(found->second)});
+  }
+  // Segmenter events that no ground-truth or manual label overlaps.
+  std::map<std::string, std::vector<const Label*>> covering;
+  for (const Label& label : labels)
+    if (label.source == LabelSource::kGroundTruth || label.source == LabelSource::kManual)
+      covering[label.recording].push_back(&label);
+  for (const Label& label : labels) {
+    if (label.source != LabelSource::kSegmenter) continue;
+    const auto& candidates = covering[label.recording];
+    const bool covered = std::any_of(candidates.begin(), candidates.end(), [&](const Label* other) {
+      return other->t0 < label.t1 && other->t1 > label.t0;
+    });
+    if (!covered)
+      issues.push_back({"unlabelled", label.recording, label.t0, label.t1, label.id,
+                        "segmenter event " + std::to_string(label.id) + " (" + label.annotator +
+                            ") has no label"});
+  }
+  // Classes outside the vocabulary.
+  if (!options.vocabulary.empty())
+    for (const Label& label : labels)
+      if (label.class_name != kUnknownClass && options.vocabulary.count(label.class_name) == 0)
+        issues.push_back({"vocabulary", label.recording, label.t0, label.t1, label.id,
+                          "label " + std::to_string(label.id) + " has class '" + label.class_name +
+                              "', which is not in the vocabulary"});
+  std::sort(issues.begin(), issues.end(), [](const LabelIssue& a, const LabelIssue& b) {
+    return std::tie(a.recording, a.t0, a.kind) < std::tie(b.recording, b.t0, b.kind);
+  });
+  return issues;
+}
+
+}  // namespace tactile
