@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tactile/error.h"
+#include "tactile/segment/adaptive.h"
 #include "tactile/segment/excitation.h"
 #include "tactile/segment/frame_edge.h"
 #include "tactile/segment/proximity.h"
@@ -30,7 +31,7 @@ const std::vector<MethodEntry>& method_table() {
       // {"name", segment_name},  (include "tactile/segment/name.h")
       {"proximity", segment_proximity},   {"threshold", segment_threshold},
       {"frame-edge", segment_frame_edge}, {"scenario", segment_scenario},
-      {"excitation", segment_excitation},
+      {"excitation", segment_excitation}, {"adaptive", segment_adaptive},
   };
   return table;
 }

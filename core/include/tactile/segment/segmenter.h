@@ -13,7 +13,7 @@
 
 namespace tactile {
 
-// proximity | threshold | frame-edge | scenario | excitation
+// proximity | threshold | frame-edge | scenario | excitation | adaptive
 std::vector<std::string> segmenter_methods();
 // Throws tactile::Error naming the method when unknown, or a parameter when bad.
 std::vector<Label> segment_recording(const std::string& method, const Recording& recording,
