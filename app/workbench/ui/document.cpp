@@ -1,6 +1,7 @@
 #include "document.h"
 
 #include <filesystem>
+#include <set>
 
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
@@ -39,6 +40,13 @@ std::unique_ptr<Document> open_document(const std::string& path, const DocumentO
     }
   }
   document->reload_labels();
+  // No vocabulary for this skin (a grid, other people's data): the classes its labels use.
+  if (document->classes.empty()) {
+    std::set<std::string> used;
+    for (const Label& label : document->labels)
+      if (label.class_name != kUnknownClass) used.insert(label.class_name);
+    document->classes.assign(used.begin(), used.end());
+  }
   return document;
 }
 

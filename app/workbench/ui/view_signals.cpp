@@ -1,4 +1,6 @@
 // Signals view: the plotted channels over the visible time range, labels shaded.
+#include <algorithm>
+
 #include "views.h"
 
 namespace tactile {
@@ -17,9 +19,21 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
     channel.colour = plot_colour(static_cast<int>(channels.size()));
     channels.push_back(std::move(channel));
   }
+  // The labels of the top lane shown (the user orders the lanes), looked up by time,
+  // so 100,000 labels cost what 100 do.
   std::vector<PlotSpan> spans;
-  for (const Label& label : document.labels)
-    spans.push_back({label.t0, label.t1, class_colour(label.class_name), label.class_name});
+  const double t0 = state.plot.view_t0, t1 = state.plot.view_t1;
+  const int columns = std::max(1, static_cast<int>(ImGui::GetContentRegionAvail().x));
+  // Labels narrower than a few pixels would paint the signals over in stripes: the plot
+  // shades them only when the view shows each one (the lanes below show them anyway).
+  if (const LaneIndex* lane = top_lane(state);
+      lane && lane->count_meeting(t0, t1, static_cast<size_t>(columns / 8)) <=
+                  static_cast<size_t>(columns / 8))
+    for (const LaneSpan& span : lane_spans(*lane, t0, t1, columns)) {
+      const Label& label = lane->labels()[span.label];
+      spans.push_back({std::max(label.t0, t0), std::min(label.t1, t1),
+                       class_colour(label.class_name), label.class_name});
+    }
   const SignalPlotResult result = draw_signal_plot(
       "signals", channels, spans, state.plot, state.clock.time(), ImGui::GetContentRegionAvail());
   state.targets.time_axes["signals"] = {to_rect(result.area_min, result.area_max),

@@ -43,6 +43,8 @@ void draw_transport(WorkbenchState& state) {
     clock.seek(time);
 }
 
+}  // namespace
+
 // The lanes in the user's order (hidden ones left out); the operator's own lane is
 // always there, empty or not, because that is where new labels go.
 std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const WorkbenchState& state) {
@@ -63,6 +65,15 @@ std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const Workbenc
   std::erase_if(all, [&](const auto& lane) { return state.labelling.hidden.count(lane.first) > 0; });
   return all;
 }
+
+const LaneIndex* top_lane(const WorkbenchState& state) {
+  if (!state.document) return nullptr;
+  for (const auto& [id, lane] : shown_lanes(state))
+    if (lane->size() > 0) return lane;
+  return nullptr;
+}
+
+namespace {
 
 std::string lane_title(const std::string& id) {
   if (id == "ground-truth") return "truth";
@@ -165,7 +176,8 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
     if (selected)
       draw.AddRect(ImVec2(x0, lane_min.y + 1), ImVec2(x1, lane_max.y - 1),
                    IM_COL32(255, 255, 255, 255), 2.0f, 0, 2.0f);
-    if (!collapsed && x1 - x0 > ImGui::CalcTextSize(label.class_name.c_str()).x + 6.0f)
+    if (!collapsed && x1 - x0 > 16.0f &&
+        x1 - x0 > ImGui::CalcTextSize(label.class_name.c_str()).x + 6.0f)
       draw.AddText(ImVec2(x0 + 3.0f, lane_min.y + 4.0f), IM_COL32(240, 240, 240, 255),
                    label.class_name.c_str());
   }

@@ -33,6 +33,10 @@ const ViewSpec* find_view(const std::string& name);
 std::string view_names();
 
 //---- Shared by the views
+// The label lanes as the timeline shows them, in the user's order, hidden ones left out
+// (the operator's own lane always there); the top one with labels is shaded in the plot.
+std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const WorkbenchState& state);
+const LaneIndex* top_lane(const WorkbenchState& state);
 uint32_t class_colour(const std::string& class_name);
 std::string format_seconds(double seconds);
 // Remembers the last ImGui item's rectangle under `name` for scripts.
