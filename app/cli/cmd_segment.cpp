@@ -14,6 +14,7 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/labels/suggestions.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
 #include "tactile/segment/segmenter.h"
@@ -90,12 +91,15 @@ void run_segment(const SegmentOptions& options) {
     std::vector<Label> labels = segment_recording(options.method, recording, layout, parameters);
     for (Label& label : labels)
       if (label.class_name.empty()) label.class_name = kUnknownClass;
+    // Suggestions an annotator rejected stay rejected.
+    const size_t rejected = drop_rejected(labels, store.rejections(recording.id));
     int64_t removed = 0;
     if (options.replace) removed = remove_earlier(store, recording.id, annotator);
     store.add_many(labels);
     total += static_cast<int64_t>(labels.size());
     std::cout << recording.id << ": " << labels.size() << " segments";
     if (options.replace) std::cout << " (replaced " << removed << ")";
+    if (rejected > 0) std::cout << " (" << rejected << " left out: rejected before)";
     std::cout << "\n";
   }
   std::cout << total << " segments from " << files.size()
@@ -115,7 +119,7 @@ void register_segment(CLI::App& app) {
       ->required();
   command
       ->add_option("--method", options->method,
-                   "Segmenter: proximity, threshold, frame-edge, scenario or excitation")
+                   "Segmenter: proximity, threshold, frame-edge, scenario, excitation or adaptive")
       ->required();
   command->add_option("--params", options->params, "Method parameters as key=value,...");
   command->add_flag("--replace", options->replace,

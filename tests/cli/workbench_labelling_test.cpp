@@ -140,6 +140,37 @@ TEST_F(WorkbenchLabelling, LanesShowEachTierAndAClickInOneSelectsItsLabel) {
   EXPECT_EQ(clicked["selection"]["labels"], nlohmann::json::array({1}));
 }
 
+TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRejectedOut) {
+  const auto result = workbench(
+      "wait 2\nmenu Labels/Run segmenter/threshold\nwait 1\nstate @suggested.json\n"
+      "key 2\nkey A\nwait 1\nstate @accepted.json\nkey R\nwait 1\nstate @rejected.json\n"
+      "menu Labels/Run segmenter/threshold\nwait 1\nstate @rerun.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  auto lane_size = [](const nlohmann::json& state, const std::string& id) {
+    for (const auto& lane : state["lanes"])
+      if (lane["id"] == id) return lane["labels"].get<int>();
+    return 0;
+  };
+  const std::string lane = "segmenter:segmenter:threshold";
+  const nlohmann::json suggested = state("suggested.json");
+  const int suggestions = lane_size(suggested, lane);
+  ASSERT_GE(suggestions, 3) << suggested.dump(2);
+  EXPECT_EQ(suggested["selection"]["labels"].size(), 1u);
+  const double first = suggested["time"].get<double>();
+  // A: the first suggestion, with class 2, in ana's lane; the cursor moves on.
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["class"], vocabulary[1]);
+  EXPECT_DOUBLE_EQ(labels[0]["t0"].get<double>(), first);
+  const double second = state("accepted.json")["time"].get<double>();
+  EXPECT_GT(second, first);
+  // R: the second is gone, and stays gone when the segmenter runs again.
+  EXPECT_EQ(lane_size(state("rejected.json"), lane), suggestions - 1);
+  EXPECT_EQ(lane_size(state("rerun.json"), lane), suggestions - 1);
+  EXPECT_NE(state("rerun.json")["notice"].get<std::string>().find("(1 rejected before)"),
+            std::string::npos);
+}
+
 TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
   const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;

@@ -209,3 +209,38 @@ TEST_F(LabelStoreSchema1, AValueBrokenBeforeTheUpgradeIsStillRefusedByValidation
 
 }  // namespace
 }  // namespace tactile
+
+#include "tactile/labels/suggestions.h"
+
+namespace tactile {
+namespace {
+
+TEST_F(LabelStoreChecks, ARejectedSuggestionIsRemovedRememberedAndLeftOutOfARerun) {
+  LabelStore store(path_, LabelStore::OpenMode::kExisting);
+  Label suggestion = make_label("rec", 6.0, 7.0, std::string(kUnknownClass));
+  suggestion.source = LabelSource::kSegmenter;
+  suggestion.annotator = "segmenter:threshold";
+  const int64_t id = store.add(suggestion);
+  EXPECT_THROW(store.reject(1, "ana"), Error);  // a manual label is not a suggestion
+  store.reject(id, "ana");
+  EXPECT_FALSE(store.get(id).has_value());
+  const std::vector<Rejection> rejections = store.rejections("rec");
+  ASSERT_EQ(rejections.size(), 1u);
+  EXPECT_EQ(rejections[0].method, "segmenter:threshold");
+  EXPECT_EQ(rejections[0].annotator, "ana");
+  // A rerun finds it again (slightly moved) and another one: only the other stays.
+  std::vector<Label> rerun = {suggestion, suggestion};
+  rerun[0].t0 = 6.05;
+  rerun[1].t0 = 9.0;
+  rerun[1].t1 = 9.5;
+  EXPECT_EQ(drop_rejected(rerun, rejections), 1u);
+  ASSERT_EQ(rerun.size(), 1u);
+  EXPECT_EQ(rerun[0].t0, 9.0);
+  // Undo brings the suggestion back; the store stays sound.
+  EXPECT_TRUE(store.undo("ana"));
+  EXPECT_TRUE(store.get(id).has_value());
+  EXPECT_TRUE(store.check().empty());
+}
+
+}  // namespace
+}  // namespace tactile

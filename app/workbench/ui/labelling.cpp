@@ -7,6 +7,8 @@
 
 #include "tactile/error.h"
 #include "tactile/labels/region.h"
+#include "tactile/labels/suggestions.h"
+#include "tactile/segment/segmenter.h"
 #include "views.h"
 
 namespace tactile {
@@ -155,6 +157,115 @@ bool undo_edit(WorkbenchState& state, bool redo) {
   return true;
 }
 
+namespace {
+
+// The whole open recording as the segmenters take it (a job, not a view: it reads
+// every sample once).
+Recording whole_recording(const Document& document) {
+  const SampleSource& source = document.samples();
+  const SourceInfo& info = source.info();
+  Recording recording;
+  recording.id = info.recording_id;
+  recording.layout_id = info.layout_id;
+  recording.metadata = info.metadata;
+  Stream stream;
+  stream.name = info.stream;
+  stream.rate_hz = info.rate_hz;
+  stream.start_time = info.start_time;
+  stream.channels = info.channels;
+  stream.units = info.units;
+  std::vector<int> channels(static_cast<size_t>(source.channel_count()));
+  for (size_t k = 0; k < channels.size(); ++k) channels[k] = static_cast<int>(k);
+  stream.samples = source.read(channels, 0, source.sample_count());
+  if (const std::vector<double>* times = source.timestamps()) stream.timestamps = *times;
+  recording.streams = {std::move(stream)};
+  return recording;
+}
+
+// Selects the suggestion of `method` starting after t (or the first), moving the cursor.
+bool select_next_suggestion(WorkbenchState& state, const std::string& method, double after) {
+  const int lane_index = state.document->lanes.find({LabelSource::kSegmenter, method});
+  if (lane_index < 0) return false;
+  const LaneIndex& lane = state.document->lanes.lanes[static_cast<size_t>(lane_index)];
+  const int64_t next = lane.next_after(after);
+  if (next < 0) return false;
+  const Label& label = lane.labels()[static_cast<size_t>(next)];
+  state.selection.labels = {label.id};
+  state.clock.seek(label.t0);
+  return true;
+}
+
+}  // namespace
+
+bool run_segmenter(WorkbenchState& state, const std::string& method) {
+  if (!state.document) return false;
+  Document& document = *state.document;
+  try {
+    const Parameters parameters =
+        Parameters::parse(state.labelling.segmenter_params.data(), "segmenter parameters");
+    std::vector<Label> segments =
+        segment_recording(method, whole_recording(document), document.layout, parameters);
+    for (Label& segment : segments)
+      if (segment.class_name.empty()) segment.class_name = kUnknownClass;
+    LabelStore& store = document.label_store();
+    const size_t rejected = drop_rejected(segments, store.rejections(document.recording_id()));
+    const std::string annotator = "segmenter:" + method;
+    LabelFilter earlier;
+    earlier.recording = document.recording_id();
+    earlier.source = LabelSource::kSegmenter;
+    for (const Label& label : store.list(earlier))
+      if (label.annotator == annotator) store.remove(label.id, state.labelling.annotator);
+    store.add_many(segments);
+    after_edit(state, 0,
+               method + ": " + std::to_string(segments.size()) + " suggestions" +
+                   (rejected > 0 ? " (" + std::to_string(rejected) + " rejected before)" : "") +
+                   "; A accepts, R rejects");
+    select_next_suggestion(state, annotator, -1e300);
+    return true;
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+}
+
+bool accept_suggestion(WorkbenchState& state) {
+  const std::optional<Label> selected = selected_label(state);
+  if (!selected || selected->source != LabelSource::kSegmenter)
+    return fail(state, "select a suggestion (a segmenter's label) to accept");
+  std::string class_name = state.labelling.pending_class;
+  if (class_name.empty() && selected->class_name != kUnknownClass) class_name = selected->class_name;
+  if (class_name.empty()) return fail(state, "choose the class with 1-9, then A");
+  try {
+    Label label = *selected;
+    label.id = 0;
+    label.class_name = class_name;
+    label.annotator = state.labelling.annotator;
+    label.source = LabelSource::kManual;
+    label.confidence = 1.0;
+    label.note.clear();
+    state.document->label_store().add(label);
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  state.labelling.pending_class.clear();
+  after_edit(state, 0, "accepted " + class_name + " " + format_seconds(selected->t0));
+  select_next_suggestion(state, selected->annotator, selected->t0);
+  return true;
+}
+
+bool reject_suggestion(WorkbenchState& state) {
+  const std::optional<Label> selected = selected_label(state);
+  if (!selected || selected->source != LabelSource::kSegmenter)
+    return fail(state, "select a suggestion (a segmenter's label) to reject");
+  try {
+    state.document->label_store().reject(selected->id, state.labelling.annotator);
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  after_edit(state, 0, "rejected the suggestion at " + format_seconds(selected->t0));
+  select_next_suggestion(state, selected->annotator, selected->t0);
+  return true;
+}
+
 bool walk_labels(WorkbenchState& state, int direction) {
   const LaneIndex* lane = active_lane(state);
   if (!lane) return fail(state, "your lane (" + state.labelling.annotator + ") has no labels yet");
@@ -193,6 +304,8 @@ void handle_labelling_keys(WorkbenchState& state) {
   if (pressed_named(ImGuiKey_LeftArrow)) state.clock.seek(state.clock.time() - step);
   if (pressed_named(ImGuiKey_RightArrow)) state.clock.seek(state.clock.time() + step);
   if (io.KeyCtrl && pressed('Z')) undo_edit(state, io.KeyShift);
+  if (plain && !io.KeyShift && pressed('A')) accept_suggestion(state);
+  if (plain && !io.KeyShift && pressed('R')) reject_suggestion(state);
 }
 
 }  // namespace tactile

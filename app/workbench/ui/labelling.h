@@ -26,6 +26,16 @@ bool undo_edit(WorkbenchState& state, bool redo);
 // and moves the cursor to its start.
 bool walk_labels(WorkbenchState& state, int direction);
 
+// Runs a segmenter on the open recording (parameters from the Labels menu): its
+// segments replace its earlier ones for this recording, less the rejected ones, and
+// the first is selected.
+bool run_segmenter(WorkbenchState& state, const std::string& method);
+// A: the selected suggestion (a segmenter's label) becomes a label of the operator's
+// lane with its bounds and region, and the class chosen with 1-9 (else its own when
+// it has one); R: rejects it (remembered in the store). Both move to the next one.
+bool accept_suggestion(WorkbenchState& state);
+bool reject_suggestion(WorkbenchState& state);
+
 // The labels of the operator's lane (manual, this annotator), or null when empty.
 const LaneIndex* active_lane(const WorkbenchState& state);
 

@@ -11,6 +11,7 @@
 #include "labelling.h"
 #include "tactile/error.h"
 #include "tactile/layout/taxel_values.h"
+#include "tactile/segment/segmenter.h"
 #include "views.h"
 
 namespace tactile {
@@ -369,6 +370,23 @@ void Workbench::draw_menu_bar() {
       ImGui::EndMenu();
     }
     remember_item(state_, "menu:View");
+    if (ImGui::BeginMenu("Labels", state_.document != nullptr)) {
+      // A segmenter's segments become suggestions in its lane: A accepts, R rejects.
+      if (ImGui::BeginMenu("Run segmenter")) {
+        ImGui::SetNextItemWidth(200);
+        ImGui::InputTextWithHint("##params", "parameters: key=value,...",
+                                 state_.labelling.segmenter_params.data(),
+                                 state_.labelling.segmenter_params.size());
+        for (const std::string& method : segmenter_methods()) {
+          if (ImGui::MenuItem(method.c_str())) run_segmenter(state_, method);
+          remember_item(state_, "menu:Labels/Run segmenter/" + method);
+        }
+        ImGui::EndMenu();
+      }
+      remember_item(state_, "menu:Labels/Run segmenter");
+      ImGui::EndMenu();
+    }
+    remember_item(state_, "menu:Labels");
     ImGui::EndMenuBar();
   }
   if (open_shortcut) state_.file_browser.open(start, {".h5"});

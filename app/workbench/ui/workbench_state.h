@@ -4,6 +4,7 @@
 // frame (so a script can name a taxel or a time instead of a pixel). Views read and
 // change it; `state PATH` in a script writes it as JSON.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -64,6 +65,7 @@ struct LabellingState {
   std::string pending_class;      // chosen by 1-9, committed by Enter
   std::vector<std::string> lane_order;  // lane ids in the user's order (others after)
   std::set<std::string> hidden, collapsed;
+  std::array<char, 256> segmenter_params{};  // typed in the Labels menu
   std::string active_lane() const { return "manual:" + annotator; }
 };
 

@@ -26,7 +26,22 @@ namespace {
 // upgraded when opened; a new store is made the same way (version 1, then the
 // upgrade), so every store of version 2 has the very same schema text, which
 // check() compares.
-constexpr int64_t kSchemaVersion = 2;
+// Version 3: table rejections (suggestions an annotator rejected, so that a rerun of
+// the segmenter does not bring them back).
+constexpr int64_t kSchemaVersion = 3;
+
+constexpr const char* kAddRejections = R"sql(
+CREATE TABLE rejections (
+  id INTEGER PRIMARY KEY AUTOINCREMENT,
+  recording TEXT NOT NULL,
+  method TEXT NOT NULL,
+  t0 REAL NOT NULL,
+  t1 REAL NOT NULL,
+  annotator TEXT NOT NULL,
+  time TEXT NOT NULL,
+  checksum TEXT NOT NULL);
+CREATE INDEX rejections_by_recording ON rejections (recording, method);
+)sql";
 
 // How long a writer waits for another process's transaction before failing.
 constexpr std::chrono::milliseconds kBusyTimeout(5000);
@@ -73,7 +88,8 @@ CREATE INDEX journal_by_undo ON journal (undone_by);
 void create_schema(sqlite3* database, const std::string& path) {
   sqlite::execute(database, path, kCreateSchemaVersion1);
   label_rows::add_checksums(database, path);
-  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (2)");
+  sqlite::execute(database, path, kAddRejections);
+  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (3)");
 }
 
 // The schema every store of the current version has: (type, name, table, sql).
@@ -148,8 +164,10 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
     found = single_integer(database, path, "SELECT MAX(version) FROM store_schema");
     if (found != kSchemaVersion)
       throw Error(path, "label store schema version " + std::to_string(found) +
-                            (found < kSchemaVersion ? " carries no checksums; `tactile upgrade` adds them"
-                                                    : " is not supported by this program"));
+                            (found == 1 ? " carries no checksums; `tactile upgrade` adds them"
+                             : found < kSchemaVersion
+                                 ? " is older than this program's; `tactile upgrade` brings it up"
+                                 : " is not supported by this program"));
     return found;
   }
   sqlite::Transaction transaction(database, path);
@@ -169,10 +187,10 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
                             "); update tactile");
     if (version < 1)
       throw Error(path, "label store schema version " + std::to_string(version) + " is invalid");
-    if (version == 1) {
-      label_rows::add_checksums(database, path);
-      sqlite::execute(database, path, "UPDATE store_schema SET version = 2");
-    }
+    if (version == 1) label_rows::add_checksums(database, path);
+    if (version <= 2) sqlite::execute(database, path, kAddRejections);
+    if (version < kSchemaVersion)
+      sqlite::execute(database, path, "UPDATE store_schema SET version = 3");
   }
   transaction.commit();
   return found;
@@ -281,6 +299,12 @@ std::vector<StoreProblem> LabelStore::check() const {
           {StoreProblem{"schema", 0, row[0] + " " + row[1], "not part of a label store"}});
   list();
   journal(-1);
+  std::vector<std::string> recordings;
+  {
+    sqlite::Statement select(database_, path_, "SELECT DISTINCT recording FROM rejections");
+    while (select.step()) recordings.push_back(select.text(0));
+  }
+  for (const std::string& recording : recordings) rejections(recording);
   return problems_;
 }
 
@@ -429,6 +453,72 @@ int64_t LabelStore::count(const std::string& recording) const {
   select.bind(1, recording);
   select.step();
   return select.integer(0);
+}
+
+//---- Suggestions
+
+namespace {
+
+std::vector<row_checksum::Field> rejection_fields(const Rejection& rejection) {
+  return {{"recording", rejection.recording}, {"method", rejection.method},
+          {"t0", rejection.t0},               {"t1", rejection.t1},
+          {"annotator", rejection.annotator}, {"time", rejection.time}};
+}
+
+}  // namespace
+
+void LabelStore::reject(int64_t label_id, const std::string& annotator) {
+  sqlite::Transaction transaction(database_, path_);
+  const std::optional<Label> label = label_rows::load(database_, path_, label_id);
+  const std::string where = label_rows::where_label(path_, label_id);
+  if (!label) throw Error(where, "no such label to reject");
+  if (label->source != LabelSource::kSegmenter)
+    throw Error(where, "only a segmenter's suggestion can be rejected");
+  Rejection rejection{0, label->recording, label->annotator, label->t0, label->t1, annotator,
+                      label_rows::now_utc()};
+  {
+    sqlite::Statement insert(database_, where,
+                             "INSERT INTO rejections (recording, method, t0, t1, annotator, time, "
+                             "checksum) VALUES (?, ?, ?, ?, ?, ?, '')");
+    insert.bind(1, rejection.recording)
+        .bind(2, rejection.method)
+        .bind(3, rejection.t0)
+        .bind(4, rejection.t1)
+        .bind(5, rejection.annotator)
+        .bind(6, rejection.time);
+    insert.run();
+  }
+  rejection.id = sqlite3_last_insert_rowid(database_);
+  sqlite::Statement seal(database_, where, "UPDATE rejections SET checksum = ? WHERE id = ?");
+  seal.bind(1, row_checksum::compute("rejections", rejection.id, rejection_fields(rejection)))
+      .bind(2, rejection.id);
+  seal.run();
+  delete_existing(database_, path_, *label, annotator, label_rows::next_batch(database_, path_));
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+}
+
+std::vector<Rejection> LabelStore::rejections(const std::string& recording) const {
+  sqlite::Statement select(database_, path_,
+                           "SELECT id, recording, method, t0, t1, annotator, time, checksum FROM "
+                           "rejections WHERE recording = ? ORDER BY t0, id");
+  select.bind(1, recording);
+  std::vector<Rejection> found;
+  std::vector<StoreProblem> problems;
+  while (select.step()) {
+    Rejection rejection{select.integer(0), select.text(1), select.text(2), select.real(3),
+                        select.real(4),    select.text(5), select.text(6)};
+    const auto wrong = row_checksum::mismatches("rejections", rejection.id,
+                                                rejection_fields(rejection), select.text(7));
+    if (!wrong.empty()) {
+      problems.push_back({"rejections", rejection.id, wrong.front(),
+                          "value does not match its checksum"});
+      continue;
+    }
+    found.push_back(std::move(rejection));
+  }
+  note_problems(problems);
+  return found;
 }
 
 //---- Class vocabulary

@@ -41,6 +41,16 @@ struct JournalEntry {
   int64_t batch = 0;  // rows written by one call (add_many, remove_where, undo) share a batch
 };
 
+// A suggestion (a segmenter's label) an annotator rejected: its span is remembered so
+// that a rerun of the method does not bring it back.
+struct Rejection {
+  int64_t id = 0;
+  std::string recording;
+  std::string method;  // the segmenter's annotator, "segmenter:threshold"
+  double t0 = 0.0, t1 = 0.0;
+  std::string annotator, time;
+};
+
 // A row of the store whose stored values no longer match their checksum, or are
 // not valid (a time not finite or out of order, a class in no vocabulary, a date
 // that does not parse), or rows lost or added on disk (a digest that disagrees).
@@ -96,6 +106,13 @@ class LabelStore {
   std::vector<int64_t> add_many(const std::vector<Label>& labels);
   // Removes every label the filter matches, in one transaction; returns how many.
   int64_t remove_where(const LabelFilter& filter, const std::string& annotator = {});
+
+  // Rejects a suggestion: removes the segmenter's label (journalled as the annotator's
+  // edit, so undo brings it back) and remembers its span, in one transaction. Throws
+  // when the label is not a segmenter's.
+  void reject(int64_t label_id, const std::string& annotator);
+  // The rejections of a recording's suggestions (damaged rows left out, in problems()).
+  std::vector<Rejection> rejections(const std::string& recording) const;
 
   // Class vocabulary per skin (the papers' class names), in the given order.
   // Names must be non-empty and distinct.
