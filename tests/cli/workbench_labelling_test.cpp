@@ -171,6 +171,19 @@ TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRe
             std::string::npos);
 }
 
+TEST_F(WorkbenchLabelling, TheQualityViewListsIssuesAndAgreementAndAClickGoesThere) {
+  // Two overlapping labels in ana's lane: an issue. Ground truth against ana: agreement.
+  const auto result = workbench(
+      "wait 2\ntime 10\nkey [\ntime 12\nkey ]\nkey 1\nkey Enter\ntime 11\nkey [\ntime 12.5\n"
+      "key ]\nkey 1\nkey Enter\ntime 0\nclick item tab:quality\nwait 2\nclick item quality:issue:0\n"
+      "wait 1\nstate @quality.json\nscreenshot @quality.png\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json quality = state("quality.json");
+  EXPECT_DOUBLE_EQ(quality["time"].get<double>(), 11.0);  // the later of the overlapping two
+  EXPECT_GT(quality["quality"]["disagreements"].get<int>(), 0);
+  EXPECT_GE(quality["quality"]["f1"].get<double>(), 0.0);
+}
+
 TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
   const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;

@@ -195,13 +195,13 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
         parse_number(step, 1, where);
       } else if (what == "time") {
         parse_number(step, 1, where);
-      } else if (what == "recording" && step.words.size() == 2) {
+      } else if ((what == "recording" || what == "item") && step.words.size() == 2) {
       } else if (step.words.size() == 3) {
         parse_number(step, 1, where), parse_number(step, 2, where);
       } else {
         throw Error(place,
-                    "click: expected 'taxel ID', 'time T [in VIEW]', 'recording NAME' or "
-                    "'VIEW X Y'");
+                    "click: expected 'taxel ID', 'time T [in VIEW]', 'recording NAME', 'item NAME' "
+                    "or 'VIEW X Y'");
       }
     } else if (step.command == "drag") {
       if (step.words[0] != "time") throw Error(place, "drag: expected 'time T0 T1 [in VIEW]'");
@@ -342,14 +342,17 @@ void ScriptPlayer::expand(const ScriptStep& step) {
           return point;
         },
         step);
-  } else if (command == "click" && step.words[0] == "recording") {
-    const std::string name = "recording:" + step.words[1];
+  } else if (command == "click" && (step.words[0] == "recording" || step.words[0] == "item")) {
+    const std::string name =
+        step.words[0] == "recording" ? "recording:" + step.words[1] : step.words[1];
     click_at(
         [name](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
           const auto& items = workbench.state().targets.items;
           const auto found = items.find(name);
           if (found == items.end()) {
-            problem = "no " + name.substr(10) + " in the workspace list";
+            problem = name.starts_with("recording:")
+                          ? "no " + name.substr(10) + " in the workspace list"
+                          : "no item '" + name + "' on screen";
             return std::nullopt;
           }
           return centre_of(found->second);

@@ -283,7 +283,7 @@ void Workbench::draw_arrangement(ImVec2 area) {
   // Left: workspace and recording, as tabs.
   ImGui::BeginChild("left", ImVec2(sizes.sidebar_width, area.y), true);
   if (ImGui::BeginTabBar("left_tabs")) {
-    for (const char* name : {"workspace", "info"}) {
+    for (const char* name : {"workspace", "info", "quality"}) {
       if (ImGui::BeginTabItem(view_title(name).c_str())) {
         draw_view(name, ImGui::GetContentRegionAvail());
         ImGui::EndTabItem();
@@ -543,6 +543,9 @@ nlohmann::json Workbench::state_json() const {
                        {"collapsed", labelling.collapsed.count(id) > 0}});
     }
   json["lanes"] = lanes;
+  json["quality"] = {{"kappa", state_.quality_summary.kappa},
+                     {"f1", state_.quality_summary.f1},
+                     {"disagreements", state_.quality_summary.disagreements}};
   json["workspace"] = state_.workspace;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : state_.workspace_files)

@@ -96,6 +96,11 @@ struct WorkbenchState {
   int rest_scale_modality = -1;  // modality rest_scale was computed for; -1: stale
   Selection selection;
   LabellingState labelling;
+  std::pair<int, int> quality_lanes{0, 1};  // the lanes the quality view compares
+  struct QualitySummary {
+    double kappa = 0.0, f1 = 0.0;
+    int disagreements = 0;
+  } quality_summary;  // as the quality view last computed it
   PanelSizes sizes;
   std::string error;   // the last error, shown in the status bar
   std::string notice;  // the last message (an export written, ...)

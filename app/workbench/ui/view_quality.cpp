@@ -1,0 +1,105 @@
+// Quality view: the open recording's label issues (overlaps in a lane and region,
+// implausible durations, segmenter events without a label, classes outside the
+// vocabulary) and the agreement of two lanes (kappa over time, segment F1 at IoU 0.5,
+// the disagreements); a click on an issue or a disagreement moves the cursor there.
+#include <algorithm>
+#include <cstdio>
+
+#include "tactile/labels/agreement.h"
+#include "tactile/labels/quality.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+// Moves the cursor (and the plot, when the place is outside it) to [t0, t1).
+void go_to(WorkbenchState& state, double t0, double t1, int64_t label) {
+  state.clock.seek(t0);
+  if (t0 < state.plot.view_t0 || t1 > state.plot.view_t1) {
+    const double span = std::max(state.plot.view_t1 - state.plot.view_t0, (t1 - t0) * 3);
+    state.plot.view_t0 = (t0 + t1) / 2 - span / 2;
+    state.plot.view_t1 = state.plot.view_t0 + span;
+  }
+  state.selection.labels.clear();
+  if (label != 0) state.selection.labels.push_back(label);
+}
+
+bool lane_combo(const char* name, const Lanes& lanes, int& chosen) {
+  const std::string current =
+      chosen >= 0 && chosen < static_cast<int>(lanes.keys.size()) ? lanes.keys[static_cast<size_t>(chosen)].title() : "-";
+  bool changed = false;
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::BeginCombo(name, current.c_str())) {
+    for (size_t k = 0; k < lanes.keys.size(); ++k)
+      if (ImGui::Selectable(lanes.keys[k].title().c_str(), static_cast<int>(k) == chosen)) {
+        chosen = static_cast<int>(k);
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+}  // namespace
+
+void draw_quality_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("quality_view", size, false);
+  const Document& document = *state.document;
+  QualityOptions options;
+  options.vocabulary = {document.classes.begin(), document.classes.end()};
+  const std::vector<LabelIssue> issues = check_labels(document.labels, options);
+  ImGui::Text("%zu issue%s", issues.size(), issues.size() == 1 ? "" : "s");
+  remember_item(state, "quality:issues");
+  for (size_t k = 0; k < issues.size() && k < 200; ++k) {
+    const LabelIssue& issue = issues[k];
+    ImGui::PushID(static_cast<int>(k));
+    char text[96];
+    std::snprintf(text, sizeof(text), "%s %s", format_seconds(issue.t0).c_str(), issue.kind.c_str());
+    if (ImGui::Selectable(text)) go_to(state, issue.t0, issue.t1, issue.label);
+    remember_item(state, "quality:issue:" + std::to_string(k));
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", issue.what.c_str());
+    ImGui::PopID();
+  }
+  ImGui::Separator();
+  // Agreement of two lanes: the first two by default (ground truth and an annotator).
+  const Lanes& lanes = document.lanes;
+  if (lanes.keys.size() < 2) {
+    ImGui::TextDisabled("Agreement needs two lanes.");
+    ImGui::EndChild();
+    return;
+  }
+  int& a = state.quality_lanes.first;
+  int& b = state.quality_lanes.second;
+  if (a < 0 || a >= static_cast<int>(lanes.keys.size())) a = 0;
+  if (b < 0 || b >= static_cast<int>(lanes.keys.size())) b = 1;
+  lane_combo("A##agreement_a", lanes, a);
+  lane_combo("B##agreement_b", lanes, b);
+  const SourceInfo& info = document.samples().info();
+  const std::map<std::string, RecordingTiming> timing = {
+      {info.recording_id,
+       {document.samples().start_time(), document.samples().end_time(), info.rate_hz}}};
+  const Agreement agreement = compute_agreement(lanes.lanes[static_cast<size_t>(a)].labels(),
+                                                lanes.lanes[static_cast<size_t>(b)].labels(), timing);
+  state.quality_summary = {agreement.kappa, agreement.f1, static_cast<int>(agreement.disagreements.size())};
+  ImGui::Text("kappa %.3f   F1 %.3f", agreement.kappa, agreement.f1);
+  ImGui::TextDisabled("P %.2f R %.2f, %lld matched", agreement.precision, agreement.recall,
+                      static_cast<long long>(agreement.matched));
+  for (size_t k = 0; k < agreement.disagreements.size() && k < 200; ++k) {
+    const Disagreement& d = agreement.disagreements[k];
+    ImGui::PushID(1000 + static_cast<int>(k));
+    char text[128];
+    if (d.kind == "class")
+      std::snprintf(text, sizeof(text), "%s %s/%s", format_seconds(d.t0).c_str(), d.a_class.c_str(),
+                    d.b_class.c_str());
+    else
+      std::snprintf(text, sizeof(text), "%s only %s: %s", format_seconds(d.t0).c_str(),
+                    d.kind == "missed" ? "A" : "B", (d.kind == "missed" ? d.a_class : d.b_class).c_str());
+    if (ImGui::Selectable(text)) go_to(state, d.t0, d.t1, 0);
+    remember_item(state, "quality:disagreement:" + std::to_string(k));
+    ImGui::PopID();
+  }
+  ImGui::EndChild();
+}
+
+}  // namespace tactile
