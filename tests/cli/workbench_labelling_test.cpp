@@ -184,6 +184,34 @@ TEST_F(WorkbenchLabelling, TheQualityViewListsIssuesAndAgreementAndAClickGoesThe
   EXPECT_GE(quality["quality"]["f1"].get<double>(), 0.0);
 }
 
+TEST_F(WorkbenchLabelling, DraggingInTheOwnLaneMarksAndDraggingAnEdgeMovesIt) {
+  // Snapping off (S): the ground truth's boundaries would otherwise catch the drags.
+  const auto result = workbench(
+      "wait 2\nkey S\ndrag time 13 15 in timeline\nstate @dragged.json\nkey 1\nkey Enter\n"
+      "wait 1\ndrag time 15 17 in timeline\nwait 2\nstate @moved.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json dragged = state("dragged.json");
+  const double pixel = 31.4 / dragged["views"]["signals"]["width"].get<double>();
+  EXPECT_NEAR(dragged["marks"]["start"].get<double>(), 13.0, 2 * pixel);
+  EXPECT_NEAR(dragged["marks"]["end"].get<double>(), 15.0, 2 * pixel);
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_NEAR(labels[0]["t0"].get<double>(), 13.0, 2 * pixel);
+  EXPECT_NEAR(labels[0]["t1"].get<double>(), 17.0, 2 * pixel);  // the end edge, dragged
+}
+
+TEST_F(WorkbenchLabelling, DraggedTimesSnapToTheBoundariesOfOtherLanes) {
+  // The simulator's first touch ends at 7.633 s; a drag released a few pixels short of
+  // it ends there.
+  const auto result = workbench("wait 2\ndrag time 5 7.55 in timeline\nstate @snapped.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto truth = nlohmann::json::parse(
+      test::run_program("tactile", "labels list " + database() + " --source ground-truth --json",
+                        folder).out)["labels"];
+  EXPECT_DOUBLE_EQ(state("snapped.json")["marks"]["end"].get<double>(),
+                   truth[0]["t1"].get<double>());
+}
+
 TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
   const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "tactile/error.h"
 #include "tactile/labels/region.h"
@@ -266,6 +267,38 @@ bool reject_suggestion(WorkbenchState& state) {
   return true;
 }
 
+bool move_label_bounds(WorkbenchState& state, int64_t id, double t0, double t1) {
+  if (!state.document) return false;
+  std::optional<Label> label;
+  for (const Label& candidate : state.document->labels)
+    if (candidate.id == id) label = candidate;
+  if (!label || !own(state, *label)) return fail(state, "only your own labels are moved");
+  if (!(t0 < t1)) return fail(state, "a label must end after it starts");
+  label->t0 = t0;
+  label->t1 = t1;
+  try {
+    state.document->label_store().update(*label);
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  after_edit(state, id, "label " + std::to_string(id) + " now " + format_seconds(t0) + " to " +
+                            format_seconds(t1));
+  return true;
+}
+
+double snapped(const WorkbenchState& state, double t, double tolerance) {
+  if (!state.labelling.snap || !state.document) return t;
+  double best = t, distance = tolerance;
+  const Lanes& lanes = state.document->lanes;
+  for (size_t k = 0; k < lanes.keys.size(); ++k) {
+    if (lanes.keys[k].id() == state.labelling.active_lane()) continue;
+    for (size_t index : lanes.lanes[k].meeting(t - tolerance, t + tolerance))
+      for (double edge : {lanes.lanes[k].labels()[index].t0, lanes.lanes[k].labels()[index].t1})
+        if (std::fabs(edge - t) < distance) distance = std::fabs(edge - t), best = edge;
+  }
+  return best;
+}
+
 bool walk_labels(WorkbenchState& state, int direction) {
   const LaneIndex* lane = active_lane(state);
   if (!lane) return fail(state, "your lane (" + state.labelling.annotator + ") has no labels yet");
@@ -285,7 +318,10 @@ bool walk_labels(WorkbenchState& state, int direction) {
 
 void handle_labelling_keys(WorkbenchState& state) {
   const ImGuiIO& io = ImGui::GetIO();
-  if (!state.document || io.WantTextInput) return;
+  if (!state.document) return;
+  if (auto move = std::exchange(state.labelling.move_request, std::nullopt))
+    move_label_bounds(state, std::get<0>(*move), std::get<1>(*move), std::get<2>(*move));
+  if (io.WantTextInput) return;
   const bool plain = !io.KeyCtrl && !io.KeyAlt && !io.KeySuper;
   if (plain && pressed('[')) mark_start(state);
   if (plain && pressed(']')) mark_end(state);
@@ -306,6 +342,10 @@ void handle_labelling_keys(WorkbenchState& state) {
   if (io.KeyCtrl && pressed('Z')) undo_edit(state, io.KeyShift);
   if (plain && !io.KeyShift && pressed('A')) accept_suggestion(state);
   if (plain && !io.KeyShift && pressed('R')) reject_suggestion(state);
+  if (plain && !io.KeyShift && pressed('S')) {
+    state.labelling.snap = !state.labelling.snap;
+    state.notice = state.labelling.snap ? "snapping on" : "snapping off";
+  }
 }
 
 }  // namespace tactile

@@ -36,6 +36,12 @@ bool run_segmenter(WorkbenchState& state, const std::string& method);
 bool accept_suggestion(WorkbenchState& state);
 bool reject_suggestion(WorkbenchState& state);
 
+// Moves the bounds of an own label (a dragged edge); one transaction.
+bool move_label_bounds(WorkbenchState& state, int64_t label, double t0, double t1);
+// `t` moved to the nearest boundary of a segmenter's or another lane's label within
+// `tolerance` seconds, when snapping is on.
+double snapped(const WorkbenchState& state, double t, double tolerance);
+
 // The labels of the operator's lane (manual, this annotator), or null when empty.
 const LaneIndex* active_lane(const WorkbenchState& state);
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "labelling.h"
 #include "views.h"
 
 namespace tactile {
@@ -123,6 +124,48 @@ void draw_legend(WorkbenchState& state) {
                       labelling.annotator.c_str());
 }
 
+// In the operator's lane (the last item drawn), a drag from an edge of one of their
+// labels moves that edge, committed on release; a drag over empty space sets the
+// marks. Dragged times snap to other lanes' boundaries within 6 pixels (key S).
+template <typename XOf>
+void drag_in_own_lane(WorkbenchState& state, const LaneIndex& lane, double mouse_time,
+                      double seconds_per_pixel, const XOf& x_of, ImVec2 lane_min, ImVec2 lane_max) {
+  LabellingState::LaneDrag& drag = state.labelling.drag;
+  const double grab = 4.0 * seconds_per_pixel;
+  if (ImGui::IsItemActivated()) {
+    drag = {};
+    drag.active = true;
+    drag.press_time = drag.time = mouse_time;
+    for (size_t index : lane.meeting(mouse_time - grab, mouse_time + grab)) {
+      const Label& label = lane.labels()[index];
+      if (std::fabs(label.t1 - mouse_time) <= grab) drag.label = label.id, drag.start_edge = false;
+      else if (std::fabs(label.t0 - mouse_time) <= grab) drag.label = label.id, drag.start_edge = true;
+    }
+  }
+  if (!drag.active) return;
+  const bool moved = std::fabs(mouse_time - drag.press_time) > 2.0 * seconds_per_pixel;
+  if (ImGui::IsItemActive() && moved) {
+    drag.time = snapped(state, mouse_time, 6.0 * seconds_per_pixel);
+    ImDrawList& draw = *ImGui::GetWindowDrawList();
+    const float x = x_of(drag.time);
+    draw.AddLine(ImVec2(x, lane_min.y), ImVec2(x, lane_max.y), IM_COL32(255, 255, 255, 255), 2.0f);
+    if (drag.label == 0) {
+      state.labelling.mark_start = std::min(drag.press_time, drag.time);
+      state.labelling.mark_end = std::max(drag.press_time, drag.time);
+    }
+  }
+  if (ImGui::IsItemDeactivated()) {
+    if (moved && drag.label != 0)
+      for (const Label& label : lane.labels())
+        if (label.id == drag.label) {
+          state.labelling.move_request = {label.id, drag.start_edge ? drag.time : label.t0,
+                                          drag.start_edge ? label.t1 : drag.time};
+          break;
+        }
+    drag = {};
+  }
+}
+
 // One lane: its labels as blocks over the plot's visible range, merged per pixel when
 // dense; a click moves the cursor and selects the label under it.
 void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& lane, float left,
@@ -197,11 +240,12 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
   if (cursor_x >= left && cursor_x <= right)
     draw.AddLine(ImVec2(cursor_x, lane_min.y), ImVec2(cursor_x, lane_max.y),
                  IM_COL32(255, 140, 40, 255), 2.0f);
+  const double mouse_time = t0 + (ImGui::GetIO().MousePos.x - left) * seconds_per_pixel;
+  if (own) drag_in_own_lane(state, lane, mouse_time, seconds_per_pixel, x_of, lane_min, lane_max);
   if (ImGui::IsItemClicked()) {
-    const double t = t0 + (ImGui::GetIO().MousePos.x - left) * seconds_per_pixel;
-    state.clock.seek(t);
+    state.clock.seek(mouse_time);
     state.selection.labels.clear();
-    const int64_t under = lane.at(t);
+    const int64_t under = lane.at(mouse_time);
     if (under >= 0) state.selection.labels.push_back(lane.labels()[static_cast<size_t>(under)].id);
   }
   ImGui::PopID();

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,19 @@ struct LabellingState {
   std::vector<std::string> lane_order;  // lane ids in the user's order (others after)
   std::set<std::string> hidden, collapsed;
   std::array<char, 256> segmenter_params{};  // typed in the Labels menu
+  bool snap = true;  // dragged times snap to segmenter and other lanes' boundaries (key S)
+  // A drag in the operator's lane: over empty space it sets the marks; from an edge of
+  // one of their labels it moves that edge (committed on release).
+  struct LaneDrag {
+    bool active = false;
+    int64_t label = 0;         // 0: setting marks
+    bool start_edge = false;   // which edge of `label` moves
+    double press_time = 0.0;
+    double time = 0.0;         // where the edge or the mark is now
+  } drag;
+  // A dragged edge's new bounds (label, t0, t1), committed at the start of the next
+  // frame: an edit rebuilds the lanes, which the frame that drew them still uses.
+  std::optional<std::tuple<int64_t, double, double>> move_request;
   std::string active_lane() const { return "manual:" + annotator; }
 };
 
