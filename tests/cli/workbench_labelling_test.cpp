@@ -212,6 +212,20 @@ TEST_F(WorkbenchLabelling, DraggedTimesSnapToTheBoundariesOfOtherLanes) {
                    truth[0]["t1"].get<double>());
 }
 
+TEST_F(WorkbenchLabelling, TheTypeAheadPickerAndTheRegionMenuNeedNoTaxelClicks) {
+  const std::string last = vocabulary.back();  // any class, by typing part of it
+  const auto result = workbench(
+      "wait 2\nclick item region\nwait 2\nclick item region:middle\nwait 1\ntime 20\nkey [\n"
+      "time 21\nkey ]\nkey C\nwait 2\ntype " + last.substr(1, 3) + "\nkey Enter\nwait 1\n"
+      "state @picked.json\nkey Enter\nwait 1\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(state("picked.json")["marks"]["class"], last);
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["class"], last);
+  EXPECT_EQ(labels[0]["region"], "middle");
+}
+
 TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
   const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;

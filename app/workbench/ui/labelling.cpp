@@ -201,6 +201,7 @@ bool select_next_suggestion(WorkbenchState& state, const std::string& method, do
 bool run_segmenter(WorkbenchState& state, const std::string& method) {
   if (!state.document) return false;
   Document& document = *state.document;
+  state.labelling.last_segmenter = method;
   try {
     const Parameters parameters =
         Parameters::parse(state.labelling.segmenter_params.data(), "segmenter parameters");
@@ -316,6 +317,36 @@ bool walk_labels(WorkbenchState& state, int direction) {
   return true;
 }
 
+void draw_class_picker(WorkbenchState& state) {
+  LabellingState& labelling = state.labelling;
+  if (!state.document) return;
+  if (labelling.picker_open) {
+    ImGui::OpenPopup("class_picker");
+    labelling.picker_open = false;
+  }
+  if (!ImGui::BeginPopup("class_picker")) return;
+  // Type part of a class name; Enter takes the first match, Escape closes.
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+  const bool entered = ImGui::InputTextWithHint("##class", "class...", labelling.picker_text.data(),
+                                                labelling.picker_text.size(),
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  remember_item(state, "picker:text");
+  const std::string typed = labelling.picker_text.data();
+  std::vector<std::string> matches;
+  for (const std::string& name : state.document->classes)
+    if (name.find(typed) != std::string::npos) matches.push_back(name);
+  for (const std::string& name : matches)
+    if (ImGui::Selectable(name.c_str())) {
+      labelling.pending_class = name;
+      ImGui::CloseCurrentPopup();
+    }
+  if (entered && !matches.empty()) {
+    labelling.pending_class = matches.front();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
 void handle_labelling_keys(WorkbenchState& state) {
   const ImGuiIO& io = ImGui::GetIO();
   if (!state.document) return;
@@ -342,6 +373,11 @@ void handle_labelling_keys(WorkbenchState& state) {
   if (io.KeyCtrl && pressed('Z')) undo_edit(state, io.KeyShift);
   if (plain && !io.KeyShift && pressed('A')) accept_suggestion(state);
   if (plain && !io.KeyShift && pressed('R')) reject_suggestion(state);
+  if (plain && !io.KeyShift && pressed('G')) run_segmenter(state, state.labelling.last_segmenter);
+  if (plain && !io.KeyShift && pressed('C')) {
+    state.labelling.picker_open = true;
+    state.labelling.picker_text.fill('\0');
+  }
   if (plain && !io.KeyShift && pressed('S')) {
     state.labelling.snap = !state.labelling.snap;
     state.notice = state.labelling.snap ? "snapping on" : "snapping off";

@@ -1,7 +1,9 @@
 #pragma once
 // Labelling from the keyboard, ELAN's habits: `[` and `]` mark start and end at the
 // time cursor (moved back by the reaction time while playing), 1-9 choose the class
-// from the skin's vocabulary, Enter commits; Tab / Shift+Tab walk the labels of the
+// from the skin's vocabulary (C: a type-ahead picker for any class), Enter commits;
+// G runs the last segmenter again (adaptive at first), A / R accept / reject a
+// suggestion, S toggles snapping; Tab / Shift+Tab walk the labels of the
 // operator's lane, arrows step by a sample (Shift: a second), Delete removes,
 // Ctrl+Z / Ctrl+Shift+Z undo and redo through the store's journal, Escape drops the
 // marks. Each edit is one transaction in the label store the moment it is made.
@@ -13,6 +15,9 @@ namespace tactile {
 // Reads this frame's key presses (ImGui's input path) and carries out the edits.
 // Does nothing while a text field has the keyboard.
 void handle_labelling_keys(WorkbenchState& state);
+// The type-ahead class picker (key C; for vocabularies beyond the nine digit keys):
+// type part of a name, Enter takes the first match as the class. Drawn every frame.
+void draw_class_picker(WorkbenchState& state);
 
 // The edits the keys make; also for mouse actions. Each reports failure in
 // state.error and returns false.

@@ -44,6 +44,20 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     ImGui::EndCombo();
   }
   ImGui::SameLine();
+  // The region a new label gets: choose a body part (or click taxels on the skin).
+  ImGui::SetNextItemWidth(140);
+  const std::string region = region_of_taxels(layout, state.selection.taxels);
+  if (ImGui::BeginCombo("region", region.c_str())) {
+    if (ImGui::Selectable("all", region == "all")) state.selection.taxels.clear();
+    for (const Group& group : layout.groups) {
+      const std::string name = group.name.empty() ? group.id : group.name + " (" + group.id + ")";
+      if (ImGui::Selectable(name.c_str(), region == group.id)) state.selection.taxels = group.taxels;
+      remember_item(state, "region:" + group.id);
+    }
+    ImGui::EndCombo();
+  }
+  remember_item(state, "region");
+  ImGui::SameLine();
   ImGui::Checkbox("raw values", &state.show_raw_values);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(

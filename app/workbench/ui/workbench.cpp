@@ -223,6 +223,7 @@ void Workbench::frame(double seconds) {
   }
   ImGui::End();
   if (auto chosen = state_.file_browser.draw()) state_.open_request = *chosen;
+  draw_class_picker(state_);
   carry_out_requests();
   note_damage();
 }

@@ -67,7 +67,10 @@ struct LabellingState {
   std::vector<std::string> lane_order;  // lane ids in the user's order (others after)
   std::set<std::string> hidden, collapsed;
   std::array<char, 256> segmenter_params{};  // typed in the Labels menu
-  bool snap = true;  // dragged times snap to segmenter and other lanes' boundaries (key S)
+  bool snap = true;
+  std::string last_segmenter = "adaptive";  // G runs it again
+  bool picker_open = false;                  // the type-ahead class picker (key C)
+  std::array<char, 64> picker_text{};  // dragged times snap to segmenter and other lanes' boundaries (key S)
   // A drag in the operator's lane: over empty space it sets the marks; from an edge of
   // one of their labels it moves that edge (committed on release).
   struct LaneDrag {
