@@ -226,6 +226,18 @@ TEST_F(WorkbenchLabelling, TheTypeAheadPickerAndTheRegionMenuNeedNoTaxelClicks) 
   EXPECT_EQ(labels[0]["region"], "middle");
 }
 
+TEST_F(WorkbenchLabelling, ARectangleDraggedOverTheSkinSelectsTheRegionOfTheNextLabel) {
+  // Taxels 0, 1 and 2 are the first three of the fur's top row.
+  const auto result = workbench(
+      "wait 2\ndrag taxel 0 2\nwait 1\nstate @rectangle.json\ntime 20\nkey [\ntime 21\nkey ]\n"
+      "key 1\nkey Enter\nwait 1\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(state("rectangle.json")["selection"]["taxels"], nlohmann::json::array({0, 1, 2}));
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["region"], "taxels:0,1,2");
+}
+
 TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
   const auto result = workbench("wait 2\ntime 2\nkey Space\nwait 20\nkey [\nstate @playing.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;

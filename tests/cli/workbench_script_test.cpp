@@ -126,6 +126,16 @@ TEST_F(WorkbenchScript, EveryViewRendersAloneToAPngOfTheAskedSize) {
   EXPECT_NE(wrong.err.find("nowhere"), std::string::npos) << wrong.err;
 }
 
+TEST_F(WorkbenchScript, ADraggedMarkSnapsToTheSignalsOnset) {
+  // ch3 is pressed from 1 s: a mark released at 1.03 s lands on the onset.
+  const auto result = run(recording() + " --size 1000x700 --script " +
+                          script("wait 2\ndrag time 0.5 1.03 in timeline\nstate @onset.json\n"
+                                 "key S\ndrag time 0.5 1.03 in timeline\nstate @free.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NEAR(state("onset.json")["marks"]["end"].get<double>(), 1.0, 0.01);
+  EXPECT_NEAR(state("free.json")["marks"]["end"].get<double>(), 1.03, 0.01);  // S: no snapping
+}
+
 TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
   auto result = run(recording() + " --script " + script("wait 1\njump 3\n"));
   EXPECT_NE(result.exit_code, 0);

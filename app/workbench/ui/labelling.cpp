@@ -9,6 +9,7 @@
 #include "tactile/error.h"
 #include "tactile/labels/region.h"
 #include "tactile/labels/suggestions.h"
+#include "tactile/layout/taxel_values.h"
 #include "tactile/segment/segmenter.h"
 #include "views.h"
 
@@ -287,8 +288,42 @@ bool move_label_bounds(WorkbenchState& state, int64_t id, double t0, double t1) 
   return true;
 }
 
-double snapped(const WorkbenchState& state, double t, double tolerance) {
+namespace {
+
+// Where the skin's signal starts or stops moving near t: the edges between time
+// columns of [t - tolerance, t + tolerance] where "some taxel of the shown modality is
+// outside its noise band" flips (min/max per column from the source).
+std::vector<double> onsets_near(WorkbenchState& state, double t, double tolerance) {
+  constexpr int kColumns = 24;
+  const Document& document = *state.document;
+  const SampleSource& source = document.samples();
+  const std::vector<int> columns =
+      taxel_columns(document.layout, source.info().channels, state.modality);
+  const RestScale& scale = current_rest_scale(state, columns);
+  std::vector<uint8_t> active(kColumns, 0);
+  for (size_t k = 0; k < columns.size(); ++k) {
+    if (columns[k] < 0 || std::isnan(scale.rest[k])) continue;
+    const std::vector<MinMax> buckets =
+        source.minmax_over_time(columns[k], t - tolerance, t + tolerance, kColumns);
+    for (int c = 0; c < kColumns && c < static_cast<int>(buckets.size()); ++c)
+      if (!buckets[static_cast<size_t>(c)].empty() &&
+          (buckets[static_cast<size_t>(c)].max > scale.rest[k] + scale.noise_band[k] ||
+           buckets[static_cast<size_t>(c)].min < scale.rest[k] - scale.noise_band[k]))
+        active[static_cast<size_t>(c)] = 1;
+  }
+  std::vector<double> edges;
+  const double width = 2.0 * tolerance / kColumns;
+  for (int c = 1; c < kColumns; ++c)
+    if (active[static_cast<size_t>(c)] != active[static_cast<size_t>(c - 1)])
+      edges.push_back(t - tolerance + c * width);
+  return edges;
+}
+
+}  // namespace
+
+double snapped(WorkbenchState& state, double t, double tolerance) {
   if (!state.labelling.snap || !state.document) return t;
+  // Boundaries of labels first (decisions already made), the signal's onsets second.
   double best = t, distance = tolerance;
   const Lanes& lanes = state.document->lanes;
   for (size_t k = 0; k < lanes.keys.size(); ++k) {
@@ -297,6 +332,9 @@ double snapped(const WorkbenchState& state, double t, double tolerance) {
       for (double edge : {lanes.lanes[k].labels()[index].t0, lanes.lanes[k].labels()[index].t1})
         if (std::fabs(edge - t) < distance) distance = std::fabs(edge - t), best = edge;
   }
+  if (best != t) return best;
+  for (double onset : onsets_near(state, t, tolerance))
+    if (std::fabs(onset - t) < distance) distance = std::fabs(onset - t), best = onset;
   return best;
 }
 

@@ -43,9 +43,10 @@ bool reject_suggestion(WorkbenchState& state);
 
 // Moves the bounds of an own label (a dragged edge); one transaction.
 bool move_label_bounds(WorkbenchState& state, int64_t label, double t0, double t1);
-// `t` moved to the nearest boundary of a segmenter's or another lane's label within
-// `tolerance` seconds, when snapping is on.
-double snapped(const WorkbenchState& state, double t, double tolerance);
+// `t` moved, when snapping is on, to the nearest boundary of the other lanes' labels
+// (segmenters, ground truth) within `tolerance` seconds, else to the nearest of the
+// signal's onsets and releases (where some taxel leaves or returns to its noise band).
+double snapped(WorkbenchState& state, double t, double tolerance);
 
 // The labels of the operator's lane (manual, this annotator), or null when empty.
 const LaneIndex* active_lane(const WorkbenchState& state);

@@ -204,7 +204,8 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
                     "or 'VIEW X Y'");
       }
     } else if (step.command == "drag") {
-      if (step.words[0] != "time") throw Error(place, "drag: expected 'time T0 T1 [in VIEW]'");
+      if (step.words[0] != "time" && step.words[0] != "taxel")
+        throw Error(place, "drag: expected 'time T0 T1 [in VIEW]' or 'taxel A B'");
       parse_number(step, 1, where), parse_number(step, 2, where);
     }
     steps.push_back(std::move(step));
@@ -382,18 +383,42 @@ void ScriptPlayer::expand(const ScriptStep& step) {
         },
         step);
   } else if (command == "drag") {
-    const double t0 = std::stod(step.words[1]), t1 = std::stod(step.words[2]);
-    const std::string view = time_view(step, 3);
+    // From one point to another: times on a time axis, or the centres of two taxels
+    // (a rectangle over the skin).
+    const double a = std::stod(step.words[1]), b = std::stod(step.words[2]);
+    const bool taxels = step.words[0] == "taxel";
+    const std::string view = taxels ? "skin" : time_view(step, 3);
     auto ends = std::make_shared<std::pair<ImVec2, ImVec2>>();
-    actions_.push_back([this, step, t0, t1, view, ends](Workbench& workbench, ImGuiIO& io) {
+    actions_.push_back([this, step, a, b, taxels, view, ends](Workbench& workbench, ImGuiIO& io) {
       std::string problem;
-      const auto from = time_point(workbench, view, t0, problem);
-      const auto to = from ? time_point(workbench, view, t1, problem) : std::nullopt;
+      auto point = [&](double value) -> std::optional<ImVec2> {
+        if (!taxels) return time_point(workbench, view, value, problem);
+        const auto& centres = workbench.state().targets.taxels;
+        const auto found = centres.find(static_cast<int64_t>(value));
+        if (found == centres.end()) {
+          problem = "no taxel " + std::to_string(static_cast<int64_t>(value)) + " in the skin view";
+          return std::nullopt;
+        }
+        return ImVec2(found->second.first, found->second.second);
+      };
+      const auto from = point(a);
+      const auto to = from ? point(b) : std::nullopt;
       if (!from || !to) {
         fail(step, problem);
         return true;
       }
       *ends = {*from, *to};
+      if (taxels) {
+        // A rectangle that holds both centres: corners 3 pixels beyond them (ImGui
+        // floors mouse positions to whole pixels).
+        auto outward = [](float& a, float& b) {
+          const float sign = b >= a ? 1.0f : -1.0f;
+          a -= 3.0f * sign;
+          b += 3.0f * sign;
+        };
+        outward(ends->first.x, ends->second.x);
+        outward(ends->first.y, ends->second.y);
+      }
       io.MousePos = ends->first;
       io.MouseDown[0] = false;
       return true;
@@ -407,7 +432,8 @@ void ScriptPlayer::expand(const ScriptStep& step) {
     for (int k = 1; k <= kDragSteps; ++k)
       actions_.push_back([ends, k](Workbench&, ImGuiIO& io) {
         const float f = static_cast<float>(k) / kDragSteps;
-        io.MousePos = ImVec2(ends->first.x + f * (ends->second.x - ends->first.x), ends->first.y);
+        io.MousePos = ImVec2(ends->first.x + f * (ends->second.x - ends->first.x),
+                             ends->first.y + f * (ends->second.y - ends->first.y));
         io.MouseDown[0] = true;
         return true;
       });

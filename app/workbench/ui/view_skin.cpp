@@ -29,6 +29,35 @@ void select_taxel(WorkbenchState& state, int64_t taxel_id, bool add) {
     taxels.erase(found);
 }
 
+// A left-drag over the skin draws a rectangle; on release the taxels whose centres it
+// holds are selected (Shift: added) — the region of the next label.
+void select_in_rectangle(WorkbenchState& state, const SkinLayout& layout,
+                         const SkinViewResult& result, ImVec2 origin, ImVec2 size) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const ImVec2 start = io.MouseClickedPos[0];
+  const bool started_here = start.x >= origin.x && start.x < origin.x + size.x &&
+                            start.y >= origin.y && start.y < origin.y + size.y;
+  if (!started_here || io.MouseDragMaxDistanceSqr[0] < 36.0f) return;
+  const ImVec2 now = io.MousePos;
+  const ImVec2 low(std::min(start.x, now.x), std::min(start.y, now.y));
+  const ImVec2 high(std::max(start.x, now.x), std::max(start.y, now.y));
+  if (ImGui::IsMouseDown(0)) {
+    ImDrawList& draw = *ImGui::GetWindowDrawList();
+    draw.AddRectFilled(low, high, IM_COL32(255, 140, 40, 40));
+    draw.AddRect(low, high, IM_COL32(255, 140, 40, 255));
+    return;
+  }
+  if (!ImGui::IsMouseReleased(0)) return;
+  if (!io.KeyShift) state.selection.taxels.clear();
+  for (const Taxel& taxel : layout.taxels) {
+    const ImVec2 centre = result.transform.apply(taxel.position);
+    if (centre.x >= low.x && centre.x <= high.x && centre.y >= low.y && centre.y <= high.y &&
+        std::find(state.selection.taxels.begin(), state.selection.taxels.end(), taxel.id) ==
+            state.selection.taxels.end())
+      state.selection.taxels.push_back(taxel.id);
+  }
+}
+
 }  // namespace
 
 void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
@@ -89,6 +118,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     select_taxel(state, result.clicked_taxel, ImGui::GetIO().KeyShift);
     toggle_taxel_channel(state, result.clicked_taxel);
   }
+  select_in_rectangle(state, layout, result, origin, available);
   ImGui::EndChild();
 }
 
