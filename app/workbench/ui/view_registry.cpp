@@ -36,9 +36,14 @@ std::string view_names() {
   return names;
 }
 
-uint32_t class_colour(const std::string& class_name) {
-  const size_t hash = std::hash<std::string>{}(class_name);
-  const uint32_t base = plot_colour(static_cast<int>(hash % 10));
+uint32_t class_colour(const Document& document, const std::string& class_name) {
+  // A class of the skin's vocabulary takes the colour of its place in it, so the
+  // classes of one skin never share a colour; others are hashed.
+  const auto found = std::find(document.classes.begin(), document.classes.end(), class_name);
+  const size_t index = found != document.classes.end()
+                           ? static_cast<size_t>(found - document.classes.begin())
+                           : std::hash<std::string>{}(class_name);
+  const uint32_t base = plot_colour(static_cast<int>(index % 10));
   return (base & 0x00FFFFFFu) | (70u << 24);  // translucent, so signals show through
 }
 

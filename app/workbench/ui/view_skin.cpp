@@ -63,7 +63,7 @@ void select_in_rectangle(WorkbenchState& state, const SkinLayout& layout,
 void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("skin_panel", size, false);
   const SkinLayout& layout = state.document->layout;
-  ImGui::SetNextItemWidth(140);
+  ImGui::SetNextItemWidth(100);
   const char* current =
       layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)].c_str();
   if (ImGui::BeginCombo("modality", current)) {
@@ -74,7 +74,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   }
   ImGui::SameLine();
   // The region a new label gets: choose a body part (or click taxels on the skin).
-  ImGui::SetNextItemWidth(140);
+  ImGui::SetNextItemWidth(90);
   const std::string region = region_of_taxels(layout, state.selection.taxels);
   if (ImGui::BeginCombo("region", region.c_str())) {
     if (ImGui::Selectable("all", region == "all")) state.selection.taxels.clear();

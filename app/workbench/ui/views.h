@@ -38,7 +38,8 @@ std::string view_names();
 // (the operator's own lane always there); the top one with labels is shaded in the plot.
 std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const WorkbenchState& state);
 const LaneIndex* top_lane(const WorkbenchState& state);
-uint32_t class_colour(const std::string& class_name);
+// The colour of a class: its place in the document's vocabulary, else a hash.
+uint32_t class_colour(const Document& document, const std::string& class_name);
 std::string format_seconds(double seconds);
 // Remembers the last ImGui item's rectangle under `name` for scripts.
 void remember_item(WorkbenchState& state, const std::string& name);
