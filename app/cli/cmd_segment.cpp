@@ -52,24 +52,14 @@ std::vector<std::string> recording_files(const std::vector<std::string>& inputs)
 }
 
 // Removes the recording's earlier labels of this segmenter, leaving other methods'
-// segments alone; in one transaction when they are the recording's only segmenter labels.
+// segments alone, in one transaction.
 int64_t remove_earlier(LabelStore& store, const std::string& recording,
                        const std::string& annotator) {
   LabelFilter filter;
   filter.recording = recording;
   filter.source = LabelSource::kSegmenter;
-  const std::vector<Label> earlier = store.list(filter);
-  const bool all_ours = std::all_of(earlier.begin(), earlier.end(), [&](const Label& label) {
-    return label.annotator == annotator;
-  });
-  if (all_ours) return store.remove_where(filter, annotator);
-  int64_t removed = 0;
-  for (const Label& label : earlier)
-    if (label.annotator == annotator) {
-      store.remove(label.id, annotator);
-      ++removed;
-    }
-  return removed;
+  filter.annotator = annotator;
+  return store.remove_where(filter, annotator);
 }
 
 void run_segment(const SegmentOptions& options) {

@@ -1,5 +1,6 @@
 #include "document.h"
 
+#include <atomic>
 #include <filesystem>
 #include <set>
 
@@ -60,6 +61,9 @@ void Document::reload_labels() {
       label_problems.push_back(problem.where(store->path()) + ": " + problem.what);
   }
   lanes = group_into_lanes(labels);
+  // Unique across documents, so a cache never mistakes a reopened recording for the last.
+  static std::atomic<int64_t> reloads{0};
+  labels_version = ++reloads;
 }
 
 LabelStore& Document::label_store() {

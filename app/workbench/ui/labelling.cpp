@@ -216,8 +216,8 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
     LabelFilter earlier;
     earlier.recording = document.recording_id();
     earlier.source = LabelSource::kSegmenter;
-    for (const Label& label : store.list(earlier))
-      if (label.annotator == annotator) store.remove(label.id, state.labelling.annotator);
+    earlier.annotator = annotator;
+    store.remove_where(earlier, state.labelling.annotator);
     store.add_many(segments);
     after_edit(state, 0,
                method + ": " + std::to_string(segments.size()) + " suggestions" +

@@ -46,9 +46,31 @@ bool lane_combo(const char* name, const Lanes& lanes, int& chosen) {
 void draw_quality_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("quality_view", size, false);
   const Document& document = *state.document;
-  QualityOptions options;
-  options.vocabulary = {document.classes.begin(), document.classes.end()};
-  const std::vector<LabelIssue> issues = check_labels(document.labels, options);
+  WorkbenchState::QualityCache& cache = state.quality;
+  const Lanes& lanes = document.lanes;
+  int& a = state.quality_lanes.first;
+  int& b = state.quality_lanes.second;
+  if (a < 0 || a >= static_cast<int>(lanes.keys.size())) a = 0;
+  if (b < 0 || b >= static_cast<int>(lanes.keys.size())) b = 1;
+  if (cache.document != &document || cache.labels_version != document.labels_version ||
+      cache.lanes != state.quality_lanes) {
+    QualityOptions options;
+    options.vocabulary = {document.classes.begin(), document.classes.end()};
+    cache.issues = check_labels(document.labels, options);
+    cache.agreement = {};
+    if (lanes.keys.size() >= 2) {
+      const SourceInfo& info = document.samples().info();
+      const std::map<std::string, RecordingTiming> timing = {
+          {info.recording_id,
+           {document.samples().start_time(), document.samples().end_time(), info.rate_hz}}};
+      cache.agreement = compute_agreement(lanes.lanes[static_cast<size_t>(a)].labels(),
+                                          lanes.lanes[static_cast<size_t>(b)].labels(), timing);
+    }
+    cache.document = &document;
+    cache.labels_version = document.labels_version;
+    cache.lanes = state.quality_lanes;
+  }
+  const std::vector<LabelIssue>& issues = cache.issues;
   ImGui::Text("%zu issue%s", issues.size(), issues.size() == 1 ? "" : "s");
   remember_item(state, "quality:issues");
   for (size_t k = 0; k < issues.size() && k < 200; ++k) {
@@ -63,25 +85,14 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
   }
   ImGui::Separator();
   // Agreement of two lanes: the first two by default (ground truth and an annotator).
-  const Lanes& lanes = document.lanes;
   if (lanes.keys.size() < 2) {
     ImGui::TextDisabled("Agreement needs two lanes.");
     ImGui::EndChild();
     return;
   }
-  int& a = state.quality_lanes.first;
-  int& b = state.quality_lanes.second;
-  if (a < 0 || a >= static_cast<int>(lanes.keys.size())) a = 0;
-  if (b < 0 || b >= static_cast<int>(lanes.keys.size())) b = 1;
   lane_combo("A##agreement_a", lanes, a);
   lane_combo("B##agreement_b", lanes, b);
-  const SourceInfo& info = document.samples().info();
-  const std::map<std::string, RecordingTiming> timing = {
-      {info.recording_id,
-       {document.samples().start_time(), document.samples().end_time(), info.rate_hz}}};
-  const Agreement agreement = compute_agreement(lanes.lanes[static_cast<size_t>(a)].labels(),
-                                                lanes.lanes[static_cast<size_t>(b)].labels(), timing);
-  state.quality_summary = {agreement.kappa, agreement.f1, static_cast<int>(agreement.disagreements.size())};
+  const Agreement& agreement = cache.agreement;
   ImGui::Text("kappa %.3f   F1 %.3f", agreement.kappa, agreement.f1);
   ImGui::TextDisabled("P %.2f R %.2f, %lld matched", agreement.precision, agreement.recall,
                       static_cast<long long>(agreement.matched));

@@ -544,9 +544,9 @@ nlohmann::json Workbench::state_json() const {
                        {"collapsed", labelling.collapsed.count(id) > 0}});
     }
   json["lanes"] = lanes;
-  json["quality"] = {{"kappa", state_.quality_summary.kappa},
-                     {"f1", state_.quality_summary.f1},
-                     {"disagreements", state_.quality_summary.disagreements}};
+  json["quality"] = {{"kappa", state_.quality.agreement.kappa},
+                     {"f1", state_.quality.agreement.f1},
+                     {"disagreements", state_.quality.agreement.disagreements.size()}};
   json["workspace"] = state_.workspace;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : state_.workspace_files)

@@ -16,6 +16,8 @@
 
 #include "document.h"
 #include "file_browser.h"
+#include "tactile/labels/agreement.h"
+#include "tactile/labels/quality.h"
 #include "tactile/live/playback.h"
 #include "tactile/signal/display_scale.h"
 #include "tactile/widgets/signal_plot.h"
@@ -114,10 +116,15 @@ struct WorkbenchState {
   Selection selection;
   LabellingState labelling;
   std::pair<int, int> quality_lanes{0, 1};  // the lanes the quality view compares
-  struct QualitySummary {
-    double kappa = 0.0, f1 = 0.0;
-    int disagreements = 0;
-  } quality_summary;  // as the quality view last computed it
+  // The quality view's findings, computed again only when the labels or the compared
+  // lanes change (not every frame).
+  struct QualityCache {
+    const Document* document = nullptr;
+    int64_t labels_version = -1;
+    std::pair<int, int> lanes{-1, -1};
+    std::vector<LabelIssue> issues;
+    Agreement agreement;
+  } quality;
   PanelSizes sizes;
   std::string error;   // the last error, shown in the status bar
   std::string notice;  // the last message (an export written, ...)

@@ -1,12 +1,12 @@
 #include "tactile/io/label_import.h"
 
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "csv_text.h"
 #include "label_rows.h"
 #include "tactile/error.h"
 
@@ -85,14 +85,6 @@ std::vector<Record> csv_records(const std::string& text, const std::string& path
   return records;
 }
 
-double number(const std::string& text, const std::string& where, const char* field) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || text.empty())
-    throw Error(where, std::string(field) + " '" + text + "' is not a number");
-  return value;
-}
-
 std::vector<Label> read_csv(const std::string& path) {
   const std::vector<Record> records = csv_records(read_all(path), path);
   if (records.empty()) throw Error(path, "empty file: expected the header of `labels export`");
@@ -111,8 +103,8 @@ std::vector<Label> read_csv(const std::string& path) {
     const auto& f = record.fields;
     Label label;
     label.recording = f[1];
-    label.t0 = number(f[2], where, "t0");
-    label.t1 = number(f[3], where, "t1");
+    label.t0 = csv::parse_double(f[2], path, record.line, 3);
+    label.t1 = csv::parse_double(f[3], path, record.line, 4);
     label.region = f[4];
     label.class_name = f[5];
     label.annotator = f[6];
@@ -121,7 +113,7 @@ std::vector<Label> read_csv(const std::string& path) {
     } catch (const Error& error) {
       throw Error(where, error.message());
     }
-    label.confidence = number(f[8], where, "confidence");
+    label.confidence = csv::parse_double(f[8], path, record.line, 9);
     label.note = f[9];
     label_rows::validate(label, where);
     labels.push_back(std::move(label));

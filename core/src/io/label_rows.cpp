@@ -245,6 +245,7 @@ FilterClause filter_clause(const LabelFilter& filter) {
   if (filter.recording) add("recording = ?", *filter.recording);
   if (filter.region) add("region = ?", *filter.region);
   if (filter.class_name) add("class = ?", *filter.class_name);
+  if (filter.annotator) add("annotator = ?", *filter.annotator);
   if (filter.source) add("source = ?", std::string(to_string(*filter.source)));
   // [t0, t1) meets [a, b) when t0 < b and t1 > a.
   if (filter.overlapping_t0) add("t1 > ?", *filter.overlapping_t0);

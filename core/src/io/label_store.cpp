@@ -408,7 +408,7 @@ std::vector<Label> LabelStore::list(const LabelFilter& filter) const {
   clause.bind(select);
   const label_rows::KnownClasses classes = label_rows::known_classes(database_, path_);
   // A read of whole recordings can be checked against their digests.
-  const bool whole = !filter.region && !filter.class_name && !filter.source &&
+  const bool whole = !filter.region && !filter.class_name && !filter.source && !filter.annotator &&
                      !filter.overlapping_t0 && !filter.overlapping_t1;
   std::map<std::string, label_rows::Digest> found;
   if (whole && filter.recording) found[label_rows::label_scope(*filter.recording)];

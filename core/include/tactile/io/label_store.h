@@ -23,7 +23,7 @@ namespace tactile {
 // everything. The overlap bounds select labels whose [t0, t1) intersects
 // [overlapping_t0, overlapping_t1); either bound may be given alone.
 struct LabelFilter {
-  std::optional<std::string> recording, region, class_name;
+  std::optional<std::string> recording, region, class_name, annotator;
   std::optional<LabelSource> source;
   std::optional<double> overlapping_t0, overlapping_t1;
 };
