@@ -16,6 +16,7 @@
 #include "tactile/error.h"
 #include "tactile/features/dataset.h"
 #include "tactile/ml/classifier.h"
+#include "tactile/labels/predict.h"
 #include "tactile/ml/evaluation.h"
 
 namespace tactile::cli {
@@ -31,6 +32,8 @@ struct EvaluateArgs {
   bool json = false;
   bool list = false;
   std::string save_model;
+  std::string out;
+  std::string pipeline, pipeline_params;  // recorded in a saved model
 };
 
 void print_list() {
@@ -39,41 +42,6 @@ void print_list() {
   for (const auto& entry : ml::classifier_catalog())
     std::cout << std::left << std::setw(static_cast<int>(width) + 2) << entry.name
               << entry.description << "\n";
-}
-
-// Fits on every row and writes the model with its class and feature names, through a temp
-// file so a failed write never leaves half a model behind.
-void save_model(const std::string& path, const Dataset& dataset, const std::string& specification,
-                uint64_t seed) {
-  const std::vector<std::string> classes = dataset.class_names();
-  std::map<std::string, int> index;
-  for (size_t k = 0; k < classes.size(); ++k) index[classes[k]] = static_cast<int>(k);
-  std::vector<int> labels;
-  for (const std::string& name : dataset.classes) labels.push_back(index.at(name));
-  auto classifier = ml::make_classifier(specification);
-  classifier->fit(dataset.features, labels, static_cast<int>(classes.size()), seed);
-  nlohmann::json document = ml::save_classifier(*classifier);
-  document["classes"] = classes;
-  nlohmann::json columns = nlohmann::json::array();
-  for (const FeatureColumn& column : dataset.columns) columns.push_back(column.name);
-  document["features"] = columns;
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path, "cannot write the model");
-    out << document.dump(1) << "\n";
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw Error(path, "cannot write the model");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot write the model: " + error.message());
-  }
 }
 
 std::string percent(double value) {
@@ -157,6 +125,66 @@ void print_result(const ml::EvaluationResult& result, const Dataset& dataset) {
             << " s, summed over folds)\n";
 }
 
+// `--classifier all`: every preset on the same folds, a table sorted by accuracy.
+void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protocol& protocol) {
+  ProgressBar bar("evaluate all");
+  ml::EvaluationControl control;
+  control.threads = args.threads;
+  control.scores = !args.out.empty();
+  control.progress = [&](int done, int total) { bar.update(done, total); };
+  std::vector<ml::PresetOutcome> outcomes = ml::evaluate_all(dataset, protocol, args.seed, control);
+  bar.finish();
+  std::stable_sort(outcomes.begin(), outcomes.end(),
+                   [](const ml::PresetOutcome& a, const ml::PresetOutcome& b) {
+                     const double x = a.result ? a.result->accuracy : -1.0;
+                     const double y = b.result ? b.result->accuracy : -1.0;
+                     return x > y;
+                   });
+  nlohmann::json table = nlohmann::json::array(), evaluations = nlohmann::json::array();
+  for (const ml::PresetOutcome& outcome : outcomes) {
+    nlohmann::json line = {{"classifier", outcome.classifier}};
+    if (outcome.result) {
+      line["accuracy"] = outcome.result->accuracy;
+      line["mean_recall"] = ml::mean_recall(*outcome.result);
+      line["seconds"] = outcome.result->seconds;
+      evaluations.push_back(ml::to_json(*outcome.result, true));
+      evaluations.back()["features"] = args.features;
+    } else {
+      line["skipped"] = outcome.skipped;
+    }
+    table.push_back(line);
+  }
+  if (!args.out.empty()) {
+    write_json_file(args.out,
+                    {{"protocol", protocol.to_string()},
+                     {"seed", args.seed},
+                     {"features", args.features},
+                     {"presets", table},
+                     {"evaluations", evaluations}},
+                    "evaluation");
+  }
+  if (args.json) {
+    std::cout << nlohmann::json{{"protocol", protocol.to_string()}, {"presets", table}}.dump(2)
+              << "\n";
+    return;
+  }
+  std::cout << "protocol " << protocol.to_string() << ", " << dataset.rows() << " rows, "
+            << dataset.features.cols() << " features, seed " << args.seed << "\n"
+            << std::left << std::setw(22) << "classifier" << std::right << std::setw(10)
+            << "accuracy" << std::setw(13) << "mean recall" << std::setw(10) << "time\n";
+  for (const ml::PresetOutcome& outcome : outcomes) {
+    std::cout << std::left << std::setw(22) << outcome.classifier << std::right;
+    if (!outcome.result) {
+      std::cout << "  skipped: " << outcome.skipped << "\n";
+      continue;
+    }
+    std::cout << std::setw(10) << percent(outcome.result->accuracy) << std::setw(13)
+              << percent(ml::mean_recall(*outcome.result)) << std::setw(8)
+              << std::setprecision(2) << outcome.result->seconds << " s\n";
+  }
+  if (!args.out.empty()) std::cout << "results     " << args.out << "\n";
+}
+
 void run_evaluate(const EvaluateArgs& args) {
   if (args.list) {
     print_list();
@@ -167,20 +195,40 @@ void run_evaluate(const EvaluateArgs& args) {
     throw Error("--classifier", "required (see `tactile evaluate --list`)");
   if (args.threads < 0) throw Error("--threads", "must be 0 (all cores) or more");
   const ml::Protocol protocol = ml::Protocol::parse(args.protocol);
-  ml::make_classifier(args.classifier);  // a bad name fails before the file is read
+  const bool all = args.classifier == "all";
+  if (all && !args.save_model.empty())
+    throw Error("--save-model", "needs one classifier, not `all` (pick one from the table)");
+  if (!all) ml::make_classifier(args.classifier);  // a bad name fails before the file is read
+  if (!args.out.empty() && std::filesystem::path(args.out).extension() != ".json")
+    throw Error("--out", "'" + args.out + "': the file name must end in .json");
   const Dataset dataset = read_dataset_csv(args.features);
+  if (all) {
+    run_all(args, dataset, protocol);
+    return;
+  }
 
   ProgressBar bar("evaluate " + args.classifier);
   ml::EvaluationControl control;
   control.threads = args.threads;
   control.progress = [&](int done, int total) { bar.update(done, total); };
+  control.scores = !args.out.empty() || args.json;
   const ml::EvaluationResult result =
       ml::evaluate(dataset, args.classifier, protocol, args.seed, control);
   bar.finish();
-  if (!args.save_model.empty()) save_model(args.save_model, dataset, args.classifier, args.seed);
+  if (!args.save_model.empty())
+    write_json_file(args.save_model,
+                    fit_model_document(dataset, args.classifier, args.seed, args.pipeline,
+                                       args.pipeline_params),
+                    "model");
+  if (!args.out.empty()) {
+    nlohmann::json document = ml::to_json(result, true);
+    document["features"] = args.features;
+    if (!args.save_model.empty()) document["model"] = args.save_model;
+    write_json_file(args.out, document, "evaluation");
+  }
 
   if (args.json) {
-    nlohmann::json out = ml::to_json(result);
+    nlohmann::json out = ml::to_json(result, true);
     out["features"] = args.features;
     if (!args.save_model.empty()) out["model"] = args.save_model;
     std::cout << out.dump(2) << "\n";
@@ -188,6 +236,7 @@ void run_evaluate(const EvaluateArgs& args) {
     print_result(result, dataset);
     if (!args.save_model.empty())
       std::cout << "model       " << args.save_model << " (fitted on all rows)\n";
+    if (!args.out.empty()) std::cout << "result      " << args.out << "\n";
   }
 }
 
@@ -200,7 +249,11 @@ void register_evaluate(CLI::App& app) {
   command->add_option("--features", args->features,
                       "Feature CSV (from `tactile features`, or any CSV with a class column)");
   command->add_option("--classifier", args->classifier,
-                      "NAME[:key=value,...], e.g. knn:k=3,metric=cosine (see --list)");
+                      "NAME[:key=value,...], e.g. knn:k=3,metric=cosine (see --list); "
+                      "`all`: every preset, a table sorted by accuracy");
+  command->add_option("--out", args->out,
+                      "Write the result as JSON (confusion, per-class figures and every test "
+                      "row: recording, t0, t1, region, true, predicted, score)");
   command
       ->add_option("--protocol", args->protocol,
                    "kfold:K[xR] | loo | loso | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY")
@@ -211,6 +264,11 @@ void register_evaluate(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--save-model", args->save_model,
                       "Also fit on every row and save the model as JSON");
+  command->add_option("--pipeline", args->pipeline,
+                      "With --save-model: the feature pipeline that made the table (default: "
+                      "the skin's own, from the rows' layout)");
+  command->add_option("--pipeline-params", args->pipeline_params,
+                      "With --save-model: that pipeline's --params");
   command->add_flag("--json", args->json, "Print the result as JSON");
   command->add_flag("--list", args->list, "List the classifier names and exit");
   command->callback([args] { run_evaluate(*args); });

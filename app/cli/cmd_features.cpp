@@ -57,43 +57,6 @@ void run_describe(const FeaturesOptions& options) {
   std::cout << columns.size() << " columns (" << extractor->name() << " on " << layout.id << ")\n";
 }
 
-// Labels grouped by recording, in the store's order, with their files checked up front so
-// a missing file fails before any work is done.
-std::vector<CorpusRecording> corpus_of(const FeaturesOptions& options, LabelSource source) {
-  LabelStore store(options.database, LabelStore::OpenMode::kExisting);
-  LabelFilter filter;
-  filter.source = source;
-  const std::vector<Label> labels = store.list(filter);
-  if (labels.empty())
-    throw Error(options.database, std::string("no labels of source ") + to_string(source));
-  std::map<std::string, std::vector<Label>> ground_truth;
-  if (source != LabelSource::kGroundTruth) {
-    LabelFilter truth;
-    truth.source = LabelSource::kGroundTruth;
-    for (Label& label : store.list(truth))
-      ground_truth[label.recording].push_back(std::move(label));
-  }
-  const std::filesystem::path folder =
-      options.recordings.empty() ? std::filesystem::absolute(options.database).parent_path()
-                                 : std::filesystem::path(options.recordings);
-  std::vector<CorpusRecording> corpus;
-  for (const Label& label : labels) {
-    if (corpus.empty() || corpus.back().id != label.recording) {
-      CorpusRecording recording;
-      recording.id = label.recording;
-      recording.path = (folder / (label.recording + ".h5")).string();
-      std::error_code error;
-      if (!std::filesystem::is_regular_file(recording.path, error))
-        throw Error(recording.path, "recording file missing (recording '" + label.recording +
-                                        "' has labels in " + options.database + ")");
-      recording.ground_truth = ground_truth[label.recording];
-      corpus.push_back(std::move(recording));
-    }
-    corpus.back().segments.push_back(label);
-  }
-  return corpus;
-}
-
 // The skip log beside the output: written whole to a temporary file, then renamed.
 void write_log(const std::string& path, const CorpusDataset& corpus,
                const FeaturesOptions& options) {
@@ -168,7 +131,8 @@ void run_extract(const FeaturesOptions& options) {
   }
   const auto extractor =
       make_feature_extractor(options.pipeline, Parameters::parse(options.params, "--params"));
-  const std::vector<CorpusRecording> corpus_recordings = corpus_of(options, source);
+  const std::vector<CorpusRecording> corpus_recordings =
+      corpus_from_store({options.database, source, options.recordings, ""});
 
   ProgressBar progress("features " + options.pipeline);
   CorpusOptions corpus_options;

@@ -19,5 +19,10 @@ void register_stream_listen(CLI::App& app);
 void register_evaluate(CLI::App& app);
 void register_experiment(CLI::App& app);
 void register_verify(CLI::App& app);
+void register_predict(CLI::App& app);
+
+// Files as given; folders expanded to their .h5 files, sorted, so runs are repeatable.
+// Throws tactile::Error naming an input that is neither, or a folder with no recording.
+std::vector<std::string> recording_files(const std::vector<std::string>& inputs);
 
 }  // namespace tactile::cli

@@ -141,5 +141,70 @@ TEST(EvaluateCli, NaNInTheFeaturesIsAnErrorNotAResult) {
   EXPECT_EQ(result.out.find("accuracy"), std::string::npos);
 }
 
+// --out: the evaluation as a file, with one row per test prediction (where its
+// segment is, what was true, what was answered, how sure), readable by the workbench.
+TEST(EvaluateCli, OutWritesEveryTestRowWithItsSegmentAndScore) {
+  TempFolder folder;
+  write_features(folder.file("features.csv"), 2.5);
+  const CommandResult result =
+      run_program("tactile",
+                  "evaluate --features '" + folder.file("features.csv") +
+                      "' --classifier knn:k=3 --protocol kfold:4 --out '" +
+                      folder.file("result.json") + "'",
+                  folder);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json json = nlohmann::json::parse(read_text(folder.file("result.json")));
+  ASSERT_EQ(json["rows"].size(), 40u);
+  int wrong = 0;
+  for (const nlohmann::json& row : json["rows"]) {
+    for (const char* key : {"recording", "t0", "t1", "region", "true", "predicted", "score"})
+      EXPECT_TRUE(row.contains(key)) << key;
+    EXPECT_GE(row["score"].get<double>(), 1.0 / 3.0 - 1e-12);  // a 3-NN vote's winner
+    EXPECT_LE(row["score"].get<double>(), 1.0);
+    wrong += row["true"] != row["predicted"];
+  }
+  EXPECT_EQ(wrong, static_cast<int>(json["misclassified_predictions"].size()));
+  EXPECT_GT(wrong, 0);
+  EXPECT_NEAR(json["accuracy"].get<double>(), (40 - wrong) / 40.0, 1e-12);
+  // A name that is not .json is refused before any work.
+  const CommandResult bad = run_program("tactile",
+                                        "evaluate --features '" + folder.file("features.csv") +
+                                            "' --classifier knn --out '" + folder.file("r.txt") + "'",
+                                        folder);
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--out"), std::string::npos) << bad.err;
+}
+
+// --classifier all: every preset on the same folds, a table sorted by accuracy; a preset
+// that cannot learn from the data is listed as skipped, not fatal.
+TEST(EvaluateCli, AllRunsEveryPresetIntoOneSortedTable) {
+  TempFolder folder;
+  write_features(folder.file("features.csv"), 3.0);
+  const CommandResult result =
+      run_program("tactile",
+                  "evaluate --features '" + folder.file("features.csv") +
+                      "' --classifier all --protocol kfold:4 --out '" + folder.file("all.json") + "'",
+                  folder);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("mean recall"), std::string::npos) << result.out;
+  const nlohmann::json json = nlohmann::json::parse(read_text(folder.file("all.json")));
+  ASSERT_GE(json["presets"].size(), 15u);
+  double previous = 2.0;
+  for (const nlohmann::json& preset : json["presets"]) {
+    if (!preset.contains("accuracy")) continue;
+    EXPECT_LE(preset["accuracy"].get<double>(), previous + 1e-12);
+    previous = preset["accuracy"].get<double>();
+  }
+  EXPECT_FALSE(json["evaluations"].empty());
+  EXPECT_EQ(json["evaluations"][0]["rows"].size(), 40u);
+  for (const nlohmann::json& preset : json["presets"])
+    EXPECT_NE(preset["classifier"], "grid-search");  // a search, not a preset
+  const CommandResult model = run_program(
+      "tactile",
+      "evaluate --features '" + folder.file("features.csv") + "' --classifier all --save-model m.json",
+      folder);
+  EXPECT_NE(model.exit_code, 0);
+}
+
 }  // namespace
 }  // namespace tactile::test

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -278,6 +279,84 @@ TEST_F(FeaturesCommand, SegmentThenFeaturesOnAFolder) {
   EXPECT_GE(dataset.rows(), 2);
   for (const std::string& name : dataset.classes)
     EXPECT_TRUE(name == "press" || name == "swipe" || name == "unknown") << name;
+}
+
+}  // namespace
+}  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// The loop `features` -> `evaluate --save-model` -> `predict`: a model's answers become
+// labels of source model, one per segment, with score and margin; a second run replaces.
+TEST_F(FeaturesCommand, PredictWritesModelLabelsFromASavedModel) {
+  ASSERT_EQ(tactile(features("features.csv")).exit_code, 0);
+  const CommandResult trained = tactile(
+      "evaluate --features " + quoted("features.csv") +
+      " --classifier knn:k=1 --protocol kfold:2 --pipeline generic --save-model " +
+      quoted("model.json"));
+  ASSERT_EQ(trained.exit_code, 0) << trained.err;
+  const nlohmann::json model = nlohmann::json::parse(test::read_text(folder_.file("model.json")));
+  EXPECT_EQ(model["pipeline"], "generic");
+  EXPECT_EQ(model["layout"], "grid:5x5");
+  EXPECT_EQ(model["classes"], nlohmann::json({"press", "swipe"}));
+
+  const std::string predict = "predict " + quoted("grid-s01.h5") + " " + quoted("grid-s02.h5") +
+                              " --model " + quoted("model.json") + " --labels " +
+                              quoted("labels.db");
+  const CommandResult first = tactile(predict);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("8 predictions from 2 recordings"), std::string::npos) << first.out;
+  LabelFilter filter;
+  filter.source = LabelSource::kModel;
+  std::vector<Label> predicted = LabelStore(database_).list(filter);
+  ASSERT_EQ(predicted.size(), 8u);
+  for (const Label& label : predicted) {
+    EXPECT_EQ(label.annotator, "model");
+    EXPECT_TRUE(label.class_name == "press" || label.class_name == "swipe") << label.class_name;
+    EXPECT_GE(label.confidence, 0.5);  // 1-NN votes: the winner holds the whole vote
+    EXPECT_NE(label.note.find("margin="), std::string::npos) << label.note;
+  }
+  // The model learned these very segments: every answer is the ground truth.
+  LabelFilter truth_filter;
+  truth_filter.source = LabelSource::kGroundTruth;
+  const std::vector<Label> truth = LabelStore(database_).list(truth_filter);
+  for (const Label& label : predicted)
+    for (const Label& known : truth)
+      if (known.recording == label.recording && known.t0 == label.t0) {
+        EXPECT_EQ(known.class_name, label.class_name);
+      }
+
+  const CommandResult second = tactile(predict);
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_NE(second.out.find("(replaced 4)"), std::string::npos) << second.out;
+  EXPECT_EQ(LabelStore(database_).list(filter).size(), 8u);
+}
+
+TEST_F(FeaturesCommand, PredictRefusesAModelOfAnotherSkinOrWithoutPipeline) {
+  ASSERT_EQ(tactile(features("features.csv")).exit_code, 0);
+  ASSERT_EQ(tactile("evaluate --features " + quoted("features.csv") +
+                    " --classifier knn --protocol kfold:2 --pipeline generic --save-model " +
+                    quoted("model.json"))
+                .exit_code,
+            0);
+  nlohmann::json model = nlohmann::json::parse(test::read_text(folder_.file("model.json")));
+  model["layout"] = "nao";
+  std::ofstream(folder_.file("nao.json")) << model.dump();
+  const CommandResult other = tactile("predict " + quoted("grid-s01.h5") + " --model " +
+                                      quoted("nao.json") + " --labels " + quoted("labels.db"));
+  EXPECT_NE(other.exit_code, 0);
+  EXPECT_NE(other.err.find("the model is for 'nao'"), std::string::npos) << other.err;
+  model["layout"] = "grid:5x5";
+  model["pipeline"] = "";
+  std::ofstream(folder_.file("bare.json")) << model.dump();
+  const CommandResult bare = tactile("predict " + quoted("grid-s01.h5") + " --model " +
+                                     quoted("bare.json") + " --labels " + quoted("labels.db"));
+  EXPECT_NE(bare.exit_code, 0);
+  EXPECT_NE(bare.err.find("does not name its feature pipeline"), std::string::npos) << bare.err;
+  LabelFilter filter;
+  filter.source = LabelSource::kModel;
+  EXPECT_TRUE(LabelStore(database_).list(filter).empty());  // nothing half-written
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "tactile/error.h"
+#include "tactile/labels/predict.h"
 #include "tactile/labels/region.h"
 #include "tactile/labels/suggestions.h"
 #include "tactile/layout/taxel_values.h"
@@ -85,7 +86,73 @@ bool choose_class(WorkbenchState& state, int key) {
   if (key < 1 || key > static_cast<int>(classes.size()))
     return fail(state, "no class on key " + std::to_string(key) + " (the skin has " +
                            std::to_string(classes.size()) + ")");
-  state.labelling.pending_class = classes[static_cast<size_t>(key - 1)];
+  const std::string& chosen = classes[static_cast<size_t>(key - 1)];
+  // A digit on a selected prediction (no marks set) corrects it at once.
+  const std::optional<Label> selected = selected_label(state);
+  if (selected && selected->source == LabelSource::kModel && !state.labelling.mark_start &&
+      !state.labelling.mark_end)
+    return confirm_prediction(state, chosen);
+  state.labelling.pending_class = chosen;
+  return true;
+}
+
+bool confirm_prediction(WorkbenchState& state, const std::string& corrected_class) {
+  const std::optional<Label> selected = selected_label(state);
+  if (!selected || selected->source != LabelSource::kModel)
+    return fail(state, "select a prediction (a label of the model lane) first");
+  const std::string class_name = corrected_class.empty() ? selected->class_name : corrected_class;
+  if (class_name == kUnknownClass) return fail(state, "the model answered unknown: press its digit");
+  try {
+    Label label = *selected;
+    label.id = 0;
+    label.class_name = class_name;
+    label.annotator = state.labelling.annotator;
+    label.source = LabelSource::kManual;
+    label.confidence = 1.0;
+    label.note = (corrected_class.empty() || corrected_class == selected->class_name
+                      ? "confirmed model: "
+                      : "corrected model: ") +
+                 selected->class_name;
+    state.document->label_store().add(label);
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  after_edit(state, 0,
+             (class_name == selected->class_name ? "confirmed " : "corrected to ") + class_name +
+                 " " + format_seconds(selected->t0));
+  next_uncertain_prediction(state);
+  return true;
+}
+
+bool next_uncertain_prediction(WorkbenchState& state) {
+  if (!state.document) return false;
+  const int lane_index = state.document->lanes.find({LabelSource::kModel, kModelAnnotator});
+  if (lane_index < 0) return fail(state, "no predictions: run `tactile predict` or Model > Predict");
+  const LaneIndex* own_lane = active_lane(state);
+  const Label* best = nullptr;
+  double best_margin = 0.0;
+  for (const Label& label :
+       state.document->lanes.lanes[static_cast<size_t>(lane_index)].labels()) {
+    // Already decided by the operator: one of their labels covers it.
+    bool decided = false;
+    if (own_lane)
+      for (const Label& mine : own_lane->labels())
+        if (mine.t0 < label.t1 && label.t0 < mine.t1) decided = true;
+    if (decided) continue;
+    const double margin = prediction_margin(label);
+    if (!best || margin < best_margin) best = &label, best_margin = margin;
+  }
+  if (!best) {
+    state.notice = "every prediction is decided";
+    return false;
+  }
+  state.selection.labels = {best->id};
+  state.clock.seek(best->t0);
+  const double span = std::max(1.0, 3.0 * (best->t1 - best->t0));
+  state.plot.view_t0 = best->t0 - span / 3.0;
+  state.plot.view_t1 = state.plot.view_t0 + span;
+  state.notice = "least sure: " + best->class_name + " (margin " +
+                 std::to_string(best_margin).substr(0, 5) + ") - digit corrects, Y confirms";
   return true;
 }
 
@@ -396,7 +463,11 @@ void handle_labelling_keys(WorkbenchState& state) {
   if (plain && pressed(']')) mark_end(state);
   for (int key = 1; key <= 9; ++key)
     if (plain && !io.KeyShift && pressed('0' + key)) choose_class(state, key);
-  if (pressed_named(ImGuiKey_Enter) || pressed_named(ImGuiKey_KeyPadEnter)) commit_label(state);
+  // Enter belongs to a confusion cell's segment list while one is open and nothing is marked.
+  const bool enter_for_list = state.analysis.list_active && !state.labelling.mark_start &&
+                              !state.labelling.mark_end && state.labelling.pending_class.empty();
+  if (!enter_for_list && (pressed_named(ImGuiKey_Enter) || pressed_named(ImGuiKey_KeyPadEnter)))
+    commit_label(state);
   if (pressed_named(ImGuiKey_Escape)) {
     state.labelling.mark_start.reset();
     state.labelling.mark_end.reset();
@@ -416,6 +487,8 @@ void handle_labelling_keys(WorkbenchState& state) {
     state.labelling.picker_open = true;
     state.labelling.picker_text.fill('\0');
   }
+  if (plain && !io.KeyShift && pressed('Y')) confirm_prediction(state, "");
+  if (plain && !io.KeyShift && pressed('U')) next_uncertain_prediction(state);
   if (plain && !io.KeyShift && pressed('S')) {
     state.labelling.snap = !state.labelling.snap;
     state.notice = state.labelling.snap ? "snapping on" : "snapping off";

@@ -3,7 +3,7 @@
 // time cursor (moved back by the reaction time while playing), 1-9 choose the class
 // from the skin's vocabulary (C: a type-ahead picker for any class), Enter commits;
 // G runs the last segmenter again (adaptive at first), A / R accept / reject a
-// suggestion, S toggles snapping; Tab / Shift+Tab walk the labels of the
+// suggestion, Y confirms a prediction (a digit corrects it), U goes to the least sure one, S toggles snapping; Tab / Shift+Tab walk the labels of the
 // operator's lane, arrows step by a sample (Shift: a second), Delete removes,
 // Ctrl+Z / Ctrl+Shift+Z undo and redo through the store's journal, Escape drops the
 // marks. Each edit is one transaction in the label store the moment it is made.
@@ -40,6 +40,13 @@ bool run_segmenter(WorkbenchState& state, const std::string& method);
 // it has one); R: rejects it (remembered in the store). Both move to the next one.
 bool accept_suggestion(WorkbenchState& state);
 bool reject_suggestion(WorkbenchState& state);
+
+// The prediction lane (labels of source model): Y confirms the selected prediction,
+// its class's digit corrects it; either writes a manual label of the operator with its
+// bounds and region, then moves to the next most uncertain. U goes to the prediction
+// with the smallest margin that no label of the operator covers yet.
+bool confirm_prediction(WorkbenchState& state, const std::string& corrected_class);
+bool next_uncertain_prediction(WorkbenchState& state);
 
 // Moves the bounds of an own label (a dragged edge); one transaction.
 bool move_label_bounds(WorkbenchState& state, int64_t label, double t0, double t1);

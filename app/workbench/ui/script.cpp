@@ -150,7 +150,7 @@ ImVec2 centre_of(const ScreenRect& rect) {
 std::vector<ScriptStep> parse_script(const std::string& text, const std::string& where) {
   static const std::map<std::string, std::pair<size_t, size_t>> kArity = {
       {"open", {1, 99}},  {"time", {1, 1}},  {"key", {1, 99}},   {"type", {1, 99}},
-      {"click", {2, 4}},  {"drag", {3, 5}},  {"menu", {1, 99}},  {"wait", {1, 1}},
+      {"click", {2, 99}},  {"drag", {3, 5}},  {"menu", {1, 99}},  {"wait", {1, 1}},
       {"play", {1, 1}},   {"sleep", {1, 1}}, {"screenshot", {1, 99}}, {"state", {1, 99}}};
   std::vector<ScriptStep> steps;
   std::istringstream lines(text);
@@ -177,7 +177,9 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
     if (step.words.size() < arity->second.first || step.words.size() > arity->second.second)
       throw Error(place, step.command + ": wrong number of arguments (docs/SCRIPTING.md)");
     // Check what can be checked before anything runs.
-    if (step.command == "time" || step.command == "wait" || step.command == "play" ||
+    if (step.command == "wait" && step.words[0] == "training") {
+      // Draws frames until the model panel's run ends.
+    } else if (step.command == "time" || step.command == "wait" || step.command == "play" ||
         step.command == "sleep") {
       const double value = parse_number(step, 0, where);
       if (value < 0) throw Error(place, step.command + ": must not be negative");
@@ -195,13 +197,15 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
         parse_number(step, 1, where);
       } else if (what == "time") {
         parse_number(step, 1, where);
-      } else if ((what == "recording" || what == "item") && step.words.size() == 2) {
+      } else if (what == "recording" && step.words.size() == 2) {
+      } else if (what == "item") {  // the rest of the line: names may hold spaces
+      } else if (what == "cell" && step.words.size() == 3) {
       } else if (step.words.size() == 3) {
         parse_number(step, 1, where), parse_number(step, 2, where);
       } else {
         throw Error(place,
-                    "click: expected 'taxel ID', 'time T [in VIEW]', 'recording NAME', 'item NAME' "
-                    "or 'VIEW X Y'");
+                    "click: expected 'taxel ID', 'time T [in VIEW]', 'recording NAME', 'item NAME', "
+                    "'cell TRUE PREDICTED' or 'VIEW X Y'");
       }
     } else if (step.command == "drag") {
       if (step.words[0] != "time" && step.words[0] != "taxel")
@@ -302,6 +306,26 @@ void ScriptPlayer::expand(const ScriptStep& step) {
   } else if (command == "time") {
     const double t = std::stod(step.words[0]);
     once([t](Workbench& workbench, ImGuiIO&) { workbench.seek(t); });
+  } else if (command == "wait" && step.words[0] == "training") {
+    // Frames go on being drawn (the window stays responsive) until the run ends; ten
+    // minutes at most.
+    auto deadline = std::make_shared<std::optional<Clock::time_point>>();
+    actions_.push_back([this, step, deadline](Workbench& workbench, ImGuiIO&) {
+      const auto now = Clock::now();
+      if (!*deadline) *deadline = now + std::chrono::minutes(10);
+      const auto& job = workbench.state().analysis.job;
+      if (!job) {
+        if (!workbench.error().empty() && workbench.error().starts_with("training failed"))
+          fail(step, workbench.error());
+        return true;
+      }
+      if (now >= **deadline) {
+        fail(step, "training still running after 10 minutes");
+        return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      return false;
+    });
   } else if (command == "wait") {
     const int frames = static_cast<int>(std::stod(step.words[0]));
     for (int k = 0; k < frames; ++k) once([](Workbench&, ImGuiIO&) {});
@@ -343,9 +367,11 @@ void ScriptPlayer::expand(const ScriptStep& step) {
           return point;
         },
         step);
-  } else if (command == "click" && (step.words[0] == "recording" || step.words[0] == "item")) {
-    const std::string name =
-        step.words[0] == "recording" ? "recording:" + step.words[1] : step.words[1];
+  } else if (command == "click" && (step.words[0] == "recording" || step.words[0] == "item" ||
+                                     (step.words[0] == "cell" && step.words.size() == 3))) {
+    const std::string name = step.words[0] == "recording" ? "recording:" + step.words[1]
+                             : step.words[0] == "cell" ? "cell:" + step.words[1] + "/" + step.words[2]
+                                                       : step.rest.substr(step.rest.find_first_not_of(" \t", 4));
     click_at(
         [name](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
           const auto& items = workbench.state().targets.items;
@@ -353,6 +379,9 @@ void ScriptPlayer::expand(const ScriptStep& step) {
           if (found == items.end()) {
             problem = name.starts_with("recording:")
                           ? "no " + name.substr(10) + " in the workspace list"
+                      : name.starts_with("cell:")
+                          ? "no confusion cell " + name.substr(5) +
+                                " on screen (open the Confusion tab; class names as on its axes)"
                           : "no item '" + name + "' on screen";
             return std::nullopt;
           }

@@ -18,6 +18,11 @@ constexpr ViewSpec kViews[] = {
     {"signals", "Signals", true, draw_signals_view},
     {"timeline", "Timeline", true, draw_timeline_view},
     {"quality", "Quality", true, draw_quality_view},
+    {"model", "Model", true, draw_model_view},
+    {"confusion", "Confusion", false, draw_confusion_view},
+    {"scatter", "Scatter", false, draw_scatter_view},
+    {"som", "SOM", false, draw_som_view},
+    {"somatosensory", "Somatosensory map", true, draw_somatosensory_view},
 };
 
 }  // namespace

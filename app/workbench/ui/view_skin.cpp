@@ -2,6 +2,7 @@
 // selects it (shift: adds to the selection) and toggles its channel in the plot.
 #include <algorithm>
 
+#include "analysis.h"
 #include "tactile/labels/region.h"
 #include "views.h"
 
@@ -88,6 +89,13 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   remember_item(state, "region");
   ImGui::SameLine();
   ImGui::Checkbox("raw values", &state.show_raw_values);
+  ImGui::SameLine();
+  // The body as built, or the somatosensory map: taxels placed by how they are touched together.
+  ImGui::Checkbox("somatosensory map", &state.analysis.somatosensory);
+  remember_item(state, "somatosensory map");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Taxels placed by MDS of their correlation distances -ln|R|\n"
+                      "over this recording (Robovie paper); cached beside it.");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "Off: each taxel's change from its rest level (median), scaled to the\n"
@@ -105,12 +113,42 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
       if (label.id == state.selection.labels.front() && label.region != "all")
         for (int64_t taxel : taxels_of_region(layout, label.region)) outlined.push_back(taxel);
   style.selected_taxels = outlined;
+  // The segment landed on from a classifier view: its region outlined, both classes named.
+  const auto& landed = state.analysis.landed;
+  const bool landed_here = landed && landed->recording == state.document->recording_id();
+  if (landed_here && landed->region != "all" && !landed->region.empty())
+    for (int64_t taxel : taxels_of_region(layout, landed->region)) outlined.push_back(taxel);
+  const SkinLayout* drawn = &layout;
+  if (state.analysis.somatosensory && ensure_somatosensory(state)) {
+    if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id ||
+        state.analysis.map_layout->taxels.size() != layout.taxels.size())
+      state.analysis.map_layout = layout_on_map(layout, *state.analysis.map);
+    drawn = &*state.analysis.map_layout;
+    style.show_group_names = false;
+  }
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
   const SkinViewResult result =
-      draw_skin_view("skin_view", layout, values, value_min, value_max, available, style);
+      draw_skin_view("skin_view", *drawn, values, value_min, value_max, available, style);
+  if (landed_here) {
+    const ml::EvaluationResult* evaluation = current_evaluation(state);
+    const auto name = [&](int k) {
+      return evaluation && k >= 0 && k < static_cast<int>(evaluation->classes.size())
+                 ? evaluation->classes[static_cast<size_t>(k)]
+                 : std::string("unknown");
+    };
+    const std::string text = "true " + name(landed->truth) + "   predicted " +
+                             name(landed->predicted) + "   (" + landed->region + ")";
+    ImDrawList& draw = *ImGui::GetWindowDrawList();
+    const ImVec2 at(origin.x + 8, origin.y + 6);
+    const ImVec2 extent = ImGui::CalcTextSize(text.c_str());
+    const bool wrong = landed->truth != landed->predicted;
+    draw.AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + extent.x + 4, at.y + extent.y + 2),
+                       wrong ? IM_COL32(120, 30, 25, 230) : IM_COL32(25, 90, 40, 230), 3.0f);
+    draw.AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
+  }
   state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));
-  for (const Taxel& taxel : layout.taxels) {
+  for (const Taxel& taxel : drawn->taxels) {
     const ImVec2 centre = result.transform.apply(taxel.position);
     state.targets.taxels[taxel.id] = {centre.x, centre.y};
   }
@@ -118,8 +156,15 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     select_taxel(state, result.clicked_taxel, ImGui::GetIO().KeyShift);
     toggle_taxel_channel(state, result.clicked_taxel);
   }
-  select_in_rectangle(state, layout, result, origin, available);
+  select_in_rectangle(state, *drawn, result, origin, available);
   ImGui::EndChild();
+}
+
+void draw_somatosensory_view(WorkbenchState& state, ImVec2 size) {
+  const bool was = state.analysis.somatosensory;
+  state.analysis.somatosensory = true;
+  draw_skin_panel_view(state, size);
+  state.analysis.somatosensory = was;
 }
 
 }  // namespace tactile

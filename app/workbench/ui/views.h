@@ -26,6 +26,11 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size);
 void draw_signals_view(WorkbenchState& state, ImVec2 size);
 void draw_timeline_view(WorkbenchState& state, ImVec2 size);
 void draw_quality_view(WorkbenchState& state, ImVec2 size);
+void draw_model_view(WorkbenchState& state, ImVec2 size);
+void draw_confusion_view(WorkbenchState& state, ImVec2 size);
+void draw_scatter_view(WorkbenchState& state, ImVec2 size);
+void draw_som_view(WorkbenchState& state, ImVec2 size);
+void draw_somatosensory_view(WorkbenchState& state, ImVec2 size);
 
 // Every view, in menu order.
 std::span<const ViewSpec> all_views();

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "analysis.h"
 #include "labelling.h"
 #include "tactile/error.h"
 #include "tactile/layout/taxel_values.h"
@@ -64,7 +65,10 @@ Workbench::Workbench(const WorkbenchOptions& options) {
     const char* user = std::getenv("USER");
     state_.labelling.annotator = user && *user ? user : "operator";
   }
-  if (options.open_path.empty()) return;
+  if (options.open_path.empty()) {
+    open_analysis_files();
+    return;
+  }
   std::error_code error;
   if (fs::is_directory(options.open_path, error)) {
     set_workspace(options.open_path);
@@ -76,6 +80,14 @@ Workbench::Workbench(const WorkbenchOptions& options) {
   }
   if (state_.document && options.time) state_.clock.seek(*options.time);
   if (state_.document && options.play) state_.clock.play();
+  open_analysis_files();
+}
+
+void Workbench::open_analysis_files() {
+  const WorkbenchOptions& options = state_.options;
+  if (!options.features_path.empty()) open_features_file(state_, options.features_path);
+  if (!options.evaluation_path.empty()) open_evaluation_file(state_, options.evaluation_path);
+  if (!options.model_path.empty()) open_model_file(state_, options.model_path);
 }
 
 void Workbench::set_workspace(const std::string& folder) {
@@ -197,10 +209,21 @@ void Workbench::choose_default_view() {
 void Workbench::frame(double seconds) {
   ++state_.frame;
   state_.clock.advance(seconds);
+  // A landed segment replays once, then the cursor rests in its middle.
+  double& until = state_.analysis.replay_until;
+  if (until >= 0.0 && (!state_.clock.playing() || state_.clock.time() >= until)) {
+    if (state_.clock.playing() && state_.analysis.landed) {
+      state_.clock.pause();
+      state_.clock.seek(0.5 * (state_.analysis.landed->t0 + state_.analysis.landed->t1));
+    }
+    until = -1.0;
+  }
+  poll_training(state_);
   ImGuiIO& io = ImGui::GetIO();
   if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
     state_.clock.toggle();
   handle_labelling_keys(state_);
+  handle_analysis_keys(state_);
   state_.targets = UiTargets{};
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
@@ -239,6 +262,7 @@ void Workbench::note_damage() {
 
 void Workbench::carry_out_requests() {
   if (auto path = std::exchange(state_.open_request, std::nullopt)) open(*path);
+  carry_out_landing(state_);
   if (auto stream = std::exchange(state_.stream_request, std::nullopt))
     if (state_.document) select_stream(*stream);
   if (auto view = std::exchange(state_.export_request, std::nullopt)) {
@@ -300,7 +324,14 @@ void Workbench::draw_arrangement(ImVec2 area) {
   ImGui::SameLine(0.0f, 0.0f);
   ImGui::BeginGroup();
   const float right_width = area.x - sizes.sidebar_width - kSplitterThickness;
-  if (!state_.document) {
+  const bool any_analysis = !state_.analysis.results.empty() || state_.analysis.dataset ||
+                            state_.analysis.som;
+  if (!state_.document && any_analysis) {
+    // Results opened without a recording: the classifier views take the space.
+    ImGui::BeginChild("analysis_frame", ImVec2(right_width, area.y), true);
+    draw_tabs({"confusion", "scatter", "som"});
+    ImGui::EndChild();
+  } else if (!state_.document) {
     ImGui::BeginChild("welcome", ImVec2(right_width, area.y), true);
     ImGui::TextUnformatted("No recording open.");
     ImGui::TextUnformatted("File > Open... (Ctrl+O), or pick one from the workspace on the left.");
@@ -321,7 +352,7 @@ void Workbench::draw_arrangement(ImVec2 area) {
     sizes.skin_fraction = skin_pixels / std::max(1.0f, right_width);
     ImGui::SameLine(0.0f, 0.0f);
     ImGui::BeginChild("signals_frame", ImVec2(right_width - skin_width - kSplitterThickness, top_height), true);
-    draw_view("signals", ImGui::GetContentRegionAvail());
+    draw_tabs({"signals", "model", "confusion", "scatter", "som"});
     ImGui::EndChild();
     released |= splitter(state_, "timeline", false, right_width, sizes.timeline_height, kMinimumPanel,
                          area.y - 2 * kMinimumPanel, -1.0f);
@@ -331,6 +362,21 @@ void Workbench::draw_arrangement(ImVec2 area) {
   }
   ImGui::EndGroup();
   if (released) save_settings();
+}
+
+void Workbench::draw_tabs(std::initializer_list<const char*> names) {
+  if (!ImGui::BeginTabBar("view_tabs")) return;
+  const std::string request = std::exchange(state_.analysis.tab_request, std::string());
+  for (const char* name : names) {
+    const ImGuiTabItemFlags flags = request == name ? ImGuiTabItemFlags_SetSelected : 0;
+    const bool open = ImGui::BeginTabItem(view_title(name).c_str(), nullptr, flags);
+    remember_item(state_, std::string("tab:") + name);
+    if (open) {
+      draw_view(name, ImGui::GetContentRegionAvail());
+      ImGui::EndTabItem();
+    }
+  }
+  ImGui::EndTabBar();
 }
 
 void Workbench::draw_menu_bar() {
@@ -547,6 +593,7 @@ nlohmann::json Workbench::state_json() const {
   json["quality"] = {{"kappa", state_.quality.agreement.kappa},
                      {"f1", state_.quality.agreement.f1},
                      {"disagreements", state_.quality.agreement.disagreements.size()}};
+  json["analysis"] = analysis_json();
   json["workspace"] = state_.workspace;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : state_.workspace_files)
@@ -562,6 +609,52 @@ nlohmann::json Workbench::state_json() const {
   json["notice"] = state_.notice;
   json["frame"] = state_.frame;
   return json;
+}
+
+nlohmann::json Workbench::analysis_json() const {
+  const AnalysisState& analysis = state_.analysis;
+  nlohmann::json results = nlohmann::json::array();
+  for (const ml::PresetOutcome& outcome : analysis.results) {
+    nlohmann::json line = {{"classifier", outcome.classifier}};
+    if (outcome.result) {
+      line["accuracy"] = outcome.result->accuracy;
+      line["mean_recall"] = ml::mean_recall(*outcome.result);
+    } else {
+      line["skipped"] = outcome.skipped;
+    }
+    results.push_back(line);
+  }
+  const ml::EvaluationResult* current = current_evaluation(state_);
+  const auto class_name = [&](int k) -> nlohmann::json {
+    if (!current) return nullptr;
+    return k >= 0 && k < static_cast<int>(current->classes.size())
+               ? current->classes[static_cast<size_t>(k)]
+               : std::string("unknown");
+  };
+  nlohmann::json landed = nullptr;
+  if (analysis.landed)
+    landed = {{"recording", analysis.landed->recording}, {"t0", analysis.landed->t0},
+              {"t1", analysis.landed->t1},               {"region", analysis.landed->region},
+              {"true", class_name(analysis.landed->truth)},
+              {"predicted", class_name(analysis.landed->predicted)},
+              {"segment_id", analysis.landed->segment_id}};
+  std::string training = "idle";
+  if (analysis.job) training = analysis.job->status() == ml::TrainingJob::Status::kRunning ? "running" : "finished";
+  return {{"training", training},
+          {"results", results},
+          {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
+          {"cell", {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
+                    {"predicted", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
+                    {"segments", analysis.cell_rows.size()},
+                    {"selected", analysis.cell_selected}}},
+          {"landed", landed},
+          {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
+          {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},
+                                                 {"columns", analysis.som->map().columns},
+                                                 {"neuron", analysis.som_neuron}})
+                               : nlohmann::json(nullptr)},
+          {"somatosensory", analysis.somatosensory},
+          {"somatosensory_taxels", analysis.map ? analysis.map->taxels.size() : 0}};
 }
 
 }  // namespace tactile

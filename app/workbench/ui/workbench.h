@@ -4,6 +4,7 @@
 // views (views.h) with splitters, runs the menus and carries out the views' requests.
 
 #include <nlohmann/json.hpp>
+#include <initializer_list>
 #include <optional>
 #include <string>
 
@@ -46,6 +47,10 @@ class Workbench {
   DocumentOptions document_options(const std::string& stream) const;
   void choose_default_view();
   void draw_menu_bar();
+  // A tab bar of views; a view asked for by state.analysis.tab_request comes to front.
+  void draw_tabs(std::initializer_list<const char*> names);
+  void open_analysis_files();
+  nlohmann::json analysis_json() const;
   void draw_arrangement(ImVec2 area);
   void draw_view(const char* name, ImVec2 size);
   void draw_status_bar();

@@ -33,6 +33,16 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
       ->check(CLI::Range(1.0, 65536.0));
   app.add_option("--annotator", args.options.annotator,
                  "Name recorded with every label edit (default: the settings', else $USER)");
+  app.add_option("--evaluation", args.options.evaluation_path,
+                 "Open an evaluation result (`tactile evaluate --out`): its confusion matrix and "
+                 "the scatter of its rows")
+      ->check(CLI::ExistingFile);
+  app.add_option("--model", args.options.model_path,
+                 "Open a saved SOM model (`evaluate --save-model`): its region map")
+      ->check(CLI::ExistingFile);
+  app.add_option("--features", args.options.features_path,
+                 "Open a feature table (`tactile features`): its scatter")
+      ->check(CLI::ExistingFile);
   app.add_option("--settings", args.options.settings_path,
                  "Settings file (default: ~/.config/tactile-workbench/settings.json)");
   try {

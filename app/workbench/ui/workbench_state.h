@@ -19,6 +19,10 @@
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/quality.h"
 #include "tactile/live/playback.h"
+#include "tactile/layout/somatosensory.h"
+#include "tactile/ml/evaluation.h"
+#include "tactile/ml/som.h"
+#include "tactile/ml/training_job.h"
 #include "tactile/signal/display_scale.h"
 #include "tactile/widgets/signal_plot.h"
 #include "tactile/widgets/skin_view.h"
@@ -88,6 +92,51 @@ struct LabellingState {
   std::string active_lane() const { return "manual:" + annotator; }
 };
 
+// The classifier side: the model panel's choices and its background run, the results
+// (trained here or opened from files) and where the views stand in them.
+struct AnalysisState {
+  // The model panel.
+  std::string pipeline;  // "" = the skin's own
+  std::array<char, 128> classifier{"linear-svm"};
+  std::array<char, 64> protocol{"kfold:5"};
+  LabelSource segments = LabelSource::kGroundTruth;
+  std::unique_ptr<ml::TrainingJob> job;
+  // The results: one per classifier tried (one row of the train-all table each).
+  std::vector<ml::PresetOutcome> results;
+  std::string results_from;  // what they are of ("nao, kaboli features", a file)
+  int current = -1;          // the row whose views are shown
+  std::optional<Dataset> dataset;  // the feature table the results are about
+  std::string dataset_layout;      // its skin
+  int sort_column = 1;             // the table's: 0 name, 1 accuracy, 2 mean recall, 3 time
+  bool sort_ascending = false;
+  // The confusion view: the clicked cell and its segments (indices into the rows).
+  int cell_true = -1, cell_predicted = -1;
+  std::vector<size_t> cell_rows;
+  int cell_selected = 0;
+  bool list_active = false;  // Enter picks the selected segment
+  // The segment landed on: the skin outlines its region and names both classes.
+  std::optional<ml::RowPrediction> landed;
+  bool landing_pending = false;  // land_on asked; carried out once its recording is open
+  double replay_until = -1.0;  // the clock pauses here (the landed segment's end)
+  // The SOM map: a SOM fitted on the table (or loaded), and each row's winner.
+  std::unique_ptr<ml::SomClassifier> som;
+  std::vector<std::string> som_classes;
+  std::vector<int> som_winners;  // per dataset row
+  const void* som_for = nullptr;  // which table the winners are for
+  bool u_matrix = false;
+  int som_neuron = -1;  // clicked
+  // The scatter: the table's rows on the first two principal components.
+  Eigen::MatrixXd scatter;
+  double scatter_explained = 0.0;
+  const void* scatter_for = nullptr;
+  // The somatosensory map of the open recording (per modality), computed or from its cache.
+  bool somatosensory = false;  // the skin view shows it instead of the body map
+  std::optional<SomatosensoryMap> map;
+  std::optional<SkinLayout> map_layout;  // the layout with its taxels moved onto the map
+  std::string map_for;  // recording path + modality it was made for
+  std::string tab_request;  // a view tab to bring to front next frame
+};
+
 struct WorkbenchOptions {
   std::string open_path;    // a recording, or a folder (workspace) whose first recording opens
   std::string labels_path;  // label database; default labels.db beside the recording
@@ -97,6 +146,9 @@ struct WorkbenchOptions {
   std::string settings_path;                // "" = the user's settings file
   std::string annotator;                    // "" = the settings' or $USER
   std::string only_view;                    // draw just this view over the whole window
+  std::string evaluation_path;  // --evaluation RESULT.json
+  std::string model_path;       // --model MODEL.json (a SOM's map)
+  std::string features_path;    // --features TABLE.csv (the scatter)
 };
 
 struct WorkbenchState {
@@ -115,6 +167,7 @@ struct WorkbenchState {
   int rest_scale_modality = -1;  // modality rest_scale was computed for; -1: stale
   Selection selection;
   LabellingState labelling;
+  AnalysisState analysis;
   std::pair<int, int> quality_lanes{0, 1};  // the lanes the quality view compares
   // The quality view's findings, computed again only when the labels or the compared
   // lanes change (not every frame).

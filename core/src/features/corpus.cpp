@@ -5,11 +5,14 @@
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <filesystem>
+#include <map>
 #include <mutex>
 #include <thread>
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
 
 namespace tactile {
@@ -96,6 +99,49 @@ std::string segment_class(const Label& segment, const std::vector<Label>& ground
     }
   }
   return best;
+}
+
+std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query) {
+  LabelStore store(query.database, LabelStore::OpenMode::kExisting);
+  LabelFilter filter;
+  filter.source = query.source;
+  const std::vector<Label> labels = store.list(filter);
+  std::map<std::string, std::vector<Label>> ground_truth;
+  if (query.source != LabelSource::kGroundTruth) {
+    LabelFilter truth;
+    truth.source = LabelSource::kGroundTruth;
+    for (Label& label : store.list(truth))
+      ground_truth[label.recording].push_back(std::move(label));
+  }
+  const std::filesystem::path folder =
+      query.folder.empty() ? std::filesystem::absolute(query.database).parent_path()
+                           : std::filesystem::path(query.folder);
+  std::vector<CorpusRecording> corpus;
+  std::map<std::string, size_t> wanted;  // recording id -> index in corpus, npos: other layout
+  for (const Label& label : labels) {
+    auto known = wanted.find(label.recording);
+    if (known == wanted.end()) {
+      const std::string path = (folder / (label.recording + ".h5")).string();
+      std::error_code error;
+      if (!std::filesystem::is_regular_file(path, error))
+        throw Error(path, "recording file missing (recording '" + label.recording +
+                              "' has labels in " + query.database + ")");
+      const bool of_layout = query.layout.empty() || RecordingFile(path).layout_id() == query.layout;
+      known = wanted.emplace(label.recording, of_layout ? corpus.size() : std::string::npos).first;
+      if (of_layout) {
+        CorpusRecording recording;
+        recording.id = label.recording;
+        recording.path = path;
+        recording.ground_truth = ground_truth[label.recording];
+        corpus.push_back(std::move(recording));
+      }
+    }
+    if (known->second != std::string::npos) corpus[known->second].segments.push_back(label);
+  }
+  if (corpus.empty())
+    throw Error(query.database, std::string("no labels of source ") + to_string(query.source) +
+                                    (query.layout.empty() ? "" : " on " + query.layout + " recordings"));
+  return corpus;
 }
 
 CorpusDataset extract_corpus(const FeatureExtractor& extractor,

@@ -53,6 +53,16 @@ std::vector<std::string> feature_pipelines() {
   return names;
 }
 
+std::string skin_pipeline(const std::string& layout_id) {
+  // Each paper's own descriptor for the skin it built.
+  static const std::pair<const char*, const char*> kOwn[] = {
+      {"nao", "kaboli"}, {"tsa", "tsa_event"}, {"fur", "fur"},
+      {"robovie", "robovie_xcorr"}, {"flux", "flux"}};
+  for (const auto& [layout, pipeline] : kOwn)
+    if (layout_id == layout) return pipeline;
+  return "generic";
+}
+
 std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
                                                          const Parameters& parameters) {
   const auto& table = pipeline_table();

@@ -1,5 +1,6 @@
 #include "tactile/ml/classifier.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tactile/error.h"
@@ -16,6 +17,33 @@ std::vector<int> Classifier::predict(const Matrix& x) const {
     classes[static_cast<size_t>(row)] = static_cast<int>(best);
   }
   return classes;
+}
+
+Classifier::Decisions Classifier::decide(const Matrix& x) const {
+  Decisions decisions;
+  decisions.scores = scores(x);
+  decisions.classes = predict(x);
+  return decisions;
+}
+
+Confidence confidence_of(const Eigen::Ref<const Vector>& scores, int predicted) {
+  Confidence confidence;
+  if (predicted < 0 || predicted >= scores.size() || !scores.allFinite()) return confidence;
+  Vector shares = scores;
+  const double sum = scores.sum();
+  const bool already_shares =
+      scores.minCoeff() >= 0.0 && scores.maxCoeff() <= 1.0 && std::abs(sum - 1.0) < 1e-9;
+  if (!already_shares) {
+    // Subtracting the largest keeps exp() from overflowing; lowest() scores become 0.
+    shares = (scores.array() - scores.maxCoeff()).exp();
+    shares /= shares.sum();
+  }
+  confidence.score = shares(predicted);
+  double other = 0.0;
+  for (Eigen::Index k = 0; k < shares.size(); ++k)
+    if (k != predicted) other = std::max(other, shares(k));
+  confidence.margin = std::max(0.0, confidence.score - other);
+  return confidence;
 }
 
 void Standardizer::fit(const Matrix& x) {

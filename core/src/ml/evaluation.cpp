@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -27,6 +29,7 @@ double seconds_since(Clock::time_point start) {
 // What one fold hands back; merged in fold order so threads never change the result.
 struct FoldOutcome {
   std::vector<int> predicted;  // per test row
+  Matrix scores;               // per test row, when asked for
   std::string model;
   double fit_seconds = 0.0;
   double predict_seconds = 0.0;
@@ -56,7 +59,8 @@ Matrix rows_of(const Matrix& features, const std::vector<int64_t>& rows) {
 }
 
 FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, int class_count,
-                     const std::string& specification, const Fold& fold, uint64_t seed) {
+                     const std::string& specification, const Fold& fold, uint64_t seed,
+                     bool with_scores) {
   FoldOutcome outcome;
   std::unique_ptr<Classifier> classifier = make_classifier(specification);
   std::vector<int> train_classes;
@@ -66,7 +70,13 @@ FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, in
   classifier->fit(rows_of(dataset.features, fold.train), train_classes, class_count, seed);
   outcome.fit_seconds = seconds_since(fit_start);
   const Clock::time_point predict_start = Clock::now();
-  outcome.predicted = classifier->predict(rows_of(dataset.features, fold.test));
+  if (with_scores) {
+    Classifier::Decisions decisions = classifier->decide(rows_of(dataset.features, fold.test));
+    outcome.predicted = std::move(decisions.classes);
+    outcome.scores = std::move(decisions.scores);
+  } else {
+    outcome.predicted = classifier->predict(rows_of(dataset.features, fold.test));
+  }
   outcome.predict_seconds = seconds_since(predict_start);
   if (outcome.predicted.size() != fold.test.size())
     throw Error("classifier " + classifier->name(),
@@ -75,6 +85,33 @@ FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, in
   const auto* grid = dynamic_cast<const GridSearchClassifier*>(classifier.get());
   outcome.model = grid ? grid->chosen_specification() : specification_of(*classifier);
   return outcome;
+}
+
+double metadata_number(const Metadata& metadata, const char* key) {
+  const auto found = metadata.find(key);
+  if (found == metadata.end()) return 0.0;
+  char* end = nullptr;
+  const double value = std::strtod(found->second.c_str(), &end);
+  return end != found->second.c_str() && std::isfinite(value) ? value : 0.0;
+}
+
+RowPrediction row_prediction(const Dataset& dataset, size_t row, int truth, int answer, int fold) {
+  RowPrediction prediction;
+  prediction.row = static_cast<int64_t>(row);
+  prediction.segment_id =
+      row < dataset.segment_ids.size() ? dataset.segment_ids[row] : prediction.row;
+  prediction.recording = row < dataset.recordings.size() ? dataset.recordings[row] : "";
+  if (row < dataset.metadata.size()) {
+    const Metadata& metadata = dataset.metadata[row];
+    prediction.t0 = metadata_number(metadata, "t0");
+    prediction.t1 = metadata_number(metadata, "t1");
+    const auto region = metadata.find("region");
+    if (region != metadata.end()) prediction.region = region->second;
+  }
+  prediction.truth = truth;
+  prediction.predicted = answer;
+  prediction.fold = fold;
+  return prediction;
 }
 
 }  // namespace
@@ -148,7 +185,7 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
       try {
         outcome = run_fold(dataset, classes, class_count, classifier_specification,
                            folds[static_cast<size_t>(fold)],
-                           derive_seed(seed, static_cast<uint64_t>(fold)));
+                           derive_seed(seed, static_cast<uint64_t>(fold)), control.scores);
       } catch (...) {
         outcome.failure = std::current_exception();
         failed.store(true);
@@ -188,6 +225,14 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
                         std::to_string(class_count - 1));
       result.confusion(truth, answer == kUnknownClass ? class_count : answer) += 1;
       ++result.predictions;
+      RowPrediction prediction = row_prediction(dataset, row, truth, answer, fold);
+      if (outcome.scores.rows() == static_cast<Eigen::Index>(split.test.size())) {
+        const Confidence confidence =
+            confidence_of(outcome.scores.row(static_cast<Eigen::Index>(i)).transpose(), answer);
+        prediction.score = confidence.score;
+        prediction.margin = confidence.margin;
+      }
+      result.rows.push_back(std::move(prediction));
       if (answer == truth) continue;
       Misclassified wrong;
       wrong.row = static_cast<int64_t>(row);
@@ -208,7 +253,7 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
 
 //---- JSON -----------------------------------------------------------------------------------
 
-nlohmann::json to_json(const EvaluationResult& result) {
+nlohmann::json to_json(const EvaluationResult& result, bool with_rows) {
   const Eigen::Index classes = static_cast<Eigen::Index>(result.classes.size());
   nlohmann::json confusion = nlohmann::json::array();
   nlohmann::json unknown = nlohmann::json::array();
@@ -242,7 +287,7 @@ nlohmann::json to_json(const EvaluationResult& result) {
   }
   nlohmann::json misclassified = nlohmann::json::array();
   for (const auto& [row, segment] : segment_of_row) misclassified.push_back(segment);
-  return {{"classifier", result.classifier},
+  nlohmann::json document = {{"classifier", result.classifier},
           {"protocol", result.protocol},
           {"seed", result.seed},
           {"accuracy", result.accuracy},
@@ -258,6 +303,160 @@ nlohmann::json to_json(const EvaluationResult& result) {
           {"seconds", result.seconds},
           {"fit_seconds", result.fit_seconds},
           {"predict_seconds", result.predict_seconds}};
+  document["mean_recall"] = mean_recall(result);
+  if (!with_rows) return document;
+  const auto class_name = [&](int index) {
+    return index >= 0 && index < static_cast<int>(result.classes.size())
+               ? result.classes[static_cast<size_t>(index)]
+               : std::string("unknown");
+  };
+  nlohmann::json rows = nlohmann::json::array();
+  for (const RowPrediction& row : result.rows)
+    rows.push_back({{"recording", row.recording},
+                    {"t0", row.t0},
+                    {"t1", row.t1},
+                    {"region", row.region},
+                    {"true", class_name(row.truth)},
+                    {"predicted", class_name(row.predicted)},
+                    {"score", row.score},
+                    {"margin", row.margin},
+                    {"segment_id", row.segment_id},
+                    {"row", row.row},
+                    {"fold", row.fold}});
+  document["rows"] = std::move(rows);
+  return document;
+}
+
+std::vector<std::string> preset_names() {
+  std::vector<std::string> names;
+  for (const std::string& name : classifier_names())
+    if (name != "grid" && name != "grid-search") names.push_back(name);
+  return names;
+}
+
+std::vector<PresetOutcome> evaluate_all(
+    const Dataset& dataset, const Protocol& protocol, uint64_t seed,
+    const EvaluationControl& control,
+    const std::function<void(const PresetOutcome&, int, int)>& each) {
+  check_dataset(dataset);
+  const std::vector<std::string> names = preset_names();
+  const auto total = static_cast<int>(names.size());
+  const int folds = static_cast<int>(make_folds(dataset, protocol, seed).size());
+  std::vector<PresetOutcome> outcomes;
+  for (int index = 0; index < total; ++index) {
+    PresetOutcome outcome;
+    outcome.classifier = names[static_cast<size_t>(index)];
+    EvaluationControl preset_control = control;
+    if (control.progress)
+      preset_control.progress = [&](int done, int) {
+        control.progress(index * folds + done, total * folds);
+      };
+    try {
+      outcome.result = evaluate(dataset, outcome.classifier, protocol, seed, preset_control);
+    } catch (const Error& error) {
+      if (control.cancel && control.cancel->load()) throw;
+      outcome.skipped = error.what();
+    }
+    outcomes.push_back(outcome);
+    if (each) each(outcomes.back(), index, total);
+  }
+  return outcomes;
+}
+
+double mean_recall(const EvaluationResult& result) {
+  if (result.per_class.empty()) return 0.0;
+  double sum = 0.0;
+  for (const ClassFigures& figure : result.per_class) sum += figure.recall;
+  return sum / static_cast<double>(result.per_class.size());
+}
+
+std::vector<const RowPrediction*> rows_in_cell(const EvaluationResult& result, int truth,
+                                               int predicted) {
+  std::vector<const RowPrediction*> cell;
+  for (const RowPrediction& row : result.rows)
+    if (row.truth == truth && row.predicted == predicted) cell.push_back(&row);
+  return cell;
+}
+
+namespace {
+
+template <typename T>
+T field(const nlohmann::json& object, const char* key, const std::string& where) {
+  if (!object.is_object() || !object.contains(key))
+    throw Error(where, std::string("missing field '") + key + "'");
+  try {
+    return object.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw Error(where, std::string("field '") + key + "' has the wrong type");
+  }
+}
+
+}  // namespace
+
+EvaluationResult evaluation_from_json(const nlohmann::json& document, const std::string& where) {
+  if (!document.is_object()) throw Error(where, "not an evaluation result (expected an object)");
+  EvaluationResult result;
+  result.classifier = field<std::string>(document, "classifier", where);
+  result.protocol = field<std::string>(document, "protocol", where);
+  result.classes = field<std::vector<std::string>>(document, "classes", where);
+  result.accuracy = field<double>(document, "accuracy", where);
+  if (document.contains("seconds")) result.seconds = field<double>(document, "seconds", where);
+  if (document.contains("seed")) result.seed = field<uint64_t>(document, "seed", where);
+  const auto classes = static_cast<int>(result.classes.size());
+  if (classes == 0) throw Error(where, "'classes' is empty");
+  std::map<std::string, int> index;
+  for (int k = 0; k < classes; ++k) index[result.classes[static_cast<size_t>(k)]] = k;
+  const auto confusion = field<std::vector<std::vector<int64_t>>>(document, "confusion", where);
+  std::vector<int64_t> unknown(static_cast<size_t>(classes), 0);
+  if (document.contains("unknown")) unknown = field<std::vector<int64_t>>(document, "unknown", where);
+  if (static_cast<int>(confusion.size()) != classes || static_cast<int>(unknown.size()) != classes)
+    throw Error(where, "'confusion' has " + std::to_string(confusion.size()) + " rows for " +
+                           std::to_string(classes) + " classes");
+  result.confusion = Eigen::MatrixXi::Zero(classes, classes + 1);
+  for (int row = 0; row < classes; ++row) {
+    const auto& counts = confusion[static_cast<size_t>(row)];
+    if (static_cast<int>(counts.size()) != classes)
+      throw Error(where, "confusion row " + std::to_string(row) + " has " +
+                             std::to_string(counts.size()) + " counts for " +
+                             std::to_string(classes) + " classes");
+    for (int column = 0; column <= classes; ++column) {
+      const int64_t count = column < classes ? counts[static_cast<size_t>(column)]
+                                             : unknown[static_cast<size_t>(row)];
+      if (count < 0 || count > std::numeric_limits<int>::max())
+        throw Error(where, "confusion count " + std::to_string(count) + " out of range");
+      result.confusion(row, column) = static_cast<int>(count);
+    }
+  }
+  result.predictions = result.confusion.cast<int64_t>().sum();
+  result.per_class = class_figures(result.confusion);
+  if (document.contains("rows")) {
+    const nlohmann::json& rows = document.at("rows");
+    if (!rows.is_array()) throw Error(where, "'rows' is not an array");
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const std::string at = where + ": rows[" + std::to_string(i) + "]";
+      const nlohmann::json& item = rows[i];
+      RowPrediction row;
+      row.recording = field<std::string>(item, "recording", at);
+      row.t0 = field<double>(item, "t0", at);
+      row.t1 = field<double>(item, "t1", at);
+      row.region = field<std::string>(item, "region", at);
+      const auto truth = index.find(field<std::string>(item, "true", at));
+      if (truth == index.end()) throw Error(at, "'true' is not one of the classes");
+      row.truth = truth->second;
+      const std::string predicted = field<std::string>(item, "predicted", at);
+      const auto answer = index.find(predicted);
+      if (answer == index.end() && predicted != "unknown")
+        throw Error(at, "'predicted' is not one of the classes");
+      row.predicted = answer == index.end() ? kUnknownClass : answer->second;
+      row.score = field<double>(item, "score", at);
+      if (item.contains("margin")) row.margin = field<double>(item, "margin", at);
+      if (item.contains("segment_id")) row.segment_id = field<int64_t>(item, "segment_id", at);
+      if (item.contains("row")) row.row = field<int64_t>(item, "row", at);
+      if (item.contains("fold")) row.fold = field<int>(item, "fold", at);
+      result.rows.push_back(std::move(row));
+    }
+  }
+  return result;
 }
 
 }  // namespace tactile::ml

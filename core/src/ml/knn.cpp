@@ -177,22 +177,27 @@ Matrix KnnClassifier::scores(const Matrix& x) const {
   return result;
 }
 
-std::vector<int> KnnClassifier::predict(const Matrix& x) const {
+std::vector<int> KnnClassifier::predict(const Matrix& x) const { return decide(x).classes; }
+
+Classifier::Decisions KnnClassifier::decide(const Matrix& x) const {
   const auto nearest = neighbours(x);
-  std::vector<int> classes(static_cast<size_t>(x.rows()), kUnknownClass);
+  Decisions decisions;
+  decisions.classes.assign(static_cast<size_t>(x.rows()), kUnknownClass);
+  decisions.scores.resize(x.rows(), class_count_);
   for (size_t row = 0; row < nearest.size(); ++row) {
     const Vector votes = vote(nearest[row]);
+    decisions.scores.row(static_cast<Eigen::Index>(row)) = votes.transpose();
     const double best = votes.maxCoeff();
     // Spec §4.9: a tie between classes goes to the nearest neighbour among the tied classes.
     for (const Neighbour& neighbour : nearest[row]) {
       const int label = labels_[static_cast<size_t>(neighbour.row)];
       if (votes(label) == best) {
-        classes[row] = label;
+        decisions.classes[row] = label;
         break;
       }
     }
   }
-  return classes;
+  return decisions;
 }
 
 nlohmann::json KnnClassifier::save() const {

@@ -55,6 +55,19 @@ CorpusDataset extract_corpus(const FeatureExtractor& extractor,
                              const std::vector<CorpusRecording>& recordings,
                              const CorpusOptions& options = {});
 
+// The labels of one source in a label store grouped by recording (the store's order),
+// each recording's file `folder/ID.h5` (folder "" = the database's folder) checked up
+// front, with the ground truth of each for segments without a class. With `layout`, only
+// recordings of that skin (read from each file's attributes). Throws tactile::Error
+// naming the database when it holds no such labels, or the file that is missing.
+struct CorpusQuery {
+  std::string database;
+  LabelSource source = LabelSource::kGroundTruth;
+  std::string folder;
+  std::string layout;
+};
+std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query);
+
 // A segment's class: its own, or for one without (empty or kUnknownClass) the class of
 // the ground-truth label overlapping it longest (the first of equals), kUnknownClass
 // when none overlaps.

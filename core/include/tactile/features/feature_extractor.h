@@ -48,6 +48,9 @@ class FeatureExtractor {
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
 // robovie_xcorr, flux, generic.
 std::vector<std::string> feature_pipelines();
+// The skin's own pipeline (its paper's descriptor): nao kaboli, tsa tsa_event, fur fur,
+// robovie robovie_xcorr, flux flux; any other layout generic.
+std::string skin_pipeline(const std::string& layout_id);
 // Throws tactile::Error naming the pipeline when unknown, or a parameter when bad.
 std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
                                                          const Parameters& parameters = {});

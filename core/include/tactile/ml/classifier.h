@@ -34,9 +34,28 @@ class Classifier {
   virtual Matrix scores(const Matrix& x) const = 0;
   // Class per row: argmax of scores (first on ties) unless the method can answer unknown.
   virtual std::vector<int> predict(const Matrix& x) const;
+  // Both at once: the classes predict() gives and the scores() matrix. The default calls
+  // both; a classifier whose two share their costly step (k-NN's neighbour search)
+  // overrides it to do that step once.
+  struct Decisions {
+    std::vector<int> classes;
+    Matrix scores;
+  };
+  virtual Decisions decide(const Matrix& x) const;
   virtual nlohmann::json save() const = 0;
   virtual void load(const nlohmann::json& model) = 0;
 };
+
+// How sure one decision is, from its row of scores, comparable between classifiers: the
+// scores turned into shares that sum to 1 (kept as they are when they already lie in [0, 1]
+// and sum to 1, as votes and probabilities do; otherwise a softmax), `score` the predicted
+// class's share and `margin` its lead over the best other class (0: a tie, the least sure).
+// A kUnknownClass answer scores 0 with margin 0.
+struct Confidence {
+  double score = 0.0;
+  double margin = 0.0;
+};
+Confidence confidence_of(const Eigen::Ref<const Vector>& scores, int predicted);
 
 // "name[:key=value,...]", e.g. "knn:k=3,metric=cosine". Throws tactile::Error naming the
 // unknown name or the bad parameter.

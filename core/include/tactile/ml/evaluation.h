@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,22 @@ struct Misclassified {
   int fold = 0;                 // index into the protocol's folds
 };
 
+// One test prediction: the row it was made for, where that row's segment lies, what was
+// true and what was answered, and how sure the answer was (confidence_of its scores; 0
+// when the evaluation did not ask for scores).
+struct RowPrediction {
+  int64_t row = 0;         // dataset row
+  int64_t segment_id = 0;  // label id in the label store (the row number without one)
+  std::string recording;
+  double t0 = 0.0, t1 = 0.0;  // the segment's bounds (the row's t0/t1 metadata; 0 without)
+  std::string region;         // the row's region metadata ("" without)
+  int truth = 0;              // index into classes
+  int predicted = 0;          // index into classes, or kUnknownClass
+  double score = 0.0;
+  double margin = 0.0;
+  int fold = 0;
+};
+
 struct EvaluationResult {
   std::string classifier;  // specification as given
   std::string protocol;
@@ -80,6 +97,8 @@ struct EvaluationResult {
   double accuracy = 0.0;
   std::vector<ClassFigures> per_class;
   std::vector<Misclassified> misclassified;
+  // Every test prediction in fold order, then test-row order within a fold.
+  std::vector<RowPrediction> rows;
   int64_t predictions = 0;
   double seconds = 0.0;      // wall time of the whole evaluation
   double fit_seconds = 0.0;  // summed over folds
@@ -93,6 +112,8 @@ struct EvaluationResult {
 // Spec §6.7 on a confusion matrix with rows = true classes and columns = predicted ones, an
 // optional extra last column counting "unknown" (not correct, no false alarm).
 double accuracy_of(const Eigen::MatrixXi& confusion);
+// The mean of the per-class recalls (balanced accuracy).
+double mean_recall(const EvaluationResult& result);
 std::vector<ClassFigures> class_figures(const Eigen::MatrixXi& confusion);
 
 struct EvaluationControl {
@@ -101,12 +122,43 @@ struct EvaluationControl {
   const std::atomic<bool>* cancel =
       nullptr;      // set to true to stop; evaluate() throws tactile::Error("cancelled")
   int threads = 0;  // 0 = hardware concurrency
+  // Also compute each prediction's scores (RowPrediction::score and margin); costs one
+  // scores() call per fold for classifiers that cannot give both at once.
+  bool scores = false;
 };
 
 EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_specification,
                           const Protocol& protocol, uint64_t seed,
                           const EvaluationControl& control = {});
 
-nlohmann::json to_json(const EvaluationResult& result);
+// The result as JSON; with `with_rows`, also `rows: [{recording, t0, t1, region, true,
+// predicted, score, margin, segment_id, fold}]`, one per test prediction.
+nlohmann::json to_json(const EvaluationResult& result, bool with_rows = false);
+
+// "Train all" (MATLAB's Classification Learner): every classifier of the catalogue with
+// its default parameters, the hyper-parameter searches (grid, grid-search) left out.
+std::vector<std::string> preset_names();
+struct PresetOutcome {
+  std::string classifier;
+  std::optional<EvaluationResult> result;  // empty when the preset does not fit the data
+  std::string skipped;                     // why (the error it raised), when it does not
+};
+// Evaluates every preset in turn on the same folds. A preset that cannot learn from the
+// data (an error in fit) is kept with the reason and the next one runs; cancelling stops
+// all (throws tactile::Error("evaluation", "cancelled")). `each` is called after each
+// preset with (outcome, index, total); control.progress is called with the folds done
+// over all presets.
+std::vector<PresetOutcome> evaluate_all(
+    const Dataset& dataset, const Protocol& protocol, uint64_t seed,
+    const EvaluationControl& control = {},
+    const std::function<void(const PresetOutcome&, int, int)>& each = {});
+// Reads what to_json(result, true) wrote (the workbench opens result files). Throws
+// tactile::Error naming `where` and the field that is missing or malformed.
+EvaluationResult evaluation_from_json(const nlohmann::json& document, const std::string& where);
+
+// Which rows of a result fall in one cell of its confusion matrix (predicted may be
+// kUnknownClass), in result order.
+std::vector<const RowPrediction*> rows_in_cell(const EvaluationResult& result, int truth,
+                                               int predicted);
 
 }  // namespace tactile::ml

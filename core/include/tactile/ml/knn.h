@@ -50,6 +50,7 @@ class KnnClassifier : public Classifier {
   void fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t seed) override;
   Matrix scores(const Matrix& x) const override;
   std::vector<int> predict(const Matrix& x) const override;
+  Decisions decide(const Matrix& x) const override;
   nlohmann::json save() const override;
   void load(const nlohmann::json& model) override;
   // The k nearest training rows of each query row, nearest first (ties: training order).

@@ -1,0 +1,443 @@
+#include "analysis.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "tactile/error.h"
+#include "tactile/labels/predict.h"
+#include "tactile/ml/pca.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool fail(WorkbenchState& state, const std::string& message) {
+  state.error = message;
+  return false;
+}
+
+std::string label_database(const WorkbenchState& state) {
+  if (state.document && !state.document->labels_path.empty()) return state.document->labels_path;
+  if (!state.options.labels_path.empty()) return state.options.labels_path;
+  return (fs::path(state.workspace) / "labels.db").string();
+}
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "cannot open");
+  nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+  if (document.is_discarded()) throw Error(path, "not JSON");
+  return document;
+}
+
+// The table's skin: the rows' layout metadata when all agree.
+std::string layout_of(const Dataset& dataset) {
+  std::string layout;
+  for (size_t row = 0; row < dataset.metadata.size(); ++row) {
+    const auto found = dataset.metadata[row].find("layout");
+    const std::string id = found == dataset.metadata[row].end() ? "" : found->second;
+    if (row == 0) layout = id;
+    if (id != layout) return "";
+  }
+  return layout;
+}
+
+void reset_views(AnalysisState& analysis) {
+  analysis.cell_true = analysis.cell_predicted = -1;
+  analysis.cell_rows.clear();
+  analysis.cell_selected = 0;
+  analysis.list_active = false;
+  analysis.som_for = nullptr;
+  analysis.som_neuron = -1;
+  analysis.scatter_for = nullptr;
+}
+
+void set_dataset(AnalysisState& analysis, Dataset dataset) {
+  analysis.dataset_layout = layout_of(dataset);
+  analysis.dataset = std::move(dataset);
+  analysis.som.reset();
+  reset_views(analysis);
+}
+
+}  // namespace
+
+//---- Training -------------------------------------------------------------------------------
+
+bool start_training(WorkbenchState& state, const std::string& classifier) {
+  AnalysisState& analysis = state.analysis;
+  if (analysis.job && analysis.job->status() == ml::TrainingJob::Status::kRunning)
+    return fail(state, "a training run is going on: wait or cancel it");
+  if (!state.document) return fail(state, "open a recording of the skin to train for");
+  if (classifier != "all") {
+    try {
+      ml::make_classifier(classifier);
+    } catch (const Error& error) {
+      return fail(state, error.what());
+    }
+  }
+  ml::TrainingRequest request;
+  request.database = label_database(state);
+  request.folder = fs::path(request.database).parent_path().string();
+  request.layout = state.document->layout.id;
+  request.segments = analysis.segments;
+  request.pipeline = analysis.pipeline;
+  request.classifier = classifier;
+  request.protocol = analysis.protocol.data();
+  // Leave a core to the window, so frames keep their time while training.
+  request.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
+  try {
+    ml::Protocol::parse(request.protocol);
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
+  analysis.job = std::make_unique<ml::TrainingJob>(request);
+  state.error.clear();
+  state.notice = "training " + classifier + " on " + request.layout + " recordings";
+  return true;
+}
+
+void poll_training(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (!analysis.job) return;
+  switch (analysis.job->status()) {
+    case ml::TrainingJob::Status::kRunning:
+      return;
+    case ml::TrainingJob::Status::kFailed:
+      state.error = "training failed: " + analysis.job->error();
+      break;
+    case ml::TrainingJob::Status::kCancelled:
+      state.notice = "training cancelled";
+      break;
+    case ml::TrainingJob::Status::kDone: {
+      std::unique_ptr<ml::TrainingOutcome> outcome = analysis.job->take();
+      if (!outcome) break;
+      const ml::TrainingRequest& request = analysis.job->request();
+      analysis.results = std::move(outcome->results);
+      analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
+                              std::to_string(outcome->dataset.rows()) + " segments";
+      set_dataset(analysis, std::move(outcome->dataset));
+      int best = -1;
+      for (size_t k = 0; k < analysis.results.size(); ++k)
+        if (analysis.results[k].result &&
+            (best < 0 || analysis.results[k].result->accuracy >
+                             analysis.results[static_cast<size_t>(best)].result->accuracy))
+          best = static_cast<int>(k);
+      choose_result(state, best);
+      state.notice = best < 0 ? "no classifier fitted the data"
+                              : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
+      break;
+    }
+  }
+  analysis.job.reset();
+}
+
+const ml::EvaluationResult* current_evaluation(const WorkbenchState& state) {
+  const AnalysisState& analysis = state.analysis;
+  if (analysis.current < 0 || analysis.current >= static_cast<int>(analysis.results.size()))
+    return nullptr;
+  const auto& result = analysis.results[static_cast<size_t>(analysis.current)].result;
+  return result ? &*result : nullptr;
+}
+
+void choose_result(WorkbenchState& state, int index) {
+  AnalysisState& analysis = state.analysis;
+  analysis.current = index;
+  reset_views(analysis);
+  if (!analysis.som_classes.empty() && analysis.som && analysis.results_from.find("model") == std::string::npos)
+    analysis.som.reset();
+  const ml::EvaluationResult* result = current_evaluation(state);
+  if (result) analysis.tab_request = "confusion";
+}
+
+//---- Files ----------------------------------------------------------------------------------
+
+bool open_evaluation_file(WorkbenchState& state, const std::string& path) {
+  AnalysisState& analysis = state.analysis;
+  try {
+    const nlohmann::json document = read_json(path);
+    std::vector<ml::PresetOutcome> results;
+    std::string features;
+    if (document.is_object() && document.contains("evaluations")) {  // evaluate --classifier all
+      if (!document["evaluations"].is_array()) throw Error(path, "'evaluations' is not a list");
+      for (size_t k = 0; k < document["evaluations"].size(); ++k) {
+        ml::PresetOutcome outcome;
+        outcome.result = ml::evaluation_from_json(document["evaluations"][k],
+                                                  path + ": evaluations[" + std::to_string(k) + "]");
+        outcome.classifier = outcome.result->classifier;
+        results.push_back(std::move(outcome));
+      }
+      if (document.contains("presets") && document["presets"].is_array())
+        for (const nlohmann::json& preset : document["presets"])
+          if (preset.is_object() && preset.contains("skipped"))
+            results.push_back({preset.value("classifier", std::string("?")), std::nullopt,
+                               preset.value("skipped", std::string())});
+      features = document.value("features", std::string());
+    } else {
+      ml::PresetOutcome outcome;
+      outcome.result = ml::evaluation_from_json(document, path);
+      outcome.classifier = outcome.result->classifier;
+      results.push_back(std::move(outcome));
+      features = document.value("features", std::string());
+    }
+    if (results.empty()) throw Error(path, "holds no evaluation");
+    analysis.results = std::move(results);
+    analysis.results_from = fs::path(path).filename().string();
+    analysis.dataset.reset();
+    analysis.som.reset();
+    analysis.som_classes.clear();
+    // The table it was made from, for the scatter and the SOM (relative to the result).
+    if (!features.empty()) {
+      fs::path table(features);
+      if (table.is_relative() && !fs::exists(table)) table = fs::path(path).parent_path() / table;
+      if (fs::exists(table)) set_dataset(analysis, read_dataset_csv(table.string()));
+    }
+  } catch (const std::exception& error) {
+    return fail(state, std::string("cannot open the evaluation: ") + error.what());
+  }
+  choose_result(state, 0);
+  return true;
+}
+
+bool open_model_file(WorkbenchState& state, const std::string& path) {
+  try {
+    SavedModel model = read_model_file(path);
+    auto* som = dynamic_cast<ml::SomClassifier*>(model.classifier.get());
+    if (!som)
+      throw Error(path, "a " + model.classifier->name() + " model: only a SOM has a map to show");
+    model.classifier.release();
+    state.analysis.som.reset(som);
+    state.analysis.som_classes = model.classes;
+    state.analysis.som_for = nullptr;
+    state.analysis.tab_request = "som";
+  } catch (const std::exception& error) {
+    return fail(state, std::string("cannot open the model: ") + error.what());
+  }
+  return true;
+}
+
+bool open_features_file(WorkbenchState& state, const std::string& path) {
+  try {
+    set_dataset(state.analysis, read_dataset_csv(path));
+    if (state.analysis.results.empty()) state.analysis.tab_request = "scatter";
+  } catch (const std::exception& error) {
+    return fail(state, std::string("cannot open the features: ") + error.what());
+  }
+  return true;
+}
+
+//---- From a cell to a segment ---------------------------------------------------------------
+
+void select_cell(WorkbenchState& state, int truth, int predicted) {
+  AnalysisState& analysis = state.analysis;
+  analysis.cell_true = truth;
+  analysis.cell_predicted = predicted;
+  analysis.cell_rows.clear();
+  analysis.cell_selected = 0;
+  const ml::EvaluationResult* result = current_evaluation(state);
+  if (!result) return;
+  for (size_t k = 0; k < result->rows.size(); ++k)
+    if (result->rows[k].truth == truth && result->rows[k].predicted == predicted)
+      analysis.cell_rows.push_back(k);
+  analysis.list_active = !analysis.cell_rows.empty();
+  if (analysis.cell_rows.empty() && result->rows.empty())
+    state.notice = "this result lists no rows (written without --out?)";
+}
+
+std::string recording_file(const WorkbenchState& state, const std::string& recording_id) {
+  for (const std::string& file : state.workspace_files)
+    if (fs::path(file).stem() == recording_id) return file;
+  for (const std::string& beside :
+       {state.options.evaluation_path, state.options.features_path, state.options.model_path}) {
+    if (beside.empty()) continue;
+    const fs::path candidate = fs::path(beside).parent_path() / (recording_id + ".h5");
+    if (fs::exists(candidate)) return candidate.string();
+  }
+  return "";
+}
+
+void land_on(WorkbenchState& state, const ml::RowPrediction& row) {
+  state.analysis.landed = row;
+  state.analysis.landing_pending = true;
+  if (!state.document || state.document->recording_id() != row.recording) {
+    const std::string file = recording_file(state, row.recording);
+    if (file.empty()) {
+      state.error = "no file for recording " + row.recording + " in the workspace";
+      state.analysis.landed.reset();
+      return;
+    }
+    state.open_request = file;
+  }
+}
+
+void carry_out_landing(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (!analysis.landing_pending || !analysis.landed || !state.document) return;
+  const ml::RowPrediction& row = *analysis.landed;
+  if (state.document->recording_id() != row.recording) return;  // still opening
+  analysis.landing_pending = false;
+  const double span = std::max(0.2, row.t1 - row.t0);
+  state.plot.view_t0 = row.t0 - span;
+  state.plot.view_t1 = row.t1 + span;
+  state.selection.taxels.clear();
+  state.selection.segments = {row.segment_id};
+  state.selection.labels.clear();
+  for (const Label& label : state.document->labels)
+    if (label.id == row.segment_id) state.selection.labels = {label.id};
+  state.clock.seek(row.t0);
+  state.clock.play();
+  analysis.replay_until = row.t1;
+  const ml::EvaluationResult* result = current_evaluation(state);
+  const auto name = [&](int k) {
+    return result && k >= 0 && k < static_cast<int>(result->classes.size())
+               ? result->classes[static_cast<size_t>(k)]
+               : std::string("unknown");
+  };
+  state.error.clear();
+  state.notice = row.recording + " " + format_seconds(row.t0) + ": true " + name(row.truth) +
+                 ", predicted " + name(row.predicted);
+}
+
+bool walk_misclassified(WorkbenchState& state, int direction) {
+  const ml::EvaluationResult* result = current_evaluation(state);
+  if (!result || result->rows.empty()) return fail(state, "no evaluation with rows open");
+  const auto count = static_cast<int64_t>(result->rows.size());
+  int64_t start = -1;
+  if (state.analysis.landed)
+    for (int64_t k = 0; k < count; ++k)
+      if (result->rows[static_cast<size_t>(k)].row == state.analysis.landed->row &&
+          result->rows[static_cast<size_t>(k)].fold == state.analysis.landed->fold)
+        start = k;
+  if (start < 0 && direction < 0) start = count;
+  for (int64_t step = 1; step <= count; ++step) {
+    const int64_t k = ((start + direction * step) % count + count) % count;
+    const ml::RowPrediction& row = result->rows[static_cast<size_t>(k)];
+    if (row.truth == row.predicted) continue;
+    land_on(state, row);
+    return true;
+  }
+  state.notice = "no misclassified segment";
+  return false;
+}
+
+std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
+  const AnalysisState& analysis = state.analysis;
+  std::vector<RowOutcome> outcomes(analysis.dataset ? static_cast<size_t>(analysis.dataset->rows()) : 0);
+  const ml::EvaluationResult* result = current_evaluation(state);
+  if (!result) return outcomes;
+  for (const ml::RowPrediction& row : result->rows)
+    if (row.row >= 0 && row.row < static_cast<int64_t>(outcomes.size())) {
+      RowOutcome& outcome = outcomes[static_cast<size_t>(row.row)];
+      // With repetitions a row is tested more than once: a wrong answer wins.
+      if (outcome.tested && outcome.truth != outcome.predicted) continue;
+      outcome = {row.truth, row.predicted, true, &row};
+    }
+  return outcomes;
+}
+
+//---- Derived views --------------------------------------------------------------------------
+
+bool ensure_som(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (analysis.som && analysis.som_for == (analysis.dataset ? &*analysis.dataset : nullptr) &&
+      (analysis.som_for || analysis.som_winners.empty()))
+    return true;
+  try {
+    if (!analysis.som) {
+      if (!analysis.dataset) return false;
+      // The map of the table: the flux paper's 7 x 7 SOM fitted on every row.
+      const Dataset& dataset = *analysis.dataset;
+      analysis.som_classes = dataset.class_names();
+      std::vector<int> labels;
+      for (const std::string& name : dataset.classes)
+        labels.push_back(static_cast<int>(std::find(analysis.som_classes.begin(),
+                                                    analysis.som_classes.end(), name) -
+                                          analysis.som_classes.begin()));
+      auto som = std::make_unique<ml::SomClassifier>(Parameters::parse("epochs=200", "som"));
+      som->fit(dataset.features, labels, static_cast<int>(analysis.som_classes.size()), 1);
+      analysis.som = std::move(som);
+    }
+    analysis.som_winners.clear();
+    if (analysis.dataset && analysis.dataset->features.cols() == analysis.som->map().weights.cols()) {
+      const ml::Matrix scaled = analysis.som->scale(analysis.dataset->features);
+      for (Eigen::Index row = 0; row < scaled.rows(); ++row)
+        analysis.som_winners.push_back(ml::som_winner(analysis.som->map(), scaled.row(row).transpose()));
+    }
+    analysis.som_for = analysis.dataset ? &*analysis.dataset : nullptr;
+  } catch (const std::exception& error) {
+    analysis.som.reset();
+    return fail(state, std::string("SOM map: ") + error.what());
+  }
+  return true;
+}
+
+bool ensure_scatter(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (!analysis.dataset) return false;
+  if (analysis.scatter_for == &*analysis.dataset) return analysis.scatter.rows() > 0;
+  analysis.scatter_for = &*analysis.dataset;
+  analysis.scatter.resize(0, 2);
+  try {
+    ml::PcaOptions options;
+    options.components = std::min<int>(2, static_cast<int>(analysis.dataset->features.cols()));
+    const ml::Pca pca = ml::fit_pca(analysis.dataset->features, options);
+    ml::Matrix projected = pca.transform(analysis.dataset->features);
+    if (projected.cols() < 2) projected.conservativeResize(Eigen::NoChange, 2), projected.col(1).setZero();
+    analysis.scatter = projected;
+    analysis.scatter_explained = pca.cumulative_ratio()(std::min<Eigen::Index>(1, pca.kept - 1));
+  } catch (const std::exception& error) {
+    return fail(state, std::string("scatter: ") + error.what());
+  }
+  return true;
+}
+
+bool ensure_somatosensory(WorkbenchState& state) {
+  if (!state.document) return false;
+  AnalysisState& analysis = state.analysis;
+  const SkinLayout& layout = state.document->layout;
+  const std::string modality =
+      layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)];
+  const std::string key = state.document->path + "#" + modality;
+  if (analysis.map_for == key) return analysis.map.has_value();
+  analysis.map_for = key;
+  analysis.map.reset();
+  try {
+    analysis.map = read_somatosensory_cache(state.document->path, modality);
+    if (!analysis.map) {
+      analysis.map = somatosensory_map(state.document->samples(), layout, state.modality);
+      write_somatosensory_cache(state.document->path, *analysis.map);
+    }
+  } catch (const std::exception& error) {
+    return fail(state, std::string("somatosensory map: ") + error.what());
+  }
+  return true;
+}
+
+//---- Keys -----------------------------------------------------------------------------------
+
+void handle_analysis_keys(WorkbenchState& state) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput || io.KeyCtrl || io.KeyAlt) return;
+  AnalysisState& analysis = state.analysis;
+  if (ImGui::IsKeyPressed('N', false)) walk_misclassified(state, io.KeyShift ? -1 : +1);
+  if (!analysis.list_active || analysis.cell_rows.empty()) return;
+  const ml::EvaluationResult* result = current_evaluation(state);
+  if (!result) return;
+  const int last = static_cast<int>(analysis.cell_rows.size()) - 1;
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_DownArrow)))
+    analysis.cell_selected = std::min(last, analysis.cell_selected + 1);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_UpArrow)))
+    analysis.cell_selected = std::max(0, analysis.cell_selected - 1);
+  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false) ||
+      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_KeyPadEnter), false)) {
+    land_on(state, result->rows[analysis.cell_rows[static_cast<size_t>(analysis.cell_selected)]]);
+  }
+}
+
+}  // namespace tactile

@@ -1,0 +1,230 @@
+// The feature scatter (the table on its first two principal components, coloured by
+// class, misclassified rows ringed; a click goes to the segment) and the SOM region map
+// (flux paper Fig. 9: each neuron coloured by its class, the rows' winners marked,
+// U-matrix shading on request; a click on a neuron lists its segments).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis.h"
+#include "tactile/widgets/signal_plot.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+ImU32 colour_of_class(const std::vector<std::string>& classes, const std::string& name, int alpha) {
+  const auto found = std::find(classes.begin(), classes.end(), name);
+  const int index = found == classes.end() ? 9 : static_cast<int>(found - classes.begin());
+  return (plot_colour(index % 10) & 0x00FFFFFFu) | (static_cast<uint32_t>(alpha) << 24);
+}
+
+void draw_legend(const std::vector<std::string>& classes, ImVec2 at) {
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const float line = ImGui::GetTextLineHeightWithSpacing();
+  for (size_t k = 0; k < classes.size(); ++k) {
+    const ImVec2 row(at.x, at.y + line * static_cast<float>(k));
+    draw.AddRectFilled(ImVec2(row.x, row.y + 3), ImVec2(row.x + 10, row.y + 13),
+                       colour_of_class(classes, classes[k], 255));
+    draw.AddText(ImVec2(row.x + 14, row.y), IM_COL32(220, 220, 220, 255), classes[k].c_str());
+  }
+}
+
+// The prediction of a dataset row in the current evaluation, for landing on it.
+std::optional<ml::RowPrediction> prediction_of(const WorkbenchState& state, int64_t row) {
+  const std::vector<RowOutcome> outcomes = row_outcomes(state);
+  if (row >= 0 && row < static_cast<int64_t>(outcomes.size()) && outcomes[static_cast<size_t>(row)].prediction)
+    return *outcomes[static_cast<size_t>(row)].prediction;
+  const Dataset& dataset = *state.analysis.dataset;
+  ml::RowPrediction prediction;
+  prediction.row = row;
+  prediction.recording = dataset.recordings[static_cast<size_t>(row)];
+  prediction.segment_id = dataset.segment_ids[static_cast<size_t>(row)];
+  const Metadata& metadata = dataset.metadata[static_cast<size_t>(row)];
+  const auto number = [&](const char* key) {
+    const auto found = metadata.find(key);
+    return found == metadata.end() ? 0.0 : std::atof(found->second.c_str());
+  };
+  prediction.t0 = number("t0");
+  prediction.t1 = number("t1");
+  const auto region = metadata.find("region");
+  prediction.region = region == metadata.end() ? "" : region->second;
+  const std::vector<std::string> classes = dataset.class_names();
+  const auto truth = std::find(classes.begin(), classes.end(), dataset.classes[static_cast<size_t>(row)]);
+  prediction.truth = prediction.predicted = static_cast<int>(truth - classes.begin());
+  return prediction;
+}
+
+}  // namespace
+
+void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("scatter_view", size, false);
+  AnalysisState& analysis = state.analysis;
+  if (!analysis.dataset || !ensure_scatter(state)) {
+    ImGui::TextDisabled("No feature table: train in the Model tab, or open one with --features.");
+    ImGui::EndChild();
+    return;
+  }
+  const Dataset& dataset = *analysis.dataset;
+  const std::vector<std::string> classes = dataset.class_names();
+  const std::vector<RowOutcome> outcomes = row_outcomes(state);
+  int64_t wrong = 0;
+  for (const RowOutcome& outcome : outcomes) wrong += outcome.tested && outcome.truth != outcome.predicted;
+  ImGui::Text("PCA of %lld rows x %lld features: PC1-PC2 explain %.0f %%   %lld misclassified (ringed)",
+              static_cast<long long>(dataset.rows()), static_cast<long long>(dataset.features.cols()),
+              100.0 * analysis.scatter_explained, static_cast<long long>(wrong));
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 available = ImGui::GetContentRegionAvail();
+  const float legend_width = 130.0f;
+  const ImVec2 plot(std::max(50.0f, available.x - legend_width), std::max(50.0f, available.y));
+  ImGui::InvisibleButton("scatter", plot);
+  remember_item(state, "scatter");
+  const bool clicked = ImGui::IsItemClicked();
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  draw.AddRectFilled(origin, ImVec2(origin.x + plot.x, origin.y + plot.y), IM_COL32(22, 22, 26, 255));
+  const Eigen::MatrixXd& xy = analysis.scatter;
+  const double x0 = xy.col(0).minCoeff(), x1 = xy.col(0).maxCoeff();
+  const double y0 = xy.col(1).minCoeff(), y1 = xy.col(1).maxCoeff();
+  const float margin = 14.0f;
+  const auto to_screen = [&](Eigen::Index row) {
+    const double u = x1 > x0 ? (xy(row, 0) - x0) / (x1 - x0) : 0.5;
+    const double v = y1 > y0 ? (xy(row, 1) - y0) / (y1 - y0) : 0.5;
+    return ImVec2(origin.x + margin + static_cast<float>(u) * (plot.x - 2 * margin),
+                  origin.y + plot.y - margin - static_cast<float>(v) * (plot.y - 2 * margin));
+  };
+  draw.AddText(ImVec2(origin.x + plot.x - 40, origin.y + plot.y - 18), IM_COL32(150, 150, 150, 255), "PC1");
+  draw.AddText(ImVec2(origin.x + 4, origin.y + 2), IM_COL32(150, 150, 150, 255), "PC2");
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  Eigen::Index nearest = -1;
+  float nearest_distance = 10.0f * 10.0f;
+  for (Eigen::Index row = 0; row < xy.rows(); ++row) {
+    const ImVec2 point = to_screen(row);
+    draw.AddCircleFilled(point, 3.5f, colour_of_class(classes, dataset.classes[static_cast<size_t>(row)], 220));
+    const RowOutcome& outcome = outcomes[static_cast<size_t>(row)];
+    if (outcome.tested && outcome.truth != outcome.predicted)
+      draw.AddCircle(point, 7.0f, IM_COL32(255, 80, 60, 255), 0, 1.8f);
+    const float dx = point.x - mouse.x, dy = point.y - mouse.y;
+    if (dx * dx + dy * dy < nearest_distance) nearest_distance = dx * dx + dy * dy, nearest = row;
+    state.targets.items["point:" + std::to_string(row)] = {point.x - 3, point.y - 3, point.x + 4, point.y + 4};
+  }
+  if (nearest >= 0 && ImGui::IsItemHovered()) {
+    const ImVec2 point = to_screen(nearest);
+    draw.AddCircle(point, 9.0f, IM_COL32(255, 255, 255, 255), 0, 1.5f);
+    const auto row = static_cast<size_t>(nearest);
+    const RowOutcome& outcome = outcomes[row];
+    const ml::EvaluationResult* result = current_evaluation(state);
+    std::string predicted = "-";
+    if (outcome.tested && result)
+      predicted = outcome.predicted >= 0 ? result->classes[static_cast<size_t>(outcome.predicted)] : "unknown";
+    ImGui::SetTooltip("%s  segment %lld\nclass %s, predicted %s\nclick: go to the segment",
+                      dataset.recordings[row].c_str(), static_cast<long long>(dataset.segment_ids[row]),
+                      dataset.classes[row].c_str(), predicted.c_str());
+    if (clicked)
+      if (auto prediction = prediction_of(state, nearest)) land_on(state, *prediction);
+  }
+  draw_legend(classes, ImVec2(origin.x + plot.x + 10, origin.y));
+  ImGui::EndChild();
+}
+
+void draw_som_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("som_view", size, false);
+  AnalysisState& analysis = state.analysis;
+  if (!ensure_som(state)) {
+    ImGui::TextDisabled("No SOM: train (the map is fitted on the feature table), or open --model.");
+    ImGui::EndChild();
+    return;
+  }
+  const ml::SomMap& map = analysis.som->map();
+  const std::vector<std::string>& classes = analysis.som_classes;
+  ImGui::Text("SOM %d x %d, neurons coloured by class, the rows' winners marked", map.rows, map.columns);
+  ImGui::SameLine();
+  ImGui::Checkbox("U-matrix", &analysis.u_matrix);
+  remember_item(state, "U-matrix");
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 available = ImGui::GetContentRegionAvail();
+  const float legend_width = 130.0f;
+  const float list_height = analysis.som_neuron >= 0 ? std::min(140.0f, available.y * 0.3f) : 0.0f;
+  const float cell = std::max(8.0f, std::min((available.x - legend_width) / map.columns,
+                                             (available.y - list_height - 8) / map.rows));
+  ImDrawList& draw = *ImGui::GetWindowDrawList();
+  // U-matrix: each neuron's mean weight distance to its grid neighbours.
+  std::vector<double> spread(static_cast<size_t>(map.rows * map.columns), 0.0);
+  double spread_max = 1e-12;
+  for (int y = 0; y < map.rows; ++y)
+    for (int x = 0; x < map.columns; ++x) {
+      const int k = y * map.columns + x;
+      double sum = 0.0;
+      int count = 0;
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= map.columns || ny >= map.rows) continue;
+        sum += (map.weights.row(k) - map.weights.row(ny * map.columns + nx)).norm();
+        ++count;
+      }
+      spread[static_cast<size_t>(k)] = count ? sum / count : 0.0;
+      spread_max = std::max(spread_max, spread[static_cast<size_t>(k)]);
+    }
+  const std::vector<RowOutcome> outcomes = row_outcomes(state);
+  const std::vector<std::string> table_classes =
+      analysis.dataset ? analysis.dataset->class_names() : std::vector<std::string>{};
+  for (int y = 0; y < map.rows; ++y)
+    for (int x = 0; x < map.columns; ++x) {
+      const int k = y * map.columns + x;
+      const ImVec2 low(origin.x + x * cell, origin.y + y * cell);
+      const ImVec2 high(low.x + cell - 2, low.y + cell - 2);
+      const int owner = map.neuron_class[static_cast<size_t>(k)];
+      ImU32 fill = owner >= 0 && owner < static_cast<int>(classes.size())
+                       ? colour_of_class(classes, classes[static_cast<size_t>(owner)], 200)
+                       : IM_COL32(60, 60, 60, 255);
+      draw.AddRectFilled(low, high, fill, 3.0f);
+      if (analysis.u_matrix) {  // dark where the map folds: the borders between regions
+        const auto shade = static_cast<int>(200.0 * spread[static_cast<size_t>(k)] / spread_max);
+        draw.AddRectFilled(low, high, IM_COL32(0, 0, 0, shade), 3.0f);
+      }
+      if (analysis.som_neuron == k) draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 3.0f, 0, 3.0f);
+      ImGui::SetCursorScreenPos(low);
+      ImGui::PushID(k);
+      if (ImGui::InvisibleButton("neuron", ImVec2(cell - 2, cell - 2))) analysis.som_neuron = k;
+      ImGui::PopID();
+      remember_item(state, "neuron:" + std::to_string(k));
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("neuron %d (%d, %d): %s, %d training wins", k, x, y,
+                          owner >= 0 ? classes[static_cast<size_t>(owner)].c_str() : "unlabelled",
+                          k < static_cast<int>(map.hits.size()) ? map.hits[static_cast<size_t>(k)] : 0);
+    }
+  // The rows' winners: a dot per row in its true class's colour, spread inside the neuron,
+  // ringed red when the evaluation got it wrong.
+  std::vector<int> placed(static_cast<size_t>(map.rows * map.columns), 0);
+  for (size_t row = 0; row < analysis.som_winners.size(); ++row) {
+    const int k = analysis.som_winners[row];
+    const int n = placed[static_cast<size_t>(k)]++;
+    const float angle = 2.399963f * static_cast<float>(n);  // golden angle: a sunflower spiral
+    const float radius = std::min(cell * 0.42f, 2.2f * std::sqrt(static_cast<float>(n)));
+    const ImVec2 centre(origin.x + (k % map.columns + 0.5f) * cell - 1 + radius * std::cos(angle),
+                        origin.y + (k / map.columns + 0.5f) * cell - 1 + radius * std::sin(angle));
+    draw.AddCircleFilled(centre, 2.6f, colour_of_class(table_classes, analysis.dataset->classes[row], 255));
+    draw.AddCircle(centre, 2.6f, IM_COL32(0, 0, 0, 200));
+    if (row < outcomes.size() && outcomes[row].tested && outcomes[row].truth != outcomes[row].predicted)
+      draw.AddCircle(centre, 4.5f, IM_COL32(255, 60, 40, 255), 0, 1.5f);
+  }
+  draw_legend(classes, ImVec2(origin.x + map.columns * cell + 10, origin.y));
+  ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + map.rows * cell + 4));
+  if (analysis.som_neuron >= 0 && analysis.dataset) {
+    ImGui::Text("neuron %d wins:", analysis.som_neuron);
+    ImGui::BeginChild("neuron_rows", ImVec2(0, list_height), true);
+    const Dataset& dataset = *analysis.dataset;
+    for (size_t row = 0; row < analysis.som_winners.size(); ++row) {
+      if (analysis.som_winners[row] != analysis.som_neuron) continue;
+      const std::string text = dataset.recordings[row] + "  segment " +
+                               std::to_string(dataset.segment_ids[row]) + "  " + dataset.classes[row] +
+                               "##" + std::to_string(row);
+      if (ImGui::Selectable(text.c_str()))
+        if (auto prediction = prediction_of(state, static_cast<int64_t>(row))) land_on(state, *prediction);
+    }
+    ImGui::EndChild();
+  }
+  ImGui::EndChild();
+}
+
+}  // namespace tactile

@@ -1,0 +1,158 @@
+// Model panel: choose features, segments, classifier and protocol; Run or Train all in
+// the background (progress, Cancel); the results as a sortable table whose selected row
+// the confusion, scatter and SOM views show.
+#include <algorithm>
+#include <numeric>
+
+#include "analysis.h"
+#include "tactile/features/feature_extractor.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+void draw_choices(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  const std::string own = state.document ? skin_pipeline(state.document->layout.id) : "generic";
+  const std::string shown = analysis.pipeline.empty() ? own + " (the skin's own)" : analysis.pipeline;
+  ImGui::SetNextItemWidth(180);
+  if (ImGui::BeginCombo("features", shown.c_str())) {
+    if (ImGui::Selectable((own + " (the skin's own)").c_str(), analysis.pipeline.empty()))
+      analysis.pipeline.clear();
+    for (const std::string& name : feature_pipelines()) {
+      if (ImGui::Selectable(name.c_str(), analysis.pipeline == name)) analysis.pipeline = name;
+      remember_item(state, "pipeline:" + name);
+    }
+    ImGui::EndCombo();
+  }
+  remember_item(state, "features");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(130);
+  if (ImGui::BeginCombo("segments", to_string(analysis.segments))) {
+    for (LabelSource source : {LabelSource::kGroundTruth, LabelSource::kManual,
+                               LabelSource::kSegmenter, LabelSource::kModel})
+      if (ImGui::Selectable(to_string(source), analysis.segments == source))
+        analysis.segments = source;
+    ImGui::EndCombo();
+  }
+  ImGui::SetNextItemWidth(180);
+  ImGui::InputText("classifier", analysis.classifier.data(), analysis.classifier.size());
+  remember_item(state, "classifier");
+  ImGui::SameLine();
+  if (ImGui::BeginCombo("##presets", "", ImGuiComboFlags_NoPreview)) {
+    for (const ml::ClassifierEntry& entry : ml::classifier_catalog()) {
+      if (ImGui::Selectable(entry.name.c_str())) {
+        analysis.classifier.fill('\0');
+        std::copy_n(entry.name.begin(), std::min(entry.name.size(), analysis.classifier.size() - 1),
+                    analysis.classifier.begin());
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", entry.description.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(110);
+  ImGui::InputText("protocol", analysis.protocol.data(), analysis.protocol.size());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("kfold:K[xR] | loo | loso | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY");
+}
+
+void draw_run_controls(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  const bool running = analysis.job && analysis.job->status() == ml::TrainingJob::Status::kRunning;
+  ImGui::BeginDisabled(running || !state.document);
+  if (ImGui::Button("Run")) start_training(state, analysis.classifier.data());
+  remember_item(state, "button:Run");
+  ImGui::SameLine();
+  if (ImGui::Button("Train all")) start_training(state, "all");
+  remember_item(state, "button:Train all");
+  ImGui::EndDisabled();
+  if (running) {
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) analysis.job->cancel();
+    remember_item(state, "button:Cancel");
+    ImGui::SameLine();
+    const std::string stage = analysis.job->stage();
+    ImGui::ProgressBar(static_cast<float>(analysis.job->progress()), ImVec2(-1, 0), stage.c_str());
+  }
+}
+
+void draw_results_table(WorkbenchState& state, float height) {
+  AnalysisState& analysis = state.analysis;
+  if (analysis.results.empty()) {
+    ImGui::TextDisabled("No results yet: Run one classifier, or Train all to compare every preset.");
+    return;
+  }
+  ImGui::Text("%s", analysis.results_from.c_str());
+  const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg |
+                                ImGuiTableFlags_BordersOuter | ImGuiTableFlags_ScrollY |
+                                ImGuiTableFlags_Resizable;
+  if (!ImGui::BeginTable("results", 4, flags, ImVec2(0, height))) return;
+  ImGui::TableSetupScrollFreeze(0, 1);
+  ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthStretch);
+  ImGui::TableSetupColumn("accuracy", ImGuiTableColumnFlags_DefaultSort |
+                                          ImGuiTableColumnFlags_PreferSortDescending);
+  ImGui::TableSetupColumn("mean recall", ImGuiTableColumnFlags_PreferSortDescending);
+  ImGui::TableSetupColumn("time (s)");
+  ImGui::TableHeadersRow();
+  if (ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs(); specs && specs->SpecsCount > 0) {
+    analysis.sort_column = specs->Specs[0].ColumnIndex;
+    analysis.sort_ascending = specs->Specs[0].SortDirection == ImGuiSortDirection_Ascending;
+  }
+  const auto key = [&](const ml::PresetOutcome& outcome) -> double {
+    if (!outcome.result) return -1.0;
+    switch (analysis.sort_column) {
+      case 2: return ml::mean_recall(*outcome.result);
+      case 3: return outcome.result->seconds;
+      default: return outcome.result->accuracy;
+    }
+  };
+  std::vector<size_t> order(analysis.results.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const ml::PresetOutcome& x = analysis.results[a];
+    const ml::PresetOutcome& y = analysis.results[b];
+    if (analysis.sort_column == 0)
+      return analysis.sort_ascending ? x.classifier < y.classifier : x.classifier > y.classifier;
+    if (x.result.has_value() != y.result.has_value()) return x.result.has_value();
+    return analysis.sort_ascending ? key(x) < key(y) : key(x) > key(y);
+  });
+  for (size_t index : order) {
+    const ml::PresetOutcome& outcome = analysis.results[index];
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    const bool selected = static_cast<int>(index) == analysis.current;
+    if (ImGui::Selectable(outcome.classifier.c_str(), selected,
+                          ImGuiSelectableFlags_SpanAllColumns) &&
+        outcome.result)
+      choose_result(state, static_cast<int>(index));
+    remember_item(state, "result:" + outcome.classifier);
+    if (!outcome.result) {
+      ImGui::TableNextColumn();
+      ImGui::TextDisabled("skipped");
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", outcome.skipped.c_str());
+      continue;
+    }
+    ImGui::TableNextColumn();
+    ImGui::Text("%.1f %%", 100.0 * outcome.result->accuracy);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.1f %%", 100.0 * ml::mean_recall(*outcome.result));
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f", outcome.result->seconds);
+  }
+  ImGui::EndTable();
+}
+
+}  // namespace
+
+void draw_model_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("model_view", size, false);
+  draw_choices(state);
+  draw_run_controls(state);
+  ImGui::Separator();
+  draw_results_table(state, std::max(80.0f, ImGui::GetContentRegionAvail().y));
+  ImGui::EndChild();
+}
+
+}  // namespace tactile

@@ -1,0 +1,62 @@
+#pragma once
+// Saved models and predictions as labels: a classifier fitted on a feature table, saved
+// with what produced its features (the skin, the feature pipeline and its columns, the
+// classes), applied to the segments of new recordings. Its answers become labels of
+// source `model` (the prediction lane), each with its score and margin.
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tactile/features/corpus.h"
+#include "tactile/features/dataset.h"
+#include "tactile/io/label.h"
+#include "tactile/io/recording.h"
+#include "tactile/layout/skin_layout.h"
+#include "tactile/ml/classifier.h"
+
+namespace tactile {
+
+struct SavedModel {
+  std::unique_ptr<ml::Classifier> classifier;
+  std::vector<std::string> classes;   // index = the classifier's class index
+  std::vector<std::string> features;  // the column names it was fitted on, in order
+  std::string pipeline;               // feature pipeline name; "" when not known
+  std::string pipeline_params;        // its parameters, "key=value,..."
+  std::string layout;                 // the skin; "" when the table mixed or had none
+};
+
+// Fits `specification` on every row of `dataset` and returns the model document:
+// save_classifier's fields plus classes, features, layout (the rows' `layout` metadata
+// when all agree) and pipeline (given, else the layout's own skin_pipeline).
+nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
+                                  uint64_t seed, const std::string& pipeline = "",
+                                  const std::string& pipeline_params = "");
+// Written to a temporary file and renamed: a failed write leaves no half file.
+void write_json_file(const std::string& path, const nlohmann::json& document,
+                     const std::string& what);
+// Reads a model document. Throws tactile::Error naming the file and what is wrong.
+SavedModel read_model_file(const std::string& path);
+SavedModel model_from_json(const nlohmann::json& document, const std::string& where);
+
+// The annotator of every prediction label.
+inline constexpr const char* kModelAnnotator = "model";
+
+struct Predictions {
+  std::vector<Label> labels;             // source kModel, one per predicted segment
+  std::vector<SkippedSegment> skipped;   // segments the pipeline gave no row for
+};
+// Predicts the segments of one recording with the model's pipeline. Each label keeps the
+// segment's bounds and region, class = the answer ("unknown" when the model answers so),
+// confidence = its score and note "margin=M model=SPEC" (ml::confidence_of). Throws
+// tactile::Error when the model has no pipeline, the recording is of another skin, or
+// the pipeline's columns are not the model's features.
+Predictions predict_segments(const SavedModel& model, const Recording& recording,
+                             const SkinLayout& layout, const std::vector<Label>& segments);
+
+// The margin a prediction label carries in its note ("margin=0.25 ..."); its confidence
+// when the note has none.
+double prediction_margin(const Label& label);
+
+}  // namespace tactile

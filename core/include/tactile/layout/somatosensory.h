@@ -1,0 +1,74 @@
+#pragma once
+// The somatosensory map (Robovie paper, spec §4.8): each taxel placed by classical MDS of
+// the correlation distances d_ij = -ln |R_ij| between the taxels' signals, so taxels that
+// are touched together lie together, whatever the body says. Computed over one recording
+// or a corpus (correlations from pooled sums), chunk by chunk through the SampleSource,
+// and cached beside the data.
+
+#include <atomic>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/layout/skin_layout.h"
+#include "tactile/signal/sample_source.h"
+
+namespace tactile {
+
+struct SomatosensoryMap {
+  std::string layout;
+  std::string modality;
+  std::vector<int64_t> taxels;     // taxel ids, layout order, those with a channel
+  std::vector<Point2> positions;   // per taxel, scaled into the body map's bounding box
+  double negative_eigenvalue_ratio = 0.0;  // how far d is from Euclidean (ml::MdsResult)
+  int64_t samples = 0;             // samples the correlations were computed over
+  std::string source;              // what it was computed over (file names)
+};
+
+// Pools the sums of Pearson correlation over several sources (a corpus of one skin).
+class CorrelationSums {
+ public:
+  explicit CorrelationSums(int taxels);
+  // Adds every sample of the given columns (one per taxel, -1: absent, left at zero),
+  // reading `block` samples at a time. Throws tactile::Error("somatosensory map",
+  // "cancelled") when `cancel` becomes true.
+  void add(const SampleSource& source, const std::vector<int>& columns, int64_t block = 8192,
+           const std::atomic<bool>* cancel = nullptr);
+  // R; a taxel that never varied correlates 0 with every other (1 with itself).
+  Eigen::MatrixXd correlation() const;
+  int64_t samples() const { return count_; }
+
+ private:
+  Eigen::VectorXd sum_;
+  Eigen::MatrixXd products_;
+  int64_t count_ = 0;
+};
+
+// The map from pooled correlations: d = correlation_dissimilarity(R), classical MDS to 2-D,
+// coordinates scaled (one factor for both axes) into the bounding box of the taxels'
+// body-map positions. Throws tactile::Error when fewer than 3 taxels have a channel.
+SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
+                                   const std::vector<int64_t>& taxels,
+                                   const Eigen::MatrixXd& correlation);
+// Over one source's whole span.
+SomatosensoryMap somatosensory_map(const SampleSource& source, const SkinLayout& layout,
+                                   int modality, const std::atomic<bool>* cancel = nullptr);
+
+nlohmann::json to_json(const SomatosensoryMap& map);
+SomatosensoryMap somatosensory_from_json(const nlohmann::json& document, const std::string& where);
+
+// The cache beside a recording: RECORDING.h5 -> RECORDING.somatosensory-MODALITY.json,
+// valid while the recording's size and modification time are those stored in it.
+std::string somatosensory_cache_path(const std::string& recording_path, const std::string& modality);
+std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& recording_path,
+                                                         const std::string& modality);
+// Best effort: a folder that cannot be written leaves no cache (returns false).
+bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map);
+
+// The layout with its taxels moved to the map's positions (drawn as small circles);
+// taxels not on the map keep their place.
+SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map);
+
+}  // namespace tactile

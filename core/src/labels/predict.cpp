@@ -1,0 +1,194 @@
+// Saved models (fit on a table, save with their pipeline) and their predictions as labels.
+#include "tactile/labels/predict.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "tactile/error.h"
+#include "tactile/features/feature_extractor.h"
+#include "tactile/parameters.h"
+
+namespace tactile {
+
+namespace {
+
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4g", value);
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
+                                  uint64_t seed, const std::string& pipeline,
+                                  const std::string& pipeline_params) {
+  const std::vector<std::string> classes = dataset.class_names();
+  std::map<std::string, int> index;
+  for (size_t k = 0; k < classes.size(); ++k) index[classes[k]] = static_cast<int>(k);
+  std::vector<int> labels;
+  labels.reserve(dataset.classes.size());
+  for (const std::string& name : dataset.classes) labels.push_back(index.at(name));
+  auto classifier = ml::make_classifier(specification);
+  classifier->fit(dataset.features, labels, static_cast<int>(classes.size()), seed);
+  nlohmann::json document = ml::save_classifier(*classifier);
+  document["classes"] = classes;
+  nlohmann::json columns = nlohmann::json::array();
+  for (const FeatureColumn& column : dataset.columns) columns.push_back(column.name);
+  document["features"] = columns;
+  // The skin, when every row names the same one.
+  std::string layout;
+  for (const Metadata& metadata : dataset.metadata) {
+    const auto found = metadata.find("layout");
+    const std::string id = found == metadata.end() ? "" : found->second;
+    if (&metadata == &dataset.metadata.front()) layout = id;
+    if (id != layout) layout.clear();
+  }
+  document["layout"] = layout;
+  document["pipeline"] = !pipeline.empty() ? pipeline : layout.empty() ? "" : skin_pipeline(layout);
+  document["pipeline_params"] = pipeline_params;
+  return document;
+}
+
+void write_json_file(const std::string& path, const nlohmann::json& document,
+                     const std::string& what) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path, "cannot write the " + what);
+    out << document.dump(1) << "\n";
+    out.close();
+    if (!out) {
+      std::remove(temporary.c_str());
+      throw Error(path, "cannot write the " + what);
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::remove(temporary.c_str());
+    throw Error(path, "cannot write the " + what + ": " + error.message());
+  }
+}
+
+SavedModel model_from_json(const nlohmann::json& document, const std::string& where) {
+  SavedModel model;
+  try {
+    model.classifier = ml::load_classifier(document);
+  } catch (const Error& error) {
+    throw Error(where, error.what());
+  }
+  const auto strings = [&](const char* key) {
+    if (!document.contains(key) || !document[key].is_array())
+      throw Error(where, std::string("missing '") + key + "' (a list of names)");
+    std::vector<std::string> names;
+    for (const nlohmann::json& item : document[key]) {
+      if (!item.is_string()) throw Error(where, std::string("'") + key + "' holds a non-string");
+      names.push_back(item.get<std::string>());
+    }
+    return names;
+  };
+  const auto text = [&](const char* key) {
+    if (!document.contains(key)) return std::string();
+    if (!document[key].is_string()) throw Error(where, std::string("'") + key + "' is not text");
+    return document[key].get<std::string>();
+  };
+  model.classes = strings("classes");
+  model.features = strings("features");
+  if (model.classes.empty()) throw Error(where, "'classes' is empty");
+  model.pipeline = text("pipeline");
+  model.pipeline_params = text("pipeline_params");
+  model.layout = text("layout");
+  return model;
+}
+
+SavedModel read_model_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "cannot open the model");
+  nlohmann::json document;
+  try {
+    in >> document;
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(path, std::string("not JSON: ") + error.what());
+  }
+  return model_from_json(document, path);
+}
+
+Predictions predict_segments(const SavedModel& model, const Recording& recording,
+                             const SkinLayout& layout, const std::vector<Label>& segments) {
+  const std::string where = recording.id.empty() ? std::string("predict") : recording.id;
+  if (model.pipeline.empty())
+    throw Error(where, "the model does not say which feature pipeline made its features");
+  if (!model.layout.empty() && model.layout != layout.id)
+    throw Error(where, "a recording of skin '" + layout.id + "', the model is for '" +
+                           model.layout + "'");
+  const auto extractor = make_feature_extractor(
+      model.pipeline, Parameters::parse(model.pipeline_params, "model pipeline_params"));
+  const std::vector<FeatureColumn> columns = extractor->columns(layout);
+  bool same = columns.size() == model.features.size();
+  for (size_t i = 0; same && i < columns.size(); ++i) same = columns[i].name == model.features[i];
+  if (!same)
+    throw Error(where, "pipeline " + model.pipeline + " gives " + std::to_string(columns.size()) +
+                           " columns on " + layout.id + ", not the model's " +
+                           std::to_string(model.features.size()) + " features");
+  const Recording prepared = extractor->preprocess(recording, layout);
+  Predictions predictions;
+  std::vector<std::vector<double>> rows;
+  std::vector<const Label*> kept;
+  for (const Label& segment : segments) {
+    const FeatureResult result = extractor->extract(SegmentInput{prepared, layout, segment});
+    std::string reason = result.skip_reason;
+    if (reason.empty() && result.values.size() != columns.size())
+      reason = "extractor gave " + std::to_string(result.values.size()) + " values";
+    for (size_t i = 0; reason.empty() && i < result.values.size(); ++i)
+      if (!std::isfinite(result.values[i])) reason = "non-finite value in " + columns[i].name;
+    if (!reason.empty()) {
+      predictions.skipped.push_back({recording.id, segment.id, segment.t0, segment.t1, reason});
+      continue;
+    }
+    rows.push_back(result.values);
+    kept.push_back(&segment);
+  }
+  if (rows.empty()) return predictions;
+  ml::Matrix x(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(columns.size()));
+  for (size_t row = 0; row < rows.size(); ++row)
+    for (size_t column = 0; column < columns.size(); ++column)
+      x(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column)) = rows[row][column];
+  const ml::Classifier::Decisions decisions = model.classifier->decide(x);
+  const std::string specification = ml::specification_of(*model.classifier);
+  for (size_t row = 0; row < kept.size(); ++row) {
+    const int answer = decisions.classes[row];
+    const ml::Confidence confidence =
+        ml::confidence_of(decisions.scores.row(static_cast<Eigen::Index>(row)).transpose(), answer);
+    Label label;
+    label.recording = recording.id;
+    label.t0 = kept[row]->t0;
+    label.t1 = kept[row]->t1;
+    label.region = kept[row]->region;
+    label.class_name = answer >= 0 && answer < static_cast<int>(model.classes.size())
+                           ? model.classes[static_cast<size_t>(answer)]
+                           : std::string(kUnknownClass);
+    label.annotator = kModelAnnotator;
+    label.source = LabelSource::kModel;
+    label.confidence = std::clamp(confidence.score, 0.0, 1.0);
+    label.note = "margin=" + number_text(confidence.margin) + " model=" + specification;
+    predictions.labels.push_back(std::move(label));
+  }
+  return predictions;
+}
+
+double prediction_margin(const Label& label) {
+  const size_t at = label.note.find("margin=");
+  if (at == std::string::npos) return label.confidence;
+  const char* start = label.note.c_str() + at + 7;
+  char* end = nullptr;
+  const double margin = std::strtod(start, &end);
+  return end != start && std::isfinite(margin) ? margin : label.confidence;
+}
+
+}  // namespace tactile

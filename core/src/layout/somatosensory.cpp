@@ -1,0 +1,227 @@
+// Somatosensory map: pooled Pearson correlations -> -ln|R| -> classical MDS (spec §4.8).
+#include "tactile/layout/somatosensory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "tactile/error.h"
+#include "tactile/layout/taxel_values.h"
+#include "tactile/ml/mds.h"
+
+namespace tactile {
+
+namespace fs = std::filesystem;
+
+CorrelationSums::CorrelationSums(int taxels)
+    : sum_(Eigen::VectorXd::Zero(taxels)), products_(Eigen::MatrixXd::Zero(taxels, taxels)) {}
+
+void CorrelationSums::add(const SampleSource& source, const std::vector<int>& columns,
+                          int64_t block, const std::atomic<bool>* cancel) {
+  if (static_cast<Eigen::Index>(columns.size()) != sum_.size())
+    throw Error("somatosensory map", "expected " + std::to_string(sum_.size()) + " columns, got " +
+                                         std::to_string(columns.size()));
+  std::vector<int> present;
+  std::vector<Eigen::Index> slot;
+  for (size_t k = 0; k < columns.size(); ++k)
+    if (columns[k] >= 0) present.push_back(columns[k]), slot.push_back(static_cast<Eigen::Index>(k));
+  if (present.empty()) return;
+  const int64_t total = source.sample_count();
+  for (int64_t first = 0; first < total; first += block) {
+    if (cancel && cancel->load()) throw Error("somatosensory map", "cancelled");
+    const int64_t count = std::min(block, total - first);
+    const Eigen::MatrixXd samples = source.read(present, first, count).cast<double>();
+    // Rows with a gap (NaN: a damaged chunk) are left out.
+    Eigen::MatrixXd block_samples = samples;
+    Eigen::Index kept = 0;
+    for (Eigen::Index row = 0; row < samples.rows(); ++row)
+      if (samples.row(row).allFinite()) block_samples.row(kept++) = samples.row(row);
+    const auto used = block_samples.topRows(kept);
+    const Eigen::VectorXd sums = used.colwise().sum().transpose();
+    const Eigen::MatrixXd products = used.transpose() * used;
+    for (size_t i = 0; i < slot.size(); ++i) {
+      sum_(slot[i]) += sums(static_cast<Eigen::Index>(i));
+      for (size_t j = 0; j < slot.size(); ++j)
+        products_(slot[i], slot[j]) += products(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    }
+    count_ += kept;
+  }
+}
+
+Eigen::MatrixXd CorrelationSums::correlation() const {
+  const Eigen::Index n = sum_.size();
+  Eigen::MatrixXd r = Eigen::MatrixXd::Identity(n, n);
+  if (count_ < 2) return r;
+  const double count = static_cast<double>(count_);
+  const Eigen::VectorXd mean = sum_ / count;
+  Eigen::MatrixXd covariance = products_ / count - mean * mean.transpose();
+  Eigen::VectorXd deviation(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double variance = covariance(i, i);
+    // A taxel that never varied (or is absent) has no correlation with anything.
+    deviation(i) = variance > 1e-12 * std::max(1.0, mean(i) * mean(i)) ? std::sqrt(variance) : 0.0;
+  }
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (i != j)
+        r(i, j) = deviation(i) > 0 && deviation(j) > 0
+                      ? std::clamp(covariance(i, j) / (deviation(i) * deviation(j)), -1.0, 1.0)
+                      : 0.0;
+  return r;
+}
+
+SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
+                                   const std::vector<int64_t>& taxels,
+                                   const Eigen::MatrixXd& correlation) {
+  if (taxels.size() < 3)
+    throw Error("somatosensory map", "needs at least 3 taxels with a channel, has " +
+                                         std::to_string(taxels.size()));
+  const ml::MdsResult mds = ml::classical_mds(ml::correlation_dissimilarity(correlation), 2);
+  SomatosensoryMap map;
+  map.layout = layout.id;
+  map.modality = modality >= 0 && modality < static_cast<int>(layout.modalities.size())
+                     ? layout.modalities[static_cast<size_t>(modality)]
+                     : "";
+  map.taxels = taxels;
+  map.negative_eigenvalue_ratio = mds.negative_eigenvalue_ratio;
+  // Into the body map's bounding box, one scale for both axes, centred.
+  double x0 = std::numeric_limits<double>::max(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (const Taxel& taxel : layout.taxels) {
+    x0 = std::min(x0, taxel.position.x), x1 = std::max(x1, taxel.position.x);
+    y0 = std::min(y0, taxel.position.y), y1 = std::max(y1, taxel.position.y);
+  }
+  const Eigen::MatrixXd& xy = mds.coordinates;
+  const double u0 = xy.col(0).minCoeff(), u1 = xy.col(0).maxCoeff();
+  const double v0 = xy.col(1).minCoeff(), v1 = xy.col(1).maxCoeff();
+  const double width = std::max(x1 - x0, 1.0), height = std::max(y1 - y0, 1.0);
+  const double scale = std::min(width / std::max(u1 - u0, 1e-12), height / std::max(v1 - v0, 1e-12));
+  for (Eigen::Index i = 0; i < xy.rows(); ++i)
+    map.positions.push_back({x0 + width / 2 + (xy(i, 0) - (u0 + u1) / 2) * scale,
+                             y0 + height / 2 + (xy(i, 1) - (v0 + v1) / 2) * scale});
+  return map;
+}
+
+SomatosensoryMap somatosensory_map(const SampleSource& source, const SkinLayout& layout,
+                                   int modality, const std::atomic<bool>* cancel) {
+  const std::vector<int> all = taxel_columns(layout, source.info().channels, modality);
+  std::vector<int> columns;
+  std::vector<int64_t> taxels;
+  for (size_t k = 0; k < all.size(); ++k)
+    if (all[k] >= 0) columns.push_back(all[k]), taxels.push_back(layout.taxels[k].id);
+  CorrelationSums sums(static_cast<int>(columns.size()));
+  sums.add(source, columns, 8192, cancel);
+  SomatosensoryMap map = somatosensory_map(layout, modality, taxels, sums.correlation());
+  map.samples = sums.samples();
+  map.source = source.info().recording_id;
+  return map;
+}
+
+nlohmann::json to_json(const SomatosensoryMap& map) {
+  nlohmann::json positions = nlohmann::json::array();
+  for (const Point2& point : map.positions) positions.push_back({point.x, point.y});
+  return {{"layout", map.layout},       {"modality", map.modality},
+          {"taxels", map.taxels},       {"positions", positions},
+          {"samples", map.samples},     {"source", map.source},
+          {"negative_eigenvalue_ratio", map.negative_eigenvalue_ratio}};
+}
+
+SomatosensoryMap somatosensory_from_json(const nlohmann::json& document, const std::string& where) {
+  SomatosensoryMap map;
+  try {
+    map.layout = document.at("layout").get<std::string>();
+    map.modality = document.at("modality").get<std::string>();
+    map.taxels = document.at("taxels").get<std::vector<int64_t>>();
+    for (const nlohmann::json& point : document.at("positions")) {
+      const auto xy = point.get<std::vector<double>>();
+      if (xy.size() != 2 || !std::isfinite(xy[0]) || !std::isfinite(xy[1]))
+        throw Error(where, "a position is not two finite numbers");
+      map.positions.push_back({xy[0], xy[1]});
+    }
+    map.samples = document.value("samples", int64_t{0});
+    map.source = document.value("source", std::string());
+    map.negative_eigenvalue_ratio = document.value("negative_eigenvalue_ratio", 0.0);
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(where, std::string("malformed somatosensory map: ") + error.what());
+  }
+  if (map.positions.size() != map.taxels.size())
+    throw Error(where, "positions and taxels differ in number");
+  return map;
+}
+
+namespace {
+
+// What identifies the recording's bytes well enough for a cache: size and mtime.
+std::string file_stamp(const std::string& path) {
+  std::error_code error;
+  const auto size = fs::file_size(path, error);
+  if (error) return "";
+  const auto time = fs::last_write_time(path, error);
+  if (error) return "";
+  return std::to_string(size) + ":" + std::to_string(time.time_since_epoch().count());
+}
+
+}  // namespace
+
+std::string somatosensory_cache_path(const std::string& recording_path, const std::string& modality) {
+  fs::path path(recording_path);
+  path.replace_extension();
+  return path.string() + ".somatosensory-" + modality + ".json";
+}
+
+std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& recording_path,
+                                                         const std::string& modality) {
+  const std::string path = somatosensory_cache_path(recording_path, modality);
+  std::ifstream in(path);
+  if (!in) return std::nullopt;
+  const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+  if (document.is_discarded() || !document.is_object() ||
+      document.value("stamp", std::string()) != file_stamp(recording_path))
+    return std::nullopt;  // stale or damaged: computed again
+  try {
+    return somatosensory_from_json(document, path);
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map) {
+  const std::string path = somatosensory_cache_path(recording_path, map.modality);
+  nlohmann::json document = to_json(map);
+  document["stamp"] = file_stamp(recording_path);
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::trunc);
+    if (!out) return false;
+    out << document.dump() << "\n";
+    out.close();
+    if (!out) {
+      std::remove(temporary.c_str());
+      return false;
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) std::remove(temporary.c_str());
+  return !error;
+}
+
+SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map) {
+  SkinLayout moved = layout;
+  // A dot's size: a fraction of the map, so 274 films do not cover each other.
+  double x0 = 1e300, x1 = -1e300;
+  for (const Point2& point : map.positions) x0 = std::min(x0, point.x), x1 = std::max(x1, point.x);
+  const double dot = std::max(1.0, (x1 - x0) / std::max(8.0, std::sqrt(map.positions.size()) * 3.0));
+  for (size_t k = 0; k < map.taxels.size(); ++k)
+    for (Taxel& taxel : moved.taxels)
+      if (taxel.id == map.taxels[k]) {
+        taxel.position = map.positions[k];
+        taxel.size = {dot, dot};
+        taxel.shape = TaxelShape::kCircle;
+        taxel.outline.clear();
+      }
+  return moved;
+}
+
+}  // namespace tactile

@@ -1,0 +1,127 @@
+// The somatosensory map (spec §4.8): taxels touched together land together; pooled
+// correlations equal one pass over all samples; the cache beside a recording is used
+// while the recording is unchanged.
+#include "tactile/layout/somatosensory.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <unistd.h>
+
+#include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
+
+namespace tactile {
+namespace {
+
+// Six strip taxels: 0-2 follow one random drive, 3-5 another, all a little of a common
+// one (the robot's own motion), plus noise. (Fully independent groups would give -ln|R|
+// of pure noise across them: distances scattered from 3 to 8 that no plane can hold.)
+Stream two_groups(int64_t samples, uint64_t seed) {
+  const SkinLayout layout = load_layout("strip:6");
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 100.0;
+  for (const Channel& channel : layout.channels) stream.channels.push_back(channel.name);
+  stream.units.assign(layout.channels.size(), "");
+  stream.samples = SampleMatrix::Zero(samples, 6);
+  std::mt19937_64 random(seed);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  for (int64_t row = 0; row < samples; ++row) {
+    const float a = normal(random), b = normal(random), common = normal(random);
+    for (int taxel = 0; taxel < 6; ++taxel)
+      stream.samples(row, taxel) = (taxel < 3 ? a : b) + 0.4f * common + 0.3f * normal(random);
+  }
+  return stream;
+}
+
+double distance(const SomatosensoryMap& map, size_t i, size_t j) {
+  return std::hypot(map.positions[i].x - map.positions[j].x, map.positions[i].y - map.positions[j].y);
+}
+
+TEST(SomatosensoryMap, TaxelsTouchedTogetherLieTogether) {
+  const SkinLayout layout = load_layout("strip:6");
+  const MemorySampleSource source(two_groups(5000, 1), layout.id, "r1");
+  const SomatosensoryMap map = somatosensory_map(source, layout, 0);
+  ASSERT_EQ(map.taxels.size(), 6u);
+  EXPECT_EQ(map.samples, 5000);
+  double within = 0.0, across = 1e300;
+  for (size_t i = 0; i < 6; ++i)
+    for (size_t j = i + 1; j < 6; ++j) {
+      if ((i < 3) == (j < 3))
+        within = std::max(within, distance(map, i, j));
+      else
+        across = std::min(across, distance(map, i, j));
+    }
+  EXPECT_LT(within * 5.0, across) << "within " << within << " across " << across;
+  // Inside the body map's bounding box.
+  double x0 = 1e300, x1 = -1e300;
+  for (const Taxel& taxel : layout.taxels) x0 = std::min(x0, taxel.position.x), x1 = std::max(x1, taxel.position.x);
+  for (const Point2& point : map.positions) {
+    EXPECT_GE(point.x, x0 - 1e-9);
+    EXPECT_LE(point.x, x1 + 1e-9);
+  }
+}
+
+TEST(SomatosensoryMap, PooledSumsEqualOnePassAndGapsAreLeftOut) {
+  const Stream stream = two_groups(3000, 2);
+  const MemorySampleSource whole(stream, "strip:6", "r");
+  CorrelationSums one(6), pooled(6);
+  const std::vector<int> columns = {0, 1, 2, 3, 4, 5};
+  one.add(whole, columns, 700);
+  Stream first = stream, second = stream;
+  first.samples = stream.samples.topRows(1200);
+  second.samples = stream.samples.bottomRows(1800);
+  pooled.add(MemorySampleSource(first, "strip:6", "a"), columns, 500);
+  pooled.add(MemorySampleSource(second, "strip:6", "b"), columns, 8192);
+  EXPECT_EQ(pooled.samples(), 3000);
+  EXPECT_TRUE(one.correlation().isApprox(pooled.correlation(), 1e-9));
+  // A NaN row (a damaged chunk read as a gap) does not poison the sums.
+  Stream gappy = stream;
+  gappy.samples(10, 2) = std::nanf("");
+  CorrelationSums with_gap(6);
+  with_gap.add(MemorySampleSource(gappy, "strip:6", "g"), columns);
+  EXPECT_EQ(with_gap.samples(), 2999);
+  EXPECT_TRUE(with_gap.correlation().allFinite());
+  // A constant taxel correlates with nothing (and is placed far away by the clamp).
+  Stream flat = stream;
+  flat.samples.col(5).setConstant(2.0f);
+  CorrelationSums constant(6);
+  constant.add(MemorySampleSource(flat, "strip:6", "f"), columns);
+  EXPECT_EQ(constant.correlation()(5, 0), 0.0);
+  EXPECT_EQ(constant.correlation()(5, 5), 1.0);
+}
+
+TEST(SomatosensoryMap, CacheBesideTheRecordingIsUsedUntilItChanges) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / ("somatosensory-cache-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  Recording recording;
+  recording.id = "r1";
+  recording.layout_id = "strip:6";
+  recording.streams.push_back(two_groups(2000, 3));
+  const std::string path = (folder / "r1.h5").string();
+  write_recording(path, recording);
+  const SkinLayout layout = load_layout("strip:6");
+  const FileSampleSource source(path);
+  EXPECT_FALSE(read_somatosensory_cache(path, "value"));
+  const SomatosensoryMap map = somatosensory_map(source, layout, 0);
+  ASSERT_TRUE(write_somatosensory_cache(path, map));
+  EXPECT_EQ(somatosensory_cache_path(path, map.modality), (folder / ("r1.somatosensory-" + map.modality + ".json")).string());
+  const auto cached = read_somatosensory_cache(path, map.modality);
+  ASSERT_TRUE(cached);
+  EXPECT_EQ(cached->taxels, map.taxels);
+  EXPECT_DOUBLE_EQ(cached->positions[4].y, map.positions[4].y);
+  // The recording rewritten: the cache is stale.
+  std::filesystem::last_write_time(path, std::filesystem::last_write_time(path) + std::chrono::seconds(5));
+  EXPECT_FALSE(read_somatosensory_cache(path, map.modality));
+  // Too few taxels is an error naming the map.
+  EXPECT_THROW(somatosensory_map(layout, 0, {1, 2}, Eigen::MatrixXd::Identity(2, 2)), Error);
+  std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace tactile
