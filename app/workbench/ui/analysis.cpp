@@ -9,6 +9,8 @@
 
 #include "tactile/error.h"
 #include "tactile/labels/predict.h"
+#include "labelling.h"
+#include "tactile/io/label_store.h"
 #include "tactile/ml/pca.h"
 #include "views.h"
 
@@ -90,6 +92,14 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   request.pipeline = analysis.pipeline;
   request.classifier = classifier;
   request.protocol = analysis.protocol.data();
+  // One classifier: also fitted on every row and saved, so it can predict (Predict).
+  if (classifier != "all") {
+    const fs::path models = fs::path(request.folder) / "models";
+    std::error_code error;
+    fs::create_directories(models, error);
+    std::string name = classifier.substr(0, classifier.find(':'));
+    if (!error) request.save_model = (models / (request.layout + "-" + name + ".json")).string();
+  }
   // Leave a core to the window, so frames keep their time while training.
   request.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
   try {
@@ -120,6 +130,17 @@ void poll_training(WorkbenchState& state) {
       if (!outcome) break;
       const ml::TrainingRequest& request = analysis.job->request();
       analysis.results = std::move(outcome->results);
+      analysis.model_path = outcome->model_path;
+      // Every result is a file: the evaluation beside the model.
+      if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
+        try {
+          fs::path path(outcome->model_path);
+          path.replace_extension(".evaluation.json");
+          write_json_file(path.string(), ml::to_json(*analysis.results[0].result, true), "evaluation");
+        } catch (const Error& error) {
+          state.error = error.what();
+        }
+      }
       analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
                               std::to_string(outcome->dataset.rows()) + " segments";
       set_dataset(analysis, std::move(outcome->dataset));
@@ -154,6 +175,39 @@ void choose_result(WorkbenchState& state, int index) {
     analysis.som.reset();
   const ml::EvaluationResult* result = current_evaluation(state);
   if (result) analysis.tab_request = "confusion";
+}
+
+bool predict_open_recording(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (!state.document) return fail(state, "open a recording to predict");
+  if (analysis.model_path.empty()) return fail(state, "Run one classifier first: its model predicts");
+  try {
+    Document& document = *state.document;
+    const SavedModel model = read_model_file(analysis.model_path);
+    // The recording's segmenter suggestions, else its ground truth, as `tactile predict`.
+    std::vector<Label> segments;
+    for (LabelSource source : {LabelSource::kSegmenter, LabelSource::kGroundTruth}) {
+      for (const Label& label : document.labels)
+        if (label.source == source) segments.push_back(label);
+      if (!segments.empty()) break;
+    }
+    if (segments.empty()) return fail(state, "no segments to predict: run a segmenter (Labels menu)");
+    const Predictions predictions =
+        predict_segments(model, whole_recording(document), document.layout, segments);
+    LabelStore& store = document.label_store();
+    LabelFilter earlier;
+    earlier.recording = document.recording_id();
+    earlier.source = LabelSource::kModel;
+    store.remove_where(earlier, kModelAnnotator);
+    store.add_many(predictions.labels);
+    document.reload_labels();
+    state.error.clear();
+    state.notice = std::to_string(predictions.labels.size()) + " predictions by " +
+                   fs::path(analysis.model_path).stem().string() + " (U: the least sure)";
+  } catch (const std::exception& error) {
+    return fail(state, std::string("predict: ") + error.what());
+  }
+  return true;
 }
 
 //---- Files ----------------------------------------------------------------------------------

@@ -15,6 +15,11 @@ bool start_training(WorkbenchState& state, const std::string& classifier);
 // Called every frame: takes a finished job's results (the best one becomes current).
 void poll_training(WorkbenchState& state);
 
+// Applies the last model trained here (one classifier: fitted on every row and saved in
+// the workspace's models/ folder) to the open recording's segments; its answers replace
+// the recording's prediction lane.
+bool predict_open_recording(WorkbenchState& state);
+
 // The evaluation the views show (the current row of the results), or null.
 const ml::EvaluationResult* current_evaluation(const WorkbenchState& state);
 // Makes row `index` of the results current: its confusion, scatter rings, SOM.

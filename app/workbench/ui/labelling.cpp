@@ -228,6 +228,22 @@ bool undo_edit(WorkbenchState& state, bool redo) {
 
 namespace {
 
+
+// Selects the suggestion of `method` starting after t (or the first), moving the cursor.
+bool select_next_suggestion(WorkbenchState& state, const std::string& method, double after) {
+  const int lane_index = state.document->lanes.find({LabelSource::kSegmenter, method});
+  if (lane_index < 0) return false;
+  const LaneIndex& lane = state.document->lanes.lanes[static_cast<size_t>(lane_index)];
+  const int64_t next = lane.next_after(after);
+  if (next < 0) return false;
+  const Label& label = lane.labels()[static_cast<size_t>(next)];
+  state.selection.labels = {label.id};
+  state.clock.seek(label.t0);
+  return true;
+}
+
+}  // namespace
+
 // The whole open recording as the segmenters take it (a job, not a view: it reads
 // every sample once).
 Recording whole_recording(const Document& document) {
@@ -250,21 +266,6 @@ Recording whole_recording(const Document& document) {
   recording.streams = {std::move(stream)};
   return recording;
 }
-
-// Selects the suggestion of `method` starting after t (or the first), moving the cursor.
-bool select_next_suggestion(WorkbenchState& state, const std::string& method, double after) {
-  const int lane_index = state.document->lanes.find({LabelSource::kSegmenter, method});
-  if (lane_index < 0) return false;
-  const LaneIndex& lane = state.document->lanes.lanes[static_cast<size_t>(lane_index)];
-  const int64_t next = lane.next_after(after);
-  if (next < 0) return false;
-  const Label& label = lane.labels()[static_cast<size_t>(next)];
-  state.selection.labels = {label.id};
-  state.clock.seek(label.t0);
-  return true;
-}
-
-}  // namespace
 
 bool run_segmenter(WorkbenchState& state, const std::string& method) {
   if (!state.document) return false;

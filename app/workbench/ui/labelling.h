@@ -31,6 +31,10 @@ bool undo_edit(WorkbenchState& state, bool redo);
 // and moves the cursor to its start.
 bool walk_labels(WorkbenchState& state, int direction);
 
+// The whole open recording as segmenters and models take it (a job, not a view: it
+// reads every sample once).
+Recording whole_recording(const Document& document);
+
 // Runs a segmenter on the open recording (parameters from the Labels menu): its
 // segments replace its earlier ones for this recording, less the rejected ones, and
 // the first is selected.

@@ -137,7 +137,7 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   }
   const ml::SomMap& map = analysis.som->map();
   const std::vector<std::string>& classes = analysis.som_classes;
-  ImGui::Text("SOM %d x %d, neurons coloured by class, the rows' winners marked", map.rows, map.columns);
+  ImGui::Text("SOM %d x %d: neurons coloured by their class, each row a dot on its winner", map.rows, map.columns);
   ImGui::SameLine();
   ImGui::Checkbox("U-matrix", &analysis.u_matrix);
   remember_item(state, "U-matrix");
@@ -200,13 +200,13 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
     const int k = analysis.som_winners[row];
     const int n = placed[static_cast<size_t>(k)]++;
     const float angle = 2.399963f * static_cast<float>(n);  // golden angle: a sunflower spiral
-    const float radius = std::min(cell * 0.42f, 2.2f * std::sqrt(static_cast<float>(n)));
+    const float radius = std::min(cell * 0.38f, 3.6f * std::sqrt(static_cast<float>(n)));
     const ImVec2 centre(origin.x + (k % map.columns + 0.5f) * cell - 1 + radius * std::cos(angle),
                         origin.y + (k / map.columns + 0.5f) * cell - 1 + radius * std::sin(angle));
-    draw.AddCircleFilled(centre, 2.6f, colour_of_class(table_classes, analysis.dataset->classes[row], 255));
-    draw.AddCircle(centre, 2.6f, IM_COL32(0, 0, 0, 200));
+    draw.AddCircleFilled(centre, 3.8f, colour_of_class(table_classes, analysis.dataset->classes[row], 255));
+    draw.AddCircle(centre, 3.8f, IM_COL32(255, 255, 255, 220));
     if (row < outcomes.size() && outcomes[row].tested && outcomes[row].truth != outcomes[row].predicted)
-      draw.AddCircle(centre, 4.5f, IM_COL32(255, 60, 40, 255), 0, 1.5f);
+      draw.AddCircle(centre, 6.5f, IM_COL32(255, 60, 40, 255), 0, 2.0f);
   }
   draw_legend(classes, ImVec2(origin.x + map.columns * cell + 10, origin.y));
   ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + map.rows * cell + 4));

@@ -68,6 +68,17 @@ void draw_run_controls(WorkbenchState& state) {
   if (ImGui::Button("Train all")) start_training(state, "all");
   remember_item(state, "button:Train all");
   ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(running || analysis.model_path.empty() || !state.document);
+  if (ImGui::Button("Predict")) predict_open_recording(state);
+  remember_item(state, "button:Predict");
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", analysis.model_path.empty()
+                                ? "Run one classifier first: its model predicts this recording"
+                                : ("Predict this recording's segments with " + analysis.model_path +
+                                   "\n(the prediction lane; U: the least sure, Y confirms, a digit corrects)")
+                                      .c_str());
   if (running) {
     ImGui::SameLine();
     if (ImGui::Button("Cancel")) analysis.job->cancel();

@@ -91,15 +91,18 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   ImGui::Checkbox("raw values", &state.show_raw_values);
   ImGui::SameLine();
   // The body as built, or the somatosensory map: taxels placed by how they are touched together.
-  ImGui::Checkbox("somatosensory map", &state.analysis.somatosensory);
-  remember_item(state, "somatosensory map");
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::BeginCombo("##map", state.analysis.somatosensory ? "somatosensory" : "body map")) {
+    if (ImGui::Selectable("body map", !state.analysis.somatosensory)) state.analysis.somatosensory = false;
+    remember_item(state, "map:body");
+    if (ImGui::Selectable("somatosensory", state.analysis.somatosensory)) state.analysis.somatosensory = true;
+    remember_item(state, "map:somatosensory");
+    ImGui::EndCombo();
+  }
+  remember_item(state, "map");
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Taxels placed by MDS of their correlation distances -ln|R|\n"
-                      "over this recording (Robovie paper); cached beside it.");
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip(
-        "Off: each taxel's change from its rest level (median), scaled to the\n"
-        "recording's touches. On: raw values in the layout's display range.");
+    ImGui::SetTooltip("body map: the skin as built\nsomatosensory: taxels placed by MDS of their correlation\n"
+                      "distances -ln|R| over this recording (Robovie paper); cached beside it");
   double value_min = 0.0, value_max = 1.0;
   const std::vector<float> values = skin_values_now(state, value_min, value_max);
   SkinViewStyle style;
@@ -125,6 +128,10 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
       state.analysis.map_layout = layout_on_map(layout, *state.analysis.map);
     drawn = &*state.analysis.map_layout;
     style.show_group_names = false;
+    const SomatosensoryMap& map = *state.analysis.map;
+    ImGui::TextDisabled("%zu taxels by MDS of -ln|R| over %lld samples (non-Euclidean share %.2f)",
+                        map.taxels.size(), static_cast<long long>(map.samples),
+                        map.negative_eigenvalue_ratio);
   }
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
