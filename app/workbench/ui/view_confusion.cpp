@@ -33,9 +33,10 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
     name_width = std::max(name_width, ImGui::CalcTextSize(name.c_str()).x);
   name_width += 12.0f;
   const float header = ImGui::GetTextLineHeight() * 2.4f;
-  const float cell = std::clamp(std::min((size.x - name_width) / std::max(1, columns),
+  const float legend = 110.0f;
+  const float cell = std::clamp(std::min((size.x - name_width - legend) / std::max(1, columns),
                                          (size.y - header) / std::max(1, classes)),
-                                18.0f, 90.0f);
+                                18.0f, 110.0f);
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 grid(origin.x + name_width, origin.y + header);
@@ -64,14 +65,18 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
       if (row != column && count > 0)  // wrong cells are framed: they are the ones to click
         draw.AddRect(low, high, IM_COL32(230, 90, 70, 200), 0.0f, 0, 1.5f);
       if (chosen) draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 0.0f, 0, 3.0f);
-      char text[32];
-      if (cell >= 40)
-        std::snprintf(text, sizeof text, "%d\n%.0f%%", count, 100.0 * share);
-      else
-        std::snprintf(text, sizeof text, "%d", count);
-      const ImVec2 extent = ImGui::CalcTextSize(text);
-      draw.AddText(ImVec2(low.x + (cell - extent.x) / 2, low.y + (cell - extent.y) / 2),
-                   count == 0 ? IM_COL32(110, 110, 110, 255) : text_on(colour), text);
+      // The count, and below it (when there is room) the share of the row; each centred.
+      char count_text[16], share_text[16];
+      std::snprintf(count_text, sizeof count_text, "%d", count);
+      std::snprintf(share_text, sizeof share_text, "%.0f%%", 100.0 * share);
+      const ImU32 ink = count == 0 ? IM_COL32(110, 110, 110, 255) : text_on(colour);
+      const float line = ImGui::GetTextLineHeight();
+      const bool two_lines = cell >= 2.4f * line;
+      const float top = low.y + (cell - (two_lines ? 2 * line : line)) / 2;
+      draw.AddText(ImVec2(low.x + (cell - ImGui::CalcTextSize(count_text).x) / 2, top), ink, count_text);
+      if (two_lines)
+        draw.AddText(ImVec2(low.x + (cell - ImGui::CalcTextSize(share_text).x) / 2, top + line), ink,
+                     share_text);
       ImGui::SetCursorScreenPos(low);
       ImGui::PushID(row * 1000 + column);
       if (ImGui::InvisibleButton("cell", ImVec2(cell - 1, cell - 1))) select_cell(state, row, predicted);
@@ -83,6 +88,17 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
                           100.0 * share, 100.0 * result.per_class[static_cast<size_t>(row)].recall);
     }
   }
+  // The colour scale: share of the true class's row.
+  const ImVec2 bar(grid.x + columns * cell + 16, grid.y);
+  const float bar_height = std::max(40.0f, classes * cell - 1);
+  for (int step = 0; step < 32; ++step) {
+    const float y = bar.y + bar_height * (1.0f - (step + 1) / 32.0f);
+    draw.AddRectFilled(ImVec2(bar.x, y), ImVec2(bar.x + 12, y + bar_height / 32.0f + 1),
+                       pack_abgr(viridis(0.15f + 0.85f * (step + 0.5f) / 32.0f)));
+  }
+  draw.AddText(ImVec2(bar.x + 16, bar.y - 2), IM_COL32(200, 200, 200, 255), "100% of row");
+  draw.AddText(ImVec2(bar.x + 16, bar.y + bar_height - ImGui::GetTextLineHeight()),
+               IM_COL32(200, 200, 200, 255), "0%");
   ImGui::SetCursorScreenPos(ImVec2(origin.x, grid.y + classes * cell + 4));
   ImGui::Dummy(ImVec2(name_width + columns * cell, 1));
 }

@@ -151,7 +151,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     const ImVec2 extent = ImGui::CalcTextSize(text.c_str());
     const bool wrong = landed->truth != landed->predicted;
     draw.AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + extent.x + 4, at.y + extent.y + 2),
-                       wrong ? IM_COL32(120, 30, 25, 230) : IM_COL32(25, 90, 40, 230), 3.0f);
+                       wrong ? IM_COL32(120, 30, 25, 255) : IM_COL32(25, 90, 40, 255), 3.0f);
     draw.AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
   }
   state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));

@@ -640,8 +640,20 @@ nlohmann::json Workbench::analysis_json() const {
               {"segment_id", analysis.landed->segment_id}};
   std::string training = "idle";
   if (analysis.job) training = analysis.job->status() == ml::TrainingJob::Status::kRunning ? "running" : "finished";
+  nlohmann::json confusion = nullptr;
+  if (current) {
+    confusion = nlohmann::json::array();
+    for (Eigen::Index row = 0; row < current->confusion.rows(); ++row) {
+      nlohmann::json counts = nlohmann::json::array();
+      for (Eigen::Index column = 0; column < static_cast<Eigen::Index>(current->classes.size()); ++column)
+        counts.push_back(current->confusion(row, column));
+      confusion.push_back(counts);
+    }
+  }
   return {{"training", training},
           {"results", results},
+          {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
+          {"confusion", confusion},
           {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
           {"cell", {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
                     {"predicted", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},

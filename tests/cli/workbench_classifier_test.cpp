@@ -1,0 +1,244 @@
+// Classifiers in the workbench, driven by scripts through ImGui's real input path: from a
+// fresh demo workspace, train every preset, open the confusion matrix, click a wrong cell,
+// land on its segment (the screenshot shows it); results opened from files; the SOM,
+// scatter and somatosensory views as PNGs; the prediction lane corrected by keys.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cli_test_support.h"
+#include "png_test_support.h"
+
+namespace tactile {
+namespace {
+
+class WorkbenchClassifiers : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto made = test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+  }
+  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
+  test::CommandResult workbench(const std::string& arguments, std::string script_text = "") {
+    std::string all = arguments + " --annotator ana --size 1400x800 --settings " +
+                      folder.file("settings.json");
+    if (!script_text.empty()) {
+      for (size_t at = script_text.find('@'); at != std::string::npos; at = script_text.find('@', at))
+        script_text.replace(at, 1, folder.path().string() + "/");
+      const std::string path = folder.file("script-" + std::to_string(++scripts) + ".txt");
+      std::ofstream(path) << script_text;
+      all += " --script " + path;
+    }
+    return test::run_program("tactile-workbench-headless", all, folder);
+  }
+  nlohmann::json state(const std::string& name) {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+
+  test::TempFolder folder{"tactile-workbench-classifiers"};
+  int scripts = 0;
+};
+
+// Distinct colours of an image region: an empty view has two or three.
+size_t colours_in(const Png& png, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
+  if (x1 < 0) x1 = png.width;
+  if (y1 < 0) y1 = png.height;
+  std::set<uint32_t> colours;
+  for (int y = y0; y < y1; y += 2)
+    for (int x = x0; x < x1; x += 2) {
+      const unsigned char* p = png.at(x, y);
+      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
+    }
+  return colours.size();
+}
+
+const char* kTrainAll =
+    "wait 2\nclick item tab:model\nwait 2\nclick item button:Train all\nwait training\nwait 3\n";
+
+TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
+  // First run: which cells are wrong (training is seeded: the second run gets the same).
+  const std::string recording = demo("fur-s01-t01.h5");
+  auto trained = workbench(recording, std::string(kTrainAll) + "state @trained.json\n");
+  ASSERT_EQ(trained.exit_code, 0) << trained.err;
+  const nlohmann::json analysis = state("trained.json")["analysis"];
+  ASSERT_GE(analysis["results"].size(), 15u);
+  // The best row is current: the table's highest accuracy.
+  double best = 0.0;
+  for (const nlohmann::json& row : analysis["results"])
+    if (row.contains("accuracy")) best = std::max(best, row["accuracy"].get<double>());
+  std::string current_name = analysis["current"];
+  for (const nlohmann::json& row : analysis["results"])
+    if (row["classifier"] == current_name) {
+      EXPECT_DOUBLE_EQ(row["accuracy"].get<double>(), best);
+    }
+  const auto classes = analysis["classes"].get<std::vector<std::string>>();
+  const auto confusion = analysis["confusion"].get<std::vector<std::vector<int>>>();
+  std::string truth, predicted;
+  for (size_t row = 0; row < classes.size() && truth.empty(); ++row)
+    for (size_t column = 0; column < classes.size(); ++column)
+      if (row != column && confusion[row][column] > 0) {
+        truth = classes[row], predicted = classes[column];
+        break;
+      }
+  ASSERT_FALSE(truth.empty()) << "the best model made no mistake on the demo";
+
+  auto landed = workbench(recording, std::string(kTrainAll) + "click cell " + truth + " " +
+                                         predicted + "\nwait 2\nstate @cell.json\nkey Enter\n"
+                                         "wait 12\nstate @landed.json\nscreenshot @landed.png\n"
+                                         "key N\nwait 3\nstate @next.json\n");
+  ASSERT_EQ(landed.exit_code, 0) << landed.err;
+  const nlohmann::json cell = state("cell.json")["analysis"]["cell"];
+  EXPECT_EQ(cell["true"], truth);
+  EXPECT_EQ(cell["predicted"], predicted);
+  EXPECT_GE(cell["segments"].get<int>(), 1);
+  const nlohmann::json at = state("landed.json");
+  const nlohmann::json segment = at["analysis"]["landed"];
+  ASSERT_FALSE(segment.is_null());
+  EXPECT_EQ(segment["true"], truth);
+  EXPECT_EQ(segment["predicted"], predicted);
+  // Its recording is open, the cursor inside the segment (replaying), the plot around it,
+  // the label selected.
+  EXPECT_EQ(at["recording"], segment["recording"]);
+  EXPECT_GE(at["time"].get<double>(), segment["t0"].get<double>());
+  EXPECT_LE(at["time"].get<double>(), segment["t1"].get<double>());
+  EXPECT_LE(at["plot"]["t0"].get<double>(), segment["t0"].get<double>());
+  EXPECT_GE(at["plot"]["t1"].get<double>(), segment["t1"].get<double>());
+  EXPECT_EQ(at["selection"]["labels"], nlohmann::json::array({segment["segment_id"]}));
+  EXPECT_EQ(at["error"], "");
+  // The screenshot: the skin names both classes on a red banner (a wrong answer), the
+  // touch lights the skin, the region is outlined in orange.
+  const Png png = read_png(folder.file("landed.png"));
+  ASSERT_TRUE(png.pixels);
+  const nlohmann::json skin = at["views"]["skin"];
+  const int x0 = skin["x"].get<int>(), y0 = skin["y"].get<int>();
+  int banner = 0, outline = 0;
+  for (int y = y0; y < y0 + skin["height"].get<int>(); ++y)
+    for (int x = x0; x < x0 + skin["width"].get<int>(); ++x) {
+      const unsigned char* p = png.at(x, y);
+      banner += std::abs(p[0] - 120) < 6 && std::abs(p[1] - 30) < 6 && std::abs(p[2] - 25) < 6;
+      outline += p[0] > 240 && std::abs(p[1] - 140) < 20 && p[2] < 70;
+    }
+  EXPECT_GT(banner, 500) << "no true/predicted banner over the skin";
+  EXPECT_GT(outline, 100) << "the segment's region is not outlined";
+  // N walks on to another mistake.
+  const nlohmann::json next = state("next.json")["analysis"]["landed"];
+  EXPECT_NE(next["true"], next["predicted"]);
+}
+
+TEST_F(WorkbenchClassifiers, ResultFilesOpenFromTheCommandLine) {
+  // A table and a result of one skin, made with the command line.
+  ASSERT_EQ(test::run_program("tactile", "simulate --skin flux --subjects 2 --repetitions 3 --out " +
+                                             folder.file("flux"), folder).exit_code, 0);
+  const std::string table = folder.file("flux/features.csv");
+  auto features = test::run_program(
+      "tactile", "features --pipeline flux --labels " + folder.file("flux/labels.db") + " --out " + table, folder);
+  ASSERT_EQ(features.exit_code, 0) << features.err;
+  auto evaluated = test::run_program(
+      "tactile", "evaluate --features " + table + " --classifier knn --protocol kfold:3 --out " +
+                     folder.file("flux/result.json") + " --save-model " + folder.file("flux/knn.json"),
+      folder);
+  ASSERT_EQ(evaluated.exit_code, 0) << evaluated.err;
+  auto som = test::run_program("tactile", "evaluate --features " + table +
+                                               " --classifier som:epochs=50 --protocol kfold:3 --save-model " +
+                                               folder.file("flux/som.json"), folder);
+  ASSERT_EQ(som.exit_code, 0) << som.err;
+
+  // The confusion view of the result; the scatter of its rows (the table it names).
+  for (const char* view : {"confusion", "scatter"}) {
+    const std::string png_path = folder.file(std::string(view) + ".png");
+    auto drawn = workbench("--evaluation " + folder.file("flux/result.json") + " --view " + view +
+                           " --headless --screenshot " + png_path);
+    ASSERT_EQ(drawn.exit_code, 0) << view << ": " << drawn.err;
+    const Png png = read_png(png_path);
+    ASSERT_TRUE(png.pixels);
+    EXPECT_GT(colours_in(png), 12u) << view << " looks empty";
+    if (std::string(view) == "confusion") {
+      EXPECT_GT(count_viridis_top(png), 400) << "no full (100 %) cell drawn";
+    }
+  }
+  // A SOM model's map, with the table's rows on it.
+  auto map = workbench("--model " + folder.file("flux/som.json") + " --features " + table +
+                       " --view som --headless --screenshot " + folder.file("som.png"));
+  ASSERT_EQ(map.exit_code, 0) << map.err;
+  EXPECT_GT(colours_in(read_png(folder.file("som.png"))), 30u);
+  // A model of another kind has no map: said, not drawn as nothing.
+  auto knn = workbench("--model " + folder.file("flux/knn.json"),
+                       "wait 2\nstate @knn-model.json\n");
+  ASSERT_EQ(knn.exit_code, 0) << knn.err;
+  EXPECT_NE(state("knn-model.json")["error"].get<std::string>().find("only a SOM has a map"),
+            std::string::npos);
+  // A damaged result is named, and the workbench still runs.
+  std::ofstream(folder.file("broken.json")) << "{\"classifier\": \"knn\"}";
+  auto broken = workbench("--evaluation " + folder.file("broken.json"), "wait 2\nstate @broken.json\n");
+  ASSERT_EQ(broken.exit_code, 0) << broken.err;
+  EXPECT_NE(state("broken.json")["error"].get<std::string>().find("missing field 'protocol'"),
+            std::string::npos)
+      << state("broken.json")["error"];
+
+  // From an opened result, a click on a cell lands on a recording of the workspace.
+  std::ifstream in(folder.file("flux/result.json"));
+  const nlohmann::json result = nlohmann::json::parse(in);
+  const std::string first = result["classes"][0];
+  auto clicked = workbench(folder.file("flux") + " --evaluation " + folder.file("flux/result.json"),
+                           "wait 2\nclick item tab:confusion\nwait 2\nclick cell " + first + " " +
+                               first + "\nwait 2\nkey Enter\nwait 5\nstate @clicked.json\n");
+  ASSERT_EQ(clicked.exit_code, 0) << clicked.err;
+  const nlohmann::json landed = state("clicked.json");
+  EXPECT_EQ(landed["analysis"]["landed"]["true"], first);
+  EXPECT_EQ(landed["recording"], landed["analysis"]["landed"]["recording"]);
+}
+
+}  // namespace
+}  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// The loop of the prediction lane: Run one classifier, Predict, U goes to the least sure
+// prediction, Y confirms it, a digit corrects the next; both are manual labels at once.
+TEST_F(WorkbenchClassifiers, PredictionsAreConfirmedAndCorrectedByKeys) {
+  auto run = workbench(demo("fur-s01-t01.h5"),
+                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\n"
+                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait 2\n"
+                       "state @predicted.json\nkey U\nwait 2\nstate @uncertain.json\nkey Y\nwait 2\n"
+                       "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto lane = [](const nlohmann::json& at, const std::string& id) {
+    for (const nlohmann::json& lane : at["lanes"])
+      if (lane["id"] == id) return lane["labels"].get<int>();
+    return 0;
+  };
+  EXPECT_EQ(lane(state("predicted.json"), "model:model"), lane(state("predicted.json"), "ground-truth"));
+  EXPECT_EQ(state("uncertain.json")["selection"]["labels"].size(), 1u);
+  EXPECT_EQ(lane(state("confirmed.json"), "manual:ana"), 1);
+  EXPECT_EQ(lane(state("corrected.json"), "manual:ana"), 2);
+  EXPECT_TRUE(std::filesystem::exists(demo("models/fur-linear-svm.json")));
+  EXPECT_TRUE(std::filesystem::exists(demo("models/fur-linear-svm.evaluation.json")));
+  const auto listed = test::run_program(
+      "tactile", "labels list " + demo("labels.db") + " --source manual --json", folder);
+  const nlohmann::json labels = nlohmann::json::parse(listed.out)["labels"];
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_NE(labels[0]["note"].get<std::string>().find("confirmed model"), std::string::npos);
+  EXPECT_NE(labels[1]["note"].get<std::string>().find("model"), std::string::npos);
+}
+
+// Each classifier view exports headless, and the somatosensory map of Robovie's films.
+TEST_F(WorkbenchClassifiers, SomatosensoryMapRendersAndIsCachedBesideTheRecording) {
+  const std::string png = folder.file("somatosensory.png");
+  auto drawn = workbench(demo("robovie-s01-t01.h5") + " --time 12 --view somatosensory --headless --screenshot " + png);
+  ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
+  const Png image = read_png(png);
+  ASSERT_TRUE(image.pixels);
+  EXPECT_GT(colours_in(image), 30u);
+  bool cached = false;
+  for (const auto& entry : std::filesystem::directory_iterator(folder.file("demo")))
+    cached |= entry.path().filename().string().starts_with("robovie-s01-t01.somatosensory-");
+  EXPECT_TRUE(cached);
+}
+
+}  // namespace
+}  // namespace tactile
