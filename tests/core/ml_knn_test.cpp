@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "tactile/error.h"
 #include "tactile/ml/classifier.h"
@@ -238,6 +239,54 @@ TEST(KnnClassifier, SaveLoadRoundTripGivesIdenticalScores) {
     const Matrix before = classifier->scores(queries);
     const Matrix after = restored->scores(queries);
     EXPECT_EQ(before, after) << name;
+  }
+}
+
+// The block search (a single-precision product picks candidates, exact distances decide)
+// finds exactly the neighbours a one-query-at-a-time exact search finds, ties included:
+// integer features give many samples at equal distance, large offsets stress rounding.
+TEST(KnnClassifier, BlockSearchMatchesExactSearchIncludingTies) {
+  std::mt19937_64 random(11);
+  std::uniform_int_distribution<int> small(0, 3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (const auto& [dimensions, offset, metric] :
+       {std::tuple{3, 0.0, "euclidean"}, std::tuple{40, 1e4, "euclidean"},
+        std::tuple{5, 0.0, "cosine"}, std::tuple{300, 50.0, "euclidean"}}) {
+    const int samples = 700, queries = 300;  // more queries than one block
+    Matrix x(samples, dimensions), q(queries, dimensions);
+    for (Eigen::Index r = 0; r < samples; ++r)
+      for (Eigen::Index c = 0; c < dimensions; ++c)
+        x(r, c) = offset + (dimensions <= 5 ? small(random) : normal(random));
+    for (Eigen::Index r = 0; r < queries; ++r)
+      for (Eigen::Index c = 0; c < dimensions; ++c)
+        q(r, c) = r % 3 == 0 ? x(r, c) : offset + (dimensions <= 5 ? small(random) : normal(random));
+    std::vector<int> y(samples);
+    for (int r = 0; r < samples; ++r) y[static_cast<size_t>(r)] = r % 3;
+    KnnClassifier knn("knn", KnnSettings{7, std::string(metric) == "cosine" ? KnnMetric::kCosine
+                                                                         : KnnMetric::kEuclidean,
+                                         KnnWeights::kEqual, false});
+    knn.fit(x, y, 3, 1);
+    const auto found = knn.neighbours(q);
+    for (Eigen::Index r = 0; r < queries; ++r) {
+      std::vector<std::pair<double, int64_t>> all;
+      for (Eigen::Index s = 0; s < samples; ++s) {
+        double distance;
+        if (std::string(metric) == "cosine") {
+          const double product = q.row(r).norm() * x.row(s).norm();
+          distance = product > 0 ? std::max(0.0, 1.0 - x.row(s).dot(q.row(r)) / product) : 1.0;
+        } else {
+          distance = (x.row(s) - q.row(r)).norm();
+        }
+        all.emplace_back(distance, s);
+      }
+      std::sort(all.begin(), all.end());
+      ASSERT_EQ(found[static_cast<size_t>(r)].size(), 7u);
+      for (size_t k = 0; k < 7; ++k) {
+        EXPECT_EQ(found[static_cast<size_t>(r)][k].row, all[k].second)
+            << metric << " " << dimensions << " query " << r << " rank " << k;
+        EXPECT_NEAR(found[static_cast<size_t>(r)][k].distance, all[k].first, 1e-9 * (1 + all[k].first));
+      }
+    }
   }
 }
 

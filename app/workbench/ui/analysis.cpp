@@ -107,6 +107,7 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   } catch (const Error& error) {
     return fail(state, error.what());
   }
+  analysis.last_request = request;
   analysis.job = std::make_unique<ml::TrainingJob>(request);
   state.error.clear();
   state.notice = "training " + classifier + " on " + request.layout + " recordings";

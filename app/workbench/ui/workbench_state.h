@@ -101,6 +101,7 @@ struct AnalysisState {
   std::array<char, 64> protocol{"kfold:5"};
   LabelSource segments = LabelSource::kGroundTruth;
   std::unique_ptr<ml::TrainingJob> job;
+  ml::TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
   // The results: one per classifier tried (one row of the train-all table each).
   std::vector<ml::PresetOutcome> results;
   std::string results_from;  // what they are of ("nao, kaboli features", a file)

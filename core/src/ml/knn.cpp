@@ -1,6 +1,7 @@
 #include "tactile/ml/knn.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <numeric>
 
@@ -114,8 +115,15 @@ void KnnClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_co
   prepare();
 }
 
-void KnnClassifier::prepare() { norms_ = samples_.colwise().norm().transpose(); }
+void KnnClassifier::prepare() {
+  norms_ = samples_.colwise().norm().transpose();
+  samples_float_ = samples_.transpose().cast<float>();
+}
 
+// Queries are searched in blocks: one matrix product gives every query's approximate
+// distance to every sample (|q|² + |x|² - 2 q·x, or the cosine from q·x), a selection keeps
+// the candidates within a rounding margin of the k-th, and only those are measured
+// exactly as one query at a time would (so ties and exact matches decide as before).
 std::vector<std::vector<Neighbour>> KnnClassifier::neighbours(const Matrix& x) const {
   const std::string where = "classifier " + name_;
   if (labels_.empty()) throw Error(where, "not fitted");
@@ -124,29 +132,64 @@ std::vector<std::vector<Neighbour>> KnnClassifier::neighbours(const Matrix& x) c
   const auto count = static_cast<int64_t>(labels_.size());
   const int64_t k = std::min<int64_t>(settings_.k, count);
   std::vector<std::vector<Neighbour>> result(static_cast<size_t>(x.rows()));
-  std::vector<int64_t> order(static_cast<size_t>(count));
-  Vector distances(count);
-  for (Eigen::Index query = 0; query < queries.rows(); ++query) {
-    const Vector point = queries.row(query).transpose();
-    if (settings_.metric == KnnMetric::kEuclidean) {
-      distances = (samples_.colwise() - point).colwise().norm().transpose();
+  const bool euclidean = settings_.metric == KnnMetric::kEuclidean;
+  const Vector squared_norms = norms_.array().square().matrix();
+  const double largest_norm = count > 0 ? norms_.maxCoeff() : 0.0;
+  // Exact distance of one query to one sample, as the one-at-a-time search measured it.
+  const auto exact = [&](const Vector& point, double point_norm, int64_t row) {
+    if (euclidean) return (samples_.col(row) - point).norm();
+    // Cosine distance 1 - x.y / (|x| |y|) (spec §2.13); a zero vector is at distance 1.
+    const double product = point_norm * norms_(row);
+    return product > 0.0 ? std::max(0.0, 1.0 - samples_.col(row).dot(point) / product) : 1.0;
+  };
+  constexpr Eigen::Index kBlock = 256;
+  const double margin = 4.0 * (static_cast<double>(samples_.rows()) + 2.0) * 6e-8 * 2.0;
+  std::vector<double> smallest;  // the k smallest approximate values so far, ascending
+  std::vector<Neighbour> candidates;
+  for (Eigen::Index first = 0; first < queries.rows(); first += kBlock) {
+    const Eigen::Index block = std::min(kBlock, queries.rows() - first);
+    // count x block: each query's products with every sample, contiguous per query, in
+    // single precision (only to choose candidates).
+    const Eigen::MatrixXf block_queries = queries.middleRows(first, block).transpose().cast<float>();
+    Matrix values = (samples_float_ * block_queries).cast<double>();
+    Vector point_norms(block);
+    for (Eigen::Index i = 0; i < block; ++i) point_norms(i) = queries.row(first + i).norm();
+    if (euclidean) {
+      // |x|² - 2 q·x ranks as |q - x|² does (|q|² is the same for every sample).
+      values = (-2.0 * values).colwise() + squared_norms;
     } else {
-      // Cosine distance 1 - x.y / (|x| |y|) (spec §2.13); a zero vector is at distance 1.
-      const double norm = point.norm();
-      const Vector dots = samples_.transpose() * point;
-      for (int64_t row = 0; row < count; ++row) {
-        const double product = norm * norms_(row);
-        distances(row) = product > 0.0 ? std::max(0.0, 1.0 - dots(row) / product) : 1.0;
+      for (Eigen::Index i = 0; i < block; ++i) {
+        const Eigen::ArrayXd product = norms_.array() * point_norms(i);
+        values.col(i) = (product > 0.0).select(1.0 - values.col(i).array() / product, 1.0).matrix();
       }
     }
-    std::iota(order.begin(), order.end(), int64_t{0});
-    std::partial_sort(order.begin(), order.begin() + k, order.end(), [&](int64_t a, int64_t b) {
-      return distances(a) < distances(b) || (distances(a) == distances(b) && a < b);
-    });
-    auto& nearest = result[static_cast<size_t>(query)];
-    nearest.reserve(static_cast<size_t>(k));
-    for (int64_t i = 0; i < k; ++i)
-      nearest.push_back({order[static_cast<size_t>(i)], distances(order[static_cast<size_t>(i)])});
+    for (Eigen::Index i = 0; i < block; ++i) {
+      const Eigen::Index query = first + i;
+      const Vector point = queries.row(query).transpose();
+      const double point_norm = point_norms(i);
+      const double* column = values.col(i).data();
+      smallest.assign(static_cast<size_t>(k), std::numeric_limits<double>::infinity());
+      for (int64_t row = 0; row < count; ++row) {
+        const double value = column[row];
+        if (!(value < smallest.back())) continue;
+        size_t at = smallest.size() - 1;
+        while (at > 0 && smallest[at - 1] > value) smallest[at] = smallest[at - 1], --at;
+        smallest[at] = value;
+      }
+      // Rounding of the single-precision product: each of its `features` terms can be off
+      // by an ulp of |q||x| (2^-24 relative), the float inputs by as much again; the margin
+      // is four times the sum, so every sample that can be among the k nearest stays.
+      const double scale = euclidean ? (point_norm + largest_norm) * (point_norm + largest_norm) : 1.0;
+      const double bound = smallest.back() + margin * scale;
+      candidates.clear();
+      for (int64_t row = 0; row < count; ++row)
+        if (column[row] <= bound) candidates.push_back({row, exact(point, point_norm, row)});
+      std::sort(candidates.begin(), candidates.end(), [](const Neighbour& a, const Neighbour& b) {
+        return a.distance < b.distance || (a.distance == b.distance && a.row < b.row);
+      });
+      candidates.resize(static_cast<size_t>(k));
+      result[static_cast<size_t>(query)] = candidates;
+    }
   }
   return result;
 }

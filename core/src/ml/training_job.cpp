@@ -1,6 +1,12 @@
 // TrainingJob: features, then evaluation, on one worker thread.
 #include "tactile/ml/training_job.h"
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include "tactile/error.h"
 #include "tactile/features/corpus.h"
 #include "tactile/features/feature_extractor.h"
@@ -11,6 +17,7 @@ namespace tactile::ml {
 
 namespace {
 constexpr double kFeatureShare = 0.3;  // of the progress bar
+[[maybe_unused]] constexpr int kWorkerNice = 19;
 }
 
 TrainingJob::TrainingJob(TrainingRequest request) : request_(std::move(request)) {
@@ -43,6 +50,11 @@ void TrainingJob::wait() {
 }
 
 void TrainingJob::run() {
+#if defined(__linux__)
+  // Below the window's thread: the frames keep their time while training takes the rest
+  // of the machine (threads this one starts inherit the priority).
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNice);
+#endif
   const auto set_stage = [this](std::string text) {
     const std::lock_guard<std::mutex> lock(mutex_);
     stage_ = std::move(text);

@@ -66,6 +66,9 @@ class KnnClassifier : public Classifier {
   Standardizer standardizer_;
   Matrix samples_;  // features x training rows (one contiguous column per sample), standardised
   Vector norms_;    // per training sample, for the cosine metric
+  // The samples in single precision, transposed (rows = samples): the block search's
+  // matrix product ranks candidates in float, twice as fast; exact distances decide.
+  Eigen::MatrixXf samples_float_;
   std::vector<int> labels_;
 };
 

@@ -85,6 +85,8 @@ class SupportVectorMachine : public Classifier {
 
  private:
   Matrix kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const;
+  // K(z_i, s_j) for every row of z and of `support`, with kernel scale `scale`.
+  Matrix kernel_matrix(const Matrix& z, const Matrix& support, double scale) const;
 
   std::string preset_;
   SvmKernel kernel_ = SvmKernel::kLinear;
