@@ -22,6 +22,7 @@
 #include "tactile/features/corpus.h"
 #include "tactile/features/dataset.h"
 #include "tactile/features/feature_extractor.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
@@ -68,19 +69,7 @@ void write_log(const std::string& path, const CorpusDataset& corpus,
     text += skipped.recording + "\t" + std::to_string(skipped.segment_id) + "\t" +
             std::to_string(skipped.t0) + "\t" + std::to_string(skipped.t1) + "\t" + skipped.reason +
             "\n";
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out.flush()) {
-      std::remove(temporary.c_str());
-      throw Error(path, "cannot write the log");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot write the log");
-  }
+  write_file_atomically(path, text, "log");
 }
 
 nlohmann::json summary_json(const CorpusDataset& corpus, const FeaturesOptions& options) {

@@ -13,6 +13,7 @@
 
 #include "../io/csv_text.h"
 #include "dataset_files.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/error.h"
 
 namespace tactile {
@@ -56,30 +57,6 @@ std::string number_text(double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
   return std::string(buffer, result.ptr);
-}
-
-void write_file_atomically(const std::string& path, const std::string& text) {
-  static int counter = 0;
-  const std::string temporary =
-      path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-  bool written = false;
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (out) {
-      out.write(text.data(), static_cast<std::streamsize>(text.size()));
-      out.flush();
-      written = static_cast<bool>(out);
-    }
-  }
-  if (!written) {
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot write the file");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot replace the file: " + reason);
-  }
 }
 
 }  // namespace dataset_files

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "dataset_files.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/error.h"
 #include "tactile/features/dataset.h"
 
@@ -84,7 +85,7 @@ void write_dataset_arff(const std::string& path, const Dataset& dataset,
       text += dataset_files::number_text(dataset.features(row, column)) + ",";
     text += arff_name(dataset.classes[row]) + "\n";
   }
-  dataset_files::write_file_atomically(path, text);
+  write_file_atomically(path, text);
 }
 
 }  // namespace tactile

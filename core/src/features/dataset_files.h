@@ -24,7 +24,5 @@ void check_dataset(const std::string& path, const Dataset& dataset);
 std::string number_text(double value);
 
 // Writes `text` to a temporary file beside `path`, then renames it over `path`; on any
-// failure the temporary is removed and tactile::Error(path, ...) thrown.
-void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace tactile::dataset_files

@@ -11,6 +11,7 @@
 
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/parameters.h"
 
 namespace tactile {
@@ -57,23 +58,7 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
 
 void write_json_file(const std::string& path, const nlohmann::json& document,
                      const std::string& what) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path, "cannot write the " + what);
-    out << document.dump(1) << "\n";
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw Error(path, "cannot write the " + what);
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot write the " + what + ": " + error.message());
-  }
+  write_file_atomically(path, document.dump(1) + "\n", what);
 }
 
 SavedModel model_from_json(const nlohmann::json& document, const std::string& where) {
