@@ -142,17 +142,10 @@ void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protoco
                    });
   nlohmann::json table = nlohmann::json::array(), evaluations = nlohmann::json::array();
   for (const ml::PresetOutcome& outcome : outcomes) {
-    nlohmann::json line = {{"classifier", outcome.classifier}};
-    if (outcome.result) {
-      line["accuracy"] = outcome.result->accuracy;
-      line["mean_recall"] = ml::mean_recall(*outcome.result);
-      line["seconds"] = outcome.result->seconds;
-      evaluations.push_back(ml::to_json(*outcome.result, true));
-      evaluations.back()["features"] = args.features;
-    } else {
-      line["skipped"] = outcome.skipped;
-    }
-    table.push_back(line);
+    table.push_back(ml::summary_json(outcome));
+    if (!outcome.result) continue;
+    evaluations.push_back(ml::to_json(*outcome.result, true));
+    evaluations.back()["features"] = args.features;
   }
   if (!args.out.empty()) {
     write_json_file(args.out,

@@ -59,7 +59,7 @@ def main():
     write(os.path.join(args.out, "5000x16.csv"), x, y, gestures)
     x, y = waveforms(1000, 1200, 2)
     write(os.path.join(args.out, "1000x1200.csv"), x, y, gestures)
-    x, y = blobs(20000, 30, 6, 3, 1.3)
+    x, y = blobs(20000, 30, 6, 3, 2.2)
     write(os.path.join(args.out, "20000x30.csv"), x, y, gestures)
 
 

@@ -123,5 +123,53 @@ TEST(SomatosensoryMap, CacheBesideTheRecordingIsUsedUntilItChanges) {
   std::filesystem::remove_all(folder);
 }
 
+TEST(SomatosensoryMap, ACorpusPoolsItsRecordingsAndItsCacheKnowsWhichOnes) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("somatosensory-corpus-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const Stream whole = two_groups(4000, 5);
+  std::vector<std::string> files;
+  for (int part = 0; part < 2; ++part) {
+    Recording recording;
+    recording.id = "r" + std::to_string(part);
+    recording.layout_id = "strip:6";
+    Stream stream = whole;
+    stream.samples = whole.samples.middleRows(part * 2000, 2000);
+    recording.streams.push_back(stream);
+    files.push_back((folder / (recording.id + ".h5")).string());
+    write_recording(files.back(), recording);
+  }
+  const SkinLayout layout = load_layout("strip:6");
+  const SomatosensoryMap pooled = somatosensory_corpus_map(files, layout, 0);
+  const SomatosensoryMap single = somatosensory_map(MemorySampleSource(whole, "strip:6", "w"), layout, 0);
+  EXPECT_EQ(pooled.samples, 4000);
+  for (size_t k = 0; k < 6; ++k) {
+    EXPECT_NEAR(pooled.positions[k].x, single.positions[k].x, 1e-6);
+    EXPECT_NEAR(pooled.positions[k].y, single.positions[k].y, 1e-6);
+  }
+  const std::string cache = somatosensory_corpus_cache_path(folder.string(), "strip:6", pooled.modality);
+  ASSERT_TRUE(write_somatosensory_corpus_cache(cache, files, pooled));
+  EXPECT_TRUE(read_somatosensory_corpus_cache(cache, files));
+  EXPECT_FALSE(read_somatosensory_corpus_cache(cache, {files[0]}));  // another corpus
+  // A recording of another skin is named, not pooled.
+  Recording other;
+  other.id = "grid";
+  other.layout_id = "grid:2x3";
+  Stream stream = whole;
+  stream.samples = whole.samples.topRows(100);
+  stream.channels = {"r0c0", "r0c1", "r0c2", "r1c0", "r1c1", "r1c2"};
+  other.streams.push_back(stream);
+  const std::string other_path = (folder / "grid.h5").string();
+  write_recording(other_path, other);
+  try {
+    somatosensory_corpus_map({files[0], other_path}, layout, 0);
+    FAIL() << "pooled a recording of another skin";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("grid.h5"), std::string::npos) << error.what();
+  }
+  std::filesystem::remove_all(folder);
+}
+
 }  // namespace
 }  // namespace tactile

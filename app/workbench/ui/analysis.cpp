@@ -10,6 +10,7 @@
 #include "tactile/error.h"
 #include "tactile/labels/predict.h"
 #include "labelling.h"
+#include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/ml/pca.h"
 #include "views.h"
@@ -171,11 +172,13 @@ const ml::EvaluationResult* current_evaluation(const WorkbenchState& state) {
 void choose_result(WorkbenchState& state, int index) {
   AnalysisState& analysis = state.analysis;
   analysis.current = index;
-  reset_views(analysis);
-  if (!analysis.som_classes.empty() && analysis.som && analysis.results_from.find("model") == std::string::npos)
-    analysis.som.reset();
-  const ml::EvaluationResult* result = current_evaluation(state);
-  if (result) analysis.tab_request = "confusion";
+  // The scatter and the SOM belong to the table, not to the result: only the clicked
+  // cell and the rings (drawn from the current result) change.
+  analysis.cell_true = analysis.cell_predicted = -1;
+  analysis.cell_rows.clear();
+  analysis.cell_selected = 0;
+  analysis.list_active = false;
+  if (current_evaluation(state)) analysis.tab_request = "confusion";
 }
 
 bool predict_open_recording(WorkbenchState& state) {
@@ -270,6 +273,7 @@ bool open_model_file(WorkbenchState& state, const std::string& path) {
     state.analysis.som.reset(som);
     state.analysis.som_classes = model.classes;
     state.analysis.som_for = nullptr;
+    state.analysis.som_winners.clear();
     state.analysis.tab_request = "som";
   } catch (const std::exception& error) {
     return fail(state, std::string("cannot open the model: ") + error.what());
@@ -400,9 +404,9 @@ std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
 
 bool ensure_som(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  if (analysis.som && analysis.som_for == (analysis.dataset ? &*analysis.dataset : nullptr) &&
-      (analysis.som_for || analysis.som_winners.empty()))
-    return true;
+  // The rows' winners are for this table (none without a table).
+  const void* table = analysis.dataset ? &*analysis.dataset : nullptr;
+  if (analysis.som && analysis.som_for == table) return true;
   try {
     if (!analysis.som) {
       if (!analysis.dataset) return false;
@@ -424,7 +428,7 @@ bool ensure_som(WorkbenchState& state) {
       for (Eigen::Index row = 0; row < scaled.rows(); ++row)
         analysis.som_winners.push_back(ml::som_winner(analysis.som->map(), scaled.row(row).transpose()));
     }
-    analysis.som_for = analysis.dataset ? &*analysis.dataset : nullptr;
+    analysis.som_for = table;
   } catch (const std::exception& error) {
     analysis.som.reset();
     return fail(state, std::string("SOM map: ") + error.what());
@@ -458,15 +462,36 @@ bool ensure_somatosensory(WorkbenchState& state) {
   const SkinLayout& layout = state.document->layout;
   const std::string modality =
       layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)];
-  const std::string key = state.document->path + "#" + modality;
+  const std::string key = (analysis.somatosensory_corpus ? "corpus:" + state.workspace + ":" + layout.id
+                                                         : state.document->path) +
+                          "#" + modality;
   if (analysis.map_for == key) return analysis.map.has_value();
   analysis.map_for = key;
   analysis.map.reset();
+  analysis.map_layout.reset();
   try {
-    analysis.map = read_somatosensory_cache(state.document->path, modality);
-    if (!analysis.map) {
-      analysis.map = somatosensory_map(state.document->samples(), layout, state.modality);
-      write_somatosensory_cache(state.document->path, *analysis.map);
+    if (analysis.somatosensory_corpus) {
+      // Every recording of this skin in the workspace (the others are left out).
+      std::vector<std::string> files;
+      for (const std::string& file : state.workspace_files) {
+        if (state.damaged.count(file)) continue;
+        try {
+          if (RecordingFile(file).layout_id() == layout.id) files.push_back(file);
+        } catch (const Error&) {
+        }
+      }
+      const std::string cache = somatosensory_corpus_cache_path(state.workspace, layout.id, modality);
+      analysis.map = read_somatosensory_corpus_cache(cache, files);
+      if (!analysis.map) {
+        analysis.map = somatosensory_corpus_map(files, layout, state.modality);
+        write_somatosensory_corpus_cache(cache, files, *analysis.map);
+      }
+    } else {
+      analysis.map = read_somatosensory_cache(state.document->path, modality);
+      if (!analysis.map) {
+        analysis.map = somatosensory_map(state.document->samples(), layout, state.modality);
+        write_somatosensory_cache(state.document->path, *analysis.map);
+      }
     }
   } catch (const std::exception& error) {
     return fail(state, std::string("somatosensory map: ") + error.what());

@@ -37,19 +37,7 @@ std::optional<ml::RowPrediction> prediction_of(const WorkbenchState& state, int6
   if (row >= 0 && row < static_cast<int64_t>(outcomes.size()) && outcomes[static_cast<size_t>(row)].prediction)
     return *outcomes[static_cast<size_t>(row)].prediction;
   const Dataset& dataset = *state.analysis.dataset;
-  ml::RowPrediction prediction;
-  prediction.row = row;
-  prediction.recording = dataset.recordings[static_cast<size_t>(row)];
-  prediction.segment_id = dataset.segment_ids[static_cast<size_t>(row)];
-  const Metadata& metadata = dataset.metadata[static_cast<size_t>(row)];
-  const auto number = [&](const char* key) {
-    const auto found = metadata.find(key);
-    return found == metadata.end() ? 0.0 : std::atof(found->second.c_str());
-  };
-  prediction.t0 = number("t0");
-  prediction.t1 = number("t1");
-  const auto region = metadata.find("region");
-  prediction.region = region == metadata.end() ? "" : region->second;
+  ml::RowPrediction prediction = ml::row_place(dataset, row);
   const std::vector<std::string> classes = dataset.class_names();
   const auto truth = std::find(classes.begin(), classes.end(), dataset.classes[static_cast<size_t>(row)]);
   prediction.truth = prediction.predicted = static_cast<int>(truth - classes.begin());

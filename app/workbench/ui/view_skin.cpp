@@ -92,11 +92,21 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   ImGui::SameLine();
   // The body as built, or the somatosensory map: taxels placed by how they are touched together.
   ImGui::SetNextItemWidth(120);
-  if (ImGui::BeginCombo("##map", state.analysis.somatosensory ? "somatosensory" : "body map")) {
-    if (ImGui::Selectable("body map", !state.analysis.somatosensory)) state.analysis.somatosensory = false;
+  AnalysisState& analysis = state.analysis;
+  const char* shown = !analysis.somatosensory          ? "body map"
+                      : analysis.somatosensory_corpus ? "somatosensory (all)"
+                                                      : "somatosensory";
+  if (ImGui::BeginCombo("##map", shown)) {
+    if (ImGui::Selectable("body map", !analysis.somatosensory)) analysis.somatosensory = false;
     remember_item(state, "map:body");
-    if (ImGui::Selectable("somatosensory", state.analysis.somatosensory)) state.analysis.somatosensory = true;
+    if (ImGui::Selectable("somatosensory: this recording",
+                          analysis.somatosensory && !analysis.somatosensory_corpus))
+      analysis.somatosensory = true, analysis.somatosensory_corpus = false;
     remember_item(state, "map:somatosensory");
+    if (ImGui::Selectable("somatosensory: every recording of the skin",
+                          analysis.somatosensory && analysis.somatosensory_corpus))
+      analysis.somatosensory = true, analysis.somatosensory_corpus = true;
+    remember_item(state, "map:somatosensory-corpus");
     ImGui::EndCombo();
   }
   remember_item(state, "map");
@@ -123,15 +133,15 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     for (int64_t taxel : taxels_of_region(layout, landed->region)) outlined.push_back(taxel);
   const SkinLayout* drawn = &layout;
   if (state.analysis.somatosensory && ensure_somatosensory(state)) {
-    if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id ||
-        state.analysis.map_layout->taxels.size() != layout.taxels.size())
+    if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id)
       state.analysis.map_layout = layout_on_map(layout, *state.analysis.map);
     drawn = &*state.analysis.map_layout;
     style.show_group_names = false;
     const SomatosensoryMap& map = *state.analysis.map;
-    ImGui::TextDisabled("%zu taxels by MDS of -ln|R| over %lld samples (non-Euclidean share %.2f)",
-                        map.taxels.size(), static_cast<long long>(map.samples),
+    ImGui::TextDisabled("%zu taxels by MDS of -ln|R| over %lld samples of %s (non-Euclidean share %.2f)",
+                        map.taxels.size(), static_cast<long long>(map.samples), map.source.c_str(),
                         map.negative_eigenvalue_ratio);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", map.source.c_str());
   }
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();

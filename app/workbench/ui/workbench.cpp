@@ -11,6 +11,7 @@
 #include "analysis.h"
 #include "labelling.h"
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/layout/taxel_values.h"
 #include "tactile/segment/segmenter.h"
 #include "views.h"
@@ -525,14 +526,12 @@ void Workbench::save_settings() const {
       {"hidden", std::vector<std::string>(labelling.hidden.begin(), labelling.hidden.end())},
       {"collapsed",
        std::vector<std::string>(labelling.collapsed.begin(), labelling.collapsed.end())}};
-  // Written beside and renamed over, so a crash never leaves half a settings file.
-  const fs::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << settings.dump(2) << "\n";
-    if (!out) return;
+  // Written beside and renamed over, so a crash never leaves half a settings file; a
+  // folder that cannot be written keeps the sizes for this run only.
+  try {
+    write_file_atomically(path.string(), settings.dump(2) + "\n", "settings");
+  } catch (const Error&) {
   }
-  fs::rename(temporary, path, error);
 }
 
 //---- State as JSON
@@ -614,16 +613,7 @@ nlohmann::json Workbench::state_json() const {
 nlohmann::json Workbench::analysis_json() const {
   const AnalysisState& analysis = state_.analysis;
   nlohmann::json results = nlohmann::json::array();
-  for (const ml::PresetOutcome& outcome : analysis.results) {
-    nlohmann::json line = {{"classifier", outcome.classifier}};
-    if (outcome.result) {
-      line["accuracy"] = outcome.result->accuracy;
-      line["mean_recall"] = ml::mean_recall(*outcome.result);
-    } else {
-      line["skipped"] = outcome.skipped;
-    }
-    results.push_back(line);
-  }
+  for (const ml::PresetOutcome& outcome : analysis.results) results.push_back(ml::summary_json(outcome));
   const ml::EvaluationResult* current = current_evaluation(state_);
   const auto class_name = [&](int k) -> nlohmann::json {
     if (!current) return nullptr;

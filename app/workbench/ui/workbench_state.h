@@ -133,6 +133,7 @@ struct AnalysisState {
   const void* scatter_for = nullptr;
   // The somatosensory map of the open recording (per modality), computed or from its cache.
   bool somatosensory = false;  // the skin view shows it instead of the body map
+  bool somatosensory_corpus = false;  // over every recording of the skin in the workspace
   std::optional<SomatosensoryMap> map;
   std::optional<SkinLayout> map_layout;  // the layout with its taxels moved onto the map
   std::string map_for;  // recording path + modality it was made for

@@ -6,8 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/layout/taxel_values.h"
 #include "tactile/ml/mds.h"
 
@@ -170,14 +172,14 @@ std::string somatosensory_cache_path(const std::string& recording_path, const st
   return path.string() + ".somatosensory-" + modality + ".json";
 }
 
-std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& recording_path,
-                                                         const std::string& modality) {
-  const std::string path = somatosensory_cache_path(recording_path, modality);
+namespace {
+
+std::optional<SomatosensoryMap> read_cache(const std::string& path, const std::string& stamp) {
   std::ifstream in(path);
-  if (!in) return std::nullopt;
+  if (!in || stamp.empty()) return std::nullopt;
   const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
   if (document.is_discarded() || !document.is_object() ||
-      document.value("stamp", std::string()) != file_stamp(recording_path))
+      document.value("stamp", std::string()) != stamp)
     return std::nullopt;  // stale or damaged: computed again
   try {
     return somatosensory_from_json(document, path);
@@ -186,25 +188,87 @@ std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& reco
   }
 }
 
-bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map) {
-  const std::string path = somatosensory_cache_path(recording_path, map.modality);
+bool write_cache(const std::string& path, const std::string& stamp, const SomatosensoryMap& map) {
+  if (stamp.empty()) return false;
   nlohmann::json document = to_json(map);
-  document["stamp"] = file_stamp(recording_path);
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::trunc);
-    if (!out) return false;
-    out << document.dump() << "\n";
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      return false;
-    }
+  document["stamp"] = stamp;
+  try {
+    write_file_atomically(path, document.dump() + "\n", "somatosensory map cache");
+  } catch (const Error&) {
+    return false;  // a folder that cannot be written: no cache, the map is still shown
   }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) std::remove(temporary.c_str());
-  return !error;
+  return true;
+}
+
+std::string corpus_stamp(std::vector<std::string> recordings) {
+  std::sort(recordings.begin(), recordings.end());
+  std::string stamp;
+  for (const std::string& path : recordings) {
+    const std::string one = file_stamp(path);
+    if (one.empty()) return "";
+    stamp += fs::path(path).filename().string() + "=" + one + ";";
+  }
+  return stamp;
+}
+
+}  // namespace
+
+std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& recording_path,
+                                                         const std::string& modality) {
+  return read_cache(somatosensory_cache_path(recording_path, modality), file_stamp(recording_path));
+}
+
+bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map) {
+  return write_cache(somatosensory_cache_path(recording_path, map.modality), file_stamp(recording_path),
+                     map);
+}
+
+SomatosensoryMap somatosensory_corpus_map(const std::vector<std::string>& recordings,
+                                          const SkinLayout& layout, int modality,
+                                          const std::atomic<bool>* cancel) {
+  std::vector<int64_t> taxels;
+  std::unique_ptr<CorrelationSums> sums;
+  std::string names;
+  for (const std::string& path : recordings) {
+    const FileSampleSource source(path);
+    if (source.info().layout_id != layout.id)
+      throw Error(path, "a recording of skin '" + source.info().layout_id + "', the map is of '" +
+                            layout.id + "'");
+    const std::vector<int> all = taxel_columns(layout, source.info().channels, modality);
+    std::vector<int> columns;
+    std::vector<int64_t> present;
+    for (size_t k = 0; k < all.size(); ++k)
+      if (all[k] >= 0) columns.push_back(all[k]), present.push_back(layout.taxels[k].id);
+    if (!sums) {
+      taxels = present;
+      sums = std::make_unique<CorrelationSums>(static_cast<int>(taxels.size()));
+    } else if (present != taxels) {
+      throw Error(path, "carries other taxels than the first recording of the corpus");
+    }
+    sums->add(source, columns, 8192, cancel);
+    names += (names.empty() ? "" : ", ") + fs::path(path).filename().string();
+  }
+  if (!sums) throw Error("somatosensory map", "no recordings in the corpus");
+  SomatosensoryMap map = somatosensory_map(layout, modality, taxels, sums->correlation());
+  map.samples = sums->samples();
+  map.source = names;
+  return map;
+}
+
+std::string somatosensory_corpus_cache_path(const std::string& folder, const std::string& layout,
+                                            const std::string& modality) {
+  return (fs::path(folder) / (layout + ".somatosensory-" + modality + ".json")).string();
+}
+
+std::optional<SomatosensoryMap> read_somatosensory_corpus_cache(
+    const std::string& cache_path, const std::vector<std::string>& recordings) {
+  return read_cache(cache_path, corpus_stamp(recordings));
+}
+
+bool write_somatosensory_corpus_cache(const std::string& cache_path,
+                                      const std::vector<std::string>& recordings,
+                                      const SomatosensoryMap& map) {
+  return write_cache(cache_path, corpus_stamp(recordings), map);
 }
 
 SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map) {

@@ -96,18 +96,7 @@ double metadata_number(const Metadata& metadata, const char* key) {
 }
 
 RowPrediction row_prediction(const Dataset& dataset, size_t row, int truth, int answer, int fold) {
-  RowPrediction prediction;
-  prediction.row = static_cast<int64_t>(row);
-  prediction.segment_id =
-      row < dataset.segment_ids.size() ? dataset.segment_ids[row] : prediction.row;
-  prediction.recording = row < dataset.recordings.size() ? dataset.recordings[row] : "";
-  if (row < dataset.metadata.size()) {
-    const Metadata& metadata = dataset.metadata[row];
-    prediction.t0 = metadata_number(metadata, "t0");
-    prediction.t1 = metadata_number(metadata, "t1");
-    const auto region = metadata.find("region");
-    if (region != metadata.end()) prediction.region = region->second;
-  }
+  RowPrediction prediction = row_place(dataset, static_cast<int64_t>(row));
   prediction.truth = truth;
   prediction.predicted = answer;
   prediction.fold = fold;
@@ -115,6 +104,22 @@ RowPrediction row_prediction(const Dataset& dataset, size_t row, int truth, int 
 }
 
 }  // namespace
+
+RowPrediction row_place(const Dataset& dataset, int64_t row) {
+  const auto index = static_cast<size_t>(row);
+  RowPrediction place;
+  place.row = row;
+  place.segment_id = index < dataset.segment_ids.size() ? dataset.segment_ids[index] : row;
+  place.recording = index < dataset.recordings.size() ? dataset.recordings[index] : "";
+  if (index < dataset.metadata.size()) {
+    const Metadata& metadata = dataset.metadata[index];
+    place.t0 = metadata_number(metadata, "t0");
+    place.t1 = metadata_number(metadata, "t1");
+    const auto region = metadata.find("region");
+    if (region != metadata.end()) place.region = region->second;
+  }
+  return place;
+}
 
 //---- Figures --------------------------------------------------------------------------------
 
@@ -361,6 +366,18 @@ std::vector<PresetOutcome> evaluate_all(
     if (each) each(outcomes.back(), index, total);
   }
   return outcomes;
+}
+
+nlohmann::json summary_json(const PresetOutcome& outcome) {
+  nlohmann::json line = {{"classifier", outcome.classifier}};
+  if (outcome.result) {
+    line["accuracy"] = outcome.result->accuracy;
+    line["mean_recall"] = mean_recall(*outcome.result);
+    line["seconds"] = outcome.result->seconds;
+  } else {
+    line["skipped"] = outcome.skipped;
+  }
+  return line;
 }
 
 double mean_recall(const EvaluationResult& result) {

@@ -67,6 +67,21 @@ std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& reco
 // Best effort: a folder that cannot be written leaves no cache (returns false).
 bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map);
 
+// Over a corpus: every recording (files of the same skin) pooled into one correlation.
+// Throws tactile::Error naming a file of another skin, or one that cannot be read.
+SomatosensoryMap somatosensory_corpus_map(const std::vector<std::string>& recordings,
+                                          const SkinLayout& layout, int modality,
+                                          const std::atomic<bool>* cancel = nullptr);
+// The corpus cache: FOLDER/LAYOUT.somatosensory-MODALITY.json, valid while every
+// recording's size and modification time are those stored (and no file came or went).
+std::string somatosensory_corpus_cache_path(const std::string& folder, const std::string& layout,
+                                            const std::string& modality);
+std::optional<SomatosensoryMap> read_somatosensory_corpus_cache(
+    const std::string& cache_path, const std::vector<std::string>& recordings);
+bool write_somatosensory_corpus_cache(const std::string& cache_path,
+                                      const std::vector<std::string>& recordings,
+                                      const SomatosensoryMap& map);
+
 // The layout with its taxels moved to the map's positions (drawn as small circles);
 // taxels not on the map keep their place.
 SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map);

@@ -87,6 +87,10 @@ struct RowPrediction {
   int fold = 0;
 };
 
+// A dataset row's place: row, segment id, recording, t0/t1 and region from its metadata
+// (truth, predicted and the rest left at their defaults).
+RowPrediction row_place(const Dataset& dataset, int64_t row);
+
 struct EvaluationResult {
   std::string classifier;  // specification as given
   std::string protocol;
@@ -148,6 +152,9 @@ struct PresetOutcome {
 // all (throws tactile::Error("evaluation", "cancelled")). `each` is called after each
 // preset with (outcome, index, total); control.progress is called with the folds done
 // over all presets.
+// One line of the train-all table: classifier, accuracy, mean_recall and seconds, or
+// skipped with the reason.
+nlohmann::json summary_json(const PresetOutcome& outcome);
 std::vector<PresetOutcome> evaluate_all(
     const Dataset& dataset, const Protocol& protocol, uint64_t seed,
     const EvaluationControl& control = {},
