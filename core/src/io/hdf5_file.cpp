@@ -78,7 +78,7 @@ std::vector<std::string> stream_names(hid_t streams, const std::string& where) {
 }
 
 StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::string& path,
-                            int format_version, int64_t& overview_block) {
+                            int format_version, bool cut_off, int64_t& overview_block) {
   const std::string where = path + ":/streams/" + name;
   Object group = hdf5::open_group(streams, name, where);
   StreamInfo info;
@@ -115,8 +115,19 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
                                         std::to_string(info.channels.size()) +
                                         "][samples] for the channels listed");
   const auto channels = static_cast<hsize_t>(info.channels.size());
-  const auto samples_count = shape[1];
+  auto samples_count = shape[1];
   hdf5::check_declared_size(samples.id(), 4.0 * channels * samples_count, where + "/samples");
+  const auto block_size = static_cast<hsize_t>(block);
+  if (cut_off) {
+    // A recording whose writer stopped mid-way (killed, power lost): the samples and the
+    // overview were appended in turns, so one may be a flush ahead. The samples both cover
+    // are the recording.
+    for (const char* overview : {"overview_min", "overview_max"}) {
+      Object dataset = hdf5::open_dataset(group.id(), overview, where + "/" + overview);
+      const std::vector<hsize_t> covered = hdf5::dataset_shape(dataset.id(), where + "/" + overview);
+      if (covered.size() == 2) samples_count = std::min(samples_count, covered[1] * block_size);
+    }
+  }
   info.sample_count = static_cast<int64_t>(samples_count);
 
   info.has_timestamps = hdf5::has_link(group.id(), "timestamps");
@@ -130,11 +141,11 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
                  &info.last_timestamp, place);
     }
   }
-  const auto block_size = static_cast<hsize_t>(block);
   const hsize_t blocks = (samples_count + block_size - 1) / block_size;
   for (const char* overview : {"overview_min", "overview_max"}) {
     const std::string place = where + "/" + overview;
-    Object dataset = open_checked(group.id(), overview, {channels, blocks}, place);
+    Object dataset = cut_off ? hdf5::open_dataset(group.id(), overview, place)
+                             : open_checked(group.id(), overview, {channels, blocks}, place);
     hdf5::check_declared_size(dataset.id(), 4.0 * channels * blocks, place);
   }
   return info;
@@ -157,8 +168,24 @@ RecordingFile::RecordingFile(const std::string& path)
     hdf5::last_error();
     throw Error(path, "not an HDF5 file");
   }
-  file_->file = checked(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, path,
-                        "cannot open HDF5 file");
+  Object file_handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file_handle.valid()) {
+    const std::string why = hdf5::last_error();
+    // A live recording is written in HDF5's single-writer/multiple-reader mode, which keeps
+    // the file whole at every moment; one being written now, or whose writer was killed,
+    // opens this way (as h5py's swmr=True).
+    // Only such a file: a damaged one must be refused at once, not retried.
+    if (why.find("already open for write") == std::string::npos)
+      throw Error(path, "cannot open HDF5 file (" + why + ")");
+    Object access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, path, "property list");
+    // A reader in this mode retries a metadata block whose checksum fails (100 times by
+    // default, for a writer caught mid-write); damage must fail at once.
+    H5Pset_metadata_read_attempts(access.id(), 1);
+    file_handle = Object(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, access.id()), H5Fclose);
+    if (!file_handle.valid()) throw Error(path, "cannot open HDF5 file (" + hdf5::last_error() + ")");
+    cut_off_ = true;
+  }
+  file_->file = std::move(file_handle);
   const hid_t file = file_->file.id();
   const std::string root = path + ":/";
   if (!hdf5::has_attribute(file, "format"))
@@ -186,7 +213,7 @@ RecordingFile::RecordingFile(const std::string& path)
   Object streams = hdf5::open_group(file, "streams", path + ":/streams");
   int64_t block = 0;
   for (const std::string& name : stream_names(streams.id(), path + ":/streams"))
-    streams_.push_back(read_stream_info(streams.id(), name, path, format_version_, block));
+    streams_.push_back(read_stream_info(streams.id(), name, path, format_version_, cut_off_, block));
   if (block > 0) overview_block_ = block;
 }
 

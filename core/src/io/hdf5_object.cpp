@@ -94,6 +94,11 @@ void add_checked_storage(hid_t properties, int rank, const hsize_t* shape, const
     if (H5Pset_layout(properties, H5D_COMPACT) < 0) fail(where, "cannot set compact layout");
     return;
   }
+  add_chunked_storage(properties, rank, chunk, compress, where);
+}
+
+void add_chunked_storage(hid_t properties, int rank, const hsize_t* chunk, bool compress,
+                         const std::string& where) {
   if (H5Pset_chunk(properties, rank, chunk) < 0) fail(where, "cannot set chunking");
   if (compress && (H5Pset_shuffle(properties) < 0 || H5Pset_deflate(properties, kDeflateLevel) < 0))
     fail(where, "cannot set compression");

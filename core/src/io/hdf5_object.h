@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tactile/error.h"
+#include "tactile/io/recording.h"
 
 namespace tactile::hdf5 {
 
@@ -123,5 +124,20 @@ Object untimed_dataset_properties(const std::string& where);
 // `chunk` (per dimension) with Fletcher32 after the optional shuffle and deflate.
 void add_checked_storage(hid_t properties, int rank, const hsize_t* shape, const hsize_t* chunk,
                          bool compress, const std::string& where);
+// Chunks of `chunk` with Fletcher32 after the optional shuffle and deflate, whatever the
+// size (a dataset that grows starts empty).
+void add_chunked_storage(hid_t properties, int rank, const hsize_t* chunk, bool compress,
+                         const std::string& where);
+// A new file in format 2 (HDF5 1.10 file format, no time stamps); fails when `path` exists.
+// `where` names it in errors.
+Object create_recording_file(const std::string& path, const std::string& where);
+// A stream's group with its attributes, channel names and units (empty: none given), before
+// its samples.
+Object create_stream_group(hid_t streams, const std::string& name, double rate_hz, double start_time,
+                           const std::vector<std::string>& channels,
+                           const std::vector<std::string>& units, const std::string& where);
+// The root attributes and /metadata of a recording.
+void write_recording_attributes(hid_t file, const std::string& where, const std::string& recording_id,
+                                const std::string& layout_id, const Metadata& metadata);
 
 }  // namespace tactile::hdf5

@@ -115,14 +115,8 @@ void write_overview(hid_t group, const Stream& stream, const std::string& where)
 
 void write_stream(hid_t streams, const Stream& stream, const std::string& file_where) {
   const std::string where = file_where + ":/streams/" + stream.name;
-  Object group = hdf5::create_group(streams, stream.name, false, where);
-  hdf5::write_double_attribute(group.id(), "rate_hz", stream.rate_hz, where);
-  hdf5::write_double_attribute(group.id(), "start_time", stream.start_time, where);
-  hdf5::write_int_attribute(group.id(), "overview_block", kOverviewBlock, where);
-  hdf5::write_strings(group.id(), "channels", stream.channels, where + "/channels");
-  const std::vector<std::string> units =
-      stream.units.empty() ? std::vector<std::string>(stream.channels.size()) : stream.units;
-  hdf5::write_strings(group.id(), "units", units, where + "/units");
+  Object group = hdf5::create_stream_group(streams, stream.name, stream.rate_hz, stream.start_time,
+                                           stream.channels, stream.units, where);
   // Eigen's column-major matrix is channel after channel: exactly [channels][samples].
   write_chunked(group.id(), "samples", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, stream.samples.data(),
                 static_cast<hsize_t>(stream.channel_count()),
@@ -133,14 +127,7 @@ void write_stream(hid_t streams, const Stream& stream, const std::string& file_w
 }
 
 void write_contents(hid_t file, const std::string& path, const Recording& recording) {
-  const std::string root = path + ":/";
-  hdf5::write_string_attribute(file, "format", hdf5::kFormatName, root);
-  hdf5::write_int_attribute(file, "format_version", kRecordingFormatVersion, root);
-  hdf5::write_string_attribute(file, "layout", recording.layout_id, root);
-  hdf5::write_string_attribute(file, "recording_id", recording.id, root);
-  Object metadata = hdf5::create_group(file, "metadata", false, path + ":/metadata");
-  for (const auto& [key, value] : recording.metadata)
-    hdf5::write_string_attribute(metadata.id(), key, value, path + ":/metadata");
+  hdf5::write_recording_attributes(file, path, recording.id, recording.layout_id, recording.metadata);
   Object streams = hdf5::create_group(file, "streams", true, path + ":/streams");
   for (const Stream& stream : recording.streams) write_stream(streams.id(), stream, path);
 }
@@ -152,22 +139,55 @@ std::string temporary_path(const std::string& path) {
 
 }  // namespace
 
+namespace hdf5 {
+
+Object create_recording_file(const std::string& path, const std::string& where) {
+  // The root group's header carries no modification time either.
+  Object creation = checked(H5Pcreate(H5P_FILE_CREATE), H5Pclose, where, "property list");
+  if (H5Pset_obj_track_times(creation.id(), false) < 0) fail(where, "cannot turn off time stamps");
+  // The file format of HDF5 1.10: superblock, object headers and chunk indexes all
+  // carry checksums (docs/FILE_FORMAT.md, format 2).
+  Object access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where, "property list");
+  if (H5Pset_libver_bounds(access.id(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0)
+    fail(where, "cannot select the HDF5 1.10 file format");
+  return checked(H5Fcreate(path.c_str(), H5F_ACC_EXCL, creation.id(), access.id()), H5Fclose, where,
+                 "cannot create file");
+}
+
+Object create_stream_group(hid_t streams, const std::string& name, double rate_hz, double start_time,
+                           const std::vector<std::string>& channels,
+                           const std::vector<std::string>& units, const std::string& where) {
+  Object group = create_group(streams, name, false, where);
+  write_double_attribute(group.id(), "rate_hz", rate_hz, where);
+  write_double_attribute(group.id(), "start_time", start_time, where);
+  write_int_attribute(group.id(), "overview_block", kOverviewBlock, where);
+  write_strings(group.id(), "channels", channels, where + "/channels");
+  write_strings(group.id(), "units", units.empty() ? std::vector<std::string>(channels.size()) : units,
+                where + "/units");
+  return group;
+}
+
+void write_recording_attributes(hid_t file, const std::string& path, const std::string& recording_id,
+                                const std::string& layout_id, const Metadata& metadata) {
+  const std::string root = path + ":/";
+  write_string_attribute(file, "format", kFormatName, root);
+  write_int_attribute(file, "format_version", kRecordingFormatVersion, root);
+  write_string_attribute(file, "layout", layout_id, root);
+  write_string_attribute(file, "recording_id", recording_id, root);
+  Object group = create_group(file, "metadata", false, path + ":/metadata");
+  for (const auto& [key, value] : metadata)
+    write_string_attribute(group.id(), key, value, path + ":/metadata");
+}
+
+}  // namespace hdf5
+
 void write_recording(const std::string& path, const Recording& recording) {
   hdf5::silence_errors();
   check_recording(path, recording);
   // Same directory as the target, so the rename below is atomic on one file system.
   const std::string temporary = temporary_path(path);
   try {
-    // The root group's header carries no modification time either.
-    Object creation = checked(H5Pcreate(H5P_FILE_CREATE), H5Pclose, path, "property list");
-    if (H5Pset_obj_track_times(creation.id(), false) < 0) hdf5::fail(path, "cannot turn off time stamps");
-    // The file format of HDF5 1.10: superblock, object headers and chunk indexes all
-    // carry checksums (docs/FILE_FORMAT.md, format 2).
-    Object access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, path, "property list");
-    if (H5Pset_libver_bounds(access.id(), H5F_LIBVER_V110, H5F_LIBVER_V110) < 0)
-      hdf5::fail(path, "cannot select the HDF5 1.10 file format");
-    Object file = checked(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, creation.id(), access.id()),
-                          H5Fclose, path, "cannot create file");
+    Object file = hdf5::create_recording_file(temporary, path);
     write_contents(file.id(), path, recording);
     file.close(path);
     std::error_code error;

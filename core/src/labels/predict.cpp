@@ -1,6 +1,7 @@
 // Saved models (fit on a table, save with their pipeline) and their predictions as labels.
 #include "tactile/labels/predict.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -53,6 +54,22 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
   document["layout"] = layout;
   document["pipeline"] = !pipeline.empty() ? pipeline : layout.empty() ? "" : skin_pipeline(layout);
   document["pipeline_params"] = pipeline_params;
+  // What every recording it learnt from had in common (a device's calibration, its signal
+  // convention): given to a stream that carries no metadata (live packets).
+  nlohmann::json common = nlohmann::json::object();
+  if (!dataset.metadata.empty()) {
+    for (const auto& [key, value] : dataset.metadata.front()) {
+      if (key == "t0" || key == "t1" || key == "region" || key == "subject" || key == "trial" ||
+          key == "recording" || key == "segment_id" || key == "layout")
+        continue;
+      const bool shared = std::all_of(dataset.metadata.begin(), dataset.metadata.end(), [&](const Metadata& row) {
+        const auto found = row.find(key);
+        return found != row.end() && found->second == value;
+      });
+      if (shared) common[key] = value;
+    }
+  }
+  document["recording_metadata"] = common;
   return document;
 }
 
@@ -89,6 +106,14 @@ SavedModel model_from_json(const nlohmann::json& document, const std::string& wh
   model.pipeline = text("pipeline");
   model.pipeline_params = text("pipeline_params");
   model.layout = text("layout");
+  if (document.contains("recording_metadata")) {
+    const nlohmann::json& common = document["recording_metadata"];
+    if (!common.is_object()) throw Error(where, "'recording_metadata' is not an object");
+    for (const auto& [key, value] : common.items()) {
+      if (!value.is_string()) throw Error(where, "'recording_metadata' " + key + " is not text");
+      model.recording_metadata[key] = value.get<std::string>();
+    }
+  }
   return model;
 }
 

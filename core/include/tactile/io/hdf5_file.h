@@ -60,6 +60,9 @@ class RecordingFile {
   const std::string& path() const { return path_; }
   // The file's format_version: 1 (no checksums) or 2.
   int format_version() const { return format_version_; }
+  // The file was not closed by its writer: a live recording still being written, or one
+  // whose writer was killed. Its streams hold the samples written up to the last flush.
+  bool cut_off() const { return cut_off_; }
   const std::string& layout_id() const { return layout_id_; }
   const std::string& recording_id() const { return recording_id_; }
   const Metadata& metadata() const { return metadata_; }
@@ -95,6 +98,7 @@ class RecordingFile {
   std::vector<StreamInfo> streams_;
   int64_t overview_block_ = kOverviewBlock;
   int format_version_ = kRecordingFormatVersion;
+  bool cut_off_ = false;
 };
 
 }  // namespace tactile

@@ -25,6 +25,9 @@ struct SavedModel {
   std::string pipeline;               // feature pipeline name; "" when not known
   std::string pipeline_params;        // its parameters, "key=value,..."
   std::string layout;                 // the skin; "" when the table mixed or had none
+  // Metadata every training recording shared (a device's calibration): what a stream without
+  // metadata of its own (live packets) is given.
+  Metadata recording_metadata;
 };
 
 // Fits `specification` on every row of `dataset` and returns the model document:

@@ -1,0 +1,80 @@
+#pragma once
+// Where live datagrams come from (docs/LIVE.md): a UDP socket, a serial port carrying the
+// same packets back to back, the simulator of a skin, or a recording replayed at 0.25x-4x.
+// Each is a DatagramInput; LiveReceiver (live_receiver.h) decodes what any of them delivers.
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tactile/io/recording.h"
+
+namespace tactile {
+
+// A parsed live source address:
+//   udp://HOST:PORT        HOST a dotted IPv4 address; udp://:PORT listens on loopback only
+//   serial:///dev/ttyUSB0?baud=921600
+//   sim://SKIN?seed=1&rate=1          the skin's simulator, `rate` times the device's speed
+//   replay:///path/file.h5?speed=1    a recording, 0.25-4 times its speed, once
+struct LiveAddress {
+  std::string scheme;  // "udp", "serial", "sim", "replay"
+  std::string host;    // udp
+  uint16_t port = 0;   // udp
+  std::string path;    // serial device, replay file
+  int baud = 921600;   // serial
+  std::string skin;    // sim
+  uint64_t seed = 1;   // sim
+  double speed = 1.0;  // sim (rate factor) and replay
+  std::string url;     // as given
+};
+
+// Throws tactile::Error at `option` (e.g. "--connect") naming what is wrong.
+LiveAddress parse_live_address(const std::string& url, const std::string& option);
+
+class DatagramInput {
+ public:
+  virtual ~DatagramInput() = default;
+  // Waits up to `timeout_seconds` for the next datagram and puts its bytes in `out`; false on
+  // timeout or when the input has ended (see ended()). Throws tactile::Error when the input
+  // fails for good (a port that went away).
+  virtual bool next(std::vector<uint8_t>& out, double timeout_seconds) = 0;
+  // True once an input with an end (a replay) has delivered everything.
+  virtual bool ended() const { return false; }
+  // Damaged stretches the input itself threw away (serial framing), counted as broken.
+  virtual int64_t broken() const { return 0; }
+  // The skin the input sends, when it knows ("" for sockets and ports).
+  virtual std::string skin() const { return ""; }
+  // What the input knows of the recording it sends (a replayed file's metadata, the
+  // simulated device's calibration); empty for sockets and ports.
+  virtual Metadata metadata() const { return {}; }
+  virtual std::string describe() const = 0;
+};
+
+// Opens the input for an address. Sockets and ports are opened here (errors name them).
+std::unique_ptr<DatagramInput> open_live_input(const LiveAddress& address);
+
+// Cuts a byte stream (a serial line) back into datagrams: finds the magic, reads the header's
+// lengths, and keeps a datagram only when its payload matches the header's CRC-32; anything
+// else is skipped byte by byte until the next magic, and each skipped stretch counts as one
+// broken datagram. Never holds more than one largest datagram plus what was fed.
+class PacketFramer {
+ public:
+  static constexpr size_t kMaxDatagram = 65536;
+  void feed(std::span<const uint8_t> bytes);
+  // The next whole datagram, if one is complete.
+  bool next(std::vector<uint8_t>& out);
+  int64_t broken() const { return broken_; }
+  size_t buffered() const { return buffer_.size() - start_; }
+
+ private:
+  void skip(size_t bytes);
+  std::vector<uint8_t> buffer_;
+  size_t start_ = 0;
+  bool skipping_ = false;  // inside a broken stretch
+  int64_t broken_ = 0;
+};
+
+}  // namespace tactile

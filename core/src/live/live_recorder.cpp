@@ -1,0 +1,178 @@
+#include "tactile/live/live_recorder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "tactile/error.h"
+
+namespace tactile {
+
+LiveRecorder::LiveRecorder(const std::string& path, const LiveSampleSource& source,
+                           const LiveRecorderOptions& options)
+    : path_(path), lag_seconds_(std::max(0.0, options.lag_seconds)) {
+  if (!(options.pretrigger_seconds >= 0.0) || !std::isfinite(options.pretrigger_seconds))
+    throw Error("pre-trigger", "must be a number of seconds, 0 or more");
+  recording_id_ = std::filesystem::path(path).stem().string();
+  const SourceInfo& info = source.info();
+  const int64_t count = source.sample_count();
+  first_ = std::max(source.first_kept(),
+                    count - static_cast<int64_t>(std::llround(options.pretrigger_seconds * info.rate_hz)));
+  first_ = std::max<int64_t>(first_, 0);
+  next_ = first_;
+  start_time_ = count > 0 ? source.time_of(first_) : source.start_time();
+  RecordingWriterOptions writer_options;
+  writer_options.flush_seconds = options.flush_seconds;
+  Metadata metadata = options.metadata;
+  metadata["source"] = metadata.count("source") ? metadata["source"] : "live";
+  writer_ = std::make_unique<RecordingWriter>(path, recording_id_, info.layout_id, metadata, info.stream.empty() ? "skin" : info.stream,
+                                              info.rate_hz, start_time_, info.channels, info.units, writer_options);
+  thread_ = std::thread([this] { run(); });
+}
+
+LiveRecorder::~LiveRecorder() {
+  {
+    std::lock_guard lock(mutex_);
+    closing_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  try {
+    if (writer_) writer_->finish();
+  } catch (const std::exception&) {
+    // finish(source) is where errors are reported.
+  }
+}
+
+void LiveRecorder::take(const LiveSampleSource& source) {
+  if (finished_) return;
+  const int64_t lag = static_cast<int64_t>(std::llround(lag_seconds_ * source.rate_hz()));
+  const int64_t until = source.sample_count() - lag;
+  if (until <= next_) return;
+  const int64_t kept = source.first_kept();
+  SampleMatrix rows(until - next_, source.channel_count());
+  rows.setConstant(std::numeric_limits<float>::quiet_NaN());
+  // Samples that left the buffer untaken (the UI stalled longer than the buffer) are gaps.
+  const int64_t from = std::max(next_, kept);
+  if (until > from) rows.bottomRows(until - from) = source.read_all_channels(from, until - from);
+  next_ = until;
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(std::move(rows));
+  }
+  wake_.notify_one();
+}
+
+void LiveRecorder::finish(const LiveSampleSource& source) {
+  if (finished_) return;
+  lag_seconds_ = 0.0;
+  take(source);
+  finished_ = true;
+  {
+    std::lock_guard lock(mutex_);
+    closing_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  std::string failure = error();
+  if (failure.empty()) {
+    try {
+      writer_->finish();
+    } catch (const std::exception& error) {
+      failure = error.what();
+    }
+  }
+  if (!failure.empty()) throw Error(path_, failure);
+}
+
+int64_t LiveRecorder::samples_on_disk() const {
+  std::lock_guard lock(mutex_);
+  return on_disk_;
+}
+
+std::string LiveRecorder::error() const {
+  std::lock_guard lock(mutex_);
+  return error_;
+}
+
+void LiveRecorder::run() {
+  for (;;) {
+    SampleMatrix rows;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [this] { return closing_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // closing, all written
+      rows = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    try {
+      writer_->append(rows);
+      std::lock_guard lock(mutex_);
+      on_disk_ = writer_->samples_on_disk();
+    } catch (const std::exception& failure) {
+      std::lock_guard lock(mutex_);
+      error_ = failure.what();
+      queue_.clear();
+      return;
+    }
+  }
+}
+
+//---- Contact
+
+ContactDetector::ContactDetector(int channels, double rate_hz, const ContactDetectorOptions& options)
+    : channels_(channels), rate_(rate_hz), options_(options) {
+  if (channels < 1 || !(rate_hz > 0.0)) throw Error("contact detector", "needs channels and a rate");
+  learning_.resize(static_cast<size_t>(channels));
+}
+
+ContactDetector::State ContactDetector::add(std::span<const float> values) {
+  began_ = false;
+  if (state_ == State::kLearning) {
+    for (int channel = 0; channel < channels_; ++channel)
+      if (std::isfinite(values[static_cast<size_t>(channel)]))
+        learning_[static_cast<size_t>(channel)].push_back(values[static_cast<size_t>(channel)]);
+    if (++learnt_ < std::max<int64_t>(2, std::llround(options_.learn_seconds * rate_))) return state_;
+    rest_.resize(static_cast<size_t>(channels_));
+    band_.resize(static_cast<size_t>(channels_));
+    for (int channel = 0; channel < channels_; ++channel) {
+      std::vector<float>& seen = learning_[static_cast<size_t>(channel)];
+      if (seen.empty()) seen.push_back(0.0f);
+      std::nth_element(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(seen.size() / 2), seen.end());
+      const float median = seen[seen.size() / 2];
+      for (float& value : seen) value = std::fabs(value - median);
+      std::nth_element(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(seen.size() / 2), seen.end());
+      // 1.4826 MAD estimates a normal deviation; a channel that never moved still needs a band.
+      const float sigma = std::max(1.4826f * seen[seen.size() / 2], 1e-6f + 1e-3f * std::fabs(median));
+      rest_[static_cast<size_t>(channel)] = median;
+      band_[static_cast<size_t>(channel)] = static_cast<float>(options_.noise_sigmas) * sigma;
+    }
+    learning_.clear();
+    state_ = State::kQuiet;
+    quiet_samples_ = std::numeric_limits<int32_t>::max();
+    return state_;
+  }
+  int beyond = 0;
+  for (int channel = 0; channel < channels_; ++channel) {
+    const float value = values[static_cast<size_t>(channel)];
+    if (std::isfinite(value) &&
+        std::fabs(value - rest_[static_cast<size_t>(channel)]) > band_[static_cast<size_t>(channel)])
+      ++beyond;
+  }
+  if (beyond >= options_.min_channels) {
+    began_ = state_ != State::kContact;
+    state_ = State::kContact;
+    quiet_samples_ = 0;
+  } else {
+    ++quiet_samples_;
+    state_ = State::kQuiet;
+  }
+  return state_;
+}
+
+bool ContactDetector::quiet_for_long() const {
+  return state_ == State::kQuiet &&
+         quiet_samples_ >= static_cast<int64_t>(std::llround(options_.quiet_seconds * rate_));
+}
+
+}  // namespace tactile

@@ -1,0 +1,227 @@
+// Live inputs: addresses refused with their reason, a serial line through a pseudo-terminal
+// pair (whole, cut anywhere, with noise between packets), the simulator and a replayed file
+// through a LiveReceiver, and UDP loss counted.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "io_test_files.h"
+#include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/layout/skin_layout.h"
+#include "tactile/live/live_input.h"
+#include "tactile/live/live_receiver.h"
+#include "tactile/live/live_source.h"
+#include "tactile/live/packets.h"
+#include "tactile/live/udp.h"
+#include "tactile/sim/simulator.h"
+
+namespace tactile {
+namespace {
+
+std::string refusal(const std::string& url) {
+  try {
+    parse_live_address(url, "--connect");
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(LiveAddress, ReadsEveryKind) {
+  const LiveAddress udp = parse_live_address("udp://:9000", "--connect");
+  EXPECT_EQ(udp.host, "127.0.0.1");  // loopback unless an interface is named
+  EXPECT_EQ(udp.port, 9000);
+  EXPECT_EQ(parse_live_address("udp://0.0.0.0:9001", "--connect").host, "0.0.0.0");
+  const LiveAddress serial = parse_live_address("serial:///dev/ttyUSB0?baud=115200", "--connect");
+  EXPECT_EQ(serial.path, "/dev/ttyUSB0");
+  EXPECT_EQ(serial.baud, 115200);
+  const LiveAddress sim = parse_live_address("sim://nao?seed=3&rate=2", "--connect");
+  EXPECT_EQ(sim.skin, "nao");
+  EXPECT_EQ(sim.seed, 3u);
+  EXPECT_DOUBLE_EQ(sim.speed, 2.0);
+  const LiveAddress replay = parse_live_address("replay:///data/a.h5?speed=0.25", "--connect");
+  EXPECT_EQ(replay.path, "/data/a.h5");
+  EXPECT_DOUBLE_EQ(replay.speed, 0.25);
+}
+
+TEST(LiveAddress, RefusesWithTheReason) {
+  EXPECT_NE(refusal("tcp://1.2.3.4:5").find("not a live source kind"), std::string::npos);
+  EXPECT_NE(refusal("nao").find("not a live source"), std::string::npos);
+  EXPECT_NE(refusal("udp://:0").find("not in 1-65535"), std::string::npos);
+  EXPECT_NE(refusal("serial:///dev/ttyS0?baud=12345").find("not a standard rate"), std::string::npos);
+  EXPECT_NE(refusal("serial://ttyS0").find("device path"), std::string::npos);
+  EXPECT_NE(refusal("sim://cat").find("not a simulated skin"), std::string::npos);
+  EXPECT_NE(refusal("sim://nao?speed=2").find("KEY one of seed, rate"), std::string::npos);
+  EXPECT_NE(refusal("replay:///a.h5?speed=9").find("not in 0.25-4"), std::string::npos);
+  EXPECT_NE(refusal("replay:///a.h5?speed=x").find("not a number"), std::string::npos);
+}
+
+// A fur stream of `count` samples, as the simulator makes them.
+Stream fur_stream() {
+  const SkinLayout layout = load_layout("fur");
+  SimulationOptions options;
+  options.subjects = 1;
+  SimulatedTrial trial = trial_generator("fur")(layout, options, 0, 0);
+  return trial.recording.streams.front();
+}
+
+std::vector<std::vector<uint8_t>> fur_datagrams(int64_t count) {
+  const SkinLayout layout = load_layout("fur");
+  const Stream stream = fur_stream();
+  uint32_t sequence = 0;
+  return PacketEncoder(layout, stream).encode(0, std::min(count, stream.sample_count()), sequence);
+}
+
+TEST(PacketFramer, CutsAByteStreamBackIntoDatagramsWhereverItIsSplit) {
+  const auto datagrams = fur_datagrams(20);
+  std::vector<uint8_t> bytes;
+  for (const auto& datagram : datagrams) bytes.insert(bytes.end(), datagram.begin(), datagram.end());
+  for (size_t piece : {size_t{1}, size_t{7}, size_t{352}, size_t{1000}}) {
+    PacketFramer framer;
+    std::vector<std::vector<uint8_t>> out;
+    std::vector<uint8_t> datagram;
+    for (size_t at = 0; at < bytes.size(); at += piece) {
+      framer.feed(std::span<const uint8_t>(bytes.data() + at, std::min(piece, bytes.size() - at)));
+      while (framer.next(datagram)) out.push_back(datagram);
+    }
+    EXPECT_EQ(out, datagrams) << "fed " << piece << " bytes at a time";
+    EXPECT_EQ(framer.broken(), 0);
+  }
+}
+
+TEST(PacketFramer, SkipsNoiseAndDamagedDatagramsAndCountsEachStretchOnce) {
+  auto datagrams = fur_datagrams(6);
+  datagrams[2][100] ^= 0x40;  // payload damage: the CRC no longer matches
+  std::vector<uint8_t> bytes = {'T', 'W', 'x', 0, 1, 2};  // line noise, a false start
+  for (const auto& datagram : datagrams) bytes.insert(bytes.end(), datagram.begin(), datagram.end());
+  PacketFramer framer;
+  framer.feed(bytes);
+  std::vector<uint8_t> datagram;
+  int whole = 0;
+  while (framer.next(datagram)) {
+    decode_packet(datagram, load_layout("fur"));  // every one handed out decodes
+    ++whole;
+  }
+  EXPECT_EQ(whole, 5);
+  EXPECT_EQ(framer.broken(), 2);  // the noise, the damaged datagram
+  EXPECT_LT(framer.buffered(), 4u);
+}
+
+TEST(SerialInput, ReceivesPacketsThroughAPseudoTerminal) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(grantpt(master), 0);
+  ASSERT_EQ(unlockpt(master), 0);
+  const std::string device = ptsname(master);
+  const SkinLayout layout = load_layout("fur");
+  LiveReceiver receiver(open_live_input(parse_live_address("serial://" + device + "?baud=115200", "--connect")),
+                        layout);
+  auto datagrams = fur_datagrams(30);
+  datagrams.erase(datagrams.begin() + 10);  // one lost on the line
+  for (const auto& datagram : datagrams) {
+    ASSERT_EQ(write(master, datagram.data(), datagram.size()), static_cast<ssize_t>(datagram.size()));
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (receiver.counters().datagrams < 29 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const LiveCounters counters = receiver.counters();
+  EXPECT_EQ(counters.datagrams, 29);
+  EXPECT_EQ(counters.lost, 1);
+  EXPECT_EQ(counters.broken, 0);
+  EXPECT_EQ(receiver.ring().size(), 29);
+  receiver.stop();
+  close(master);
+}
+
+TEST(SerialInput, RefusesAFileThatIsNotAPort) {
+  testing::TemporaryDirectory directory;
+  const std::string path = directory.file("plain");
+  { std::ofstream(path) << "x"; }
+  try {
+    open_live_input(parse_live_address("serial://" + path, "--connect"));
+    FAIL() << "a plain file opened as a serial port";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("not a serial port"), std::string::npos) << error.what();
+  }
+}
+
+TEST(LiveReceiver, TheSimulatorStreamsAtItsRateIntoTheBuffer) {
+  // fur at 15 Hz, 8 times as fast: about 120 samples a second.
+  LiveReceiver receiver(open_live_input(parse_live_address("sim://fur?rate=8", "--connect")), load_layout("fur"));
+  LiveSampleSource source(receiver.source_info(), 10000);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  const LiveCounters counters = receiver.counters();
+  EXPECT_GT(counters.samples, 60);
+  EXPECT_LT(counters.samples, 400);
+  EXPECT_EQ(counters.lost + counters.broken + counters.overflow, 0);
+  EXPECT_EQ(source.sample_count(), counters.samples);
+  EXPECT_EQ(source.channel_count(), 160);
+  EXPECT_EQ(source.gap_samples(), 0);
+}
+
+TEST(LiveReceiver, AReplayedFileArrivesWholeAndEnds) {
+  testing::TemporaryDirectory directory;
+  const SkinLayout layout = load_layout("fur");
+  SimulationOptions options;
+  options.subjects = 1;
+  SimulatedTrial trial = trial_generator("fur")(layout, options, 0, 0);
+  Stream& stream = trial.recording.streams.front();
+  stream.samples.conservativeResize(60, Eigen::NoChange);  // 4 s at 15 Hz
+  stream.samples.row(20).setConstant(NAN);                 // a datagram lost when it was recorded
+  const std::string path = directory.file("trial.h5");
+  write_recording(path, trial.recording);
+  LiveReceiver receiver(open_live_input(parse_live_address("replay://" + path + "?speed=4", "--connect")), layout);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!receiver.ended() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_TRUE(receiver.ended());
+  EXPECT_EQ(receiver.failure(), "");
+  LiveSampleSource source(receiver.source_info(), 1000);
+  receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  EXPECT_EQ(source.sample_count(), 60);
+  EXPECT_EQ(source.gap_samples(), 1);
+  EXPECT_DOUBLE_EQ(source.start_time(), stream.start_time);
+  EXPECT_NEAR(source.values_at(30)[5], stream.samples(30, 5), 0.02);
+}
+
+TEST(LiveReceiver, CountsLossDuplicatesAndBrokenDatagramsOverUdp) {
+  const SkinLayout layout = load_layout("fur");
+  uint16_t port = 0;
+  {
+    UdpSocket probe = UdpSocket::bind_to({"127.0.0.1", 0});  // a free port
+    port = probe.local_port();
+  }
+  LiveReceiver receiver(open_live_input(parse_live_address("udp://:" + std::to_string(port), "--connect")), layout);
+  UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", port});
+  auto datagrams = fur_datagrams(12);
+  std::vector<uint8_t> broken = datagrams[4];
+  broken[40] ^= 1;
+  for (int k : {0, 1, 2, 3, 5, 6, 6, 8, 7, 9, 10, 11}) sender.send(datagrams[static_cast<size_t>(k)]);
+  sender.send(broken);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (receiver.counters().datagrams < 13 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const LiveCounters counters = receiver.counters();
+  EXPECT_EQ(counters.datagrams, 13);
+  EXPECT_EQ(counters.lost, 1);  // 4 never came whole
+  EXPECT_EQ(counters.duplicated, 1);
+  EXPECT_EQ(counters.reordered, 1);
+  EXPECT_EQ(counters.broken, 1);
+  EXPECT_NE(counters.last_error.find("packet byte"), std::string::npos) << counters.last_error;
+  LiveSampleSource source(receiver.source_info(), 1000);
+  receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  EXPECT_EQ(source.sample_count(), 12);
+  EXPECT_EQ(source.gap_samples(), 2);  // 4 missing; 7 left a gap that 7 filled when it came
+  EXPECT_TRUE(std::isnan(source.values_at(4)[0]));
+  EXPECT_FALSE(std::isnan(source.values_at(7)[0]));
+}
+
+}  // namespace
+}  // namespace tactile
