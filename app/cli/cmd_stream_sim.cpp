@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <random>
 #include <sstream>
 
 #include "commands.h"
@@ -25,6 +26,7 @@ struct StreamSimOptions {
   double rate_factor = 1.0;
   double duration = 0.0;  // 0: one simulated trial
   uint64_t seed = 1;
+  double loss = 0.0;  // fraction of datagrams not sent (a lossy network, for testing receivers)
 };
 
 // The stream a simulated trial puts on the wire, moved to start at `device_time`.
@@ -60,9 +62,21 @@ void run_stream_sim(const StreamSimOptions& options) {
     });
   };
 
+  if (!(options.loss >= 0.0 && options.loss < 1.0))
+    throw Error("--loss", "must be a fraction in [0, 1)");
   UdpSocket socket = UdpSocket::connect_to(destination);
-  PacedSender sender([&socket](std::span<const uint8_t> datagram) { return socket.send(datagram); },
-                     options.rate_factor);
+  std::mt19937_64 dice(options.seed ^ 0x5EED10550ULL);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int64_t dropped = 0;
+  PacedSender sender(
+      [&](std::span<const uint8_t> datagram) {
+        if (options.loss > 0.0 && unit(dice) < options.loss) {
+          ++dropped;  // lost on the way: counted as sent
+          return true;
+        }
+        return socket.send(datagram);
+      },
+      options.rate_factor);
   uint32_t sequence = 0;
   double device_time = 0.0;
   int64_t remaining =
@@ -105,6 +119,7 @@ void run_stream_sim(const StreamSimOptions& options) {
       << std::setprecision(1) << "rate: " << rate << " datagrams/s (device "
       << format.datagrams_per_second() << " x " << options.rate_factor << " = "
       << format.datagrams_per_second() * options.rate_factor << ")\n";
+  if (dropped > 0) out << "dropped: " << dropped << " (--loss)\n";
   if (totals.refused > 0)
     out << "refused: " << totals.refused << " (nobody was listening at " << destination.url()
         << ")\n";
@@ -124,6 +139,8 @@ void register_stream_sim(CLI::App& app) {
   command->add_option("--duration", options->duration,
                       "Seconds of device time to send; trials loop (default: one trial)");
   command->add_option("--seed", options->seed, "Simulator seed (default 1)");
+  command->add_option("--loss", options->loss,
+                      "Fraction of datagrams to drop at random, as a lossy network would (default 0)");
   command->callback([options] { run_stream_sim(*options); });
 }
 

@@ -2,7 +2,9 @@
 // display, for `make run` on a machine with no X and for `tactile-workbench --headless`.
 #include <imgui.h>
 
+#include <chrono>
 #include <iostream>
+#include <thread>
 
 #include "frame_loop.h"
 #include "osmesa_renderer.h"
@@ -26,8 +28,16 @@ int main(int argc, char** argv) {
     tactile::FrameLoop loop(workbench, args);
     // A script may play or sleep for long; a frame cap keeps a broken one from spinning forever.
     constexpr int kMaxFrames = 10'000'000;
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point last = Clock::now();
     for (int frame = 0; frame < kMaxFrames; ++frame) {
       renderer.prepare_frame(1.0f / 60.0f);
+      // Live, frames come in real time (at most 60 a second), so data arrives between them
+      // as it would on a screen; a recording is drawn as fast as it can be.
+      if (workbench.state().live.receiver) {
+        std::this_thread::sleep_until(last + std::chrono::microseconds(16667));
+        last = Clock::now();
+      }
       const double seconds = loop.begin(frame == 0 ? 0.0 : 1.0 / 60.0);
       ImGui::NewFrame();
       workbench.frame(seconds);

@@ -44,8 +44,12 @@ TEST(LiveSampleSource, LostSamplesAreGapsNeverValues) {
   EXPECT_EQ(placed.gap, 4);
   EXPECT_EQ(source.gap_samples(), 4);
   EXPECT_TRUE(std::isnan(source.values_at(2)[0]));
+  EXPECT_EQ(source.gaps(), (std::vector<std::pair<int64_t, int64_t>>{{1, 5}}));
+  source.add(0.03, pair(2, 2));  // one of them comes late: the stretch splits around it
+  EXPECT_EQ(source.gaps(), (std::vector<std::pair<int64_t, int64_t>>{{1, 3}, {4, 5}}));
+  source.add(0.02, pair(2, 2));
   // A column over the gap alone is empty: a plot draws a break there.
-  const int64_t edges[] = {1, 5};
+  const int64_t edges[] = {1, 2};
   MinMax out[1];
   source.minmax(0, edges, out);
   EXPECT_TRUE(out[0].empty());
@@ -58,6 +62,7 @@ TEST(LiveSampleSource, ALateSampleFillsItsGap) {
   source.add(0.01, pair(2, 2));  // reordered
   EXPECT_EQ(source.sample_count(), 3);
   EXPECT_EQ(source.values_at(1), pair(2, 2));
+  EXPECT_TRUE(source.gaps().empty());
   const int64_t edges[] = {0, 3};
   MinMax out[1];
   source.minmax(1, edges, out);

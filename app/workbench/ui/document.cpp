@@ -60,6 +60,9 @@ void Document::reload_labels() {
     for (const StoreProblem& problem : store->problems())
       label_problems.push_back(problem.where(store->path()) + ": " + problem.what);
   }
+  // Without a store the labels are last time's: their transient part is replaced.
+  std::erase_if(labels, [](const Label& label) { return label.id == 0 && label.annotator == kOnlineAnnotator; });
+  labels.insert(labels.end(), transient_labels.begin(), transient_labels.end());
   lanes = group_into_lanes(labels);
   // Unique across documents, so a cache never mistakes a reopened recording for the last.
   static std::atomic<int64_t> reloads{0};
@@ -67,6 +70,7 @@ void Document::reload_labels() {
 }
 
 LabelStore& Document::label_store() {
+  if (!labels_refused.empty()) throw Error("labels", labels_refused);
   if (!store) {
     if (labels_path.empty()) labels_path = (fs::path(path).parent_path() / "labels.db").string();
     store = std::make_unique<LabelStore>(labels_path);

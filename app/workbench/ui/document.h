@@ -14,6 +14,9 @@
 
 namespace tactile {
 
+// The annotator of live decisions (transient labels of the prediction lane).
+inline constexpr const char* kOnlineAnnotator = "online";
+
 struct Document {
   std::string path;         // absolute
   std::string labels_path;  // "" when the recording has no label database beside it
@@ -31,6 +34,13 @@ struct Document {
   // Damaged label rows left out of `labels`, or why the label store did not open,
   // each "STORE: place: what". Damaged samples are the source's damage().
   std::vector<std::string> label_problems;
+  // A live stream with nothing recorded yet: labels have no recording to belong to, so
+  // label_store() refuses with this reason ("" for a recording).
+  std::string labels_refused;
+  // Labels shown but not stored: live decisions of an online model (their own lane).
+  std::vector<Label> transient_labels;
+  // The recording id labels are made for when the source has none of its own (live).
+  std::string live_recording_id;
 
   const SampleSource& samples() const { return *source; }
   // Re-reads this recording's labels from the store and rebuilds the lanes.
@@ -38,7 +48,9 @@ struct Document {
   // The store, opened (or created beside the recording) on first need. Throws
   // tactile::Error.
   LabelStore& label_store();
-  const std::string& recording_id() const { return source->info().recording_id; }
+  const std::string& recording_id() const {
+    return live_recording_id.empty() ? source->info().recording_id : live_recording_id;
+  }
 };
 
 struct DocumentOptions {

@@ -42,6 +42,8 @@ std::string view_names() {
 }
 
 uint32_t class_colour(const Document& document, const std::string& class_name) {
+  // Live decisions between touches: grey, and faint, so they do not read as a class.
+  if (class_name == kNoTouchClass) return IM_COL32(128, 128, 128, 25);
   // A class of the skin's vocabulary takes the colour of its place in it, so the
   // classes of one skin never share a colour; others are hashed.
   const auto found = std::find(document.classes.begin(), document.classes.end(), class_name);

@@ -34,11 +34,20 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
       spans.push_back({std::max(label.t0, t0), std::min(label.t1, t1),
                        class_colour(document, label.class_name), label.class_name});
     }
+  // Live: where packets were lost, marked (the lines break there too).
+  if (state.live.receiver)
+    for (const auto& [first, end] : static_cast<const LiveSampleSource&>(source).gaps()) {
+      const double g0 = source.time_of(first), g1 = source.time_of(end);
+      if (g1 >= t0 && g0 <= t1)
+        spans.push_back({std::max(g0, t0), std::min(g1, t1), IM_COL32(230, 60, 50, 70), "lost"});
+    }
   const SignalPlotResult result = draw_signal_plot(
       "signals", channels, spans, state.plot, state.clock.time(), ImGui::GetContentRegionAvail());
   state.targets.time_axes["signals"] = {to_rect(result.area_min, result.area_max),
                                         state.plot.view_t0, state.plot.view_t1};
   if (result.clicked_time) state.clock.seek(*result.clicked_time);
+  // Live, a zoom or pan of the user's stops following the newest sample (F follows again).
+  if (result.view_changed && state.live.receiver && ImGui::IsWindowHovered()) state.live.follow = false;
   ImGui::EndChild();
 }
 

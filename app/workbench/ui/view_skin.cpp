@@ -2,6 +2,9 @@
 // selects it (shift: adds to the selection) and toggles its channel in the plot.
 #include <algorithm>
 
+#include <cfloat>
+#include <cstdio>
+
 #include "analysis.h"
 #include "tactile/labels/region.h"
 #include "views.h"
@@ -163,6 +166,28 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     draw.AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + extent.x + 4, at.y + extent.y + 2),
                        wrong ? IM_COL32(120, 30, 25, 255) : IM_COL32(25, 90, 40, 255), 3.0f);
     draw.AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
+  }
+  if (state.live.online && state.live.shown) {
+    // Live: the newest decision, large, in its class's colour.
+    const OnlineDecision& shown = *state.live.shown;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s%s  %.0f%%", shown.class_name.c_str(), shown.final ? "" : "...",
+                  100.0 * shown.score);
+    ImDrawList& draw = *ImGui::GetWindowDrawList();
+    ImFont* font = ImGui::GetFont();
+    float size = std::min(48.0f, std::max(16.0f, available.y / 10.0f));
+    ImVec2 extent = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
+    if (extent.x > available.x - 24.0f) {  // smaller rather than cut off
+      size *= (available.x - 24.0f) / extent.x;
+      extent = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
+    }
+    const ImVec2 at(origin.x + (available.x - extent.x) * 0.5f, origin.y + available.y - extent.y - 10.0f);
+    const uint32_t colour = shown.class_name == kNoTouchClass
+                                ? IM_COL32(90, 90, 90, 230)
+                                : (class_colour(*state.document, shown.class_name) & 0x00FFFFFFu) | 0xE6000000u;
+    // (an unfinished touch is marked "...": its final answer comes when it ends)
+    draw.AddRectFilled(ImVec2(at.x - 10, at.y - 4), ImVec2(at.x + extent.x + 10, at.y + extent.y + 4), colour, 6.0f);
+    draw.AddText(font, size, at, IM_COL32(255, 255, 255, 255), text);
   }
   state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));
   for (const Taxel& taxel : drawn->taxels) {

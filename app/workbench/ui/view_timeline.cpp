@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "labelling.h"
+#include "live.h"
 #include "views.h"
 
 namespace tactile {
@@ -323,7 +324,10 @@ void draw_label_table(WorkbenchState& state) {
 
 void draw_timeline_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("timeline_view", size, false);
-  draw_transport(state);
+  if (state.live.receiver)
+    draw_live_bar(state);
+  else
+    draw_transport(state);
   draw_lanes(state, ImGui::GetContentRegionAvail().x);
   draw_label_table(state);
   ImGui::EndChild();

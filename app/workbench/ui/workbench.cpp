@@ -14,6 +14,7 @@
 #include "tactile/io/atomic_file.h"
 #include "tactile/layout/taxel_values.h"
 #include "tactile/segment/segmenter.h"
+#include "live.h"
 #include "views.h"
 
 namespace tactile {
@@ -66,17 +67,18 @@ Workbench::Workbench(const WorkbenchOptions& options) {
     const char* user = std::getenv("USER");
     state_.labelling.annotator = user && *user ? user : "operator";
   }
-  if (options.open_path.empty()) {
-    open_analysis_files();
-    return;
-  }
   std::error_code error;
-  if (fs::is_directory(options.open_path, error)) {
+  if (!options.connect.empty()) {
+    state_.live.buffer_seconds = static_cast<float>(options.buffer_seconds);
+    state_.live.pretrigger_seconds = static_cast<float>(options.pretrigger_seconds);
+    if (connect_live(state_, options.connect, options.skin) && !options.record_path.empty())
+      start_recording(state_, options.record_path);
+  } else if (fs::is_directory(options.open_path, error)) {
     set_workspace(options.open_path);
     // The first recording that opens; the damaged ones before it are marked.
     for (const std::string& file : state_.workspace_files)
       if (open(file)) break;
-  } else {
+  } else if (!options.open_path.empty()) {
     open(options.open_path);
   }
   if (state_.document && options.time) state_.clock.seek(*options.time);
@@ -88,7 +90,13 @@ void Workbench::open_analysis_files() {
   const WorkbenchOptions& options = state_.options;
   if (!options.features_path.empty()) open_features_file(state_, options.features_path);
   if (!options.evaluation_path.empty()) open_evaluation_file(state_, options.evaluation_path);
-  if (!options.model_path.empty()) open_model_file(state_, options.model_path);
+  // Live, a model classifies the stream; otherwise a SOM model shows its map.
+  if (!options.model_path.empty()) {
+    if (state_.live.receiver)
+      load_online_model(state_, options.model_path);
+    else
+      open_model_file(state_, options.model_path);
+  }
 }
 
 void Workbench::set_workspace(const std::string& folder) {
@@ -113,7 +121,10 @@ DocumentOptions Workbench::document_options(const std::string& stream) const {
   return options;
 }
 
+Workbench::~Workbench() { disconnect_live(state_); }
+
 bool Workbench::open(const std::string& path) {
+  disconnect_live(state_);
   std::error_code ignored;
   const std::string absolute = fs::absolute(path, ignored).lexically_normal().string();
   try {
@@ -209,7 +220,8 @@ void Workbench::choose_default_view() {
 //---------------------------------------------------------------------------------------------
 void Workbench::frame(double seconds) {
   ++state_.frame;
-  state_.clock.advance(seconds);
+  poll_live(state_);
+  if (!state_.live.receiver) state_.clock.advance(seconds);
   // A landed segment replays once, then the cursor rests in its middle.
   double& until = state_.analysis.replay_until;
   if (until >= 0.0 && (!state_.clock.playing() || state_.clock.time() >= until)) {
@@ -225,6 +237,7 @@ void Workbench::frame(double seconds) {
     state_.clock.toggle();
   handle_labelling_keys(state_);
   handle_analysis_keys(state_);
+  handle_live_keys(state_);
   state_.targets = UiTargets{};
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
@@ -389,6 +402,24 @@ void Workbench::draw_menu_bar() {
     if (ImGui::BeginMenu("File")) {
       if (ImGui::MenuItem("Open...", "Ctrl+O")) state_.file_browser.open(start, {".h5"});
       remember_item(state_, "menu:File/Open...");
+      if (ImGui::BeginMenu("Connect")) {
+        // udp://:PORT listens on loopback; name an interface (udp://0.0.0.0:PORT) to be reached.
+        ImGui::SetNextItemWidth(260);
+        ImGui::InputTextWithHint("##url", "udp://:9000, serial:///dev/ttyUSB0, sim://nao",
+                                 connect_url_.data(), connect_url_.size());
+        remember_item(state_, "input:connect-url");
+        ImGui::SetNextItemWidth(260);
+        ImGui::InputTextWithHint("##skin", "skin (udp, serial): nao, tsa, fur, robovie, flux",
+                                 connect_skin_.data(), connect_skin_.size());
+        remember_item(state_, "input:connect-skin");
+        if (ImGui::MenuItem("Connect")) connect_live(state_, connect_url_.data(), connect_skin_.data());
+        remember_item(state_, "menu:File/Connect/Connect");
+        if (ImGui::MenuItem("Disconnect", nullptr, false, state_.live.receiver != nullptr))
+          disconnect_live(state_);
+        remember_item(state_, "menu:File/Connect/Disconnect");
+        ImGui::EndMenu();
+      }
+      remember_item(state_, "menu:File/Connect");
       if (ImGui::BeginMenu("Export view as PNG", state_.document != nullptr)) {
         for (const ViewSpec& view : all_views()) {
           if (ImGui::MenuItem(view.title)) state_.export_request = view.name;
@@ -593,6 +624,7 @@ nlohmann::json Workbench::state_json() const {
                      {"f1", state_.quality.agreement.f1},
                      {"disagreements", state_.quality.agreement.disagreements.size()}};
   json["analysis"] = analysis_json();
+  json["live"] = live_json(state_);
   json["workspace"] = state_.workspace;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : state_.workspace_files)

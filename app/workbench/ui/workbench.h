@@ -4,6 +4,7 @@
 // views (views.h) with splitters, runs the menus and carries out the views' requests.
 
 #include <nlohmann/json.hpp>
+#include <array>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -23,6 +24,7 @@ struct ViewExport {
 class Workbench {
  public:
   explicit Workbench(const WorkbenchOptions& options);
+  ~Workbench();  // a recording in progress is finished
   // Advances the replay clock by `seconds` of wall time and draws one frame.
   void frame(double seconds);
   bool quit_requested() const { return state_.quit; }
@@ -62,6 +64,8 @@ class Workbench {
   std::string settings_path() const;
 
   WorkbenchState state_;
+  std::array<char, 256> connect_url_{"sim://nao"};
+  std::array<char, 32> connect_skin_{};
   std::optional<ViewExport> export_;
 };
 

@@ -43,10 +43,24 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
   app.add_option("--features", args.options.features_path,
                  "Open a feature table (`tactile features`): its scatter")
       ->check(CLI::ExistingFile);
+  app.add_option("--connect", args.options.connect,
+                 "Live source: udp://:PORT (loopback; udp://0.0.0.0:PORT for every interface), "
+                 "serial:///dev/ttyUSB0?baud=921600, sim://SKIN?rate=X, replay:///FILE.h5?speed=X");
+  app.add_option("--skin", args.options.skin, "Skin of a udp:// or serial:// source: nao, tsa, fur, robovie, flux");
+  app.add_option("--record", args.options.record_path, "Record the live source into this new file (.h5) from the start");
+  app.add_option("--buffer", args.options.buffer_seconds, "Seconds the live buffer holds (default 600)")
+      ->check(CLI::Range(1.0, 86400.0));
+  app.add_option("--pretrigger", args.options.pretrigger_seconds,
+                 "Seconds before Record that a recording starts with (default 5)")
+      ->check(CLI::Range(0.0, 600.0));
   app.add_option("--settings", args.options.settings_path,
                  "Settings file (default: ~/.config/tactile-workbench/settings.json)");
   try {
     app.parse(argc, argv);
+    if (!args.options.connect.empty() && !args.options.open_path.empty())
+      throw CLI::ValidationError("--connect", "opens a live source; give a recording or --connect, not both");
+    if (!args.options.record_path.empty() && args.options.connect.empty())
+      throw CLI::ValidationError("--record", "records a live source: give --connect too");
     if (!size.empty()) {
       int width = 0, height = 0;
       char extra = 0;

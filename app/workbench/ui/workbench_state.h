@@ -18,6 +18,10 @@
 #include "file_browser.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/quality.h"
+#include "tactile/live/live_receiver.h"
+#include "tactile/live/live_recorder.h"
+#include "tactile/live/live_source.h"
+#include "tactile/live/online_classifier.h"
 #include "tactile/live/playback.h"
 #include "tactile/layout/somatosensory.h"
 #include "tactile/ml/evaluation.h"
@@ -140,6 +144,33 @@ struct AnalysisState {
   std::string tab_request;  // a view tab to bring to front next frame
 };
 
+// Live mode (live.h): the receiver, what it counted, the recorder.
+struct LiveState {
+  std::unique_ptr<LiveReceiver> receiver;  // null when not live
+  std::string url;
+  LiveCounters counters;  // as of this frame
+  std::string failure;    // the source's, when it failed
+  bool follow = true;     // plots and skin at the newest sample
+  double window_seconds = 10.0;  // shown while following
+  float buffer_seconds = 600.0f;
+  bool channels_chosen = false;  // the moving channels are picked once data has arrived
+  std::unique_ptr<LiveRecorder> recorder;
+  bool recorder_automatic = false;  // started by a contact: stops after a quiet time
+  std::string record_folder;        // "" = the workspace
+  float pretrigger_seconds = 5.0f;
+  bool auto_record = false;
+  double quiet_seconds = 3.0;
+  std::unique_ptr<ContactDetector> detector;
+  int64_t detected_until = 0;         // source index the detector has seen up to
+  std::vector<std::string> recorded;  // files recorded in this session
+  // Online classification with a saved model: its decisions, newest last.
+  std::unique_ptr<OnlineClassifier> online;
+  std::string model_path;
+  std::array<char, 512> model_input{};
+  std::vector<OnlineDecision> decisions;
+  std::optional<OnlineDecision> shown;  // the one written large over the skin
+};
+
 struct WorkbenchOptions {
   std::string open_path;    // a recording, or a folder (workspace) whose first recording opens
   std::string labels_path;  // label database; default labels.db beside the recording
@@ -152,6 +183,11 @@ struct WorkbenchOptions {
   std::string evaluation_path;  // --evaluation RESULT.json
   std::string model_path;       // --model MODEL.json (a SOM's map)
   std::string features_path;    // --features TABLE.csv (the scatter)
+  std::string connect;          // --connect URL (live mode)
+  std::string skin;             // --skin ID (for udp:// and serial://)
+  std::string record_path;      // --record FILE.h5: record from the start
+  double buffer_seconds = 600.0;  // --buffer
+  double pretrigger_seconds = 5.0;  // --pretrigger
 };
 
 struct WorkbenchState {
@@ -171,6 +207,7 @@ struct WorkbenchState {
   Selection selection;
   LabellingState labelling;
   AnalysisState analysis;
+  LiveState live;
   std::pair<int, int> quality_lanes{0, 1};  // the lanes the quality view compares
   // The quality view's findings, computed again only when the labels or the compared
   // lanes change (not every frame).

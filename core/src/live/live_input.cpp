@@ -277,7 +277,7 @@ class SimulatorInput final : public PacedInput {
 // A recording, read a second at a time and sent once at `speed` times its rate.
 class ReplayInput final : public PacedInput {
  public:
-  ReplayInput(const std::string& path, double speed) : PacedInput(speed), file_(path) {
+  ReplayInput(const std::string& path, double speed, double seconds) : PacedInput(speed), file_(path) {
     layout_ = load_layout(file_.layout_id());
     packet_format_info(file_.layout_id());
     const auto& streams = file_.streams();
@@ -287,6 +287,8 @@ class ReplayInput final : public PacedInput {
     if (info_.has_timestamps)
       throw Error(path + ":/streams/" + info_.name,
                   "is irregularly sampled; only a regular stream can be replayed as packets");
+    if (seconds > 0.0)
+      info_.sample_count = std::min<int64_t>(info_.sample_count, std::llround(seconds * info_.rate_hz));
   }
   std::string skin() const override { return file_.layout_id(); }
   Metadata metadata() const override { return file_.metadata(); }
@@ -387,9 +389,13 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
         throw Error(option, "rate " + values.at("rate") + " is not in (0, 1000]");
     }
   } else if (address.scheme == "replay") {
-    const auto values = query_of(query, url, {"speed"}, option);
+    const auto values = query_of(query, url, {"speed", "seconds"}, option);
     if (rest.empty()) throw Error(option, "\"" + url + "\" lacks the recording (replay:///path/file.h5)");
     address.path = rest;
+    if (values.count("seconds")) {
+      address.seconds = number_in(values.at("seconds"), "seconds", option);
+      if (!(address.seconds > 0.0)) throw Error(option, "seconds " + values.at("seconds") + " is not above 0");
+    }
     if (values.count("speed")) {
       address.speed = number_in(values.at("speed"), "speed", option);
       if (address.speed < PlaybackClock::kMinSpeed || address.speed > PlaybackClock::kMaxSpeed)
@@ -407,7 +413,8 @@ std::unique_ptr<DatagramInput> open_live_input(const LiveAddress& address) {
   if (address.scheme == "serial") return std::make_unique<SerialInput>(address.path, address.baud);
   if (address.scheme == "sim")
     return std::make_unique<SimulatorInput>(address.skin, address.seed, address.speed);
-  if (address.scheme == "replay") return std::make_unique<ReplayInput>(address.path, address.speed);
+  if (address.scheme == "replay")
+    return std::make_unique<ReplayInput>(address.path, address.speed, address.seconds);
   throw Error(address.url, "not a live source kind (udp, serial, sim, replay)");
 }
 

@@ -59,6 +59,11 @@ int64_t LiveSampleSource::gap_samples() const {
   return gaps_;
 }
 
+std::vector<std::pair<int64_t, int64_t>> LiveSampleSource::gaps() const {
+  std::lock_guard lock(mutex_);
+  return gap_ranges_;
+}
+
 int64_t LiveSampleSource::dropped_samples() const {
   std::lock_guard lock(mutex_);
   return dropped_;
@@ -120,12 +125,30 @@ LiveSampleSource::Placed LiveSampleSource::add(double time, std::span<const floa
   }
   if (index < count_) {
     put(index, values);  // a late (reordered) sample fills its place
+    for (size_t k = 0; k < gap_ranges_.size(); ++k) {
+      auto& [from, to] = gap_ranges_[k];
+      if (index < from || index >= to) continue;
+      if (index == from) {
+        ++from;
+      } else if (index == to - 1) {
+        --to;
+      } else {
+        const std::pair<int64_t, int64_t> after{index + 1, to};
+        to = index;
+        gap_ranges_.insert(gap_ranges_.begin() + static_cast<std::ptrdiff_t>(k) + 1, after);
+      }
+      break;
+    }
+    std::erase_if(gap_ranges_, [](const auto& range) { return range.first >= range.second; });
     placed.index = index;
     return placed;
   }
   // Ahead: the samples between are gaps. Only the last `capacity` of them are ever held.
   placed.gap = index - count_;
   gaps_ += placed.gap;
+  if (placed.gap > 0) gap_ranges_.emplace_back(count_, index);
+  // Only what the buffer still holds.
+  while (!gap_ranges_.empty() && gap_ranges_.front().second <= index + 1 - capacity_) gap_ranges_.erase(gap_ranges_.begin());
   for (int64_t gap = std::max(count_, index - capacity_); gap < index; ++gap) {
     start_block(gap);
     for (int channel = 0; channel < channels_; ++channel) at(gap, channel) = kGap;
@@ -142,6 +165,7 @@ void LiveSampleSource::clear() {
   count_ = 0;
   started_ = false;
   gaps_ = dropped_ = 0;
+  gap_ranges_.clear();
   std::fill(samples_.begin(), samples_.end(), kGap);
   for (auto& level : levels_) std::fill(level.begin(), level.end(), MinMax{});
   info_.start_time = 0.0;

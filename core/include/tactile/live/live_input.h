@@ -18,7 +18,8 @@ namespace tactile {
 //   udp://HOST:PORT        HOST a dotted IPv4 address; udp://:PORT listens on loopback only
 //   serial:///dev/ttyUSB0?baud=921600
 //   sim://SKIN?seed=1&rate=1          the skin's simulator, `rate` times the device's speed
-//   replay:///path/file.h5?speed=1    a recording, 0.25-4 times its speed, once
+//   replay:///path/file.h5?speed=1&seconds=60   a recording (its first 60 s), 0.25-4 times
+//                                               its speed, once
 struct LiveAddress {
   std::string scheme;  // "udp", "serial", "sim", "replay"
   std::string host;    // udp
@@ -28,6 +29,7 @@ struct LiveAddress {
   std::string skin;    // sim
   uint64_t seed = 1;   // sim
   double speed = 1.0;  // sim (rate factor) and replay
+  double seconds = 0.0;  // replay: only this much of the recording (0: all)
   std::string url;     // as given
 };
 

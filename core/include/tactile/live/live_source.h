@@ -48,6 +48,9 @@ class LiveSampleSource final : public SampleSource {
   int64_t capacity() const { return capacity_; }
   int64_t first_kept() const;       // index of the oldest sample still held
   int64_t gap_samples() const;      // samples left as gaps so far
+  // The stretches still held that are gaps, as sample index ranges [first, end), oldest
+  // first (a late sample that filled its place is taken out of its stretch).
+  std::vector<std::pair<int64_t, int64_t>> gaps() const;
   int64_t dropped_samples() const;  // samples that came too late for the buffer
   // Copies samples [first, first + count) (row = sample, all channels) into `out`; the
   // recorder's pre-trigger. Throws tactile::Error outside [first_kept(), sample_count()).
@@ -80,6 +83,7 @@ class LiveSampleSource final : public SampleSource {
   int64_t count_ = 0;
   bool started_ = false;
   int64_t gaps_ = 0;
+  std::vector<std::pair<int64_t, int64_t>> gap_ranges_;
   int64_t dropped_ = 0;
   mutable std::mutex mutex_;
 };

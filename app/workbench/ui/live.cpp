@@ -1,0 +1,413 @@
+// Live mode: connect, take what arrived each frame, follow, record (docs/LIVE.md).
+#include "live.h"
+
+#include <imgui.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+
+#include "tactile/error.h"
+#include "tactile/layout/taxel_values.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kUnrecorded = "live data is not recorded yet: press Ctrl+R to record, then label";
+
+std::string timestamped_name() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char name[64];
+  std::strftime(name, sizeof name, "live-%Y%m%d-%H%M%S", &local);
+  return name;
+}
+
+LiveSampleSource& live_source(WorkbenchState& state) {
+  return static_cast<LiveSampleSource&>(*state.document->source);
+}
+
+// The plots show the newest `window` seconds and the cursor sits on the newest sample.
+void follow(WorkbenchState& state) {
+  const SampleSource& source = *state.document->source;
+  if (source.sample_count() == 0) return;
+  const double end = source.end_time();
+  const double start = std::max(source.time_of(live_source(state).first_kept()), source.start_time());
+  state.clock.set_range(start, end);
+  if (!state.live.follow) return;
+  state.clock.seek(source.time_of(source.sample_count() - 1));
+  state.plot.view_t1 = end;
+  state.plot.view_t0 = end - state.live.window_seconds;
+  state.plot.fitted = true;
+}
+
+// The contact detector sees every sample once; a contact starts a recording, a quiet time
+// after the last one stops it.
+void auto_record(WorkbenchState& state) {
+  LiveState& live = state.live;
+  LiveSampleSource& source = live_source(state);
+  if (!live.auto_record) {
+    live.detector.reset();
+    return;
+  }
+  if (!live.detector) {
+    ContactDetectorOptions options;
+    options.quiet_seconds = live.quiet_seconds;
+    live.detector = std::make_unique<ContactDetector>(source.channel_count(), source.rate_hz(), options);
+    live.detected_until = source.sample_count();
+  }
+  const int64_t count = source.sample_count();
+  live.detected_until = std::max(live.detected_until, source.first_kept());
+  bool began = false;
+  for (; live.detected_until < count; ++live.detected_until) {
+    live.detector->add(source.values_at(live.detected_until));
+    began = began || live.detector->contact_began();
+  }
+  if (began && !live.recorder) start_recording(state, "");
+  if (live.recorder && live.recorder_automatic && live.detector->quiet_for_long()) stop_recording(state);
+}
+
+// Online decisions: each becomes a transient label of the "online" lane (consecutive
+// decisions of one class grow one label) and the newest is written over the skin.
+void classify(WorkbenchState& state) {
+  LiveState& live = state.live;
+  if (!live.online) return;
+  live.online->update(live_source(state));
+  std::vector<OnlineDecision> decisions = live.online->take();
+  if (decisions.empty()) return;
+  Document& document = *state.document;
+  for (OnlineDecision& decision : decisions) {
+    std::vector<Label>& lane = document.transient_labels;
+    if (decision.final) {
+      // The touch's final answer replaces the provisional ones over it.
+      std::erase_if(lane, [&](const Label& label) {
+        return label.note == "provisional" && label.t1 >= decision.t0 && label.t0 <= decision.t1;
+      });
+    }
+    Label* last = lane.empty() ? nullptr : &lane.back();
+    const std::string kind = decision.final ? "final" : "provisional";
+    if (last && last->class_name == decision.class_name && last->note == kind && !decision.final &&
+        decision.t0 <= last->t1 + 0.5) {
+      last->t1 = std::max(last->t1, decision.t1);  // the same answer goes on
+      last->confidence = std::clamp(decision.score, 0.0, 1.0);
+    } else {
+      Label label;
+      label.recording = document.recording_id();
+      // Windows overlap; a label starts where the one before it ends.
+      label.t0 = last && last->note != "final" ? std::max(decision.t0, last->t1) : decision.t0;
+      label.t1 = std::max(label.t0, decision.t1);
+      label.class_name = decision.class_name;
+      label.annotator = kOnlineAnnotator;
+      label.source = LabelSource::kModel;
+      label.confidence = std::clamp(decision.score, 0.0, 1.0);
+      label.note = kind;
+      lane.push_back(std::move(label));
+    }
+    // The lane holds what the buffer holds.
+    const double oldest = document.source->time_of(live_source(state).first_kept());
+    std::erase_if(lane, [&](const Label& label) { return label.t1 < oldest; });
+    live.shown = decision;
+    live.decisions.push_back(std::move(decision));
+  }
+  if (live.decisions.size() > 2000)
+    live.decisions.erase(live.decisions.begin(), live.decisions.end() - 1000);
+  document.reload_labels();
+  if (const std::string failure = live.online->error(); !failure.empty()) state.notice = "online model: " + failure;
+}
+
+}  // namespace
+
+bool load_online_model(WorkbenchState& state, const std::string& path) {
+  LiveState& live = state.live;
+  if (!live.receiver || !state.document) return false;
+  try {
+    SavedModel model = read_model_file(path);
+    const SkinLayout& layout = state.document->layout;
+    live.online = std::make_unique<OnlineClassifier>(std::move(model), layout, state.document->source->info(),
+                                                     default_online_options(layout.id));
+    live.model_path = path;
+    live.decisions.clear();
+    live.shown.reset();
+    state.document->transient_labels.clear();
+    state.notice = "classifying with " + path;
+    return true;
+  } catch (const std::exception& failure) {
+    state.error = std::string("cannot classify live: ") + failure.what();
+    return false;
+  }
+}
+
+bool connect_live(WorkbenchState& state, const std::string& url, const std::string& skin_option) {
+  try {
+    const LiveAddress address = parse_live_address(url, "--connect");
+    disconnect_live(state);  // its port or device may be the one asked for again
+    std::unique_ptr<DatagramInput> input = open_live_input(address);
+    std::string skin = skin_option.empty() ? input->skin() : skin_option;
+    if (skin.empty())
+      throw Error("--skin", "is needed for " + address.scheme + " sources (nao, tsa, fur, robovie, flux)");
+    if (!input->skin().empty() && input->skin() != skin)
+      throw Error("--skin", skin + " does not match the source's skin " + input->skin());
+    SkinLayout layout = load_layout(skin);
+    auto receiver = std::make_unique<LiveReceiver>(std::move(input), layout);
+    SourceInfo info = receiver->source_info();
+    info.recording_id = "live";
+    const auto capacity = std::max<int64_t>(1, std::llround(state.live.buffer_seconds * info.rate_hz));
+    auto document = std::make_unique<Document>();
+    document->source = std::make_unique<LiveSampleSource>(info, capacity);
+    document->layout = std::move(layout);
+    document->classes = document->layout.classes;
+    document->labels_refused = kUnrecorded;
+    document->streams = {"skin"};
+    document->reload_labels();
+    state.document = std::move(document);
+    state.live.receiver = std::move(receiver);
+    state.live.url = url;
+    state.live.follow = true;
+    state.live.counters = {};
+    state.live.channels_chosen = false;
+    if (state.workspace.empty()) state.workspace = fs::current_path().string();
+    state.selection = {};
+    state.plotted.assign(static_cast<size_t>(state.document->source->channel_count()), 0);
+    for (int column = 0; column < std::min(8, state.document->source->channel_count()); ++column)
+      state.plotted[static_cast<size_t>(column)] = 1;
+    state.modality = std::max(0, state.document->layout.modality_index(state.document->layout.display_modality));
+    state.rest_scale_modality = -1;
+    state.plot = SignalPlotState{};
+    state.plot.fitted = true;
+    state.clock.pause();
+    state.error.clear();
+    state.notice = "connected to " + url;
+    return true;
+  } catch (const std::exception& failure) {
+    state.error = std::string("cannot connect: ") + failure.what();
+    return false;
+  }
+}
+
+void disconnect_live(WorkbenchState& state) {
+  LiveState& live = state.live;
+  if (!live.receiver) return;
+  if (live.recorder) stop_recording(state);
+  live.online.reset();
+  live.receiver->stop();
+  live.receiver.reset();
+  live.detector.reset();
+}
+
+void poll_live(WorkbenchState& state) {
+  LiveState& live = state.live;
+  if (!live.receiver || !state.document) return;
+  LiveSampleSource& source = live_source(state);
+  live.receiver->ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  live.counters = live.receiver->counters();
+  if (const std::string failure = live.receiver->failure(); !failure.empty() && live.failure != failure) {
+    live.failure = failure;
+    state.error = "live source failed: " + failure;
+  }
+  // Once two seconds have arrived: plot the channels that move and learn the rest level.
+  if (!live.channels_chosen && source.duration() >= 2.0) {
+    live.channels_chosen = true;
+    const std::vector<int> columns =
+        taxel_columns(state.document->layout, source.info().channels, state.modality);
+    std::vector<std::pair<float, int>> spread;
+    for (int column : columns)
+      if (column >= 0) {
+        const MinMax extent = source.channel_extent(column);
+        spread.emplace_back(extent.empty() ? 0.0f : extent.max - extent.min, column);
+      }
+    if (!spread.empty()) {
+      std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
+      std::fill(state.plotted.begin(), state.plotted.end(), 0);
+      for (size_t k = 0; k < spread.size() && k < 8; ++k) state.plotted[static_cast<size_t>(spread[k].second)] = 1;
+    }
+    state.rest_scale_modality = -1;
+  }
+  auto_record(state);
+  classify(state);
+  if (live.recorder) {
+    live.recorder->take(source);
+    if (const std::string failure = live.recorder->error(); !failure.empty()) {
+      state.error = "recording failed: " + failure;
+      stop_recording(state);
+    }
+  }
+  follow(state);
+}
+
+bool start_recording(WorkbenchState& state, const std::string& requested) {
+  LiveState& live = state.live;
+  if (!live.receiver || live.recorder) return false;
+  std::string path = requested;
+  if (path.empty()) {
+    const fs::path folder = live.record_folder.empty() ? fs::path(state.workspace) : fs::path(live.record_folder);
+    path = (folder / (timestamped_name() + ".h5")).string();
+    for (int k = 2; fs::exists(path); ++k) path = (folder / (timestamped_name() + "-" + std::to_string(k) + ".h5")).string();
+  }
+  try {
+    LiveRecorderOptions options;
+    options.pretrigger_seconds = live.pretrigger_seconds;
+    options.metadata["source"] = live.url;
+    live.recorder = std::make_unique<LiveRecorder>(path, live_source(state), options);
+  } catch (const std::exception& failure) {
+    state.error = std::string("cannot record: ") + failure.what();
+    return false;
+  }
+  live.recorder_automatic = live.auto_record && requested.empty() && live.detector &&
+                            live.detector->state() == ContactDetector::State::kContact;
+  // Labels made from now on belong to this recording, in the label database beside it.
+  Document& document = *state.document;
+  document.path = fs::absolute(path).lexically_normal().string();
+  document.live_recording_id = live.recorder->recording_id();
+  document.labels_refused.clear();
+  document.store.reset();
+  document.labels_path = (fs::path(document.path).parent_path() / "labels.db").string();
+  document.reload_labels();
+  state.notice = "recording " + path;
+  return true;
+}
+
+bool stop_recording(WorkbenchState& state) {
+  LiveState& live = state.live;
+  if (!live.recorder) return false;
+  const std::string path = live.recorder->path();
+  try {
+    live.recorder->finish(live_source(state));
+    state.notice = "recorded " + path + " (" + std::to_string(live.recorder->samples_taken()) + " samples)";
+  } catch (const std::exception& failure) {
+    state.error = std::string("recording ended with an error: ") + failure.what();
+  }
+  live.recorded.push_back(path);
+  live.recorder.reset();
+  // Labels stay possible for what was just recorded until the next recording starts: the
+  // document keeps the path and recording id of the last one.
+  return true;
+}
+
+void handle_live_keys(WorkbenchState& state) {
+  if (!state.live.receiver) return;
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput) return;
+  if (io.KeyCtrl && ImGui::IsKeyPressed('R', false)) {
+    if (state.live.recorder)
+      stop_recording(state);
+    else
+      start_recording(state, "");
+  }
+  if (!io.KeyCtrl && !io.KeyAlt && ImGui::IsKeyPressed('F', false)) state.live.follow = !state.live.follow;
+}
+
+void draw_live_bar(WorkbenchState& state) {
+  LiveState& live = state.live;
+  const LiveCounters& counters = live.counters;
+  const bool recording = live.recorder != nullptr;
+  ImGui::TextColored(live.failure.empty() ? ImVec4(0.3f, 0.9f, 0.4f, 1.0f) : ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
+                     live.failure.empty() ? "LIVE" : "FAILED");
+  ImGui::SameLine();
+  ImGui::TextUnformatted(live.url.c_str());
+  ImGui::SameLine();
+  if (ImGui::Checkbox("follow (F)", &live.follow) && live.follow) state.plot.fitted = true;
+  remember_item(state, "checkbox:follow");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputFloat("buffer s", &live.buffer_seconds, 0, 0, "%.0f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    live.buffer_seconds = std::clamp(live.buffer_seconds, 1.0f, 86400.0f);
+    // A new length is a new buffer: reconnect keeps the source, drops what was held.
+    const std::string url = live.url;
+    if (!recording) connect_live(state, url, state.document->layout.id);
+  }
+  remember_item(state, "input:buffer");
+  ImGui::SameLine();
+  if (ImGui::Button("Clear")) {
+    live_source(state).clear();
+    live.detected_until = 0;
+  }
+  remember_item(state, "button:clear");
+  ImGui::SameLine();
+  if (ImGui::Button(recording ? "Stop recording (Ctrl+R)" : "Record (Ctrl+R)")) {
+    if (recording)
+      stop_recording(state);
+    else
+      start_recording(state, "");
+  }
+  remember_item(state, "button:record");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(50);
+  ImGui::InputFloat("pre s", &live.pretrigger_seconds, 0, 0, "%.0f");
+  live.pretrigger_seconds = std::clamp(live.pretrigger_seconds, 0.0f, 600.0f);
+  ImGui::SameLine();
+  ImGui::Checkbox("start on contact", &live.auto_record);
+  remember_item(state, "checkbox:auto-record");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(160);
+  ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(), live.model_input.size());
+  remember_item(state, "input:model");
+  ImGui::SameLine();
+  if (ImGui::Button("Classify")) load_online_model(state, live.model_input.data());
+  remember_item(state, "button:classify");
+  // Second line: what arrived and what did not.
+  const SampleSource& source = *state.document->source;
+  ImGui::Text("%s  received %lld   lost %lld   duplicated %lld   reordered %lld   broken %lld",
+              format_seconds(source.duration()).c_str(), static_cast<long long>(counters.datagrams),
+              static_cast<long long>(counters.lost), static_cast<long long>(counters.duplicated),
+              static_cast<long long>(counters.reordered), static_cast<long long>(counters.broken));
+  if (ImGui::IsItemHovered() && !counters.last_error.empty())
+    ImGui::SetTooltip("last broken datagram: %s", counters.last_error.c_str());
+  if (counters.overflow > 0) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "behind: %lld samples dropped",
+                       static_cast<long long>(counters.overflow));
+  }
+  if (recording) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %s %s",
+                       fs::path(live.recorder->path()).filename().c_str(),
+                       format_seconds(static_cast<double>(live.recorder->samples_taken()) / source.rate_hz()).c_str());
+  }
+}
+
+nlohmann::json live_json(const WorkbenchState& state) {
+  const LiveState& live = state.live;
+  if (!live.receiver) return nullptr;
+  const LiveCounters& counters = live.counters;
+  nlohmann::json json;
+  json["source"] = live.url;
+  json["received"] = counters.datagrams;
+  json["samples"] = state.document ? state.document->source->sample_count() : 0;
+  json["lost"] = counters.lost;
+  json["duplicated"] = counters.duplicated;
+  json["reordered"] = counters.reordered;
+  json["broken"] = counters.broken;
+  json["behind"] = counters.overflow;
+  json["gap_samples"] = state.document ? static_cast<const LiveSampleSource&>(*state.document->source).gap_samples() : 0;
+  json["follow"] = live.follow;
+  json["buffer_seconds"] = live.buffer_seconds;
+  json["newest"] = state.document && state.document->source->sample_count() > 0
+                       ? nlohmann::json(state.document->source->time_of(state.document->source->sample_count() - 1))
+                       : nlohmann::json(nullptr);
+  json["recording"] = live.recorder ? nlohmann::json(live.recorder->path()) : nlohmann::json(nullptr);
+  json["recorded_samples"] = live.recorder ? live.recorder->samples_taken() : 0;
+  json["recorded"] = live.recorded;
+  json["failure"] = live.failure;
+  json["model"] = live.model_path;
+  nlohmann::json predictions = nlohmann::json::array();
+  const size_t first = live.decisions.size() > 20 ? live.decisions.size() - 20 : 0;
+  for (size_t k = first; k < live.decisions.size(); ++k) {
+    const OnlineDecision& decision = live.decisions[k];
+    predictions.push_back({{"time", decision.t1},
+                           {"t0", decision.t0},
+                           {"class", decision.class_name},
+                           {"score", decision.score},
+                           {"final", decision.final}});
+  }
+  json["predictions"] = predictions;
+  return json;
+}
+
+}  // namespace tactile

@@ -1,0 +1,144 @@
+// Live mode end to end: `tactile stream-sim` sends a simulated fur skin over UDP into a
+// headless workbench driven by a script, which shows the skin live (pixels checked),
+// records a file (read back), classifies online with a saved model (decisions in `state`),
+// and labels while recording (into the recording's label database). Every wait is bounded.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "cli_test_support.h"
+#include "png_test_support.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_store.h"
+#include "tactile/live/udp.h"
+
+namespace tactile {
+namespace {
+
+using test::CommandResult;
+using test::run_program;
+
+uint16_t free_port() { return UdpSocket::bind_to({"127.0.0.1", 0}).local_port(); }
+
+size_t colours_in(const Png& png, int x0, int y0, int x1, int y1) {
+  std::set<uint32_t> colours;
+  for (int y = y0; y < y1; y += 2)
+    for (int x = x0; x < x1; x += 2) {
+      const unsigned char* p = png.at(x, y);
+      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
+    }
+  return colours.size();
+}
+
+class WorkbenchLive : public ::testing::Test {
+ protected:
+  std::string script(const std::string& text) {
+    std::string body = text;
+    for (size_t at = body.find('@'); at != std::string::npos; at = body.find('@', at))
+      body.replace(at, 1, folder.path().string() + "/");
+    const std::string path = folder.file("script.txt");
+    std::ofstream(path) << body;
+    return path;
+  }
+  nlohmann::json state(const std::string& name) {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+  test::TempFolder folder{"tactile-workbench-live"};
+};
+
+TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
+  // A model fitted on simulated fur touches.
+  ASSERT_EQ(run_program("tactile", "simulate --skin fur --subjects 3 --trials 1 --out " + folder.file("fur"), folder).exit_code, 0);
+  ASSERT_EQ(run_program("tactile", "features --pipeline fur --labels " + folder.file("fur/labels.db") + " --out " +
+                                       folder.file("fur.csv"), folder).exit_code, 0);
+  const CommandResult fitted = run_program("tactile", "evaluate --features " + folder.file("fur.csv") +
+                                                         " --classifier linear-svm --save-model " +
+                                                         folder.file("model.json"), folder);
+  ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+
+  const uint16_t port = free_port();
+  const std::string url = "udp://127.0.0.1:" + std::to_string(port);
+  // The workbench listens first; the sender starts once it is up (a second later), sends 20 s
+  // of device time at 4x (5 s), and the script watches for 9 s.
+  const std::string record = folder.file("session.h5");
+  std::future<CommandResult> workbench = std::async(std::launch::async, [&] {
+    return run_program("tactile-workbench-headless",
+                       "--connect udp://:" + std::to_string(port) + " --skin fur --record " + record +
+                           " --model " + folder.file("model.json") + " --annotator ana --size 1200x800 --settings " +
+                           folder.file("settings.json") + " --script " +
+                           script("sleep 4\nscreenshot @live.png\nstate @during.json\n"
+                                  "key [\nsleep 1\nkey ]\nkey 1\nkey Enter\n"
+                                  "sleep 4\nstate @after.json\nkey Ctrl+R\nwait 2\nstate @stopped.json\n"),
+                       folder);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  const CommandResult sent =
+      run_program("tactile", "stream-sim --skin fur --to " + url + " --rate-factor 4 --duration 20", folder);
+  ASSERT_EQ(sent.exit_code, 0) << sent.err;
+  ASSERT_EQ(workbench.wait_for(std::chrono::seconds(60)), std::future_status::ready);
+  const CommandResult shown = workbench.get();
+  ASSERT_EQ(shown.exit_code, 0) << shown.err << shown.out;
+
+  // While streaming: samples arrived, none lost, the skin drawn with many colours.
+  const nlohmann::json during = state("during.json");
+  ASSERT_TRUE(during["live"].is_object()) << during.dump(2);
+  EXPECT_GT(during["live"]["samples"].get<int>(), 60);
+  EXPECT_EQ(during["live"]["lost"], 0);
+  EXPECT_EQ(during["live"]["broken"], 0);
+  EXPECT_EQ(during["live"]["recording"], record);
+  const Png png = read_png(folder.file("live.png"));
+  const nlohmann::json skin = during["views"]["skin"];
+  const int x0 = skin["x"].get<int>(), y0 = skin["y"].get<int>();
+  EXPECT_GT(colours_in(png, x0, y0 + 40, x0 + skin["width"].get<int>(), y0 + skin["height"].get<int>()), 6u)
+      << "the skin view is not lit";
+
+  // Online decisions, "no touch" between touches and a class of the model during them.
+  const nlohmann::json after = state("after.json");
+  const nlohmann::json predictions = after["live"]["predictions"];
+  ASSERT_FALSE(predictions.empty());
+  std::set<std::string> classes;
+  for (const nlohmann::json& decision : predictions) classes.insert(decision["class"].get<std::string>());
+  EXPECT_EQ(after["live"]["model"], folder.file("model.json"));
+
+  // The label made while recording is in the recording's label database.
+  const nlohmann::json stopped = state("stopped.json");
+  EXPECT_TRUE(stopped["live"]["recording"].is_null());
+  ASSERT_EQ(stopped["live"]["recorded"].size(), 1u);
+  RecordingFile file(record);
+  EXPECT_FALSE(file.cut_off());
+  EXPECT_EQ(file.layout_id(), "fur");
+  EXPECT_GT(file.stream("skin").sample_count, 100);
+  LabelStore store(folder.file("labels.db"));
+  LabelFilter filter;
+  filter.recording = "session";
+  const std::vector<Label> labels = store.list(filter);
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels.front().annotator, "ana");
+  EXPECT_GT(labels.front().t1, labels.front().t0);
+}
+
+TEST_F(WorkbenchLive, RefusesABadSourceWithTheReason) {
+  const CommandResult refused = run_program(
+      "tactile-workbench-headless", "--connect tcp://x:1 --screenshot " + folder.file("x.png") + " --settings " +
+                                        folder.file("settings.json"), folder);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.err.find("not a live source kind"), std::string::npos) << refused.err;
+  const CommandResult no_skin = run_program(
+      "tactile-workbench-headless", "--connect udp://:9 --screenshot " + folder.file("x.png") + " --settings " +
+                                        folder.file("settings.json"), folder);
+  EXPECT_NE(no_skin.exit_code, 0);
+  EXPECT_NE(no_skin.err.find("--skin"), std::string::npos) << no_skin.err;
+  const CommandResult both = run_program("tactile-workbench-headless",
+                                         "a.h5 --connect sim://fur --screenshot " + folder.file("x.png"), folder);
+  EXPECT_NE(both.exit_code, 0);
+}
+
+}  // namespace
+}  // namespace tactile
