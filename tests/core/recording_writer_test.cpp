@@ -123,6 +123,9 @@ TEST(RecordingWriter, AKilledWriterLeavesAFileWithAllButTheLastSecond) {
     const SampleMatrix& samples = recording.streams.front().samples;
     ASSERT_EQ(samples.rows(), count);
     if (count > 0) EXPECT_EQ(samples(count - 1, 1), static_cast<float>((count - 1) * 10 + 1));
+    // Every chunk and the overview check out as they are.
+    const std::vector<FileProblem> problems = verify_recording(path);
+    EXPECT_TRUE(problems.empty()) << problems.front().message;
   }
 }
 

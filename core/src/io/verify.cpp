@@ -100,6 +100,12 @@ herr_t check_object(hid_t root, const char* name, const H5O_info_t* info, void* 
 void check_structure(const std::string& path, std::vector<FileProblem>& problems) {
   hdf5::silence_errors();
   Object file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.valid() && hdf5::last_error().find("already open for write") != std::string::npos) {
+    // A live recording cut off (or still being written): its structure is checked as it is.
+    Object access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    H5Pset_metadata_read_attempts(access.id(), 1);
+    file = Object(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, access.id()), H5Fclose);
+  }
   if (!file.valid()) return;  // RecordingFile has said why
   H5F_info2_t info{};
   if (H5Fget_info2(file.id(), &info) >= 0 && info.super.version < 2)

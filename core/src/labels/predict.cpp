@@ -59,8 +59,11 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
   nlohmann::json common = nlohmann::json::object();
   if (!dataset.metadata.empty()) {
     for (const auto& [key, value] : dataset.metadata.front()) {
+      // Not the row's own place, and not what the pipeline did to it (a
+      // stream given "preprocessed" would claim to be preprocessed already).
       if (key == "t0" || key == "t1" || key == "region" || key == "subject" || key == "trial" ||
-          key == "recording" || key == "segment_id" || key == "layout")
+          key == "recording" || key == "segment_id" || key == "layout" || key == "preprocessing" ||
+          key == "preprocessed" || key.find('.') != std::string::npos)  // a pipeline's own notes
         continue;
       const bool shared = std::all_of(dataset.metadata.begin(), dataset.metadata.end(), [&](const Metadata& row) {
         const auto found = row.find(key);

@@ -12,7 +12,12 @@ namespace tactile {
 OnlineOptions default_online_options(const std::string& skin) {
   OnlineOptions options;
   if (skin == "nao") {
+    // Kaboli's window already reaches 0.1 s past the last proximity sample (spec §1.1): a
+    // segment ending before the newest sample has been quiet that long.
     options.segmenter = "proximity";
+    options.hop_seconds = 0.05;
+    options.release_seconds = 0.0;
+    options.lookback_seconds = 4.0;
   } else if (skin == "fur") {
     options.segmenter = "threshold";
     options.window_seconds = 3.0;
