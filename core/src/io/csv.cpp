@@ -5,8 +5,10 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "csv_text.h"
+#include "tactile/io/array_import.h"
 #include "tactile/error.h"
 
 namespace tactile {
@@ -168,6 +170,140 @@ Recording import_csv_long(const std::string& path, const SkinLayout& layout,
   recording.metadata["imported_from"] = file_name_of(path);
   recording.streams.push_back(std::move(stream));
   return recording;
+}
+
+
+//---- long, with a class column and grouping columns
+
+std::vector<ImportedRecording> import_csv_table(const std::string& path, const SkinLayout& layout,
+                                                const CsvTableOptions& options) {
+  if (options.rate_hz) check_rate(*options.rate_hz, "rate_hz");
+  const int64_t content_lines = csv::count_content_lines(path);
+  if (content_lines == 0) throw Error(path, "empty file");
+  const size_t channel_count = layout.channels.size();
+  csv::LineReader reader(path);
+  while (reader.next() && csv::is_blank(reader.line())) {
+  }
+  const int64_t header_line = reader.number();
+  std::vector<std::string_view> cells;
+  if (!csv::split_cells(reader.line(), cells))
+    throw Error(location(path, header_line), "unterminated quote in the header");
+  std::vector<std::string> header;
+  for (std::string_view cell : cells) header.push_back(csv::unquote(cell));
+  const auto column_of = [&](const std::string& name, const char* option) {
+    const auto found = std::find(header.begin(), header.end(), name);
+    if (found == header.end()) {
+      std::string names;
+      for (const std::string& column : header) names += (names.empty() ? "" : ", ") + column;
+      throw Error(std::string(option), "no column '" + name + "' in " + path + " (columns: " + names + ")");
+    }
+    return static_cast<size_t>(found - header.begin());
+  };
+  const std::optional<size_t> class_column =
+      options.class_column.empty() ? std::nullopt : std::optional<size_t>(column_of(options.class_column, "--class-column"));
+  std::vector<size_t> group_columns;
+  for (const std::string& name : options.group_columns) group_columns.push_back(column_of(name, "--group-columns"));
+  // The sample columns: the rest, in order; a time column first when named so or when
+  // there is one more than the layout's channels.
+  std::vector<size_t> data;
+  for (size_t column = 0; column < header.size(); ++column)
+    if (column != class_column && std::find(group_columns.begin(), group_columns.end(), column) == group_columns.end())
+      data.push_back(column);
+  const bool has_time = !data.empty() && (data.size() == channel_count + 1 || is_time_name(header[data.front()]));
+  if (data.size() != channel_count + (has_time ? 1 : 0))
+    throw Error(location(path, header_line),
+                std::to_string(data.size()) + " sample columns, but layout '" + layout.id + "' has " +
+                    std::to_string(channel_count) + " channels" + (has_time ? " (plus the time column)" : ""));
+  if (!has_time && !options.rate_hz) throw Error(location(path, header_line), "no time column and no rate given");
+
+  struct Group {
+    std::vector<std::string> values;
+    std::vector<double> times;
+    std::vector<float> samples;  // row after row
+    std::vector<std::string> classes;
+    int64_t first_line = 0;
+  };
+  std::vector<Group> groups;
+  std::map<std::string, size_t> index;
+  for_each_row(reader, [&](const std::vector<std::string_view>& row, int64_t line) {
+    check_cell_count(row.size(), header.size(), path, line, "header has");
+    std::string key;
+    std::vector<std::string> values;
+    for (size_t column : group_columns) {
+      values.push_back(csv::unquote(row[column]));
+      key += values.back() + '\x1f';
+    }
+    auto [found, added] = index.emplace(key, groups.size());
+    if (added) {
+      groups.emplace_back();
+      groups.back().values = values;
+      groups.back().first_line = line;
+    }
+    Group& group = groups[found->second];
+    size_t at = 0;
+    if (has_time) {
+      const auto time_column = static_cast<int64_t>(data[at++]);
+      const double time = csv::parse_double(row[static_cast<size_t>(time_column)], path, line, time_column + 1);
+      if (!group.times.empty() && !(time > group.times.back()))
+        throw Error(location(path, line, time_column + 1),
+                    "time " + std::string(row[static_cast<size_t>(time_column)]) + " does not increase on the group's previous row");
+      group.times.push_back(time);
+    }
+    for (; at < data.size(); ++at)
+      group.samples.push_back(csv::parse_float(row[data[at]], path, line, static_cast<int64_t>(data[at]) + 1));
+    if (class_column) group.classes.push_back(csv::unquote(row[*class_column]));
+  });
+  if (groups.empty()) throw Error(path, "a header but no data rows");
+
+  std::vector<ImportedRecording> recordings;
+  for (Group& group : groups) {
+    const auto rows = static_cast<int64_t>(group.samples.size() / channel_count);
+    Stream stream = empty_stream(options.stream_name, layout);
+    stream.samples.resize(rows, static_cast<Eigen::Index>(channel_count));
+    for (int64_t row = 0; row < rows; ++row)
+      for (size_t channel = 0; channel < channel_count; ++channel)
+        stream.samples(row, static_cast<Eigen::Index>(channel)) = group.samples[static_cast<size_t>(row) * channel_count + channel];
+    if (options.rate_hz) {
+      stream.rate_hz = *options.rate_hz;
+    } else if (rows < 2) {
+      throw Error(location(path, group.first_line), "a group of one sample gives no time step: give the rate");
+    }
+    if (has_time) {
+      std::vector<double> steps(group.times.size() - 1);
+      for (size_t k = 1; k < group.times.size(); ++k) steps[k - 1] = group.times[k] - group.times[k - 1];
+      if (!options.rate_hz) stream.rate_hz = rate_from_steps(steps);
+      stream.start_time = group.times.front();
+      const double step = 1.0 / stream.rate_hz;
+      if (std::any_of(steps.begin(), steps.end(), [&](double value) { return std::abs(value - step) > kIrregularStepTolerance * step; }))
+        stream.timestamps = group.times;
+    }
+    ImportedRecording imported;
+    Recording& recording = imported.recording;
+    recording.id = stem_of(path);
+    for (size_t k = 0; k < group.values.size(); ++k) {
+      recording.id += "-" + group.values[k];
+      recording.metadata[options.group_columns[k]] = group.values[k];
+    }
+    recording.layout_id = layout.id;
+    recording.metadata["imported_from"] = file_name_of(path);
+    if (class_column) {
+      // Each run of one class: from its first sample's time to one step past its last.
+      const double step = 1.0 / stream.rate_hz;
+      std::vector<double> times = group.times;
+      if (times.empty())
+        for (int64_t row = 0; row < rows; ++row) times.push_back(static_cast<double>(row) * step);
+      for (Label& label : labels_from_frame_classes(group.classes, 0.0, 1.0)) {
+        const auto first = static_cast<size_t>(std::llround(label.t0)), last = static_cast<size_t>(std::llround(label.t1)) - 1;
+        label.t0 = times[first];
+        label.t1 = times[last] + step;
+        label.recording = recording.id;
+        imported.labels.push_back(std::move(label));
+      }
+    }
+    recording.streams.push_back(std::move(stream));
+    recordings.push_back(std::move(imported));
+  }
+  return recordings;
 }
 
 //---- wide

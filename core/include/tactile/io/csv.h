@@ -42,6 +42,22 @@ inline constexpr double kIrregularStepTolerance = 0.01;
 Recording import_csv_long(const std::string& path, const SkinLayout& layout,
                           const CsvLongOptions& options);
 
+// A long CSV that holds more than samples: a class per row (`class_column`; "" or
+// "none" is no touch, consecutive rows of one class become one ground-truth label) and
+// grouping columns (`group_columns`, e.g. subject and capture) that split one table into
+// recordings, each with its group's values as metadata and id "STEM-VALUE-VALUE".
+struct CsvTableOptions {
+  std::optional<double> rate_hz;
+  std::string stream_name = "skin";
+  std::string class_column;
+  std::vector<std::string> group_columns;
+};
+struct ImportedRecording;
+// Groups in the order they first appear; rows of a group need not be adjacent. Throws
+// tactile::Error naming file, line and column (or the option naming a missing column).
+std::vector<ImportedRecording> import_csv_table(const std::string& path, const SkinLayout& layout,
+                                                const CsvTableOptions& options);
+
 struct CsvWideOptions {
   int64_t samples_per_capture = 0;
   std::string labels_path;
