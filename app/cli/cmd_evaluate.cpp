@@ -249,7 +249,7 @@ void register_evaluate(CLI::App& app) {
                       "row: recording, t0, t1, region, true, predicted, score)");
   command
       ->add_option("--protocol", args->protocol,
-                   "kfold:K[xR] | loo | loso | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY")
+                   "kfold:K[xR] | loo | loso | group:COLUMN | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY")
       ->capture_default_str();
   command->add_option("--seed", args->seed, "Random seed of folds and classifiers")
       ->capture_default_str();

@@ -44,7 +44,7 @@ TEST(Protocol, ParsesEveryForm) {
 
 TEST(Protocol, PrintsWhatItParses) {
   for (const char* text :
-       {"kfold:5x10", "kfold:7", "loo", "loso", "holdout:0.15x10", "split:side=back/side=front"})
+       {"kfold:5x10", "kfold:7", "loo", "loso", "group:session", "holdout:0.15x10", "split:side=back/side=front"})
     EXPECT_EQ(Protocol::parse(text).to_string(), text);
 }
 
@@ -138,6 +138,31 @@ TEST(Folds, LeaveOneSubjectOutKeepsSubjectsTogether) {
     for (int64_t row : folds[fold].train)
       EXPECT_EQ(test_subjects.count(dataset.subjects[static_cast<size_t>(row)]), 0u);
   }
+}
+
+TEST(Folds, LeaveOneGroupOutSplitsByAnyColumn) {
+  Dataset dataset = blob_dataset({6, 6}, 1, 1);
+  // A session per row, three sessions, in the metadata only.
+  dataset.metadata.resize(static_cast<size_t>(dataset.rows()));
+  for (size_t row = 0; row < dataset.metadata.size(); ++row)
+    dataset.metadata[row]["session"] = "day" + std::to_string(row % 3);
+  const Protocol protocol = Protocol::parse("group:session");
+  EXPECT_EQ(protocol.to_string(), "group:session");
+  const auto folds = make_folds(dataset, protocol, 1);
+  ASSERT_EQ(folds.size(), 3u);
+  for (size_t fold = 0; fold < folds.size(); ++fold) {
+    EXPECT_EQ(folds[fold].test.size(), 4u);
+    for (int64_t row : folds[fold].test) EXPECT_EQ(dataset.metadata[static_cast<size_t>(row)]["session"], "day" + std::to_string(fold));
+    for (int64_t row : folds[fold].train) EXPECT_NE(dataset.metadata[static_cast<size_t>(row)]["session"], "day" + std::to_string(fold));
+  }
+  // The table's own columns: subject gives loso's folds.
+  EXPECT_EQ(make_folds(dataset, Protocol::parse("group:subject"), 1).size(), make_folds(dataset, Protocol::parse("loso"), 1).size());
+  // A row without the column, a column with one value, no column: refused with the reason.
+  dataset.metadata[4].erase("session");
+  EXPECT_THROW(make_folds(dataset, protocol, 1), Error);
+  EXPECT_THROW(Protocol::parse("group:"), Error);
+  for (auto& metadata : dataset.metadata) metadata["site"] = "lab";
+  EXPECT_THROW(make_folds(dataset, Protocol::parse("group:site"), 1), Error);
 }
 
 TEST(Folds, LeaveOneSubjectOutNeedsSubjects) {

@@ -33,7 +33,8 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
   if (base_.empty()) throw Error(kWhere, "base= is required, e.g. grid:base=knn,k=1|3|5");
   if (base_ == "grid-search" || base_ == "grid")
     throw Error(kWhere, "base=" + base_ + ": a grid search cannot search a grid search");
-  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kSplit)
+  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
+      inner_.kind == Protocol::Kind::kSplit)
     throw Error(kWhere, "inner=" + inner_.to_string() +
                             ": the inner protocol must be kfold, loo or holdout");
   // The cartesian product, the last key varying fastest.

@@ -110,6 +110,14 @@ Protocol Protocol::parse(const std::string& text) {
     protocol.folds = 0;
     return protocol;
   }
+  if (kind == "group") {
+    if (argument.empty())
+      throw Error(kWhere, "'" + text + "': expected group:COLUMN, e.g. group:recording or group:session");
+    protocol.kind = Kind::kLeaveOneGroupOut;
+    protocol.group_column = argument;
+    protocol.folds = 0;
+    return protocol;
+  }
   if (kind == "kfold") {
     if (!has_argument) throw Error(kWhere, "'" + text + "': expected kfold:K or kfold:KxR");
     const auto [folds, repetitions] = split_times(argument);
@@ -153,7 +161,7 @@ Protocol Protocol::parse(const std::string& text) {
     return protocol;
   }
   throw Error(kWhere, "unknown protocol '" + text +
-                          "' (known: kfold:K[xR], loo, loso, holdout:FxR, split:QUERY/QUERY)");
+                          "' (known: kfold:K[xR], loo, loso, group:COLUMN, holdout:FxR, split:QUERY/QUERY)");
 }
 
 std::string Protocol::to_string() const {
@@ -162,6 +170,8 @@ std::string Protocol::to_string() const {
       return "loo";
     case Kind::kLeaveOneSubjectOut:
       return "loso";
+    case Kind::kLeaveOneGroupOut:
+      return "group:" + group_column;
     case Kind::kHoldout: {
       char fraction[32];
       const auto end = std::to_chars(fraction, fraction + sizeof fraction, test_fraction).ptr;
@@ -268,6 +278,39 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
                     "loso needs at least 2 subjects; the dataset has only '" + order[0] + "'");
       for (const std::string& subject : order)
         folds.push_back(fold_of_test(rows_of[subject], row_count));
+      break;
+    }
+    case Protocol::Kind::kLeaveOneGroupOut: {
+      // The column's value per row: the table's own columns first, then the metadata.
+      const std::string& column = protocol.group_column;
+      std::vector<std::string> values(static_cast<size_t>(row_count));
+      for (int64_t row = 0; row < row_count; ++row) {
+        const auto r = static_cast<size_t>(row);
+        std::string value;
+        if (column == "subject" && r < dataset.subjects.size()) {
+          value = dataset.subjects[r];
+        } else if (column == "recording" && r < dataset.recordings.size()) {
+          value = dataset.recordings[r];
+        } else if (column == "class") {
+          value = dataset.classes[r];
+        } else if (r < dataset.metadata.size()) {
+          const auto found = dataset.metadata[r].find(column);
+          if (found != dataset.metadata[r].end()) value = found->second;
+        }
+        if (value.empty())
+          throw Error(kWhere, name + ": row " + std::to_string(row) + " has no value in column '" + column + "'");
+        values[r] = std::move(value);
+      }
+      std::vector<std::string> order;
+      std::map<std::string, std::vector<int64_t>> rows_of;
+      for (int64_t row = 0; row < row_count; ++row) {
+        auto& rows = rows_of[values[static_cast<size_t>(row)]];
+        if (rows.empty()) order.push_back(values[static_cast<size_t>(row)]);
+        rows.push_back(row);
+      }
+      if (order.size() < 2)
+        throw Error(kWhere, name + " needs at least 2 groups; column '" + column + "' has only '" + order[0] + "'");
+      for (const std::string& group : order) folds.push_back(fold_of_test(rows_of[group], row_count));
       break;
     }
     case Protocol::Kind::kHoldout: {

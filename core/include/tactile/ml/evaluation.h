@@ -18,15 +18,16 @@
 namespace tactile::ml {
 
 struct Protocol {
-  enum class Kind { kKFold, kLeaveOneOut, kLeaveOneSubjectOut, kHoldout, kSplit };
+  enum class Kind { kKFold, kLeaveOneOut, kLeaveOneSubjectOut, kLeaveOneGroupOut, kHoldout, kSplit };
   Kind kind = Kind::kKFold;
   int folds = 10;               // k-fold
   int repetitions = 1;          // k-fold and hold-out
   double test_fraction = 0.15;  // hold-out
   std::string train_query;      // split: "side=back,condition=stationary"
   std::string test_query;       // split: "side=front"
-  // "kfold:K[xR]" | "loo" | "loso" | "holdout:FxR" | "split:QUERY/QUERY"; throws tactile::Error
-  // naming --protocol.
+  std::string group_column;     // group: "recording", "subject", "session", any metadata key
+  // "kfold:K[xR]" | "loo" | "loso" | "group:COLUMN" | "holdout:FxR" | "split:QUERY/QUERY";
+  // throws tactile::Error naming --protocol.
   static Protocol parse(const std::string& text);
   std::string to_string() const;
 };
@@ -42,6 +43,9 @@ struct Fold {
 //                round-robin to folds 0..K-1; repetition r reshuffles from the same stream.
 //   loo          one fold per row.
 //   loso         one fold per subject (first-seen order), its rows as the test set.
+//   group:COLUMN one fold per value of a column of the table (recording, subject, class or
+//                any metadata key; first-seen order): leave one group out, for corpora
+//                without subject ids.
 //   holdout:FxR  R stratified hold-outs: per class, min(round(F n_c), n_c - 1) shuffled rows
 //                are tested (a class of one sample is only trained on).
 //   split:A/B    one fold: rows matching A train, rows matching B test.
