@@ -201,5 +201,42 @@ TEST(GridSearch, SaveLoadRoundTripGivesIdenticalScores) {
             dynamic_cast<const GridSearchClassifier&>(*grid).chosen_specification());
 }
 
+TEST(AutoClassifier, PicksAmongWholeClassifiersInsideTheTrainingFold) {
+  const Dataset dataset = minority_dataset();
+  std::vector<int> labels;
+  for (const std::string& name : dataset.classes) labels.push_back(name == "b" ? 1 : 0);
+  auto picker = make_classifier("auto:candidates=knn:k=5|knn:k=1;standardize=true,inner=kfold:3");
+  picker->fit(dataset.features, labels, 2, 17);
+  const auto& search = dynamic_cast<const GridSearchClassifier&>(*picker);
+  ASSERT_EQ(search.candidates().size(), 2u);
+  EXPECT_EQ(search.candidates()[1].specification, "knn:k=1,standardize=true");
+  EXPECT_DOUBLE_EQ(search.candidates()[1].inner_accuracy, 1.0);
+  EXPECT_EQ(search.chosen_specification().rfind("knn:k=1,", 0), 0u);
+  // Every outer fold chose on its own training rows (the choices are recorded per fold).
+  const auto result = evaluate(dataset, "auto:candidates=knn:k=5|knn:k=1,inner=kfold:3", Protocol::parse("kfold:3"), 2);
+  ASSERT_EQ(result.fold_models.size(), 3u);
+  for (const std::string& model : result.fold_models) EXPECT_EQ(model.rfind("knn:k=1,", 0), 0u) << model;
+  // Saved and loaded, it answers the same.
+  const auto restored = load_classifier(nlohmann::json::parse(save_classifier(*picker).dump()));
+  EXPECT_EQ(picker->scores(dataset.features), restored->scores(dataset.features));
+}
+
+TEST(AutoClassifier, TheDefaultListIsEveryPresetAndAKnnGridButNoSearch) {
+  const std::vector<std::string> candidates = auto_candidates();
+  EXPECT_GT(candidates.size(), 15u);
+  for (const std::string& candidate : candidates) {
+    EXPECT_NE(candidate.rfind("grid", 0), 0u);
+    EXPECT_NE(candidate, "auto");
+  }
+  EXPECT_NE(std::find(candidates.begin(), candidates.end(), "knn:k=5,standardize=true"), candidates.end());
+  EXPECT_THROW(make_classifier("auto:candidates=grid:base=knn"), Error);
+  EXPECT_THROW(make_classifier("auto:candidates=knn:neighbours=3"), Error);
+  EXPECT_THROW(make_classifier("auto:inner=loso"), Error);
+  EXPECT_THROW(make_classifier("auto:speed=fast"), Error);
+  // Train all leaves auto out (it would run every preset again inside each fold).
+  const std::vector<std::string> presets = preset_names();
+  EXPECT_EQ(std::find(presets.begin(), presets.end(), "auto"), presets.end());
+}
+
 }  // namespace
 }  // namespace tactile::ml

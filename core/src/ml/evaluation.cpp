@@ -335,7 +335,7 @@ nlohmann::json to_json(const EvaluationResult& result, bool with_rows) {
 std::vector<std::string> preset_names() {
   std::vector<std::string> names;
   for (const std::string& name : classifier_names())
-    if (name != "grid" && name != "grid-search") names.push_back(name);
+    if (name != "grid" && name != "grid-search" && name != "auto") names.push_back(name);
   return names;
 }
 

@@ -1,5 +1,7 @@
 #include "tactile/ml/grid_search.h"
 
+#include <algorithm>
+
 #include "tactile/error.h"
 #include "tactile/ml/checks.h"
 #include "tactile/ml/sampling.h"
@@ -55,8 +57,29 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
   }
 }
 
+GridSearchClassifier::GridSearchClassifier(std::vector<std::string> specifications, Protocol inner,
+                                           std::string listed)
+    : auto_(true), listed_(std::move(listed)), inner_(std::move(inner)) {
+  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
+      inner_.kind == Protocol::Kind::kSplit)
+    throw Error("classifier auto", "inner=" + inner_.to_string() + ": the inner protocol must be kfold, loo or holdout");
+  if (specifications.empty()) throw Error("classifier auto", "no candidates");
+  for (const std::string& specification : specifications) {
+    const std::string name = specification.substr(0, specification.find(':'));
+    if (name == "auto" || name == "grid" || name == "grid-search")
+      throw Error("classifier auto", "candidate '" + specification + "': searches are not candidates");
+    make_classifier(specification);  // an unknown classifier or parameter fails here
+    candidates_.push_back({specification, 0.0});
+  }
+}
+
 Parameters GridSearchClassifier::parameters() const {
   Parameters parameters;
+  if (auto_) {
+    parameters.set("inner", inner_.to_string());
+    if (!listed_.empty()) parameters.set("candidates", listed_);
+    return parameters;
+  }
   parameters.set("base", base_);
   parameters.set("inner", inner_.to_string());
   for (const auto& [key, values] : axes_) parameters.set(key, values);
@@ -79,11 +102,19 @@ void GridSearchClassifier::fit(const Matrix& x, const std::vector<int>& y, int c
       candidates_[i].inner_accuracy =
           evaluate(inner, candidates_[i].specification, inner_, inner_seed, sequential).accuracy;
     } catch (const Error& error) {
+      // A candidate that cannot learn from these rows (too few per class, ...) is passed
+      // over by auto; a grid's base failing is the grid's failure.
+      if (auto_) {
+        candidates_[i].inner_accuracy = -1.0;
+        continue;
+      }
       throw Error(kWhere, "inner " + inner_.to_string() + " on " + std::to_string(x.rows()) +
                               " training rows: " + error.what());
     }
     if (candidates_[i].inner_accuracy > candidates_[best].inner_accuracy) best = i;
   }
+  if (candidates_[best].inner_accuracy < 0.0)
+    throw Error(auto_ ? "classifier auto" : kWhere, "no candidate could learn from " + std::to_string(x.rows()) + " training rows");
   std::unique_ptr<Classifier> chosen = make_classifier(candidates_[best].specification);
   chosen->fit(x, y, class_count, seed);
   chosen_ = std::move(chosen);
@@ -115,10 +146,10 @@ nlohmann::json GridSearchClassifier::save() const {
 void GridSearchClassifier::load(const nlohmann::json& model) {
   const nlohmann::json& candidates = model.at("candidates");
   if (!candidates.is_array() || candidates.size() != candidates_.size())
-    throw Error("model grid-search", "the candidates differ from the grid's parameters");
+    throw Error("model " + name(), "the candidates differ from the grid's parameters");
   for (size_t i = 0; i < candidates_.size(); ++i) {
     if (candidates[i].at("specification").get<std::string>() != candidates_[i].specification)
-      throw Error("model grid-search", "the candidates differ from the grid's parameters");
+      throw Error("model " + name(), "the candidates differ from the grid's parameters");
     candidates_[i].inner_accuracy = candidates[i].at("inner_accuracy").get<double>();
   }
   chosen_ = load_classifier(model.at("chosen"));
@@ -138,6 +169,49 @@ std::unique_ptr<Classifier> make_grid_search_classifier(const Parameters& parame
   }
   return std::make_unique<GridSearchClassifier>(parameters.text("base", ""), std::move(axes),
                                                 inner);
+}
+
+}  // namespace tactile::ml
+
+namespace tactile::ml {
+
+std::vector<std::string> auto_candidates() {
+  std::vector<std::string> candidates;
+  for (const std::string& name : classifier_names())
+    // Not the searches, and not em (clusters mapped to classes afterwards: not a classifier
+    // to pick by accuracy).
+    if (name != "grid" && name != "grid-search" && name != "auto" && name != "em") candidates.push_back(name);
+  // The standard k-NN grid.
+  for (const char* k : {"3", "5", "10"}) candidates.push_back(std::string("knn:k=") + k + ",standardize=true");
+  return candidates;
+}
+
+std::unique_ptr<Classifier> make_auto_classifier(const Parameters& parameters) {
+  parameters.expect_only({"inner", "candidates"});
+  Protocol inner = Protocol::parse("kfold:5");
+  if (parameters.has("inner")) {
+    try {
+      inner = Protocol::parse(parameters.text("inner", ""));
+    } catch (const Error& error) {
+      throw Error("classifier auto", "inner=" + parameters.text("inner", "") + ": " + error.message());
+    }
+  }
+  const std::string listed = parameters.text("candidates", "");
+  std::vector<std::string> specifications;
+  if (listed.empty()) {
+    specifications = auto_candidates();
+  } else {
+    // "linear-svm|knn:k=3;metric=cosine": ';' stands for ',' inside one candidate.
+    size_t start = 0;
+    while (start <= listed.size()) {
+      const size_t bar = std::min(listed.find('|', start), listed.size());
+      std::string candidate = listed.substr(start, bar - start);
+      std::replace(candidate.begin(), candidate.end(), ';', ',');
+      if (!candidate.empty()) specifications.push_back(candidate);
+      start = bar + 1;
+    }
+  }
+  return std::make_unique<GridSearchClassifier>(std::move(specifications), inner, listed);
 }
 
 }  // namespace tactile::ml

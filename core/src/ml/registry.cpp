@@ -61,6 +61,10 @@ const std::vector<ClassifierRow>& classifier_table() {
        "hyper-parameter grid by inner CV on the training fold: base=knn,k=1|3|5,inner=kfold:3",
        make_grid_search_classifier},
       {"grid", "short name of grid-search", make_grid_search_classifier},
+      {"auto",
+       "picks among the presets and a k-NN grid by inner CV on the training fold, refits the best "
+       "(inner, candidates=a|b)",
+       make_auto_classifier},
       {"tree", "CART, Gini, max_splits=100 (MATLAB Fine Tree)", make_tree_classifier},
       {"medium-tree", "CART, Gini, max_splits=20 (MATLAB Medium Tree)",
        make_medium_tree_classifier},

@@ -30,7 +30,10 @@ class GridSearchClassifier : public Classifier {
  public:
   GridSearchClassifier(std::string base, std::vector<std::pair<std::string, std::string>> axes,
                        Protocol inner);
-  std::string name() const override { return "grid-search"; }
+  // `auto`: the candidates are whole specifications (different classifiers), not one base's
+  // grid; `listed` is what the user gave ("" = the default list).
+  GridSearchClassifier(std::vector<std::string> specifications, Protocol inner, std::string listed);
+  std::string name() const override { return auto_ ? "auto" : "grid-search"; }
   Parameters parameters() const override;
   void fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t seed) override;
   Matrix scores(const Matrix& x) const override;
@@ -46,6 +49,8 @@ class GridSearchClassifier : public Classifier {
  private:
   const Classifier& chosen() const;
 
+  bool auto_ = false;
+  std::string listed_;  // auto: the candidates as given
   std::string base_;
   std::vector<std::pair<std::string, std::string>> axes_;  // key -> "v1|v2|..."
   Protocol inner_;
@@ -54,5 +59,12 @@ class GridSearchClassifier : public Classifier {
 };
 
 std::unique_ptr<Classifier> make_grid_search_classifier(const Parameters& parameters);
+
+// `auto`: inside each training fold only, an inner cross-validation (inner=, default
+// kfold:5) picks among the presets and a standard k-NN grid (or candidates=a|b|c, whole
+// specifications with ';' between a classifier's parameters) and refits the best on the fold.
+// The outer evaluation never lets the search see its test rows.
+std::vector<std::string> auto_candidates();
+std::unique_ptr<Classifier> make_auto_classifier(const Parameters& parameters);
 
 }  // namespace tactile::ml
