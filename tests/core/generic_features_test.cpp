@@ -130,13 +130,17 @@ TEST(GenericFeatures, StripHasPerChannelColumnsOnlyInAStableOrder) {
   const SkinLayout layout = make_strip_layout(3);
   const auto extractor = make_generic_extractor({});
   const std::vector<FeatureColumn> columns = extractor->columns(layout);
-  ASSERT_EQ(columns.size(), 21u);
+  // 26 per channel (7 summary, 11 shape, 8 envelope parts), then the neighbours' correlation.
+  ASSERT_EQ(columns.size(), 3u * 26 + 1);
   EXPECT_EQ(columns[0].name, "ch0.hjorth_activity");
   EXPECT_EQ(columns[6].name, "ch0.peak_time");
-  EXPECT_EQ(columns[7].name, "ch1.hjorth_activity");
+  EXPECT_EQ(columns[7].name, "ch0.median");
+  EXPECT_EQ(columns[25].name, "ch0.envelope_7");
+  EXPECT_EQ(columns[26].name, "ch1.hjorth_activity");
+  EXPECT_EQ(columns.back().name, "neighbours.correlation");
   for (const FeatureColumn& column : columns) EXPECT_FALSE(column.description.empty());
   EXPECT_EQ(make_generic_extractor({})->columns(make_grid_layout(2, 2)).back().name,
-            "centroid.displacement");
+            "contact.spread");
 }
 
 TEST(GenericFeatures, RegionLimitsContactToItsGroup) {
@@ -186,7 +190,7 @@ TEST(GenericFeatures, PeakOfAReversedModalityIsItsSmallestValue) {
   EXPECT_EQ(summarise_channel(distance, 10.0).peak, 200.0);
   const SkinLayout nao = load_layout("nao");
   const auto columns = make_generic_extractor({})->columns(nao);
-  ASSERT_EQ(columns.size(), 32u * 7 + 4);  // proximity of the 32 cells, and the map
+  ASSERT_EQ(columns.size(), 32u * 26 + 1 + 5);  // proximity of the 32 cells, neighbours, the map
   EXPECT_NE(columns[3].description.find("smallest"), std::string::npos) << columns[3].description;
 }
 
@@ -282,6 +286,58 @@ TEST(FeatureRegistry, ListsGenericAndNamesAnUnknownPipeline) {
     EXPECT_NE(std::string(error.what()).find("kabolli"), std::string::npos);
     EXPECT_NE(std::string(error.what()).find("generic"), std::string::npos);
   }
+}
+
+}  // namespace
+}  // namespace tactile
+
+namespace tactile {
+namespace {
+
+TEST(GenericShape, EachDescriptorMatchesItsDefinition) {
+  // A 5 Hz sine at 100 Hz over 2 s riding on a rest level of 10: all its energy below fs/16
+  // (6.25 Hz), 20 mean crossings a second.
+  std::vector<double> sine(200);
+  for (size_t k = 0; k < sine.size(); ++k) sine[k] = 10.0 + std::sin(2.0 * M_PI * 5.0 * static_cast<double>(k) / 100.0);
+  const ChannelShape wave = channel_shape(sine, 100.0, 10.0, false);
+  EXPECT_NEAR(wave.band_low, 1.0, 1e-9);
+  EXPECT_NEAR(wave.band_high, 0.0, 1e-9);
+  EXPECT_NEAR(wave.zero_crossings, 10.0, 0.5);  // 20 crossings of the mean in 2 s
+  EXPECT_NEAR(wave.median, 10.0, 0.05);
+  EXPECT_NEAR(wave.q90, 10.95, 0.01);  // a sine's 90th percentile: sin(0.35 pi)
+  // A 30 Hz sine: above fs/8 (12.5 Hz).
+  for (size_t k = 0; k < sine.size(); ++k) sine[k] = std::sin(2.0 * M_PI * 30.0 * static_cast<double>(k) / 100.0);
+  EXPECT_NEAR(channel_shape(sine, 100.0, 0.0, false).band_high, 1.0, 1e-9);
+
+  // A press: rest 0 for 0.5 s, a ramp to 4 over 0.2 s, held 0.6 s, released in 0.2 s, rest
+  // 0.5 s, at 100 Hz, with noise of 0.001.
+  std::vector<double> press;
+  for (int k = 0; k < 50; ++k) press.push_back(0.001 * ((k % 3) - 1));
+  for (int k = 1; k <= 20; ++k) press.push_back(0.2 * k);
+  for (int k = 0; k < 60; ++k) press.push_back(4.0 + 0.001 * ((k % 3) - 1));
+  for (int k = 19; k >= 0; --k) press.push_back(0.2 * k);
+  for (int k = 0; k < 50; ++k) press.push_back(0.001 * ((k % 3) - 1));
+  const ChannelShape shape = channel_shape(press, 100.0, 0.0, false);
+  EXPECT_NEAR(shape.onset_slope, 20.0, 1e-9);    // 0.2 per sample at 100 Hz
+  EXPECT_NEAR(shape.release_slope, -20.0, 0.2);  // the hold's noise adds a little
+  EXPECT_NEAR(shape.active_seconds, 1.0, 0.02);  // the ramps and the hold
+  EXPECT_NEAR(shape.envelope[0], 0.0, 0.01);     // the first eighth is rest
+  EXPECT_NEAR(shape.envelope[4], 4.0, 0.01);     // the middle is the hold
+  EXPECT_DOUBLE_EQ(shape.peaks, 0.5);            // one press in 2 s, its noisy hold counted once
+  // Segments of another length give the same envelope: the parts are fractions.
+  std::vector<double> twice;
+  for (double value : press) twice.insert(twice.end(), {value, value});
+  EXPECT_NEAR(channel_shape(twice, 200.0, 0.0, false).envelope[4], shape.envelope[4], 1e-9);
+
+  EXPECT_NEAR(correlation(press, press), 1.0, 1e-12);
+  std::vector<double> inverted(press.size());
+  for (size_t k = 0; k < press.size(); ++k) inverted[k] = -press[k];
+  EXPECT_NEAR(correlation(press, inverted), -1.0, 1e-12);
+  EXPECT_EQ(correlation(std::vector<double>(5, 1.0), press), 0.0);
+  // A constant channel: every descriptor finite.
+  const ChannelShape flat = channel_shape(std::vector<double>(10, 3.0), 10.0, std::nan(""), false);
+  EXPECT_EQ(flat.band_low + flat.band_mid + flat.band_high, 0.0);
+  EXPECT_EQ(flat.active_seconds, 0.0);
 }
 
 }  // namespace

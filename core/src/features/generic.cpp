@@ -5,7 +5,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <complex>
+#include <limits>
+#include <map>
 #include <set>
+
+#include <unsupported/Eigen/FFT>
 
 #include "tactile/error.h"
 
@@ -89,9 +94,16 @@ ContactMotion contact_motion(const Eigen::MatrixXd& values, const Eigen::RowVect
   const Eigen::VectorXd weighted_y = weights * y;
   bool seen = false;
   Point2 first, previous;
+  double spread_sum = 0.0;
+  int64_t spread_count = 0;
   for (Eigen::Index sample = 0; sample < values.rows(); ++sample) {
     if (!(total(sample) > 0.0)) continue;
     const Point2 centroid{weighted_x(sample) / total(sample), weighted_y(sample) / total(sample)};
+    double spread = 0.0;
+    for (Eigen::Index taxel = 0; taxel < weights.cols(); ++taxel)
+      spread += weights(sample, taxel) * std::hypot(x(taxel) - centroid.x, y(taxel) - centroid.y);
+    spread_sum += spread / total(sample);
+    ++spread_count;
     if (seen)
       motion.path_length += std::hypot(centroid.x - previous.x, centroid.y - previous.y);
     else
@@ -100,7 +112,118 @@ ContactMotion contact_motion(const Eigen::MatrixXd& values, const Eigen::RowVect
     seen = true;
   }
   if (seen) motion.displacement = std::hypot(previous.x - first.x, previous.y - first.y);
+  if (spread_count > 0) motion.spread = spread_sum / static_cast<double>(spread_count);
   return motion;
+}
+
+namespace {
+
+double quantile(std::vector<double> values, double fraction) {
+  if (values.empty()) return 0.0;
+  const auto at = static_cast<std::ptrdiff_t>(std::llround(fraction * static_cast<double>(values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + at, values.end());
+  return values[static_cast<size_t>(at)];
+}
+
+}  // namespace
+
+ChannelShape channel_shape(std::span<const double> values, double rate_hz, double rest, bool reversed) {
+  ChannelShape shape;
+  const auto n = static_cast<int64_t>(values.size());
+  if (n == 0) return shape;
+  const std::vector<double> all(values.begin(), values.end());
+  shape.median = quantile(all, 0.5);
+  shape.q10 = quantile(all, 0.1);
+  shape.q90 = quantile(all, 0.9);
+  if (!std::isfinite(rest)) rest = reversed ? shape.q90 : shape.q10;
+  std::vector<double> excursion(values.size());
+  for (size_t k = 0; k < values.size(); ++k)
+    excursion[k] = reversed ? std::max(0.0, rest - values[k]) : std::abs(values[k] - rest);
+  const double seconds = static_cast<double>(n) / rate_hz;
+  // Energy by band, from the spectrum of the mean-removed segment.
+  double mean = 0.0;
+  for (double value : values) mean += value;
+  mean /= static_cast<double>(n);
+  if (n >= 4) {
+    std::vector<double> centred(values.size());
+    for (size_t k = 0; k < values.size(); ++k) centred[k] = values[k] - mean;
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> spectrum;
+    fft.fwd(spectrum, centred);
+    double low = 0.0, mid = 0.0, high = 0.0;
+    for (int64_t bin = 1; bin <= n / 2; ++bin) {
+      const double frequency = static_cast<double>(bin) * rate_hz / static_cast<double>(n);
+      const double energy = std::norm(spectrum[static_cast<size_t>(bin)]);
+      (frequency < rate_hz / 16.0 ? low : frequency < rate_hz / 8.0 ? mid : high) += energy;
+    }
+    const double total = low + mid + high;
+    if (total > 0.0) shape.band_low = low / total, shape.band_mid = mid / total, shape.band_high = high / total;
+  }
+  // Sign changes of the mean-removed signal; samples within rounding of the mean carry none.
+  double scale = 0.0;
+  for (double value : values) scale = std::max(scale, std::abs(value - mean));
+  int64_t crossings = 0;
+  int last_sign = 0;
+  for (double value : values) {
+    const double centred = value - mean;
+    const int sign = std::abs(centred) <= 1e-9 * scale ? 0 : (centred > 0.0 ? 1 : -1);
+    if (sign == 0) continue;
+    if (last_sign != 0 && sign != last_sign) ++crossings;
+    last_sign = sign;
+  }
+  shape.zero_crossings = static_cast<double>(crossings) / seconds;
+  // Peaks: the times the excursion rises through half its largest (a noisy plateau is one).
+  const double largest = *std::max_element(excursion.begin(), excursion.end());
+  int64_t peaks = 0;
+  bool above = false;
+  for (double value : excursion) {
+    if (!above && largest > 0.0 && value > 0.5 * largest) ++peaks;
+    above = largest > 0.0 && value > 0.5 * largest;
+  }
+  shape.peaks = static_cast<double>(peaks) / seconds;
+  for (int64_t k = 1; k < n; ++k) {
+    const double step = (excursion[static_cast<size_t>(k)] - excursion[static_cast<size_t>(k - 1)]) * rate_hz;
+    if (k <= n / 2) shape.onset_slope = std::max(shape.onset_slope, step);
+    else shape.release_slope = std::min(shape.release_slope, step);
+  }
+  // Noise from the first differences: their RMS without the largest fifth (the touch's own
+  // transitions), over sqrt 2 (a difference holds two samples' noise). Robust also for
+  // quantised counts, where a median absolute deviation is often 0.
+  std::vector<double> differences;
+  for (int64_t k = 1; k < n; ++k)
+    differences.push_back(std::abs(values[static_cast<size_t>(k)] - values[static_cast<size_t>(k - 1)]));
+  std::sort(differences.begin(), differences.end());
+  const size_t kept = differences.size() - differences.size() / 5;
+  double squares = 0.0;
+  for (size_t k = 0; k < kept; ++k) squares += differences[k] * differences[k];
+  const double noise = kept > 0 ? std::sqrt(squares / static_cast<double>(kept) / 2.0) : 0.0;
+  int64_t active = 0;
+  for (double value : excursion)
+    if (value > 3.0 * noise && value > 0.0) ++active;
+  shape.active_seconds = static_cast<double>(active) / rate_hz;
+  for (int bin = 0; bin < kEnvelopeBins; ++bin) {
+    const int64_t from = n * bin / kEnvelopeBins, to = std::max(from + 1, n * (bin + 1) / kEnvelopeBins);
+    double sum = 0.0;
+    for (int64_t k = from; k < std::min(to, n); ++k) sum += excursion[static_cast<size_t>(k)];
+    shape.envelope[bin] = sum / static_cast<double>(std::min(to, n) - from);
+  }
+  return shape;
+}
+
+double correlation(std::span<const double> a, std::span<const double> b) {
+  const size_t n = std::min(a.size(), b.size());
+  if (n < 2) return 0.0;
+  double mean_a = 0.0, mean_b = 0.0;
+  for (size_t k = 0; k < n; ++k) mean_a += a[k], mean_b += b[k];
+  mean_a /= static_cast<double>(n);
+  mean_b /= static_cast<double>(n);
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    ab += (a[k] - mean_a) * (b[k] - mean_b);
+    aa += (a[k] - mean_a) * (a[k] - mean_a);
+    bb += (b[k] - mean_b) * (b[k] - mean_b);
+  }
+  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : 0.0;
 }
 
 bool spans_two_dimensions(const std::vector<Point2>& points) {
@@ -144,6 +267,7 @@ struct ChannelPlan {
   Eigen::VectorXd areas;
   bool reversed = false;             // small values mean contact (display_min > display_max)
   std::vector<bool> value_reversed;  // per value channel: of the reversed map modality
+  std::vector<size_t> neighbour;     // per value channel: its nearest neighbour's position
 };
 
 class GenericExtractor : public FeatureExtractor {
@@ -156,9 +280,11 @@ class GenericExtractor : public FeatureExtractor {
 
   std::string name() const override { return "generic"; }
   std::string description() const override {
-    return "Any layout: per channel the Hjorth triple, peak, mean, integral and time of peak; "
-           "on 2-D maps the contact area (max, mean) and the contact centroid's path length and "
-           "net displacement";
+    return "Any layout: per channel the Hjorth triple, peak, mean, integral, time of peak, median and "
+           "deciles, energy in three bands, zero crossings, peaks, onset and release slopes, time "
+           "above the noise band and the envelope in 8 parts; the correlation of neighbouring "
+           "channels; on 2-D maps the contact area (max, mean), spread, and the contact centroid's "
+           "path length and net displacement";
   }
 
   std::vector<FeatureColumn> columns(const SkinLayout& layout) const override {
@@ -183,7 +309,28 @@ class GenericExtractor : public FeatureExtractor {
           {name + ".integral", "sum of " + name + " / sample rate, " + unit + " x s"});
       columns.push_back({name + ".peak_time", "time of the first " + extreme + " value of " + name +
                                                   " after the segment's start, s"});
+      const std::string excursion = "the excursion of " + name + " from its rest level";
+      columns.push_back({name + ".median", "median of " + name + ", " + unit});
+      columns.push_back({name + ".q10", "10th percentile of " + name + ", " + unit});
+      columns.push_back({name + ".q90", "90th percentile of " + name + ", " + unit});
+      columns.push_back({name + ".band_low", "share of the mean-removed energy of " + name + " below fs/16"});
+      columns.push_back({name + ".band_mid", "share of the mean-removed energy of " + name + " in [fs/16, fs/8)"});
+      columns.push_back({name + ".band_high", "share of the mean-removed energy of " + name + " from fs/8 up"});
+      columns.push_back({name + ".zero_crossings", "crossings of the mean by " + name + ", per s"});
+      columns.push_back({name + ".peaks", "rises of " + excursion + " through half its largest, per s"});
+      columns.push_back({name + ".onset_slope", "steepest rise of " + excursion + " in the first half, " + unit + "/s"});
+      columns.push_back({name + ".release_slope", "steepest fall of " + excursion + " in the second half, " + unit + "/s"});
+      columns.push_back({name + ".active_time", "time " + excursion +
+                                                    " exceeds 3 noise deviations (RMS of the differences without their largest fifth / sqrt 2), s"});
+      for (int bin = 0; bin < kEnvelopeBins; ++bin)
+        columns.push_back({name + ".envelope_" + std::to_string(bin),
+                           "mean " + excursion + " in part " + std::to_string(bin + 1) + " of " +
+                               std::to_string(kEnvelopeBins) + " equal parts of the segment, " + unit});
     }
+    if (plan.value_channels.size() >= 2)
+      columns.push_back({"neighbours.correlation",
+                         "mean Pearson correlation of each channel with its nearest neighbour on the map "
+                         "(the next channel without one), over the segment"});
     if (plan.has_map) {
       const std::string unit = layout.map_unit.empty() ? "map units" : layout.map_unit;
       const std::string level = "taxels of " + map_modality(layout) + " past their rest level by " +
@@ -197,6 +344,9 @@ class GenericExtractor : public FeatureExtractor {
            "distance the value-weighted contact centroid moves, sample to sample, " + unit});
       columns.push_back({"centroid.displacement",
                          "distance from the first to the last contact centroid, " + unit});
+      columns.push_back({"contact.spread",
+                         "excursion-weighted distance of the contact taxels from the centroid, mean over "
+                         "the samples with contact, " + unit});
     }
     return columns;
   }
@@ -256,13 +406,29 @@ class GenericExtractor : public FeatureExtractor {
       result.values.insert(result.values.end(), {summary.hjorth.activity, summary.hjorth.mobility,
                                                  summary.hjorth.complexity, summary.peak,
                                                  summary.mean, summary.integral, peak_time});
+      const int channel = plan.value_channels[position];
+      const Stream* rest_stream = input.recording.find_stream(kRestStream);
+      const double rest = rest_stream ? rest_stream->samples(0, channel) : std::nan("");
+      const ChannelShape shape =
+          channel_shape(channel_values[position], stream.rate_hz, rest, plan.value_reversed[position]);
+      result.values.insert(result.values.end(),
+                           {shape.median, shape.q10, shape.q90, shape.band_low, shape.band_mid, shape.band_high,
+                            shape.zero_crossings, shape.peaks, shape.onset_slope, shape.release_slope,
+                            shape.active_seconds});
+      result.values.insert(result.values.end(), std::begin(shape.envelope), std::end(shape.envelope));
+    }
+    if (channel_values.size() >= 2) {
+      double sum = 0.0;
+      for (size_t position = 0; position < channel_values.size(); ++position)
+        sum += correlation(channel_values[position], channel_values[plan.neighbour[position]]);
+      result.values.push_back(sum / static_cast<double>(channel_values.size()));
     }
     if (plan.has_map) {
       std::string skip_reason;
       const ContactMotion motion = map_motion(input, stream, plan, first, count, skip_reason);
       if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
       result.values.insert(result.values.end(), {motion.max_area, motion.mean_area,
-                                                 motion.path_length, motion.displacement});
+                                                 motion.path_length, motion.displacement, motion.spread});
     }
     return result;
   }
@@ -308,6 +474,26 @@ class GenericExtractor : public FeatureExtractor {
           taxel.area > 0.0 ? taxel.area : taxel.size.x * taxel.size.y;
     }
     plan.reversed = layout.display_min > layout.display_max && modality == layout.display_modality;
+    // Each value channel's nearest neighbour on the map (by its taxel's position), else the
+    // next channel.
+    std::map<int, Point2> position_of;
+    for (const Taxel& taxel : layout.taxels)
+      for (int channel : taxel.channels)
+        if (channel >= 0) position_of.emplace(channel, taxel.position);
+    for (size_t position = 0; position < plan.value_channels.size(); ++position) {
+      size_t best = (position + 1) % plan.value_channels.size();
+      const auto here = position_of.find(plan.value_channels[position]);
+      if (here != position_of.end()) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (size_t other = 0; other < plan.value_channels.size(); ++other) {
+          const auto there = position_of.find(plan.value_channels[other]);
+          if (other == position || there == position_of.end()) continue;
+          const double distance = std::hypot(there->second.x - here->second.x, there->second.y - here->second.y);
+          if (distance > 1e-12 && distance < nearest) nearest = distance, best = other;
+        }
+      }
+      plan.neighbour.push_back(best);
+    }
     for (int channel : plan.value_channels)
       plan.value_reversed.push_back(
           plan.reversed && layout.channels[static_cast<size_t>(channel)].modality == modality);

@@ -39,7 +39,31 @@ struct ContactMotion {
   double mean_area = 0.0;     // map units^2, over every sample of the segment
   double path_length = 0.0;   // map units, centroid moved sample to sample
   double displacement = 0.0;  // map units, first to last contact centroid
+  double spread = 0.0;        // map units: excursion-weighted distance of contact from the
+                              // centroid, mean over the samples with contact
 };
+
+// How a channel's signal runs over a segment, in ways that compare across segments of
+// different lengths and skins with no paper of their own (issue "Other people's data").
+inline constexpr int kEnvelopeBins = 8;
+struct ChannelShape {
+  double median = 0.0, q10 = 0.0, q90 = 0.0;  // robust level and spread, channel units
+  // Shares of the mean-removed signal's energy below fs/16, in [fs/16, fs/8), and from fs/8
+  // up (0 for a constant segment).
+  double band_low = 0.0, band_mid = 0.0, band_high = 0.0;
+  double zero_crossings = 0.0;  // of the mean-removed signal, per second
+  double peaks = 0.0;           // rises of the excursion through half its largest, per second
+  double onset_slope = 0.0;     // steepest rise of the excursion in the first half, units/s
+  double release_slope = 0.0;   // steepest fall of the excursion in the second half, units/s
+  double active_seconds = 0.0;  // time the excursion exceeds 3 noise deviations
+  double envelope[kEnvelopeBins] = {};  // mean excursion in 8 equal parts of the segment
+};
+// `rest`: the channel's rest level (NaN: the segment's own quietest decile); the excursion
+// is |x - rest| (toward touch for reversed modalities: rest - x, floored at 0). The noise
+// deviation is the RMS of |diff x| without its largest fifth, over sqrt 2.
+ChannelShape channel_shape(std::span<const double> values, double rate_hz, double rest, bool reversed);
+// Pearson correlation of two equally long series; 0 when either is constant.
+double correlation(std::span<const double> a, std::span<const double> b);
 // The rest level of a channel over a recording: its 10th percentile (90th when reversed),
 // NaN samples ignored; 0 when it has no finite sample.
 double quiet_level(std::span<const double> values, bool reversed);
