@@ -102,7 +102,7 @@ TEST_F(FeaturesCommand, GroundTruthSegmentsBecomeOneCsvRowEach) {
   ASSERT_EQ(dataset.rows(), 8);
   ASSERT_EQ(dataset.columns.size(), 25u * 26 + 1 + 5);  // per channel, neighbours, the map
   EXPECT_EQ(dataset.columns.front().name, "ch0.hjorth_activity");
-  EXPECT_EQ(dataset.columns.back().name, "centroid.displacement");
+  EXPECT_EQ(dataset.columns.back().name, "contact.spread");
   // The store's order: by recording, then time.
   EXPECT_EQ(dataset.classes, (std::vector<std::string>{"press", "swipe", "press", "swipe", "press",
                                                        "swipe", "press", "swipe"}));
@@ -118,7 +118,7 @@ TEST_F(FeaturesCommand, GroundTruthSegmentsBecomeOneCsvRowEach) {
   EXPECT_NEAR(dataset.features(0, displacement), 0.0, 1e-9);
   EXPECT_NEAR(dataset.features(1, displacement), 20.0, 1e-6);
   const std::string header = test::read_text(folder_.path() / "table.csv");
-  EXPECT_NE(header.find("centroid.displacement,class,subject,recording,segment_id,condition,"
+  EXPECT_NE(header.find("contact.spread,class,subject,recording,segment_id,condition,"
                         "layout,region,t0,t1,trial\n"),
             std::string::npos);
   EXPECT_NE(test::read_text(folder_.path() / "table.csv.log").find("0 of 8 segments skipped"),
@@ -236,7 +236,7 @@ TEST_F(FeaturesCommand, ListAndDescribePrintPipelinesAndColumns) {
   ASSERT_EQ(describe.exit_code, 0) << describe.err;
   EXPECT_NE(describe.out.find("ch3.integral"), std::string::npos) << describe.out;
   EXPECT_NE(describe.out.find("contact.max_area"), std::string::npos);
-  EXPECT_NE(describe.out.find("32 columns (generic on grid:2x2)"), std::string::npos);
+  EXPECT_NE(describe.out.find("110 columns (generic on grid:2x2)"), std::string::npos);
   EXPECT_EQ(tactile("features --describe generic").exit_code, 1);
 }
 
