@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "tactile/error.h"
+#include "tactile/live/live_recorder.h"
 #include "tactile/live/live_source.h"
 #include "tactile/live/sample_ring.h"
 
@@ -190,6 +191,33 @@ TEST(SampleRing, AFullRingRefusesInsteadOfBlocking) {
   EXPECT_EQ(ring.drain([](double, std::span<const float>) {}, 1), 1);
   EXPECT_TRUE(ring.push(2, std::vector<float>{2}));
   EXPECT_THROW(SampleRing(0, 1), Error);
+}
+
+TEST(ContactDetector, LearnsTheNoiseBandThenSeesAContactBeginAndAQuietTimeEnd) {
+  ContactDetectorOptions options;
+  options.learn_seconds = 1.0;
+  options.quiet_seconds = 0.5;
+  ContactDetector detector(2, 100.0, options);
+  std::mt19937 random(3);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  const auto feed = [&](float level, int samples) {
+    bool began = false;
+    for (int k = 0; k < samples; ++k) {
+      detector.add(std::vector<float>{5.0f + noise(random), level + noise(random)});
+      began = began || detector.contact_began();
+    }
+    return began;
+  };
+  EXPECT_FALSE(feed(1.0f, 100));  // learning: a second of rest
+  EXPECT_EQ(detector.state(), ContactDetector::State::kQuiet);
+  EXPECT_FALSE(feed(1.0f, 100));  // noise stays inside the band
+  EXPECT_TRUE(feed(1.5f, 20));    // a press on channel 1
+  EXPECT_EQ(detector.state(), ContactDetector::State::kContact);
+  feed(1.0f, 30);                 // released, 0.3 s quiet: not yet
+  EXPECT_FALSE(detector.quiet_for_long());
+  feed(1.0f, 30);                 // 0.6 s quiet
+  EXPECT_TRUE(detector.quiet_for_long());
+  EXPECT_THROW(ContactDetector(0, 100.0), Error);
 }
 
 }  // namespace

@@ -9,7 +9,6 @@
 #include <filesystem>
 
 #include "tactile/error.h"
-#include "tactile/layout/taxel_values.h"
 #include "views.h"
 
 namespace tactile {
@@ -173,10 +172,8 @@ bool connect_live(WorkbenchState& state, const std::string& url, const std::stri
     state.live.channels_chosen = false;
     if (state.workspace.empty()) state.workspace = fs::current_path().string();
     state.selection = {};
-    state.plotted.assign(static_cast<size_t>(state.document->source->channel_count()), 0);
-    for (int column = 0; column < std::min(8, state.document->source->channel_count()); ++column)
-      state.plotted[static_cast<size_t>(column)] = 1;
     state.modality = std::max(0, state.document->layout.modality_index(state.document->layout.display_modality));
+    plot_moving_channels(state);  // the first channels until data has come
     state.rest_scale_modality = -1;
     state.plot = SignalPlotState{};
     state.plot.fitted = true;
@@ -213,19 +210,7 @@ void poll_live(WorkbenchState& state) {
   // Once two seconds have arrived: plot the channels that move and learn the rest level.
   if (!live.channels_chosen && source.duration() >= 2.0) {
     live.channels_chosen = true;
-    const std::vector<int> columns =
-        taxel_columns(state.document->layout, source.info().channels, state.modality);
-    std::vector<std::pair<float, int>> spread;
-    for (int column : columns)
-      if (column >= 0) {
-        const MinMax extent = source.channel_extent(column);
-        spread.emplace_back(extent.empty() ? 0.0f : extent.max - extent.min, column);
-      }
-    if (!spread.empty()) {
-      std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
-      std::fill(state.plotted.begin(), state.plotted.end(), 0);
-      for (size_t k = 0; k < spread.size() && k < 8; ++k) state.plotted[static_cast<size_t>(spread[k].second)] = 1;
-    }
+    plot_moving_channels(state);
     state.rest_scale_modality = -1;
   }
   auto_record(state);

@@ -102,4 +102,22 @@ std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, dou
   return change_from_rest(values, scale);
 }
 
+void plot_moving_channels(WorkbenchState& state) {
+  constexpr int kMostChannels = 8;
+  const SampleSource& source = state.document->samples();
+  state.plotted.assign(static_cast<size_t>(source.channel_count()), 0);
+  std::vector<std::pair<float, int>> spread;
+  for (int column : taxel_columns(state.document->layout, source.info().channels, state.modality)) {
+    if (column < 0) continue;
+    const MinMax extent = source.channel_extent(column);
+    spread.emplace_back(extent.empty() ? 0.0f : extent.max - extent.min, column);
+  }
+  if (spread.empty())
+    for (int column = 0; column < std::min(kMostChannels, source.channel_count()); ++column)
+      spread.emplace_back(0.0f, column);
+  std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
+  for (size_t k = 0; k < spread.size() && k < static_cast<size_t>(kMostChannels); ++k)
+    state.plotted[static_cast<size_t>(spread[k].second)] = 1;
+}
+
 }  // namespace tactile

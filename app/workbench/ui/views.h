@@ -52,6 +52,9 @@ ScreenRect to_rect(ImVec2 min, ImVec2 max);
 // The rest scale of the current modality (`columns`: its taxel columns), computed once
 // per recording and modality.
 const RestScale& current_rest_scale(WorkbenchState& state, const std::vector<int>& columns);
+// Plots the (at most 8) channels of the current modality that move the most (the first
+// channels when the modality has none).
+void plot_moving_channels(WorkbenchState& state);
 // The skin's values of the current modality at the time cursor, scaled for display:
 // fills value_min/value_max.
 std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, double& value_max);

@@ -23,7 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kMaxDefaultPlotChannels = 8;
 constexpr float kSplitterThickness = 6.0f;
 constexpr float kMinimumPanel = 80.0f;
 // A label longer than this is searched for its peak only in its first part.
@@ -169,20 +168,8 @@ void Workbench::choose_default_view() {
   state_.modality = std::max(0, document.layout.modality_index(document.layout.display_modality));
   state_.rest_scale_modality = -1;
   state_.skin_zoom = SkinViewZoom{};
-  state_.plotted.assign(static_cast<size_t>(source.channel_count()), 0);
+  plot_moving_channels(state_);
   const std::vector<int> columns = taxel_columns(document.layout, source.info().channels, state_.modality);
-  std::vector<std::pair<float, int>> spread;
-  for (int column : columns) {
-    if (column < 0) continue;
-    const MinMax extent = source.channel_extent(column);
-    spread.emplace_back(extent.empty() ? 0.0f : extent.max - extent.min, column);
-  }
-  if (spread.empty())
-    for (int column = 0; column < std::min(kMaxDefaultPlotChannels, source.channel_count()); ++column)
-      spread.emplace_back(0.0f, column);
-  std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
-  for (size_t k = 0; k < spread.size() && k < kMaxDefaultPlotChannels; ++k)
-    state_.plotted[static_cast<size_t>(spread[k].second)] = 1;
   state_.plot = SignalPlotState{};
   state_.plot.view_t0 = source.start_time();
   state_.plot.view_t1 = source.start_time() + std::max(1e-3, source.duration());
