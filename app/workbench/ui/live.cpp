@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <utility>
 
 #include "tactile/error.h"
 #include "views.h"
@@ -200,6 +201,11 @@ void disconnect_live(WorkbenchState& state) {
 void poll_live(WorkbenchState& state) {
   LiveState& live = state.live;
   if (!live.receiver || !state.document) return;
+  if (std::exchange(live.resize_request, false)) {
+    const std::string url = live.url, skin = state.document->layout.id, model = live.model_path;
+    if (!connect_live(state, url, skin)) return;
+    if (!model.empty()) load_online_model(state, model);
+  }
   LiveSampleSource& source = live_source(state);
   live.receiver->ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
   live.counters = live.receiver->counters();
@@ -303,9 +309,9 @@ void draw_live_bar(WorkbenchState& state) {
   ImGui::InputFloat("buffer s", &live.buffer_seconds, 0, 0, "%.0f");
   if (ImGui::IsItemDeactivatedAfterEdit()) {
     live.buffer_seconds = std::clamp(live.buffer_seconds, 1.0f, 86400.0f);
-    // A new length is a new buffer: reconnect keeps the source, drops what was held.
-    const std::string url = live.url;
-    if (!recording) connect_live(state, url, state.document->layout.id);
+    // A new length is a new buffer: at the next frame's start the source is connected again
+    // (what was held is dropped; not while recording).
+    live.resize_request = !recording;
   }
   remember_item(state, "input:buffer");
   ImGui::SameLine();

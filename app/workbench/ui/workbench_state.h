@@ -153,6 +153,7 @@ struct LiveState {
   bool follow = true;     // plots and skin at the newest sample
   double window_seconds = 10.0;  // shown while following
   float buffer_seconds = 600.0f;
+  bool resize_request = false;   // the buffer's length changed: a new buffer next frame
   bool channels_chosen = false;  // the moving channels are picked once data has arrived
   std::unique_ptr<LiveRecorder> recorder;
   bool recorder_automatic = false;  // started by a contact: stops after a quiet time
