@@ -90,9 +90,14 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     ImGui::EndCombo();
   }
   remember_item(state, "region");
-  ImGui::SameLine();
+  // A narrow panel wraps its tool row rather than hiding the last tools past its edge.
+  const auto same_line_if_room = [](float width) {
+    ImGui::SameLine();
+    if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
+  };
+  same_line_if_room(ImGui::GetFrameHeight() + ImGui::CalcTextSize("raw values").x + 12.0f);
   ImGui::Checkbox("raw values", &state.show_raw_values);
-  ImGui::SameLine();
+  same_line_if_room(120.0f);
   // The body as built, or the somatosensory map: taxels placed by how they are touched together.
   ImGui::SetNextItemWidth(120);
   AnalysisState& analysis = state.analysis;
