@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <utility>
 
 #include "kaboli_k4_data.h"
 #include "nao_test_recording.h"
@@ -129,9 +131,16 @@ FeatureResult extract(const FeatureExtractor& extractor, const K4Recording& k4,
   return extractor.extract({k4.recording, k4.layout, label});
 }
 
+// The paper as printed: no high-pass on the accelerometers (vector K4 is computed without it).
+Parameters as_printed() {
+  Parameters parameters;
+  parameters.set("motion_hz", "0");
+  return parameters;
+}
+
 TEST(KaboliExtractor, GivesVectorK4ForTheTouchedBodyPart) {
   const K4Recording k4 = k4_recording();
-  const auto extractor = make_kaboli_extractor({});
+  const auto extractor = make_kaboli_extractor(as_printed());
   EXPECT_EQ(extractor->name(), "kaboli");
   ASSERT_EQ(extractor->columns(k4.layout).size(), 16u);
   EXPECT_EQ(extractor->columns(k4.layout)[7].name, "mobility_ax");
@@ -143,7 +152,7 @@ TEST(KaboliExtractor, GivesVectorK4ForTheTouchedBodyPart) {
 
 TEST(KaboliExtractor, ContactNormalisationDividesByTheContactedCells) {
   const K4Recording k4 = k4_recording();
-  Parameters parameters;
+  Parameters parameters = as_printed();
   parameters.set("norm_mode", "contact");
   const FeatureResult result =
       extract(*make_kaboli_extractor(parameters), k4, segment(0.0, 8 / 250.0, "front"));
@@ -156,7 +165,7 @@ TEST(KaboliExtractor, RegionAllChoosesTheSideWithMoreContactedCells) {
   // One back cell touched, with signals unlike the front's: the front (two cells) must win.
   testing::set_signal(k4.recording, k4.layout, 20, "prox", {10, 10, 10, 10, 10, 10, 10, 10});
   testing::set_signal(k4.recording, k4.layout, 20, "ax", {0, 3, 0, 3, 0, 3, 0, 3});
-  const auto extractor = make_kaboli_extractor({});
+  const auto extractor = make_kaboli_extractor(as_printed());
   expect_descriptor(extract(*extractor, k4, segment(0.0, 8 / 250.0, "all")).values, kK4BodyPart);
   const FeatureResult back = extract(*extractor, k4, segment(0.0, 8 / 250.0, "back"));
   ASSERT_TRUE(back.skip_reason.empty()) << back.skip_reason;
@@ -166,6 +175,50 @@ TEST(KaboliExtractor, RegionAllChoosesTheSideWithMoreContactedCells) {
     testing::set_range(k4.recording, k4.layout, cell, "prox", 0, 8, 30.0f);
   const FeatureResult all = extract(*extractor, k4, segment(0.0, 8 / 250.0, "all"));
   EXPECT_NEAR(all.values[6], 2.25 / 16.0, 1e-6);
+}
+
+// A robot sitting down while a hand strokes one of its cells: the torso leans 0.5 rad over
+// 2.5 s, which turns gravity through the cell's z axis by about half a g. The stroke shakes
+// the cell at 40 Hz with 0.02 g. The descriptor must see the stroke, not the robot.
+TEST(KaboliExtractor, TheRobotsOwnMotionLeavesTheAccelerometerDescriptorsAlone) {
+  const SkinLayout layout = load_layout("nao");
+  const int64_t samples = 1500;  // 6 s
+  auto touched = [&](bool sitting_down) {
+    Recording recording = testing::nao_recording(layout, samples);
+    std::vector<double> ax(samples), ay(samples), az(samples), force(samples);
+    for (int64_t s = 0; s < samples; ++s) {
+      const double t = static_cast<double>(s) / testing::kNaoRate;
+      const bool stroking = t >= 2.0 && t < 4.0;
+      const double shake = stroking ? 0.02 * std::sin(2.0 * std::numbers::pi * 40.0 * t) : 0.0;
+      const double lean =
+          sitting_down && t >= 1.5 && t < 4.0 ? 0.5 * std::pow(std::sin(std::numbers::pi * (t - 1.5) / 2.5), 2) : 0.0;
+      ax[s] = 0.5 * shake;
+      ay[s] = -std::cos(lean) - 0.3 * shake;
+      az[s] = std::sin(lean) + shake;
+      force[s] = stroking ? 0.3 + 0.1 * std::sin(2.0 * std::numbers::pi * 2.0 * t) : 0.0;
+    }
+    for (const auto& [modality, values] :
+         {std::pair{"ax", ax}, {"ay", ay}, {"az", az}, {"f1", force}})
+      testing::set_signal(recording, layout, 3, modality, values);
+    testing::set_range(recording, layout, 3, "prox", 500, 1000, 5.0f);
+    return recording;
+  };
+  const Recording still = touched(false), moving = touched(true);
+  const Label stroke = segment(1.9, 4.1, "front");
+  auto descriptor = [&](const Recording& recording, const Parameters& parameters) {
+    const FeatureResult result = make_kaboli_extractor(parameters)->extract({recording, layout, stroke});
+    EXPECT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+    return result.values;
+  };
+  const Vector filtered_still = descriptor(still, {}), filtered_moving = descriptor(moving, {});
+  // Activity of az (index 12) and the correlations (0-5) are the stroke's, motion or not.
+  EXPECT_NEAR(filtered_moving[12] / filtered_still[12], 1.0, 0.05);
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(filtered_moving[k], filtered_still[k], 0.05) << k;
+  // As printed (no high-pass), the lean swamps the stroke's az activity a hundred times over.
+  const Vector raw_still = descriptor(still, as_printed()), raw_moving = descriptor(moving, as_printed());
+  EXPECT_GT(raw_moving[12], 100.0 * raw_still[12]);
+  // Force is not filtered: the same either way.
+  EXPECT_NEAR(filtered_moving[15], raw_moving[15], 1e-12);
 }
 
 TEST(KaboliExtractor, SkipsWhenNoCellIsInContact) {
@@ -243,6 +296,9 @@ TEST(KaboliExtractor, BadParametersNameTheKey) {
   Parameters typo;
   typo.set("ncorr", "EQ6");
   EXPECT_THROW(make_kaboli_extractor(typo), Error);
+  Parameters motion;
+  motion.set("motion_hz", "-1");
+  EXPECT_THROW(make_kaboli_extractor(motion), Error);
 }
 
 TEST(KaboliExtractor, RecordingWithoutTheSkinChannelsIsAnError) {

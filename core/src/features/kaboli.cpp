@@ -3,7 +3,9 @@
 #include <Eigen/Core>
 #include <sstream>
 
+#include "tactile/dsp/butterworth.h"
 #include "tactile/dsp/zero_mean.h"
+#include "tactile/error.h"
 #include "tactile/features/nao_window.h"
 #include "tactile/stats/statistics.h"
 
@@ -95,8 +97,11 @@ namespace {
 class KaboliExtractor : public FeatureExtractor {
  public:
   explicit KaboliExtractor(const Parameters& parameters) {
-    parameters.expect_only({"threshold_mm", "norm_mode", "ncorr_mode"});
+    parameters.expect_only({"threshold_mm", "norm_mode", "ncorr_mode", "motion_hz"});
     contact_mm_ = positive_parameter(parameters, "threshold_mm", kDefaultContactDistanceMm);
+    motion_hz_ = parameters.number("motion_hz", kDefaultMotionCutoffHz);
+    if (!(motion_hz_ >= 0.0) || !std::isfinite(motion_hz_))
+      throw Error("motion_hz", "must be 0 (keep the robot's motion) or a cut-off in Hz");
     normalisation_ =
         parameter_choice(parameters, "norm_mode", {"BODY_PART", "CONTACT"}) == "CONTACT"
             ? AreaNormalisation::kContact
@@ -112,6 +117,8 @@ class KaboliExtractor : public FeatureExtractor {
     text << "Kaboli et al.: 16 Hjorth and correlation values of the touched body part, over the "
             "cells whose proximity came closer than "
          << contact_mm_ << " mm";
+    if (motion_hz_ > 0.0)
+      text << "; accelerometers high-passed at " << motion_hz_ << " Hz (the robot's own motion)";
     return text.str();
   }
   std::vector<FeatureColumn> columns(const SkinLayout&) const override { return kaboli_columns(); }
@@ -124,6 +131,8 @@ class KaboliExtractor : public FeatureExtractor {
 
     const Stream& stream = *skin.stream;
     const BodyPart& part = skin.body_parts[static_cast<size_t>(window.body_part)];
+    const dsp::Biquad motion_filter =
+        motion_hz_ > 0.0 ? dsp::butterworth_high_pass(motion_hz_, stream.rate_hz) : dsp::Biquad{};
     std::vector<KaboliDescriptor> contacted;
     contacted.reserve(static_cast<size_t>(window.contacted_cells));
     // One T x (3 + N_f) block per cell, reused: each signal a contiguous column.
@@ -135,12 +144,24 @@ class KaboliExtractor : public FeatureExtractor {
       const CellColumns& cell = part.cells[c];
       columns.assign(cell.acceleration.begin(), cell.acceleration.end());
       columns.insert(columns.end(), cell.force.begin(), cell.force.end());
-      const std::string bad = find_non_finite(stream, columns, window.first, window.count);
+      // The robot's own motion leaves the accelerometers through a high-pass that starts a
+      // second before the window, so it has settled when the window begins.
+      const int64_t lead =
+          motion_hz_ > 0.0 ? std::min<int64_t>(window.first, std::llround(stream.rate_hz)) : 0;
+      const std::string bad =
+          find_non_finite(stream, columns, window.first - lead, window.count + lead);
       if (!bad.empty()) return FeatureResult::skip(bad);
       signals.resize(window.count, static_cast<Eigen::Index>(columns.size()));
-      for (size_t k = 0; k < columns.size(); ++k)
-        signals.col(static_cast<Eigen::Index>(k)) =
-            stream.samples.col(columns[k]).segment(window.first, window.count).cast<double>();
+      for (size_t k = 0; k < columns.size(); ++k) {
+        const Eigen::VectorXd raw = stream.samples.col(columns[k])
+                                        .segment(window.first - lead, window.count + lead)
+                                        .cast<double>();
+        if (k < 3 && motion_hz_ > 0.0)
+          signals.col(static_cast<Eigen::Index>(k)) =
+              dsp::filter(motion_filter, raw).tail(window.count);
+        else
+          signals.col(static_cast<Eigen::Index>(k)) = raw.tail(window.count);
+      }
       zero_mean_columns(signals);  // Kaboli et al. Sec 5.2
       const auto signal = [&](size_t k) {
         return std::span<const double>(signals.col(static_cast<Eigen::Index>(k)).data(),
@@ -160,6 +181,7 @@ class KaboliExtractor : public FeatureExtractor {
 
  private:
   double contact_mm_ = kDefaultContactDistanceMm;
+  double motion_hz_ = kDefaultMotionCutoffHz;
   AreaNormalisation normalisation_ = AreaNormalisation::kBodyPart;
   NcorrMode ncorr_mode_ = NcorrMode::kRanks;
 };

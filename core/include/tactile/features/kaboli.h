@@ -5,7 +5,9 @@
 // over the contacted cells and divided by the cells of the body part (or the contacted ones).
 //
 // Parameters: threshold_mm (50, the contact distance of eq. 1), norm_mode (BODY_PART | CONTACT),
-// ncorr_mode (RANKS = Pearson of average ranks | EQ6 = eq. 6 as printed).
+// ncorr_mode (RANKS = Pearson of average ranks | EQ6 = eq. 6 as printed), motion_hz (cut-off of
+// the high-pass that takes the robot's own motion out of the accelerometers; 0 = none, as
+// printed in the paper; see kDefaultMotionCutoffHz).
 
 #include <array>
 #include <memory>
@@ -17,6 +19,11 @@
 namespace tactile {
 
 constexpr int kKaboliValues = 16;
+// Not in the paper (spec §1.3 only removes the mean): a moving NAO turns gravity by up to half a
+// g through its cells' accelerometers while it sits down or stands up, a hundred times the
+// variance a push adds, so no descriptor of the raw axes can be invariant to its motion.
+// Second-order Butterworth high-pass at this cut-off, over the window and the second before it.
+constexpr double kDefaultMotionCutoffHz = 5.0;
 using KaboliDescriptor = std::array<double, kKaboliValues>;
 
 enum class NcorrMode { kRanks, kEq6 };

@@ -4,6 +4,7 @@
 // the vibration of the joints' gears while they move.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -36,28 +37,35 @@ struct TorsoPath {
         shock(samples) {}
 };
 
+// The torso's path is smooth: each transition starts from the height the previous one reached
+// and every motion starts and ends at rest (a jump in position or velocity between two samples
+// reads as a 1-2 g spike, which no robot makes and which swamps every variance a touch adds).
 void sit_and_stand(TorsoPath& path, double rate_hz, Random& random) {
   const int64_t samples = static_cast<int64_t>(path.pitch.size());
   double t = random.uniform(0.0, 1.5);
   bool standing = random.chance(0.5);
+  double height = standing ? random.uniform(0.12, 0.18) : 0.0;  // m above the seated torso
   // Hold the starting posture until the first transition.
-  for (int64_t s = 0; s < samples; ++s) path.down[s] = standing ? -0.15 : 0.0;
+  for (int64_t s = 0; s < samples; ++s) path.down[s] = -height;
   while (t * rate_hz < static_cast<double>(samples)) {
     const double duration = random.uniform(2.0, 3.0), lean = random.uniform(0.35, 0.6);
-    const double rise = random.uniform(0.12, 0.18), travel = random.uniform(0.03, 0.06);
-    const double hold = random.uniform(0.5, 1.5);
-    const int64_t first = static_cast<int64_t>(t * rate_hz);
+    const double target = standing ? 0.0 : random.uniform(0.12, 0.18);
+    const double travel = random.uniform(0.03, 0.06), hold = random.uniform(0.5, 1.5);
+    const int64_t first = static_cast<int64_t>(std::ceil(t * rate_hz));
     for (int64_t s = std::max<int64_t>(0, first); s < samples; ++s) {
-      const double p = std::min(1.0, (static_cast<double>(s) / rate_hz - t) / duration);
-      const double height = standing ? rise * (1.0 - minimum_jerk(p)) : rise * minimum_jerk(p);
-      path.down[s] = -height;
+      const double p =
+          std::clamp((static_cast<double>(s) / rate_hz - t) / duration, 0.0, 1.0);
+      path.down[s] = -(height + (target - height) * minimum_jerk(p));
       if (p < 1.0) {
-        // The torso leans forward and the hips move forward while rising or sitting.
-        path.pitch[s] = lean * std::sin(kPi * p);
-        path.forward[s] = travel * std::sin(kPi * p);
-        path.joint_activity[s] = std::sin(kPi * p);
+        // The torso leans forward and the hips move forward while rising or sitting, starting
+        // and ending at rest (a bump of sin^2: the velocity is zero at both ends).
+        const double bump = std::pow(std::sin(kPi * p), 2);
+        path.pitch[s] = lean * bump;
+        path.forward[s] = travel * bump;
+        path.joint_activity[s] = bump;
       }
     }
+    height = target;
     standing = !standing;
     t += duration + hold;
   }
@@ -68,7 +76,7 @@ void walk(TorsoPath& path, double rate_hz, Random& random) {
   const double step_frequency = random.uniform(1.6, 2.1);  // steps per second
   const double sway = random.uniform(0.01, 0.02), bounce = random.uniform(0.003, 0.006);
   const double roll = random.uniform(0.03, 0.06);
-  const double strike = random.uniform(1.0, 2.5), strike_frequency = random.uniform(25.0, 40.0);
+  const double strike = random.uniform(0.2, 0.6), strike_frequency = random.uniform(25.0, 40.0);
   double t = random.uniform(0.0, 1.0), position = 0.0, direction = 1.0;
   int64_t s = 0;
   for (; s < samples && static_cast<double>(s) / rate_hz < t; ++s) path.forward[s] = position;
@@ -78,8 +86,9 @@ void walk(TorsoPath& path, double rate_hz, Random& random) {
     const double start = t;
     for (; s < samples && static_cast<double>(s) / rate_hz < start + walking; ++s) {
       const double time = static_cast<double>(s) / rate_hz - start;
-      // Start and stop over 0.4 s.
-      const double ramp = std::min({1.0, time / 0.4, (walking - time) / 0.4});
+      // Start and stop smoothly over 0.4 s (a linear ramp would jump the sway's velocity).
+      const double ramp =
+          minimum_jerk(std::clamp(std::min(time / 0.4, (walking - time) / 0.4), 0.0, 1.0));
       const double stride = 2.0 * kPi * step_frequency * time;
       position += ramp * speed / rate_hz;
       path.forward[s] = position;
@@ -118,13 +127,14 @@ BodyMotion simulate_body_motion(const std::string& motion, int64_t samples, doub
   else if (motion != "none")
     throw Error("nao motion", "unknown body motion \"" + motion + "\" (none, walking, sit-stand)");
   // The gears of the moving joints buzz at their mesh frequency and its neighbours.
-  const double mesh = random.uniform(40.0, 60.0), buzz = random.uniform(0.02, 0.04);
+  const double mesh = random.uniform(40.0, 60.0), buzz = random.uniform(0.004, 0.008);
   const double mesh_phase = random.uniform(0.0, 2.0 * kPi);
   for (int64_t s = 0; s < samples; ++s) {
-    // Linear acceleration by second differences of the path (m/s^2).
-    const int64_t a = std::max<int64_t>(0, s - 1), b = std::min(samples - 1, s + 1);
+    // Linear acceleration by second differences of the path (m/s^2); the first and last
+    // samples take their neighbour's.
+    const int64_t c = std::clamp<int64_t>(s, 1, std::max<int64_t>(1, samples - 2));
     auto second_difference = [&](const std::vector<double>& x) {
-      return b - a < 2 ? 0.0 : (x[b] - 2.0 * x[s] + x[a]) * rate_hz * rate_hz;
+      return samples < 3 ? 0.0 : (x[c + 1] - 2.0 * x[c] + x[c - 1]) * rate_hz * rate_hz;
     };
     const Eigen::Vector3d acceleration(second_difference(path.left),
                                        second_difference(path.down) - path.shock[s],
