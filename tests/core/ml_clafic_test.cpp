@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <tuple>
 
 #include "tactile/error.h"
@@ -212,6 +213,38 @@ TEST(ClaficClassifier, SeparatesTwoSubspacesAndAnswersUnknownOutsideThem) {
   EXPECT_NEAR(scores(0, 0), 9.25, 1e-12);  // the whole squared length of the query
   EXPECT_NEAR(scores(0, 1), 0.0, 1e-12);
   EXPECT_NEAR(scores(2, 0), 0.0, 1e-12);
+}
+
+// The shortcut must give what refitting on every fold gives, under every condition of the
+// Robovie experiment and with a class of one sample (held out, that class spans nothing).
+TEST(ClaficClassifier, LeaveOneOutEqualsRefittingOnEveryFold) {
+  std::mt19937_64 engine(5);
+  std::normal_distribution<double> normal;
+  const std::vector<int> labels = {0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 3};
+  Matrix x(static_cast<Eigen::Index>(labels.size()), 40);
+  for (Eigen::Index row = 0; row < x.rows(); ++row)
+    for (Eigen::Index column = 0; column < x.cols(); ++column)
+      x(row, column) = normal(engine) + (column % 4 == labels[row] ? 1.5 : 0.0);
+  for (const char* condition : {"c1=1,c2=0", "c1=1,c2=2", "c1=0.15,c2=0", "c1=0.15,c2=1",
+                                "c1=0.15,c2=2,tau=0.6", "dimensions=2"}) {
+    ClaficClassifier shortcut(Parameters::parse(condition, "test"));
+    const std::vector<int> answers = shortcut.leave_one_out(x, labels, 5);
+    for (Eigen::Index held = 0; held < x.rows(); ++held) {
+      std::vector<Eigen::Index> train;
+      std::vector<int> train_labels;
+      for (Eigen::Index row = 0; row < x.rows(); ++row)
+        if (row != held) {
+          train.push_back(row);
+          train_labels.push_back(labels[static_cast<size_t>(row)]);
+        }
+      ClaficClassifier fold(Parameters::parse(condition, "test"));
+      fold.fit(x(train, Eigen::all), train_labels, 5, 0);
+      EXPECT_EQ(answers[static_cast<size_t>(held)], fold.predict(x.row(held))[0])
+          << condition << ", row " << held;
+    }
+    // Left fitted on every row.
+    EXPECT_EQ(shortcut.predict(x).size(), labels.size());
+  }
 }
 
 TEST(ClaficClassifier, ClassAbsentFromTrainingIsNeverPredicted) {

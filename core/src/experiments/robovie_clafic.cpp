@@ -106,8 +106,23 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
   for (int index = 0; index < total; ++index) {
     const Condition& condition = conditions()[static_cast<size_t>(index)];
     report_progress(options, "conditions", index, total);
-    const Eigen::MatrixXi confusion = cross_validate(dataset.features, labels, class_count, folds,
-                                                     condition.specification, options.seed);
+    // CLAFIC's leave-one-out refits only the held-out row's class per fold (the others are the
+    // model fitted on every row, which also gives the sensor banks below).
+    std::unique_ptr<ml::Classifier> model;
+    ml::ClaficClassifier* clafic = nullptr;
+    Eigen::MatrixXi confusion;
+    if (condition.clafic) {
+      model = ml::make_classifier(condition.specification);
+      clafic = dynamic_cast<ml::ClaficClassifier*>(model.get());
+      if (!clafic) throw Error("robovie-clafic", condition.specification + " is not CLAFIC");
+      const std::vector<int> answers = clafic->leave_one_out(dataset.features, labels, class_count);
+      confusion = Eigen::MatrixXi::Zero(class_count, class_count + 1);
+      for (size_t row = 0; row < answers.size(); ++row)
+        ++confusion(labels[row], answers[row] == ml::kUnknownClass ? class_count : answers[row]);
+    } else {
+      confusion = cross_validate(dataset.features, labels, class_count, folds,
+                                 condition.specification, options.seed);
+    }
     const ml::RecognitionRates rates = ml::recognition_rates(confusion);
     const double accuracy = ml::accuracy_of(confusion);
     best_accuracy = std::max(best_accuracy, accuracy);
@@ -127,11 +142,7 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
     double fraction = 1.0;
     double sensors = sensor_count;
     nlohmann::json dimensions = nlohmann::json::array();
-    if (condition.clafic) {
-      auto model = ml::make_classifier(condition.specification);
-      model->fit(dataset.features, labels, class_count, options.seed);
-      const auto* clafic = dynamic_cast<const ml::ClaficClassifier*>(model.get());
-      if (!clafic) throw Error("robovie-clafic", condition.specification + " is not CLAFIC");
+    if (clafic) {
       fraction = mean(clafic->feature_fractions());
       std::vector<double> bank_sensors;
       for (int k = 0; k < class_count; ++k)

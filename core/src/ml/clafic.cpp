@@ -227,14 +227,44 @@ void ClaficClassifier::fit(const Matrix& x, const std::vector<int>& y, int class
 
   std::vector<ClaficSubspace> subspaces;
   subspaces.reserve(rows.size());
-  for (size_t k = 0; k < rows.size(); ++k) {
-    ClaficOptions options = options_;
-    if (!dimension_overrides_.empty())
-      options.dimension_override = dimension_overrides_[dimension_overrides_.size() == 1 ? 0 : k];
-    subspaces.push_back(fit_clafic_subspace(x(rows[k], Eigen::all), options));
-  }
+  for (size_t k = 0; k < rows.size(); ++k)
+    subspaces.push_back(fit_clafic_subspace(x(rows[k], Eigen::all), class_options(k)));
   subspaces_ = std::move(subspaces);
   feature_count_ = x.cols();
+}
+
+ClaficOptions ClaficClassifier::class_options(size_t class_index) const {
+  ClaficOptions options = options_;
+  if (!dimension_overrides_.empty())
+    options.dimension_override =
+        dimension_overrides_[dimension_overrides_.size() == 1 ? 0 : class_index];
+  return options;
+}
+
+std::vector<int> ClaficClassifier::leave_one_out(const Matrix& x, const std::vector<int>& y,
+                                                 int class_count) {
+  fit(x, y, class_count, 0);
+  // DF of every row on every class fitted with all rows: right for each class but the row's own.
+  const Matrix all_rows = discrimination(x);
+  std::vector<std::vector<Eigen::Index>> rows(static_cast<size_t>(class_count));
+  for (size_t row = 0; row < y.size(); ++row)
+    rows[static_cast<size_t>(y[row])].push_back(static_cast<Eigen::Index>(row));
+  std::vector<int> answers(y.size(), kUnknownClass);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const std::vector<Eigen::Index>& members = rows[k];
+    for (size_t held = 0; held < members.size(); ++held) {
+      std::vector<Eigen::Index> others;
+      for (size_t member = 0; member < members.size(); ++member)
+        if (member != held) others.push_back(members[member]);
+      const ClaficSubspace without = fit_clafic_subspace(x(others, Eigen::all), class_options(k));
+      const Eigen::Index row = members[held];
+      Vector values = all_rows.row(row).transpose();
+      values(static_cast<Eigen::Index>(k)) =
+          clafic_discrimination(x.row(row), without.bank_basis)(0);
+      answers[static_cast<size_t>(row)] = clafic_decide(values, tau_);
+    }
+  }
+  return answers;
 }
 
 Matrix ClaficClassifier::discrimination(const Matrix& x) const {
