@@ -12,6 +12,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
   python3-h5py  # a test reads our recordings with h5py, as users do
+  clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer and the sanitizers' runtime for clang
 )
 
 missing=()

@@ -1,6 +1,8 @@
 #include "tactile/io/hdf5_file.h"
 
 #include <gtest/gtest.h>
+
+#include <span>
 // The tests damage files through HDF5's own API to check each error path; Debian
 // installs the serial headers under hdf5/serial.
 #include <hdf5/serial/hdf5.h>
@@ -278,6 +280,34 @@ TEST(Hdf5File, GarbageAndMissingFilesAreErrors) {
     EXPECT_EQ(error.message(), "not an HDF5 file");
   }
   EXPECT_THROW(RecordingFile(directory.file("absent.h5")), Error);
+}
+
+// A recording held in memory (received, or fed by the fuzzer) reads as the same file on disk.
+TEST(Hdf5File, FileImageInMemoryReadsAsTheFile) {
+  TemporaryDirectory directory;
+  const std::string path = directory.file("image.h5");
+  const Recording original = three_stream_recording();
+  write_recording(path, original);
+  const std::string bytes = testing::read_text(path);
+  const std::span<const uint8_t> image(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  const RecordingFile file = RecordingFile::from_image(image, "memory.h5");
+  EXPECT_EQ(file.path(), "memory.h5");
+  EXPECT_EQ(file.format_version(), 2);
+  const Recording loaded = file.read_all();
+  ASSERT_EQ(loaded.streams.size(), original.streams.size());
+  for (size_t index = 0; index < loaded.streams.size(); ++index)
+    EXPECT_TRUE(bit_equal(loaded.streams[index].samples, original.streams[index].samples));
+  EXPECT_EQ(loaded.metadata, original.metadata);
+  // Half an image, an empty one and text are refused naming the image.
+  for (const std::string& bad : {bytes.substr(0, bytes.size() / 2), std::string(), std::string("time,a\n0,1\n")}) {
+    try {
+      const std::span<const uint8_t> part(reinterpret_cast<const uint8_t*>(bad.data()), bad.size());
+      RecordingFile::from_image(part, "memory.h5").read_all();
+      FAIL() << "a damaged image of " << bad.size() << " bytes was read";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.where()).find("memory.h5"), std::string::npos) << error.what();
+    }
+  }
 }
 
 // Opens a written file read-write and lets `damage` change it with HDF5's API.

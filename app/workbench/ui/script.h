@@ -13,21 +13,10 @@
 #include <vector>
 
 #include "tactile/widgets/image.h"
+#include "script_parse.h"
 #include "workbench.h"
 
 namespace tactile {
-
-struct ScriptStep {
-  int line = 0;
-  std::string command;  // "click", "key", ...
-  std::vector<std::string> words;  // the arguments, split at spaces
-  std::string rest;                // everything after the command, as written
-};
-
-// Parses a script; throws tactile::Error naming "FILE:LINE" for an unknown command or
-// a wrong argument.
-std::vector<ScriptStep> parse_script(const std::string& text, const std::string& where);
-std::vector<ScriptStep> read_script(const std::string& path);
 
 // The key codes of the GLFW backend, so that scripted keys mean the same headless and
 // in a window; the headless program installs them as ImGui's key map.

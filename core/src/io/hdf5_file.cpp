@@ -2,8 +2,11 @@
 #include "tactile/io/hdf5_file.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <span>
 
 #include "hdf5_object.h"
 
@@ -186,6 +189,77 @@ RecordingFile::RecordingFile(const std::string& path)
     cut_off_ = true;
   }
   file_->file = std::move(file_handle);
+  load();
+}
+
+namespace {
+
+// The end of file address of an HDF5 superblock (format spec, "Superblock": versions 0-3),
+// absolute; nothing when no superblock is found where HDF5 looks for one (offset 0, 512,
+// 1024, ...) or its fields do not fit.
+std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
+  static const uint8_t kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  auto little_endian = [&](size_t at, size_t size) -> std::optional<uint64_t> {
+    if (size == 0 || size > 8 || at > image.size() || image.size() - at < size) return {};
+    uint64_t value = 0;
+    for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
+    return value;
+  };
+  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at) {
+    if (!std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
+      continue;
+    const uint8_t version = image[at + 8];
+    size_t offsets = 0, base_at = 0;
+    if (version == 0 || version == 1) {
+      offsets = image[at + 13];
+      base_at = at + (version == 0 ? 24 : 28);
+    } else if (version == 2 || version == 3) {
+      offsets = image[at + 9];
+      base_at = at + 12;
+    } else {
+      return {};
+    }
+    const auto base = little_endian(base_at, offsets);
+    const auto end = little_endian(base_at + 2 * offsets, offsets);
+    if (!base || !end || *end > UINT64_MAX - *base) return {};
+    return *base + *end;
+  }
+  return {};
+}
+
+}  // namespace
+
+RecordingFile RecordingFile::from_image(std::span<const uint8_t> image, const std::string& name) {
+  hdf5::silence_errors();
+  if (image.empty()) throw Error(name, "empty file");
+  RecordingFile result;
+  result.path_ = name;
+  result.file_ = std::make_unique<Handle>();
+  Object access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, name, "property list");
+  // The core driver serves the file from memory; nothing is written back (read-only anyway).
+  if (H5Pset_fapl_core(access.id(), 64 * 1024, false) < 0 ||
+      H5Pset_file_image(access.id(), const_cast<uint8_t*>(image.data()), image.size()) < 0)
+    throw Error(name, "cannot hand the file image to HDF5 (" + hdf5::last_error() + ")");
+  // HDF5 hands out the file already open under the same name instead of opening a second
+  // one, so every image gets a name of its own.
+  static std::atomic<uint64_t> images{0};
+  const std::string unique = name + "#image" + std::to_string(images++);
+  Object file_handle(H5Fopen(unique.c_str(), H5F_ACC_RDONLY, access.id()), H5Fclose);
+  if (!file_handle.valid())
+    throw Error(name, "cannot open HDF5 file (" + hdf5::last_error() + ")");
+  // On disk HDF5 refuses a file shorter than its superblock's end of file address; from
+  // memory it reads zeros past the end instead, so the check is made here.
+  const std::optional<uint64_t> end = superblock_end_of_file(image);
+  if (end && *end > image.size())
+    throw Error(name, "truncated file: " + std::to_string(image.size()) + " bytes of the " +
+                          std::to_string(*end) + " its superblock declares");
+  result.file_->file = std::move(file_handle);
+  result.load();
+  return result;
+}
+
+void RecordingFile::load() {
+  const std::string& path = path_;
   const hid_t file = file_->file.id();
   const std::string root = path + ":/";
   if (!hdf5::has_attribute(file, "format"))

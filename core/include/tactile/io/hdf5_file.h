@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +52,9 @@ class RecordingFile {
   // Opens the file and checks its format, attributes and every dataset shape.
   // Throws tactile::Error naming the file and the offending dataset.
   explicit RecordingFile(const std::string& path);
+  // The same for a file held in memory (an HDF5 file image, e.g. received or fuzzed); `name`
+  // stands for the path in messages. The bytes are copied.
+  static RecordingFile from_image(std::span<const uint8_t> image, const std::string& name);
   ~RecordingFile();
   RecordingFile(RecordingFile&&) noexcept;
   RecordingFile& operator=(RecordingFile&&) noexcept;
@@ -89,6 +93,8 @@ class RecordingFile {
   Recording read_all() const;
 
  private:
+  RecordingFile() = default;
+  void load();      // reads the structure of the open file_ (format, metadata, streams)
   struct Handle;  // the open HDF5 file
   std::string path_;
   std::unique_ptr<Handle> file_;
