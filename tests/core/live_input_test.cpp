@@ -3,6 +3,8 @@
 // through a LiveReceiver, and UDP loss counted.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+
+#include <cstring>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -111,6 +113,31 @@ TEST(PacketFramer, SkipsNoiseAndDamagedDatagramsAndCountsEachStretchOnce) {
   EXPECT_EQ(whole, 5);
   EXPECT_EQ(framer.broken(), 2);  // the noise, the damaged datagram
   EXPECT_LT(framer.buffered(), 4u);
+}
+
+// A header that declares a 4 GiB payload is a false start: the framer neither waits for
+// nor buffers those bytes, and the datagram after it arrives.
+TEST(PacketFramer, AHeaderDeclaringAHugePayloadIsSkippedWithoutWaitingForIt) {
+  auto datagrams = fur_datagrams(2);
+  std::vector<uint8_t> bytes = datagrams[0];
+  const uint32_t huge = 0xFFFFFFF0u;
+  std::memcpy(bytes.data() + 24, &huge, 4);  // payload length field
+  bytes.insert(bytes.end(), datagrams[1].begin(), datagrams[1].end());
+  PacketFramer framer;
+  framer.feed(bytes);
+  std::vector<uint8_t> datagram;
+  ASSERT_TRUE(framer.next(datagram));
+  EXPECT_EQ(datagram, datagrams[1]);
+  EXPECT_EQ(framer.broken(), 1);
+  EXPECT_LT(framer.buffered(), 4u);
+  // The decoder refuses the same header by its length, naming the byte.
+  try {
+    decode_packet(std::vector<uint8_t>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(datagrams[0].size())),
+                  load_layout("fur"));
+    FAIL();
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("byte 24"), std::string::npos) << error.what();
+  }
 }
 
 TEST(SerialInput, ReceivesPacketsThroughAPseudoTerminal) {

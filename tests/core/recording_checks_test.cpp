@@ -164,6 +164,36 @@ TEST(RecordingFormat2, ASizeTheFileCannotHoldIsRefusedBeforeAnythingIsAllocated)
       << message;
 }
 
+TEST(RecordingFormat2, AHeaderDeclaringTwoToTheFortyChannelsIsRefusedBeforeAnythingIsAllocated) {
+  TemporaryDirectory directory;
+  const std::string path = directory.file("channels.h5");
+  write_recording(path, ramp_recording());
+  // The channel names become a dataset of 2^40 fixed-length names that stores none: a reader
+  // that trusted it would ask for 16 TiB of names before reading a sample.
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(H5Ldelete(file, "streams/skin/channels", H5P_DEFAULT), 0);
+  const hsize_t shape[1] = {hsize_t{1} << 40};
+  const hsize_t chunk[1] = {4096};
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, 16);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const hid_t space = H5Screate_simple(1, shape, nullptr);
+  const hid_t properties = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(properties, 1, chunk);
+  H5Pset_fletcher32(properties);
+  const hid_t dataset = H5Dcreate2(file, "streams/skin/channels", type, space, H5P_DEFAULT,
+                                   properties, H5P_DEFAULT);
+  ASSERT_GE(dataset, 0);
+  H5Dclose(dataset);
+  H5Pclose(properties);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Fclose(file);
+  const std::string message = error_of([&] { RecordingFile opened(path); });
+  EXPECT_NE(message.find(path + ":/streams/skin/channels"), std::string::npos) << message;
+  EXPECT_NE(message.find("declares"), std::string::npos) << message;
+}
+
 TEST(RecordingFormat1, AFileOfTheEarlierFormatStillOpens) {
   const RecordingFile file(kFormat1);
   EXPECT_EQ(file.format_version(), 1);
