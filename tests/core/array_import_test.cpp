@@ -159,6 +159,14 @@ TEST(ArrayImport, HeadersThatLieAreRefusedBeforeAnyAllocation) {
   EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", eight), "x.npy"); })
                 .find("truncated"),
             std::string::npos);
+  // Found by the fuzzer (tests/fuzz/regressions/arrays): a header that ends right after the
+  // key read past its end instead of being refused.
+  const std::string cut = "{'descr': '>i2', 'fortran_order'";
+  std::vector<uint8_t> ends_at_key = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0,
+                                      static_cast<uint8_t>(cut.size()), 0};
+  ends_at_key.insert(ends_at_key.end(), cut.begin(), cut.end());
+  EXPECT_NE(refusal([&] { parse_npy(ends_at_key, "x.npy"); }).find("'fortran_order' has no value"),
+            std::string::npos);
   std::vector<uint8_t> not_npy = {'P', 'K', 3, 4, 0, 0, 0, 0, 0, 0, 0};
   EXPECT_NE(refusal([&] { parse_npy(not_npy, "x.npy"); }).find("x.npy byte 0"), std::string::npos);
   // A small valid one reads.

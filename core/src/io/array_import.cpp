@@ -94,6 +94,8 @@ NpyHeader parse_npy_header(const std::string& header, const std::string& where) 
   const size_t fortran = header.find("'fortran_order'");
   if (fortran == std::string::npos) throw Error(where + " header", "header has no 'fortran_order'");
   const size_t value = header.find_first_not_of(" :", fortran + 15);
+  if (value == std::string::npos)
+    throw Error(where + " header", "'fortran_order' has no value");
   if (header.compare(value, 4, "True") == 0)
     parsed.fortran = true;
   else if (header.compare(value, 5, "False") != 0)

@@ -1,8 +1,10 @@
 #include "csv_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "tactile/error.h"
@@ -12,6 +14,14 @@ namespace tactile::csv {
 namespace {
 
 constexpr size_t kReadBuffer = size_t(1) << 20;
+
+// A read buffer of up to 1 MiB, no larger than the file (a small file costs no megabyte).
+size_t buffer_size(const std::string& path) {
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  if (error) return kReadBuffer;
+  return static_cast<size_t>(std::clamp<uintmax_t>(size + 1, 4096, kReadBuffer));
+}
 
 std::string_view trim(std::string_view text) {
   const size_t first = text.find_first_not_of(" \t");
@@ -52,8 +62,10 @@ std::string location(const std::string& path, int64_t line, int64_t column) {
   return text;
 }
 
-LineReader::LineReader(const std::string& path) : path_(path), buffer_(kReadBuffer) {
-  in_.rdbuf()->pubsetbuf(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+LineReader::LineReader(const std::string& path) : path_(path) {
+  const size_t size = buffer_size(path);
+  buffer_.reset(new char[size]);
+  in_.rdbuf()->pubsetbuf(buffer_.get(), static_cast<std::streamsize>(size));
   in_.open(path, std::ios::binary);
   if (!in_) throw Error(path, "cannot open file");
 }
@@ -73,11 +85,12 @@ bool LineReader::next() {
 int64_t count_content_lines(const std::string& path) {
   std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw Error(path, "cannot open file");
-  std::vector<char> buffer(kReadBuffer);
+  const size_t capacity = buffer_size(path);
+  const std::unique_ptr<char[]> buffer(new char[capacity]);
   int64_t count = 0;
   bool has_content = false;
   size_t size = 0;
-  while ((size = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0) {
+  while ((size = std::fread(buffer.get(), 1, capacity, file.get())) > 0) {
     for (size_t index = 0; index < size; ++index) {
       const char character = buffer[index];
       if (character == '\n') {

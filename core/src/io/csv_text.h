@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,7 +28,7 @@ class LineReader {
  private:
   std::string path_;
   std::ifstream in_;
-  std::vector<char> buffer_;
+  std::unique_ptr<char[]> buffer_;  // not zeroed: the stream fills it
   std::string line_;
   int64_t number_ = 0;
 };

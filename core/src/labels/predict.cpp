@@ -58,7 +58,9 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
   // convention): given to a stream that carries no metadata (live packets).
   nlohmann::json common = nlohmann::json::object();
   if (!dataset.metadata.empty()) {
-    for (const auto& [key, value] : dataset.metadata.front()) {
+    for (const auto& entry : dataset.metadata.front()) {
+      const std::string& key = entry.first;
+      const std::string& value = entry.second;
       // Not the row's own place, and not what the pipeline did to it (a
       // stream given "preprocessed" would claim to be preprocessed already).
       if (key == "t0" || key == "t1" || key == "region" || key == "subject" || key == "trial" ||
