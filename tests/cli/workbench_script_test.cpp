@@ -146,6 +146,13 @@ TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
   result = run(recording() + " --script " + script("key Hyper+Q\n"));
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.err.find("Hyper"), std::string::npos) << result.err;
+  // Found by the fuzzer (tests/fuzz/regressions/script): a long F-key number overflowed
+  // std::stoi and ended the program instead of naming the line.
+  result = run(recording() + " --script " + script("wait 1\nkey F1111111111111111111\n"));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("script.txt:2: key F1111111111111111111: F1 to F12 only"),
+            std::string::npos)
+      << result.err;
 }
 
 TEST_F(WorkbenchScript, ARelativePathListsItsFolderAsTheWorkspace) {

@@ -65,7 +65,8 @@ KeyChord parse_chord(const std::string& text) {
   }
   if (key.size() >= 2 && (key[0] == 'F' || key[0] == 'f') &&
       std::all_of(key.begin() + 1, key.end(), ::isdigit)) {
-    const int number = std::stoi(key.substr(1));
+    // At most two digits: a longer number is no F-key (and would overflow std::stoi).
+    const int number = key.size() <= 3 ? std::stoi(key.substr(1)) : 0;
     if (number < 1 || number > 12) throw std::invalid_argument("F1 to F12 only");
     chord.code = kKeyF1 + number - 1;
     return chord;
