@@ -25,7 +25,8 @@ sanitize: deps
 	cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=Release -DTACTILE_SANITIZE=address,undefined \
 	  -DTACTILE_BUILD_BENCH=OFF -DTACTILE_BUILD_GUI=OFF
 	cmake --build $(SANITIZE_DIR) -j$(JOBS)
-	cd $(SANITIZE_DIR) && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
+	cd $(SANITIZE_DIR) && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
+	  UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j$(JOBS) -L 'core|cli|fuzz'
 
 # Every fuzz target for a few seconds (scripts/fuzz.sh --seconds N for longer).

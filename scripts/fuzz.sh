@@ -43,8 +43,8 @@ cmake --build "$build" -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}"
 declare -A max_len=([csv]=4096 [layout]=8192 [hdf5]=16384 [packet]=4096 [labels]=4096
                     [script]=2048 [arrays]=8192)
 
-# Leaks inside third-party libraries we cannot mend (tests/fuzz/lsan.supp says which and why).
-export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0"
+# Leaks inside third-party libraries we cannot mend (tests/lsan.supp says which and why).
+export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 status=0
 for target in "${targets[@]}"; do
   corpus="$build/corpus/$target"

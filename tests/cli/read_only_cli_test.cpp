@@ -31,7 +31,7 @@ class ReadOnly : public ::testing::Test {
     const std::string bytes = read_text(recording);
     write(file("truncated.h5"), bytes.substr(0, bytes.size() / 3));
     write(file("ragged.csv"), "time,a,b,c\n0,1,2,3\n0.01,4,5\n");
-    write(file("notadb.db"), "SQLite format 3\0 but not really", 31);
+    write(file("notadb.db"), std::string("SQLite format 3\0 but not really", 31));
     write(file("bad-labels.csv"),
           "id,recording,t0,t1,region,class,annotator,source,confidence,note,created,modified\n"
           "1,flux-s01-t01,2.0,1.0,all,touch1,me,manual,1,,2026-01-01T00:00:00Z,"
@@ -43,9 +43,9 @@ class ReadOnly : public ::testing::Test {
   CommandResult tactile(const std::string& arguments) const {
     return tactile::test::run_program("tactile", arguments, folder);
   }
-  static void write(const std::string& path, const std::string& text, size_t size = 0) {
+  static void write(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
-    out.write(text.data(), static_cast<std::streamsize>(size ? size : text.size()));
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   }
   // Every file of the folder and its bytes.
   std::map<std::string, std::string> files() const {

@@ -66,6 +66,19 @@ TEST(GaussianMaximumLikelihood, PosteriorsSumToOneAndFollowTheNearerClass) {
   EXPECT_EQ(classifier.predict(queries.topRows(2)), (std::vector<int>{0, 1}));
 }
 
+// Found by UBSan in the workbench's Train all: a fold with nothing to score handed an empty
+// matrix to Eigen's triangular solve.
+TEST(GaussianMaximumLikelihood, NoRowsToScoreGiveNoScores) {
+  Matrix x;
+  std::vector<int> y;
+  fur_toy(x, y);
+  GaussianMaximumLikelihood classifier;
+  classifier.fit(x, y, 2, 0);
+  const Matrix none(0, 2);
+  EXPECT_EQ(classifier.scores(none).rows(), 0);
+  EXPECT_TRUE(classifier.predict(none).empty());
+}
+
 TEST(GaussianMaximumLikelihood, ClassWithOneSampleGetsTheGlobalVarianceRidge) {
   Matrix x(4, 2);
   x << 0, 0, 2, 0, 0, 4, 10, 10;

@@ -58,6 +58,9 @@ void GaussianDensity::set(const Vector& mean_vector, const Matrix& covariance_wi
 }
 
 Vector GaussianDensity::log_density(const Matrix& x) const {
+  // No rows (a fold with nothing to score): Eigen's triangular solve must not be handed an
+  // empty right-hand side (it binds a reference to its null data; found by UBSan).
+  if (x.rows() == 0) return Vector(0);
   const double dimension = static_cast<double>(mean.size());
   const Matrix centred = (x.rowwise() - mean.transpose()).transpose();
   const Matrix whitened = cholesky.matrixL().solve(centred);
