@@ -188,6 +188,10 @@ TEST(ArrayImport, JsonThatIsNotRegularFramesIsRefusedWithItsIndex) {
   EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,\"x\"]]"), ""); }).find("[1][1]"), std::string::npos);
   EXPECT_NE(refusal([&] { read_json_array(write("{\"a\": [1]}"), "b"); }).find("no key 'b'"), std::string::npos);
   EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,4]"), ""); }).find("not JSON"), std::string::npos);
+  // Found by the fuzzer (tests/fuzz/regressions/arrays): a number too large for a double
+  // escaped as nlohmann's out_of_range instead of naming the file.
+  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,2e342]]"), ""); }).find("f.json"),
+            std::string::npos);
   EXPECT_EQ(read_json_array(write("{\"a\": {\"b\": [[1,2],[3,4]]}}"), "a.b").shape, (std::vector<int64_t>{2, 2}));
 }
 

@@ -165,6 +165,10 @@ TEST(LayoutValidation, SyntaxErrorNamesLineAndColumn) {
   }
   EXPECT_NE(error_of_text("").find("JSON syntax error"), std::string::npos);
   EXPECT_NE(error_of_text("{\"id\": \"tiny\"").find("tiny.json:1 column"), std::string::npos);
+  // A number no double holds is refused naming the file (it escaped as nlohmann's
+  // out_of_range, as the fuzzer found in the JSON frames reader).
+  EXPECT_NE(error_of_text("{\"id\": \"tiny\", \"sample_rate_hz\": 2e342}").find("tiny.json"),
+            std::string::npos);
 }
 
 TEST(LayoutValidation, DuplicateJsonKeyIsNotSilentlyDropped) {

@@ -414,6 +414,9 @@ ImportedArray read_json_array(const std::string& path, const std::string& key) {
     document = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& error) {
     throw Error(path + " byte " + std::to_string(error.byte), "not JSON: " + std::string(error.what()));
+  } catch (const nlohmann::json::exception& error) {
+    // A number too large for a double (1e400) is an out_of_range, not a parse_error.
+    throw Error(path, "not readable JSON: " + std::string(error.what()));
   }
   const nlohmann::json* value = &document;
   std::string walked;
