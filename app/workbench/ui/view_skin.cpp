@@ -133,12 +133,14 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     for (const Label& label : state.document->labels)
       if (label.id == state.selection.labels.front() && label.region != "all")
         for (int64_t taxel : taxels_of_region(layout, label.region)) outlined.push_back(taxel);
-  style.selected_taxels = outlined;
   // The segment landed on from a classifier view: its region outlined, both classes named.
   const auto& landed = state.analysis.landed;
   const bool landed_here = landed && landed->recording == state.document->recording_id();
   if (landed_here && landed->region != "all" && !landed->region.empty())
     for (int64_t taxel : taxels_of_region(layout, landed->region)) outlined.push_back(taxel);
+  // A view of `outlined`: taken once it has stopped growing (taken before the landed region
+  // was added, it pointed into the freed buffer; found by ASan in the landing test).
+  style.selected_taxels = outlined;
   const SkinLayout* drawn = &layout;
   if (state.analysis.somatosensory && ensure_somatosensory(state)) {
     if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id)
