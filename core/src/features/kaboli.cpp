@@ -131,6 +131,10 @@ class KaboliExtractor : public FeatureExtractor {
 
     const Stream& stream = *skin.stream;
     const BodyPart& part = skin.body_parts[static_cast<size_t>(window.body_part)];
+    if (motion_hz_ > 0.0 && !(motion_hz_ < 0.5 * stream.rate_hz))
+      throw Error("motion_hz", "cut-off " + std::to_string(motion_hz_) +
+                                   " Hz is not below half the stream's rate (" +
+                                   std::to_string(0.5 * stream.rate_hz) + " Hz)");
     const dsp::Biquad motion_filter =
         motion_hz_ > 0.0 ? dsp::butterworth_high_pass(motion_hz_, stream.rate_hz) : dsp::Biquad{};
     std::vector<KaboliDescriptor> contacted;
