@@ -153,6 +153,13 @@ TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
   EXPECT_NE(result.err.find("script.txt:2: key F1111111111111111111: F1 to F12 only"),
             std::string::npos)
       << result.err;
+  // `wait 0.5` drew no frame, so the next click found no taxel drawn yet and blamed the
+  // taxel; a wait is counted in frames and says so.
+  result = run(recording() + " --script " + script("wait 0.5\nclick taxel 1\n"));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("script.txt:1: wait: 0.5 is not a whole number of frames"),
+            std::string::npos)
+      << result.err;
 }
 
 TEST_F(WorkbenchScript, ARelativePathListsItsFolderAsTheWorkspace) {

@@ -134,6 +134,11 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
         step.command == "sleep") {
       const double value = parse_number(step, 0, where);
       if (value < 0) throw Error(place, step.command + ": must not be negative");
+      // `wait 0.5` would draw no frame at all: a script meaning seconds gets told so.
+      if (step.command == "wait" && (value != std::floor(value) || value > 1e6))
+        throw Error(place, "wait: " + step.words[0] +
+                               " is not a whole number of frames (up to 1000000); for seconds "
+                               "use 'sleep' (wall clock) or 'play' (recording time)");
     } else if (step.command == "key") {
       for (const std::string& word : step.words) {
         try {
@@ -145,7 +150,8 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
     } else if (step.command == "click") {
       const std::string& what = step.words[0];
       if (what == "taxel") {
-        parse_number(step, 1, where);
+        const double id = parse_number(step, 1, where);
+        if (id != std::floor(id)) throw Error(place, "click taxel: " + step.words[1] + " is not a taxel id");
       } else if (what == "time") {
         parse_number(step, 1, where);
       } else if (what == "recording" && step.words.size() == 2) {
