@@ -262,6 +262,15 @@ std::vector<Point2> contact_centres(const SimulatedTrial& trial, const Label& la
   return centres;
 }
 
+// How far (mm) the contact's centre gets from where it first was.
+double longest_travel(const std::vector<Point2>& centres) {
+  double longest = 0.0;
+  for (const Point2& centre : centres)
+    longest =
+        std::max(longest, std::hypot(centre.x - centres.front().x, centre.y - centres.front().y));
+  return longest;
+}
+
 TEST(FurSimulator, StrokeContactTravelsWhilePushStaysPut) {
   std::map<std::string, std::vector<double>> travel;
   for (const SimulatedTrial& trial : corpus())
@@ -269,14 +278,30 @@ TEST(FurSimulator, StrokeContactTravelsWhilePushStaysPut) {
       if (label.class_name != "stroke" && label.class_name != "push") continue;
       const std::vector<Point2> centres = contact_centres(trial, label);
       ASSERT_FALSE(centres.empty());
-      double longest = 0.0;
-      for (const Point2& centre : centres)
-        longest = std::max(longest,
-                           std::hypot(centre.x - centres.front().x, centre.y - centres.front().y));
-      travel[label.class_name].push_back(longest);
+      travel[label.class_name].push_back(longest_travel(centres));
     }
   EXPECT_GT(median(travel["stroke"]), 60.0);
   EXPECT_GT(median(travel["stroke"]), 3.0 * median(travel["push"]));
+}
+
+TEST(FurSimulator, FondleIsDoneInSeveralWaysMostOftenByKneadingInPlace) {
+  // Paper 002 Table 1: fondle's errors spread over pat, stroke, tickle and push. Our fondles
+  // mostly knead in place, and now and then travel like a stroke.
+  int fondles = 0, in_place = 0, travelling = 0;
+  for (const SimulatedTrial& trial : corpus())
+    for (const Label& label : trial.labels) {
+      if (label.class_name != "fondle") continue;
+      ++fondles;
+      const std::vector<Point2> centres = contact_centres(trial, label);
+      if (centres.empty()) continue;
+      const double travel = longest_travel(centres);
+      in_place += travel < 40.0 ? 1 : 0;
+      travelling += travel > 60.0 ? 1 : 0;
+    }
+  ASSERT_GT(fondles, 40);
+  EXPECT_GT(in_place, fondles / 3);
+  EXPECT_GT(travelling, 0);
+  EXPECT_LT(travelling, fondles / 2);
 }
 
 // Seconds during which some cell reads well below its quiet level.

@@ -47,6 +47,17 @@ TEST(SimRandom, IntegersCoverTheirInclusiveRange) {
   for (int count : seen) EXPECT_GT(count, 800);
 }
 
+TEST(SimRandom, WeightedDrawsFollowTheWeightsAndNeverPickAZeroWeight) {
+  Random random(derive_engine(1, "weighted"));
+  const std::vector<double> weights = {3.0, 0.0, 1.0};
+  int seen[3] = {};
+  for (int k = 0; k < 8000; ++k) ++seen[random.weighted(weights)];
+  EXPECT_EQ(seen[1], 0);
+  EXPECT_NEAR(seen[0] / 8000.0, 0.75, 0.03);
+  EXPECT_NEAR(seen[2] / 8000.0, 0.25, 0.03);
+  EXPECT_EQ(random.weighted({0.0, 0.0, 2.0}), 2);
+}
+
 TEST(SimQuantize, SaturatesAndRoundsToAdcLevels) {
   EXPECT_FLOAT_EQ(quantize(5.0, 0.0, 3.0, 12), 3.0f);
   EXPECT_FLOAT_EQ(quantize(-1.0, 0.0, 3.0, 12), 0.0f);

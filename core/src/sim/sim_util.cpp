@@ -43,6 +43,17 @@ double Random::uniform() {
 
 double Random::uniform(double low, double high) { return low + (high - low) * uniform(); }
 
+int Random::weighted(const std::vector<double>& weights) {
+  double total = 0.0;
+  for (const double weight : weights) total += std::max(0.0, weight);
+  double draw = uniform() * total;
+  for (size_t k = 0; k < weights.size(); ++k) {
+    draw -= std::max(0.0, weights[k]);
+    if (draw < 0.0) return static_cast<int>(k);
+  }
+  return weights.empty() ? 0 : static_cast<int>(weights.size()) - 1;
+}
+
 int64_t Random::integer(int64_t low, int64_t high) {
   if (high <= low) return low;
   const uint64_t span = static_cast<uint64_t>(high - low) + 1;

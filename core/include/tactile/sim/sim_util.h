@@ -24,6 +24,8 @@ class Random {
   // Normal draw kept inside [mean - limit*stddev, mean + limit*stddev] by redrawing.
   double truncated_normal(double mean, double stddev, double limit = 2.5);
   bool chance(double probability);
+  // An index drawn with probability proportional to its weight (weights >= 0, not all 0).
+  int weighted(const std::vector<double>& weights);
   std::mt19937_64& engine() { return engine_; }
 
  private:

@@ -38,6 +38,13 @@ struct SubjectHabits {
   int stroke_count = 1;
   int tickle_fingers = 3;
   Approach first_approach = Approach::kFront;
+  // How often this person fondles by kneading, or as in a stroke, a tickle, a push or a pat.
+  std::vector<double> fondle_styles = {1.0, 1.0, 1.0, 1.0, 1.0};
+  bool pats_with_fingers = false;        // else the flat hand
+  bool strokes_with_fingertips = false;  // else the flat hand
+  bool pushes_with_fingers = false;      // else the palm
+  bool tickles_by_brushing = false;      // else scratching in place
+
 };
 
 // Where on the map a hand may be placed: the head's rows get wider further down.
@@ -61,6 +68,7 @@ struct Episode {
   double force = 0.0;       // peak total normal force (N)
   double palm_share = 0.5;  // part of the force carried by the palm
   bool fingertips_only = false;
+  bool tips_lift = true;  // fingertips touch down and lift off in turn (else they stay on)
   int fingers = 4;
   double hand_scale = 1.0;
   // Scratching or kneading: the hand oscillates along the fingers and each finger's force
