@@ -21,6 +21,13 @@ TEST(RobovieClaficExperiment, QuickRunGivesSevenConditionsWithShrinkingSensorBan
     EXPECT_EQ(condition["recognition"].size(), 15u);
     EXPECT_FALSE(condition["paper"].get<std::string>().empty());
   }
+  // The figure held against the paper's reading: recognition over the classes it names.
+  EXPECT_EQ(conditions[0]["paper_classes"], nlohmann::json({2, 6, 7, 8, 11, 15}));
+  double named = 0.0;
+  for (const int k : {2, 6, 7, 8, 11, 15})
+    named += conditions[0]["recognition"][static_cast<size_t>(k - 1)].get<double>() / 6.0;
+  EXPECT_NEAR(conditions[0]["paper_classes_recognition"].get<double>(), named, 1e-12);
+  EXPECT_TRUE(conditions[1]["paper_classes_recognition"].is_null());
   // C2 thresholds shrink the banks: (0.15, 2) uses less of the feature space than (0.15, 0).
   EXPECT_DOUBLE_EQ(conditions[4]["feature_fraction"].get<double>(), 1.0);
   EXPECT_LT(conditions[6]["feature_fraction"].get<double>(),

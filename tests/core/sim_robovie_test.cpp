@@ -66,6 +66,11 @@ std::map<std::string, double> part_rms(const Stream& skin, double t0, double t1,
   return result;
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
 std::string loudest(const std::map<std::string, double>& rms) {
   return std::max_element(rms.begin(), rms.end(),
                           [](const auto& a, const auto& b) { return a.second < b.second; })
@@ -302,6 +307,31 @@ TEST(SimRobovie, UntouchedStagesShowOnlyTheRobotsMotion) {
   EXPECT_GE(untouched, kSubjects) << "most sessions have stages where nobody touches";
   // The robot's gestures shake the arms' and shoulders' films more than the torso's.
   EXPECT_GT(arms, 1.5 * torso);
+}
+
+TEST(SimRobovie, TheRobotPlaysEachStagesOwnMovementInEveryTrial) {
+  // "Whee!" and "Let's play!" move both arms the same way every time; lines that only talk
+  // come with a small gesture now and then. In the second after the command, before anyone
+  // answers with a touch, the arms' films show it.
+  std::map<std::string, std::vector<double>> arms;
+  for (int subject = 0; subject < kSubjects; ++subject) {
+    const SimulatedTrial& trial = cached_trial(subject);
+    const Stream& skin = skin_of(trial);
+    for (const char* stage : {"Whee!", "Let's play!", "What's your name?", "Thanks",
+                              "Nice to meet you."}) {
+      const Label& label = stage_label(trial, stage);
+      const auto rms = part_rms(skin, label.t0, label.t0 + 1.1);
+      const double sum = rms.at("upper-arm-right") + rms.at("upper-arm-left") +
+                         rms.at("shoulder-right") + rms.at("shoulder-left");
+      const bool talking = std::string(stage) != "Whee!" && std::string(stage) != "Let's play!";
+      arms[talking ? "talking" : stage].push_back(sum);
+    }
+  }
+  for (const char* stage : {"Whee!", "Let's play!"}) {
+    const double typical = median(arms[stage]);
+    for (const double value : arms[stage]) EXPECT_NEAR(value, typical, 0.25 * typical) << stage;
+    EXPECT_GT(typical, 2.0 * median(arms["talking"])) << stage;
+  }
 }
 
 }  // namespace

@@ -205,8 +205,79 @@ class SessionPlayer {
   double tickle_until_ = 0.0;
 };
 
-// The robot's own movements: it turns to the subject, gestures while it speaks and looks
-// around; none of it depends on what the subject does.
+// The robot's own movement for each stage's line: its program, the same in every trial
+// (Wizard of Oz: the operator sends the stage, the robot plays it). Paper 003 says only that
+// the data "includes lots of information caused by the robot movements" (Sec. V); which
+// movement goes with which line is an estimate in the manner of Robovie's child-like
+// behaviours (docs/SIMULATION.md). The lines that only talk get the small gestures of
+// talking, drawn anew each time (below); the paper's classifiers recognise those stages least
+// (Figs 8-9), the ones with a movement of their own (hello, play, cute, whee, bye-bye) best,
+// touch or not. Times are seconds after the command; angles in rad.
+struct ScriptedMove {
+  Joint joint;
+  JointMove::Shape shape;
+  double delay, duration, amplitude, frequency_hz;
+};
+
+const std::vector<ScriptedMove>& stage_moves(int stage) {
+  using S = JointMove::Shape;
+  constexpr Joint kR = Joint::kRightArm, kL = Joint::kLeftArm, kH = Joint::kHead,
+                  kW = Joint::kWaist;
+  static const std::vector<ScriptedMove> kMoves[kStageCount] = {
+      // "Hello.": raises the right hand and waves.
+      {{kR, S::kBump, 0.2, 3.0, 1.0, 0}, {kR, S::kOscillation, 0.9, 1.6, 0.25, 1.5}},
+      // "Let's shake hands.": holds out the right hand, takes it back later.
+      {{kR, S::kRamp, 0.3, 1.2, 0.7, 0}, {kR, S::kRamp, 6.0, 1.2, -0.7, 0}},
+      {},  // "Nice to meet you.": talking (below)
+      {},  // "What's your name?"
+      {},  // "Where are you from?"
+      // "Let's play!": both arms up and down twice.
+      {{kR, S::kBump, 0.2, 1.0, 0.7, 0}, {kL, S::kBump, 0.2, 1.0, 0.7, 0},
+       {kR, S::kBump, 1.3, 1.0, 0.7, 0}, {kL, S::kBump, 1.3, 1.0, 0.7, 0}},
+      // "Do you think I'm cute?": sways its head and body.
+      {{kH, S::kOscillation, 0.2, 2.5, 0.15, 0.8}, {kW, S::kBump, 0.2, 2.5, 0.15, 0}},
+      // "I wish you'd pat me on the head.": bows the head and holds it there.
+      {{kH, S::kRamp, 0.3, 1.0, 0.35, 0}, {kH, S::kRamp, 5.0, 1.0, -0.35, 0}},
+      // "Whee!": both arms high, the waist swaying.
+      {{kR, S::kBump, 0.1, 2.2, 1.2, 0}, {kL, S::kBump, 0.1, 2.2, 1.2, 0},
+       {kW, S::kOscillation, 0.3, 2.0, 0.12, 1.0}},
+      {},  // "I want to play more.": talking
+      // "Tickle me.": lifts both arms to open its sides, lowers them later.
+      {{kR, S::kRamp, 0.2, 1.0, 0.8, 0}, {kL, S::kRamp, 0.2, 1.0, 0.8, 0},
+       {kR, S::kRamp, 4.0, 1.0, -0.8, 0}, {kL, S::kRamp, 4.0, 1.0, -0.8, 0}},
+      {},  // "That tickles!": talking
+      {},  // "Thanks"
+      // "Give me a hug.": opens its arms, closes them around the person later.
+      {{kR, S::kRamp, 0.2, 1.2, 0.9, 0}, {kL, S::kRamp, 0.2, 1.2, 0.9, 0},
+       {kR, S::kRamp, 5.0, 1.2, -0.9, 0}, {kL, S::kRamp, 5.0, 1.2, -0.9, 0}},
+      // "Bye-bye!": raises the right hand and waves longer.
+      {{kR, S::kBump, 0.2, 3.5, 1.0, 0}, {kR, S::kOscillation, 0.9, 2.2, 0.3, 1.5}},
+  };
+  return kMoves[stage];
+}
+
+// While it only talks, the robot moves an arm or its head a little, differently each time.
+void add_talking_gesture(Session& session, double command, Random& random) {
+  if (!random.chance(0.85)) return;
+  const double onset = command + random.uniform(0.1, 0.5);
+  const double duration = random.uniform(0.8, 1.8);
+  const double amplitude = random.uniform(0.2, 0.6);
+  const double which = random.uniform();
+  if (which < 0.35) {
+    session.moves.push_back({Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
+  } else if (which < 0.6) {
+    session.moves.push_back({Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
+  } else if (which < 0.8) {
+    session.moves.push_back({Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
+    session.moves.push_back({Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
+  } else {
+    session.moves.push_back(
+        {Joint::kHead, JointMove::Shape::kBump, onset, duration, 0.4 * amplitude});
+  }
+}
+
+// The robot's own movements: it turns to the subject, plays each stage's movement while it
+// speaks, and looks around; none of it depends on what the subject does.
 void add_robot_gestures(Session& session, Random& random) {
   const double turn = session.approach == Approach::kFront   ? 0.0
                       : session.approach == Approach::kRight ? 0.5
@@ -216,26 +287,26 @@ void add_robot_gestures(Session& session, Random& random) {
                            turn * random.uniform(0.8, 1.2)});
   session.moves.push_back({Joint::kHead, JointMove::Shape::kRamp, std::max(0.0, first - 2.2), 1.0,
                            0.5 * turn * random.uniform(0.8, 1.2)});
-  for (double command : session.commands) {
-    if (!random.chance(0.85)) continue;
-    const double onset = command + random.uniform(0.1, 0.5);
-    const double duration = random.uniform(0.8, 1.8);
-    const double amplitude = random.uniform(0.2, 0.6);
-    const double which = random.uniform();
-    if (which < 0.35) {
-      session.moves.push_back(
-          {Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
-    } else if (which < 0.6) {
-      session.moves.push_back(
-          {Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
-    } else if (which < 0.8) {
-      session.moves.push_back(
-          {Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
-      session.moves.push_back(
-          {Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
-    } else {
-      session.moves.push_back(
-          {Joint::kHead, JointMove::Shape::kBump, onset, duration, 0.4 * amplitude});
+  for (size_t stage = 0; stage < session.commands.size(); ++stage) {
+    // The same program each time; the servos' timing and reach vary a little (one reach per
+    // stage, so that a hold given back returns exactly to where it started).
+    const double command = session.commands[stage] + random.uniform(0.0, 0.2);
+    const double reach = random.uniform(0.9, 1.1);
+    const double next = stage + 1 < session.commands.size() ? session.commands[stage + 1]
+                                                            : session.end;
+    const std::vector<ScriptedMove>& program = stage_moves(static_cast<int>(stage));
+    if (program.empty()) {
+      add_talking_gesture(session, command, random);
+      continue;
+    }
+    for (const ScriptedMove& move : program) {
+      double onset = command + move.delay * random.uniform(0.9, 1.1);
+      // A hold is given back before the next line at the latest.
+      if (move.shape == JointMove::Shape::kRamp && move.amplitude < 0.0)
+        onset = std::min(onset, std::max(command, next - move.duration - 0.2));
+      session.moves.push_back({move.joint, move.shape, onset,
+                               move.duration * random.uniform(0.9, 1.1),
+                               move.amplitude * reach, move.frequency_hz});
     }
   }
   // Talking on, it keeps moving its arms now and then.
