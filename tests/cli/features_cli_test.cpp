@@ -95,12 +95,12 @@ class FeaturesCommand : public ::testing::Test {
 TEST_F(FeaturesCommand, GroundTruthSegmentsBecomeOneCsvRowEach) {
   const CommandResult run = tactile(features("table.csv"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("8 rows x 656 features from 2 recordings, 0 segments skipped"),
+  EXPECT_NE(run.out.find("8 rows x 683 features from 2 recordings, 0 segments skipped"),
             std::string::npos)
       << run.out;
   const Dataset dataset = read_dataset_csv(folder_.file("table.csv"));
   ASSERT_EQ(dataset.rows(), 8);
-  ASSERT_EQ(dataset.columns.size(), 25u * 26 + 1 + 5);  // per channel, neighbours, the map
+  ASSERT_EQ(dataset.columns.size(), 25u * 26 + 27 + 1 + 5);  // per channel, the busiest, neighbours, the map
   EXPECT_EQ(dataset.columns.front().name, "ch0.hjorth_activity");
   EXPECT_EQ(dataset.columns.back().name, "contact.spread");
   // The store's order: by recording, then time.
@@ -143,7 +143,7 @@ TEST_F(FeaturesCommand, JsonSummaryHasPerClassCountsAndMeans) {
   const nlohmann::json summary = nlohmann::json::parse(run.out);
   EXPECT_EQ(summary.at("rows"), 8);
   EXPECT_EQ(summary.at("skipped"), 0);
-  EXPECT_EQ(summary.at("columns").size(), 656u);
+  EXPECT_EQ(summary.at("columns").size(), 683u);
   EXPECT_EQ(summary.at("class_counts").at("swipe"), 4);
   EXPECT_NEAR(summary.at("class_means").at("swipe").at("centroid.path_length").get<double>(), 20.0,
               1e-6);
@@ -236,7 +236,7 @@ TEST_F(FeaturesCommand, ListAndDescribePrintPipelinesAndColumns) {
   ASSERT_EQ(describe.exit_code, 0) << describe.err;
   EXPECT_NE(describe.out.find("ch3.integral"), std::string::npos) << describe.out;
   EXPECT_NE(describe.out.find("contact.max_area"), std::string::npos);
-  EXPECT_NE(describe.out.find("110 columns (generic on grid:2x2)"), std::string::npos);
+  EXPECT_NE(describe.out.find("137 columns (generic on grid:2x2)"), std::string::npos);
   EXPECT_EQ(tactile("features --describe generic").exit_code, 1);
 }
 

@@ -130,13 +130,16 @@ TEST(GenericFeatures, StripHasPerChannelColumnsOnlyInAStableOrder) {
   const SkinLayout layout = make_strip_layout(3);
   const auto extractor = make_generic_extractor({});
   const std::vector<FeatureColumn> columns = extractor->columns(layout);
-  // 26 per channel (7 summary, 11 shape, 8 envelope parts), then the neighbours' correlation.
-  ASSERT_EQ(columns.size(), 3u * 26 + 1);
+  // 26 per channel (7 summary, 11 shape, 8 envelope parts), the busiest channel's 26 and its
+  // share of the activity, then the neighbours' correlation.
+  ASSERT_EQ(columns.size(), 3u * 26 + 26 + 1 + 1);
   EXPECT_EQ(columns[0].name, "ch0.hjorth_activity");
   EXPECT_EQ(columns[6].name, "ch0.peak_time");
   EXPECT_EQ(columns[7].name, "ch0.median");
   EXPECT_EQ(columns[25].name, "ch0.envelope_7");
   EXPECT_EQ(columns[26].name, "ch1.hjorth_activity");
+  EXPECT_EQ(columns[78].name, "busiest.hjorth_activity");
+  EXPECT_EQ(columns[104].name, "busiest.activity_share");
   EXPECT_EQ(columns.back().name, "neighbours.correlation");
   for (const FeatureColumn& column : columns) EXPECT_FALSE(column.description.empty());
   EXPECT_EQ(make_generic_extractor({})->columns(make_grid_layout(2, 2)).back().name,
@@ -182,6 +185,35 @@ TEST(GenericFeatures, ReversedModalityTakesLowValuesAsContact) {
   EXPECT_DOUBLE_EQ(upright.max_area, 10.0);  // the far readings, taken the wrong way round
 }
 
+TEST(GenericFeatures, TheBusiestChannelsColumnsDoNotDependOnWhereTheTouchLanded) {
+  // The same press on channel 0 or on channel 2 of a strip: the per-channel columns differ,
+  // the busiest channel's are the same (a corpus whose touches land anywhere).
+  const SkinLayout layout = make_strip_layout(3);
+  const auto extractor = make_generic_extractor({});
+  const float press[] = {0, 0, 1, 4, 6, 3, 1, 0, 0, 0};
+  std::vector<double> busiest[2];
+  for (int which = 0; which < 2; ++which) {
+    Recording recording = blank_recording(layout, 10, 10.0);
+    const int64_t channel = which == 0 ? 0 : 2;
+    for (int64_t sample = 0; sample < 10; ++sample) {
+      recording.streams[0].samples(sample, channel) = press[sample];
+      recording.streams[0].samples(sample, 1) = 0.1f * press[sample];  // a little crosstalk
+    }
+    const FeatureResult result = run(*extractor, recording, layout, whole(recording));
+    ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+    const std::string name = "ch" + std::to_string(channel);
+    EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "busiest.peak"), 6.0);
+    EXPECT_DOUBLE_EQ(value_of(*extractor, layout, result, "busiest.hjorth_activity"),
+                     value_of(*extractor, layout, result, name + ".hjorth_activity"));
+    // Activity scales with the square: 1 / (1 + 0.01) of the total.
+    EXPECT_NEAR(value_of(*extractor, layout, result, "busiest.activity_share"), 1.0 / 1.01, 1e-9);
+    const std::vector<FeatureColumn> columns = extractor->columns(layout);
+    for (size_t index = 0; index < columns.size(); ++index)
+      if (columns[index].name.rfind("busiest.", 0) == 0) busiest[which].push_back(result.values[index]);
+  }
+  EXPECT_EQ(busiest[0], busiest[1]);
+}
+
 TEST(GenericFeatures, PeakOfAReversedModalityIsItsSmallestValue) {
   const std::vector<double> distance = {200, 150, 30, 30, 180};
   const ChannelSummary near = summarise_channel(distance, 10.0, true);
@@ -190,7 +222,8 @@ TEST(GenericFeatures, PeakOfAReversedModalityIsItsSmallestValue) {
   EXPECT_EQ(summarise_channel(distance, 10.0).peak, 200.0);
   const SkinLayout nao = load_layout("nao");
   const auto columns = make_generic_extractor({})->columns(nao);
-  ASSERT_EQ(columns.size(), 32u * 26 + 1 + 5);  // proximity of the 32 cells, neighbours, the map
+  // Proximity of the 32 cells, the busiest cell and its share, neighbours, the map.
+  ASSERT_EQ(columns.size(), 32u * 26 + 27 + 1 + 5);
   EXPECT_NE(columns[3].description.find("smallest"), std::string::npos) << columns[3].description;
 }
 

@@ -270,6 +270,39 @@ struct ChannelPlan {
   std::vector<size_t> neighbour;     // per value channel: its nearest neighbour's position
 };
 
+// The per-channel columns of one channel: `name` prefixes the column, `what` describes it.
+void add_channel_columns(const std::string& name, const std::string& what, const std::string& unit,
+                         const std::string& extreme, std::vector<FeatureColumn>& columns) {
+  columns.push_back({name + ".hjorth_activity",
+                     "Kaboli eq. (2): population variance of " + what + ", " + unit + "^2"});
+  columns.push_back({name + ".hjorth_mobility",
+                     "Kaboli eq. (3): sqrt(var(diff x) / var(x)) of " + what + ", per sample"});
+  columns.push_back({name + ".hjorth_complexity",
+                     "Kaboli eq. (4): mobility(diff x) / mobility(x) of " + what + ", dimensionless"});
+  columns.push_back({name + ".peak", extreme + " value of " + what + ", " + unit});
+  columns.push_back({name + ".mean", "mean of " + what + ", " + unit});
+  columns.push_back({name + ".integral", "sum of " + what + " / sample rate, " + unit + " x s"});
+  columns.push_back({name + ".peak_time", "time of the first " + extreme + " value of " + what +
+                                              " after the segment's start, s"});
+  const std::string excursion = "the excursion of " + what + " from its rest level";
+  columns.push_back({name + ".median", "median of " + what + ", " + unit});
+  columns.push_back({name + ".q10", "10th percentile of " + what + ", " + unit});
+  columns.push_back({name + ".q90", "90th percentile of " + what + ", " + unit});
+  columns.push_back({name + ".band_low", "share of the mean-removed energy of " + what + " below fs/16"});
+  columns.push_back({name + ".band_mid", "share of the mean-removed energy of " + what + " in [fs/16, fs/8)"});
+  columns.push_back({name + ".band_high", "share of the mean-removed energy of " + what + " from fs/8 up"});
+  columns.push_back({name + ".zero_crossings", "crossings of the mean by " + what + ", per s"});
+  columns.push_back({name + ".peaks", "rises of " + excursion + " through half its largest, per s"});
+  columns.push_back({name + ".onset_slope", "steepest rise of " + excursion + " in the first half, " + unit + "/s"});
+  columns.push_back({name + ".release_slope", "steepest fall of " + excursion + " in the second half, " + unit + "/s"});
+  columns.push_back({name + ".active_time", "time " + excursion +
+                                                " exceeds 3 noise deviations (RMS of the differences without their largest fifth / sqrt 2), s"});
+  for (int bin = 0; bin < kEnvelopeBins; ++bin)
+    columns.push_back({name + ".envelope_" + std::to_string(bin),
+                       "mean " + excursion + " in part " + std::to_string(bin + 1) + " of " +
+                           std::to_string(kEnvelopeBins) + " equal parts of the segment, " + unit});
+}
+
 class GenericExtractor : public FeatureExtractor {
  public:
   GenericExtractor(std::string modality, double threshold, std::string stream, std::string where)
@@ -282,50 +315,33 @@ class GenericExtractor : public FeatureExtractor {
   std::string description() const override {
     return "Any layout: per channel the Hjorth triple, peak, mean, integral, time of peak, median and "
            "deciles, energy in three bands, zero crossings, peaks, onset and release slopes, time "
-           "above the noise band and the envelope in 8 parts; the correlation of neighbouring "
-           "channels; on 2-D maps the contact area (max, mean), spread, and the contact centroid's "
+           "above the noise band and the envelope in 8 parts; across channels the same figures of "
+           "the busiest channel (wherever the touch landed) and its share of the activity, and the "
+           "correlation of neighbouring channels; on 2-D maps the contact area (max, mean), spread, and the contact centroid's "
            "path length and net displacement";
   }
 
   std::vector<FeatureColumn> columns(const SkinLayout& layout) const override {
     const ChannelPlan plan = plan_for(layout);
     std::vector<FeatureColumn> columns;
+    std::set<std::string> units;
     for (size_t position = 0; position < plan.value_channels.size(); ++position) {
       const Channel& channel = layout.channels[static_cast<size_t>(plan.value_channels[position])];
       // For modalities where small means touch, the peak is the smallest value.
       const std::string extreme = plan.value_reversed[position] ? "smallest" : "largest";
       const std::string unit = channel.unit.empty() ? "units" : channel.unit;
-      const std::string& name = channel.name;
-      columns.push_back({name + ".hjorth_activity",
-                         "Kaboli eq. (2): population variance of " + name + ", " + unit + "^2"});
-      columns.push_back({name + ".hjorth_mobility",
-                         "Kaboli eq. (3): sqrt(var(diff x) / var(x)) of " + name + ", per sample"});
-      columns.push_back(
-          {name + ".hjorth_complexity",
-           "Kaboli eq. (4): mobility(diff x) / mobility(x) of " + name + ", dimensionless"});
-      columns.push_back({name + ".peak", extreme + " value of " + name + ", " + unit});
-      columns.push_back({name + ".mean", "mean of " + name + ", " + unit});
-      columns.push_back(
-          {name + ".integral", "sum of " + name + " / sample rate, " + unit + " x s"});
-      columns.push_back({name + ".peak_time", "time of the first " + extreme + " value of " + name +
-                                                  " after the segment's start, s"});
-      const std::string excursion = "the excursion of " + name + " from its rest level";
-      columns.push_back({name + ".median", "median of " + name + ", " + unit});
-      columns.push_back({name + ".q10", "10th percentile of " + name + ", " + unit});
-      columns.push_back({name + ".q90", "90th percentile of " + name + ", " + unit});
-      columns.push_back({name + ".band_low", "share of the mean-removed energy of " + name + " below fs/16"});
-      columns.push_back({name + ".band_mid", "share of the mean-removed energy of " + name + " in [fs/16, fs/8)"});
-      columns.push_back({name + ".band_high", "share of the mean-removed energy of " + name + " from fs/8 up"});
-      columns.push_back({name + ".zero_crossings", "crossings of the mean by " + name + ", per s"});
-      columns.push_back({name + ".peaks", "rises of " + excursion + " through half its largest, per s"});
-      columns.push_back({name + ".onset_slope", "steepest rise of " + excursion + " in the first half, " + unit + "/s"});
-      columns.push_back({name + ".release_slope", "steepest fall of " + excursion + " in the second half, " + unit + "/s"});
-      columns.push_back({name + ".active_time", "time " + excursion +
-                                                    " exceeds 3 noise deviations (RMS of the differences without their largest fifth / sqrt 2), s"});
-      for (int bin = 0; bin < kEnvelopeBins; ++bin)
-        columns.push_back({name + ".envelope_" + std::to_string(bin),
-                           "mean " + excursion + " in part " + std::to_string(bin + 1) + " of " +
-                               std::to_string(kEnvelopeBins) + " equal parts of the segment, " + unit});
+      units.insert(unit);
+      add_channel_columns(channel.name, channel.name, unit, extreme, columns);
+    }
+    if (plan.value_channels.size() >= 2) {
+      // Across channels: wherever the touch landed, its channel's figures in the same columns.
+      const bool reversed = std::find(plan.value_reversed.begin(), plan.value_reversed.end(),
+                                      true) != plan.value_reversed.end();
+      add_channel_columns("busiest", "the busiest channel (largest Hjorth activity)",
+                          units.size() == 1 ? *units.begin() : "units",
+                          reversed ? "smallest (reversed channels) or largest" : "largest", columns);
+      columns.push_back({"busiest.activity_share",
+                         "the busiest channel's Hjorth activity over the sum of every channel's"});
     }
     if (plan.value_channels.size() >= 2)
       columns.push_back({"neighbours.correlation",
@@ -399,6 +415,7 @@ class GenericExtractor : public FeatureExtractor {
     }
 
     FeatureResult result;
+    const size_t block = 18 + kEnvelopeBins;  // values per channel, as add_channel_columns
     for (size_t position = 0; position < channel_values.size(); ++position) {
       const ChannelSummary summary = summarise_channel(channel_values[position], stream.rate_hz,
                                                        plan.value_reversed[position]);
@@ -416,6 +433,19 @@ class GenericExtractor : public FeatureExtractor {
                             shape.zero_crossings, shape.peaks, shape.onset_slope, shape.release_slope,
                             shape.active_seconds});
       result.values.insert(result.values.end(), std::begin(shape.envelope), std::end(shape.envelope));
+    }
+    if (channel_values.size() >= 2) {
+      // The busiest channel's block again, then its share of all the channels' activity.
+      size_t busiest = 0;
+      double total = 0.0;
+      for (size_t position = 0; position < channel_values.size(); ++position) {
+        const double activity = result.values[position * block];
+        total += activity;
+        if (activity > result.values[busiest * block]) busiest = position;
+      }
+      const size_t start = busiest * block;
+      for (size_t k = 0; k < block; ++k) result.values.push_back(result.values[start + k]);
+      result.values.push_back(total > 0.0 ? result.values[start] / total : 0.0);
     }
     if (channel_values.size() >= 2) {
       double sum = 0.0;
