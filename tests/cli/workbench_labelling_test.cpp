@@ -201,13 +201,14 @@ TEST_F(WorkbenchLabelling, DraggingInTheOwnLaneMarksAndDraggingAnEdgeMovesIt) {
 }
 
 TEST_F(WorkbenchLabelling, DraggedTimesSnapToTheBoundariesOfOtherLanes) {
-  // The simulator's first touch ends at 7.633 s; a drag released a few pixels short of
-  // it ends there.
-  const auto result = workbench("wait 2\ndrag time 5 7.55 in timeline\nstate @snapped.json\n");
-  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // A drag released a few pixels short of the simulator's first touch's end ends there.
   const auto truth = nlohmann::json::parse(
       test::run_program("tactile", "labels list " + database() + " --source ground-truth --json",
                         folder).out)["labels"];
+  const double end = truth[0]["t1"].get<double>();
+  const auto result = workbench("wait 2\ndrag time " + std::to_string(end - 2.5) + " " +
+                                std::to_string(end - 0.08) + " in timeline\nstate @snapped.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_DOUBLE_EQ(state("snapped.json")["marks"]["end"].get<double>(),
                    truth[0]["t1"].get<double>());
 }
