@@ -270,6 +270,9 @@ struct ChannelPlan {
   std::vector<size_t> neighbour;     // per value channel: its nearest neighbour's position
 };
 
+// Values per channel: 7 summary, 11 shape, the envelope (add_channel_columns, extract()).
+constexpr size_t kChannelColumns = 18 + kEnvelopeBins;
+
 // The per-channel columns of one channel: `name` prefixes the column, `what` describes it.
 void add_channel_columns(const std::string& name, const std::string& what, const std::string& unit,
                          const std::string& extreme, std::vector<FeatureColumn>& columns) {
@@ -415,7 +418,7 @@ class GenericExtractor : public FeatureExtractor {
     }
 
     FeatureResult result;
-    const size_t block = 18 + kEnvelopeBins;  // values per channel, as add_channel_columns
+    const size_t block = kChannelColumns;
     for (size_t position = 0; position < channel_values.size(); ++position) {
       const ChannelSummary summary = summarise_channel(channel_values[position], stream.rate_hz,
                                                        plan.value_reversed[position]);

@@ -263,17 +263,15 @@ void add_talking_gesture(Session& session, double command, Random& random) {
   const double duration = random.uniform(0.8, 1.8);
   const double amplitude = random.uniform(0.2, 0.6);
   const double which = random.uniform();
-  if (which < 0.35) {
-    session.moves.push_back({Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
-  } else if (which < 0.6) {
-    session.moves.push_back({Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
-  } else if (which < 0.8) {
-    session.moves.push_back({Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
-    session.moves.push_back({Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
-  } else {
-    session.moves.push_back(
-        {Joint::kHead, JointMove::Shape::kBump, onset, duration, 0.4 * amplitude});
+  // One arm (right more often), both arms, or a nod of the head.
+  if (which >= 0.8) {
+    session.moves.push_back({Joint::kHead, JointMove::Shape::kBump, onset, duration, 0.4 * amplitude});
+    return;
   }
+  if (which < 0.35 || which >= 0.6)
+    session.moves.push_back({Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
+  if (which >= 0.35)
+    session.moves.push_back({Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
 }
 
 // The robot's own movements: it turns to the subject, plays each stage's movement while it
