@@ -59,7 +59,9 @@ TEST(RecordingWriter, WritesWhatWasAppendedAsAnOrdinaryRecording) {
   const SampleMatrix& got = recording.streams.front().samples;
   EXPECT_TRUE(std::isnan(got(8, 2)));
   for (int64_t row = 0; row < first; ++row)
-    if (row != 8) ASSERT_EQ(got.row(row), expected.row(row)) << "sample " << row;
+    if (row != 8) {
+      ASSERT_EQ(got.row(row), expected.row(row)) << "sample " << row;
+    }
   // The overview agrees with the samples (verify reads every chunk and checks it).
   const std::vector<FileProblem> problems = verify_recording(path);
   EXPECT_TRUE(problems.empty()) << problems.front().message;
@@ -122,11 +124,45 @@ TEST(RecordingWriter, AKilledWriterLeavesAFileWithAllButTheLastSecond) {
     const Recording recording = file.read_all();
     const SampleMatrix& samples = recording.streams.front().samples;
     ASSERT_EQ(samples.rows(), count);
-    if (count > 0) EXPECT_EQ(samples(count - 1, 1), static_cast<float>((count - 1) * 10 + 1));
+    if (count > 0) {
+      EXPECT_EQ(samples(count - 1, 1), static_cast<float>((count - 1) * 10 + 1));
+    }
     // Every chunk and the overview check out as they are.
     const std::vector<FileProblem> problems = verify_recording(path);
     EXPECT_TRUE(problems.empty()) << problems.front().message;
   }
+}
+
+TEST(RecordingWriter, AKilledWritersFileIsCutOffHoweverOftenItIsOpened) {
+  // The second open of a file this process has open already shares HDF5's file, so it
+  // never sees the open-for-write flag; it must still read the file as cut off (and accept
+  // samples a flush ahead of the overview, as a kill between the two leaves them).
+  testing::TemporaryDirectory directory;
+  const std::string path = directory.file("killed.h5");
+  int pipe_ends[2];
+  ASSERT_EQ(pipe(pipe_ends), 0);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    close(pipe_ends[0]);
+    auto writer = writer_at(path);
+    writer->append(ramp(0, 500, 4));
+    const char done = 1;
+    if (write(pipe_ends[1], &done, 1) != 1) _exit(1);
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+  close(pipe_ends[1]);
+  char done = 0;
+  ASSERT_EQ(read(pipe_ends[0], &done, 1), 1);
+  close(pipe_ends[0]);
+  kill(child, SIGKILL);
+  waitpid(child, nullptr, 0);
+  RecordingFile first(path);
+  RecordingFile second(path);
+  EXPECT_TRUE(first.cut_off());
+  EXPECT_TRUE(second.cut_off());
+  const std::vector<FileProblem> problems = verify_recording(path);
+  EXPECT_TRUE(problems.empty()) << problems.front().message;
 }
 
 TEST(RecordingWriter, RefusesAWrongSampleWidth) {

@@ -187,6 +187,11 @@ RecordingFile::RecordingFile(const std::string& path)
     file_handle = Object(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, access.id()), H5Fclose);
     if (!file_handle.valid()) throw Error(path, "cannot open HDF5 file (" + hdf5::last_error() + ")");
     cut_off_ = true;
+  } else {
+    // A file this process has open already is shared, and a second open never sees the
+    // open-for-write flag: it is cut off if it was opened so before.
+    unsigned intent = 0;
+    if (H5Fget_intent(file_handle.id(), &intent) >= 0 && (intent & H5F_ACC_SWMR_READ) != 0) cut_off_ = true;
   }
   file_->file = std::move(file_handle);
   load();
