@@ -10,6 +10,7 @@
 #include "tactile/error.h"
 #include "tactile/features/generic.h"
 #include "tactile/io/hdf5_file.h"
+#include "io_test_files.h"
 
 namespace tactile {
 namespace {
@@ -27,13 +28,8 @@ Label make_label(const std::string& recording, double t0, double t1, const std::
 
 class CorpusTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("corpus-test-" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
+  // A folder of this process's own: another test run on the machine may run the same test.
+  void SetUp() override { folder_ = directory_.path(); }
 
   // A strip recording whose channel 0 holds the recording's number everywhere, so each
   // row shows which recording it came from.
@@ -60,6 +56,7 @@ class CorpusTest : public ::testing::Test {
     return job;
   }
 
+  tactile::testing::TemporaryDirectory directory_;
   std::filesystem::path folder_;
 };
 

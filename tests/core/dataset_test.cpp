@@ -11,20 +11,15 @@
 #include <limits>
 
 #include "tactile/error.h"
+#include "io_test_files.h"
 
 namespace tactile {
 namespace {
 
 class DatasetFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("dataset-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-               "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(folder_);
-    std::filesystem::create_directories(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
+  // A folder of this process's own: another test run on the machine may run the same test.
+  void SetUp() override { folder_ = directory_.path(); }
 
   std::string file(const std::string& name) const { return (folder_ / name).string(); }
   std::string write(const std::string& name, const std::string& text) const {
@@ -59,6 +54,7 @@ class DatasetFileTest : public ::testing::Test {
     return dataset;
   }
 
+  tactile::testing::TemporaryDirectory directory_;
   std::filesystem::path folder_;
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tactile/experiments/kaboli.h"
+#include "io_test_files.h"
 
 namespace tactile::experiments {
 namespace {
@@ -15,13 +16,8 @@ constexpr double kChance = 1.0 / 9.0;
 
 class KaboliExperiments : public ::testing::Test {
  protected:
-  void SetUp() override {
-    folder_ = std::filesystem::temp_directory_path() /
-              ("tactile-kaboli-" +
-               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::remove_all(folder_);
-  }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
+  // A folder of this process's own: another test run on the machine may run the same test.
+  void SetUp() override { folder_ = directory_.path(); }
   ExperimentOptions options() const {
     ExperimentOptions options;
     options.work_dir = folder_.string();
@@ -29,6 +25,7 @@ class KaboliExperiments : public ::testing::Test {
     options.quick = true;
     return options;
   }
+  tactile::testing::TemporaryDirectory directory_;
   std::filesystem::path folder_;
 };
 
