@@ -299,6 +299,52 @@ TEST(KaboliExtractor, BadParametersNameTheKey) {
   Parameters motion;
   motion.set("motion_hz", "-1");
   EXPECT_THROW(make_kaboli_extractor(motion), Error);
+  Parameters order;
+  order.set("motion_order", "3");
+  try {
+    make_kaboli_extractor(order);
+    FAIL();
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("motion_order"), std::string::npos) << error.what();
+  }
+}
+
+TEST(KaboliExtractor, AWalkingRobotsGaitLeavesAQuietPushAlone) {
+  // A push barely shakes the cell (a 30 Hz tremor of 0.005 g); a walking NAO bobs 0.06 g at
+  // its 2 Hz step. The default high-pass (4th order, 7 Hz) keeps the push's activity; a
+  // 2nd-order one at 5 Hz lets the gait through at several times the push's own.
+  const SkinLayout layout = load_layout("nao");
+  const int64_t samples = 1500;  // 6 s
+  auto pushed = [&](bool walking) {
+    Recording recording = testing::nao_recording(layout, samples);
+    std::vector<double> ax(samples), ay(samples), az(samples), force(samples);
+    for (int64_t s = 0; s < samples; ++s) {
+      const double t = static_cast<double>(s) / testing::kNaoRate;
+      const double tremor = t >= 2.0 && t < 4.0 ? 0.005 * std::sin(2.0 * std::numbers::pi * 30.0 * t) : 0.0;
+      const double gait = walking ? 0.06 * std::sin(2.0 * std::numbers::pi * 2.0 * t) : 0.0;
+      ax[s] = 0.3 * tremor;
+      ay[s] = -1.0 + gait + 0.5 * tremor;
+      az[s] = tremor;
+      force[s] = t >= 2.0 && t < 4.0 ? 1.0 : 0.0;
+    }
+    for (const auto& [modality, values] :
+         {std::pair{"ax", ax}, {"ay", ay}, {"az", az}, {"f1", force}})
+      testing::set_signal(recording, layout, 3, modality, values);
+    testing::set_range(recording, layout, 3, "prox", 500, 1000, 5.0f);
+    return recording;
+  };
+  const Recording still = pushed(false), walking = pushed(true);
+  const Label push = segment(1.9, 4.1, "front");
+  auto activity_ay = [&](const Recording& recording, const Parameters& parameters) {
+    const FeatureResult result = make_kaboli_extractor(parameters)->extract({recording, layout, push});
+    EXPECT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+    return result.values[9];
+  };
+  EXPECT_NEAR(activity_ay(walking, {}) / activity_ay(still, {}), 1.0, 0.05);
+  Parameters second_order;
+  second_order.set("motion_hz", "5");
+  second_order.set("motion_order", "2");
+  EXPECT_GT(activity_ay(walking, second_order), 3.0 * activity_ay(still, second_order));
 }
 
 TEST(KaboliExtractor, RecordingWithoutTheSkinChannelsIsAnError) {

@@ -97,11 +97,15 @@ namespace {
 class KaboliExtractor : public FeatureExtractor {
  public:
   explicit KaboliExtractor(const Parameters& parameters) {
-    parameters.expect_only({"threshold_mm", "norm_mode", "ncorr_mode", "motion_hz"});
+    parameters.expect_only({"threshold_mm", "norm_mode", "ncorr_mode", "motion_hz", "motion_order"});
     contact_mm_ = positive_parameter(parameters, "threshold_mm", kDefaultContactDistanceMm);
     motion_hz_ = parameters.number("motion_hz", kDefaultMotionCutoffHz);
     if (!(motion_hz_ >= 0.0) || !std::isfinite(motion_hz_))
       throw Error("motion_hz", "must be 0 (keep the robot's motion) or a cut-off in Hz");
+    const int64_t order = parameters.integer("motion_order", kDefaultMotionOrder);
+    if (order != 2 && order != 4 && order != 6 && order != 8)
+      throw Error("motion_order", std::to_string(order) + ": the high-pass order must be 2, 4, 6 or 8");
+    motion_order_ = static_cast<int>(order);
     normalisation_ =
         parameter_choice(parameters, "norm_mode", {"BODY_PART", "CONTACT"}) == "CONTACT"
             ? AreaNormalisation::kContact
@@ -118,7 +122,8 @@ class KaboliExtractor : public FeatureExtractor {
             "cells whose proximity came closer than "
          << contact_mm_ << " mm";
     if (motion_hz_ > 0.0)
-      text << "; accelerometers high-passed at " << motion_hz_ << " Hz (the robot's own motion)";
+      text << "; accelerometers high-passed at " << motion_hz_ << " Hz, order " << motion_order_
+           << " (the robot's own motion)";
     return text.str();
   }
   std::vector<FeatureColumn> columns(const SkinLayout&) const override { return kaboli_columns(); }
@@ -135,8 +140,9 @@ class KaboliExtractor : public FeatureExtractor {
       throw Error("motion_hz", "cut-off " + std::to_string(motion_hz_) +
                                    " Hz is not below half the stream's rate (" +
                                    std::to_string(0.5 * stream.rate_hz) + " Hz)");
-    const dsp::Biquad motion_filter =
-        motion_hz_ > 0.0 ? dsp::butterworth_high_pass(motion_hz_, stream.rate_hz) : dsp::Biquad{};
+    const std::vector<dsp::Biquad> motion_filter =
+        motion_hz_ > 0.0 ? dsp::butterworth_high_pass(motion_hz_, stream.rate_hz, motion_order_)
+                         : std::vector<dsp::Biquad>{};
     std::vector<KaboliDescriptor> contacted;
     contacted.reserve(static_cast<size_t>(window.contacted_cells));
     // One T x (3 + N_f) block per cell, reused: each signal a contiguous column.
@@ -186,6 +192,7 @@ class KaboliExtractor : public FeatureExtractor {
  private:
   double contact_mm_ = kDefaultContactDistanceMm;
   double motion_hz_ = kDefaultMotionCutoffHz;
+  int motion_order_ = kDefaultMotionOrder;
   AreaNormalisation normalisation_ = AreaNormalisation::kBodyPart;
   NcorrMode ncorr_mode_ = NcorrMode::kRanks;
 };

@@ -22,8 +22,11 @@ constexpr int kKaboliValues = 16;
 // Not in the paper (spec §1.3 only removes the mean): a moving NAO turns gravity by up to half a
 // g through its cells' accelerometers while it sits down or stands up, a hundred times the
 // variance a push adds, so no descriptor of the raw axes can be invariant to its motion.
-// Second-order Butterworth high-pass at this cut-off, over the window and the second before it.
-constexpr double kDefaultMotionCutoffHz = 5.0;
+// Butterworth high-pass of this order at this cut-off, over the window and the second before
+// it: the gait (steps at up to about 2 Hz) falls 42 dB below 7 Hz, a touch's torso sway
+// (3-9 Hz) and plate ringing (15-75 Hz) mostly pass. docs/SIMULATION.md has the scan.
+constexpr double kDefaultMotionCutoffHz = 7.0;
+constexpr int kDefaultMotionOrder = 4;
 using KaboliDescriptor = std::array<double, kKaboliValues>;
 
 enum class NcorrMode { kRanks, kEq6 };
