@@ -55,7 +55,7 @@ SetDesign design_of(Set set) {
     case Set::kFrontMoving:
       return {"front-moving", "side=front,condition=moving", "front", "moving", false, 4, "test"};
     case Set::kMultiTouch:
-      return {"multi-touch", "scenario=multi-touch", "", "stationary", true, 4, "multi"};
+      return {"multi-touch", "scenario=multi-touch", "", "moving", true, 4, "multi"};
   }
   throw Error("experiment", "unknown Kaboli set");
 }

@@ -27,6 +27,11 @@ constexpr double kTiltPerMoment = 0.0045;
 constexpr double kNormalMass = 0.5;          // kg of torso shell a cell's normal load moves
 constexpr double kShearMass = 0.6;           // kg, the same for loads along the surface
 constexpr double kUpperBodyMass = 2.5;       // kg, NAO's upper body swaying on its joints
+// Damping ratio of that sway: NAO's joints turn through high-ratio gearboxes under position
+// control, which give way to a push without ringing on (estimate; docs/SIMULATION.md).
+constexpr double kSwayDamping = 0.9;
+constexpr double kTorsoCurveRadius = 200.0;  // mm, the chest's and back's curve, side to side
+constexpr double kMountError = 0.05;         // rad, a cell's tilt and turn off its place
 constexpr double kLeverArm = 0.15;           // m from the hips to the middle of the skin
 constexpr double kCouplingLength = 25.0;     // mm, decay of vibration through the shell
 constexpr double kOtherSideCoupling = 0.02;  // the torso carries a little to the other side
@@ -365,9 +370,14 @@ std::vector<Cell> make_cells(const SkinLayout& layout, const std::vector<SideAre
     cell.normal_damping = hardware.uniform(0.08, 0.15);
     cell.shear_frequency = hardware.uniform(15.0, 30.0);
     cell.shear_damping = hardware.uniform(0.15, 0.3);
-    // Cells follow the torso's curve: each sits tilted and turned a little.
-    const double tilt_x = hardware.uniform(-0.25, 0.25), tilt_y = hardware.uniform(-0.25, 0.25);
-    const double turn = hardware.uniform(-0.15, 0.15);
+    // Cells follow the torso's curve around its vertical axis: a cell sits tilted by its
+    // distance from the middle of its side over the curve's radius, give or take the few
+    // degrees of hand assembly.
+    const Point2 middle = cell.side >= 0 ? sides[cell.side].centre : cell.centre;
+    const double tilt_x = hardware.uniform(-kMountError, kMountError);
+    const double tilt_y = hardware.uniform(-kMountError, kMountError) +
+                          (cell.centre.x - middle.x) / kTorsoCurveRadius;
+    const double turn = hardware.uniform(-kMountError, kMountError);
     const Eigen::Matrix3d placed = (Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()) *
                                     Eigen::AngleAxisd(tilt_y, Eigen::Vector3d::UnitY()) *
                                     Eigen::AngleAxisd(tilt_x, Eigen::Vector3d::UnitX()))
@@ -434,9 +444,9 @@ void render_skin(const SkinLayout& layout, const std::vector<SideArea>& sides,
   // mass-spring (a few Hz), and leans a little, so every cell feels a hand's push or rub.
   Eigen::MatrixXd torso = body.specific_force;
   {
-    Resonator sway[3] = {Resonator(hardware.uniform(3.0, 6.0), 0.25, rate_hz),
-                         Resonator(hardware.uniform(5.0, 9.0), 0.3, rate_hz),
-                         Resonator(hardware.uniform(3.0, 6.0), 0.25, rate_hz)};
+    Resonator sway[3] = {Resonator(hardware.uniform(3.0, 6.0), kSwayDamping, rate_hz),
+                         Resonator(hardware.uniform(5.0, 9.0), kSwayDamping, rate_hz),
+                         Resonator(hardware.uniform(3.0, 6.0), kSwayDamping, rate_hz)};
     Eigen::VectorXd facing(cell_count);
     for (Eigen::Index c = 0; c < cell_count; ++c) facing[c] = cells[c].facing;
     // Net force of the hand on the torso (N), torso frame.
