@@ -7,7 +7,8 @@
 // Parameters: threshold_mm (50, the contact distance of eq. 1), norm_mode (BODY_PART | CONTACT),
 // ncorr_mode (RANKS = Pearson of average ranks | EQ6 = eq. 6 as printed), motion_hz (cut-off of
 // the high-pass that takes the robot's own motion out of the accelerometers; 0 = none, as
-// printed in the paper; see kDefaultMotionCutoffHz).
+// printed in the paper; see kDefaultMotionCutoffHz), motion_order (that high-pass's order:
+// 2, 4, 6 or 8; see kDefaultMotionOrder).
 
 #include <array>
 #include <memory>
