@@ -13,7 +13,7 @@ std::vector<Biquad> butterworth_high_pass(double cutoff_hz, double rate_hz, int 
   if (!(cutoff_hz > 0.0) || !(cutoff_hz < 0.5 * rate_hz))
     throw Error("cutoff_hz", "the high-pass cut-off must lie between 0 and half the rate (" +
                                  std::to_string(0.5 * rate_hz) + " Hz)");
-  if (order != 2 && order != 4 && order != 6 && order != 8)
+  if (!is_butterworth_order(order))
     throw Error("order", std::to_string(order) + ": the high-pass order must be 2, 4, 6 or 8");
   // The analogue prototype's poles in conjugate pairs at angles theta_k = pi (2k + 1) / (2n)
   // from the negative real axis: H_k(s) = s^2 / (s^2 + 2 cos(theta_k) s + 1), each section

@@ -103,7 +103,7 @@ class KaboliExtractor : public FeatureExtractor {
     if (!(motion_hz_ >= 0.0) || !std::isfinite(motion_hz_))
       throw Error("motion_hz", "must be 0 (keep the robot's motion) or a cut-off in Hz");
     const int64_t order = parameters.integer("motion_order", kDefaultMotionOrder);
-    if (order != 2 && order != 4 && order != 6 && order != 8)
+    if (order < 2 || order > 8 || !dsp::is_butterworth_order(static_cast<int>(order)))
       throw Error("motion_order", std::to_string(order) + ": the high-pass order must be 2, 4, 6 or 8");
     motion_order_ = static_cast<int>(order);
     normalisation_ =

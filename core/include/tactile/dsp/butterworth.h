@@ -14,6 +14,11 @@ struct Biquad {
   double b0 = 1.0, b1 = 0.0, b2 = 0.0, a1 = 0.0, a2 = 0.0;  // a0 = 1
 };
 
+// The orders butterworth_high_pass builds.
+constexpr bool is_butterworth_order(int order) {
+  return order == 2 || order == 4 || order == 6 || order == 8;
+}
+
 // The sections of an `order`-th order high-pass (order 2, 4, 6 or 8). Throws tactile::Error
 // naming the cut-off, the rate or the order when the cut-off or rate is not positive, the
 // cut-off is not below half the rate, or the order is not one of those.
