@@ -187,6 +187,58 @@ TEST(ExpectationMaximization, UnmappedClusterAnswersUnknown) {
     }
 }
 
+TEST(GaussianMixture, StartedFromALabellingItsFirstStepIsThatLabellingsGaussians) {
+  const auto blobs = separated_blobs();
+  std::mt19937_64 random(8);
+  Matrix x;
+  std::vector<int> y;
+  test_data::draw_classes(blobs, 40, random, x, y);
+  // Label the two blobs crosswise (half of each in either group): one M-step from that
+  // labelling gives each component its group's mean and weight, not a blob's.
+  std::vector<int> groups(y.size());
+  for (size_t i = 0; i < y.size(); ++i) groups[i] = static_cast<int>(i % 2);
+  MixtureOptions options;
+  options.components = 2;
+  options.max_iterations = 1;
+  const GaussianMixture first = fit_gaussian_mixture_from(x, groups, options);
+  for (int group = 0; group < 2; ++group) {
+    Vector sum = Vector::Zero(2);
+    int count = 0;
+    for (size_t i = 0; i < y.size(); ++i)
+      if (groups[i] == group) sum += x.row(static_cast<Eigen::Index>(i)).transpose(), ++count;
+    EXPECT_LT((first.means.row(group).transpose() - sum / count).norm(), 1e-12) << group;
+    EXPECT_NEAR(first.weights(group), 0.5, 1e-12);
+  }
+  EXPECT_EQ(first.iterations, 1);
+  // Left to run, EM climbs from there: never below the first step's likelihood.
+  options.max_iterations = 100;
+  EXPECT_GE(fit_gaussian_mixture_from(x, groups, options).log_likelihood, first.log_likelihood);
+  // Started from the blobs themselves it stays on them.
+  const GaussianMixture from_blobs = fit_gaussian_mixture_from(x, y, options);
+  EXPECT_EQ(from_blobs.assign(x), y);
+  EXPECT_THROW(fit_gaussian_mixture_from(x, std::vector<int>(y.size(), 2), options), Error);
+  EXPECT_THROW(fit_gaussian_mixture_from(x, std::vector<int>(3, 0), options), Error);
+}
+
+TEST(ExpectationMaximization, InitClassesStartsEachClusterOnOneTrainingClass) {
+  const auto blobs = separated_blobs();
+  std::mt19937_64 random(12);
+  Matrix x;
+  std::vector<int> y;
+  test_data::draw_classes(blobs, 60, random, x, y);
+  ExpectationMaximization classifier(Parameters::parse("init=classes", "test"));
+  classifier.fit(x, y, 2, 0);
+  EXPECT_EQ(classifier.cluster_classes(), (std::vector<int>{0, 1}));  // cluster k began as class k
+  EXPECT_EQ(classifier.predict(x), y);
+  EXPECT_EQ(classifier.parameters().text("init", ""), "classes");
+  ExpectationMaximization restored;
+  restored.load(nlohmann::json::parse(classifier.save().dump()));
+  EXPECT_EQ(restored.parameters().values(), classifier.parameters().values());
+  EXPECT_THROW(ExpectationMaximization(Parameters::parse("init=labels", "test")), Error);
+  ExpectationMaximization more(Parameters::parse("init=classes,clusters=3", "test"));
+  EXPECT_THROW(more.fit(x, y, 2, 0), Error);  // one cluster per class, no more
+}
+
 TEST(ExpectationMaximization, RejectsBadParametersAndInput) {
   EXPECT_THROW(ExpectationMaximization(Parameters::parse("k=3", "test")), Error);
   EXPECT_THROW(ExpectationMaximization(Parameters::parse("covariance=spherical", "test")), Error);

@@ -239,6 +239,7 @@ Scored train_and_test(const Dataset& train, const Dataset& test, const std::stri
     scored.confusion(index_of(test.classes[row]), column) += 1;
   }
   scored.accuracy = ml::accuracy_of(scored.confusion);
+  scored.model = std::move(model);
   return scored;
 }
 

@@ -6,12 +6,14 @@
 #include <Eigen/Core>
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tactile/experiments/experiment.h"
 #include "tactile/features/corpus.h"
 #include "tactile/features/dataset.h"
+#include "tactile/ml/classifier.h"
 
 namespace tactile::experiments::kaboli {
 
@@ -54,6 +56,7 @@ struct Scored {
   Eigen::MatrixXi confusion;  // 9 x 10: rows true, columns predicted, last column "unknown"
   double accuracy = 0.0;
   int64_t train_rows = 0;
+  std::shared_ptr<const ml::Classifier> model;  // as fitted on the training set
 };
 
 // Fits `classifier` (a make_classifier specification) on `train` and scores `test`.

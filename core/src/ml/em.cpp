@@ -120,6 +120,39 @@ void check_options(const MixtureOptions& options) {
     throw Error(where, "variance_floor must be greater than zero");
 }
 
+void check_fit(const Matrix& x, const MixtureOptions& options) {
+  check_options(options);
+  if (x.rows() == 0) throw Error("em", "no samples");
+  check_query(x, x.cols(), "em");
+  if (x.rows() < options.components)
+    throw Error("em", std::to_string(x.rows()) + " samples cannot fill " +
+                          std::to_string(options.components) + " clusters");
+}
+
+// EM from the given first responsibilities until the relative gain falls below the
+// tolerance (spec §1.16) or the iterations run out; `model` holds the last M-step.
+void climb(const Matrix& x, Matrix responsibilities, const MixtureOptions& options,
+           GaussianMixture& model) {
+  const Vector data_mean = x.colwise().mean().transpose();
+  const Vector data_variance =
+      ((x.rowwise() - data_mean.transpose()).array().square().colwise().sum() /
+       static_cast<double>(x.rows()))
+          .transpose()
+          .cwiseMax(options.variance_floor);
+  double previous = kNegativeInfinity;
+  for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+    maximise(x, responsibilities, options, data_variance, model);
+    const Matrix joint = model.log_joint(x);
+    const Vector normaliser = support::log_sum_exp_rows(joint);
+    model.log_likelihood = normaliser.sum();
+    model.iterations = iteration;
+    responsibilities = (joint.colwise() - normaliser).array().exp();
+    if (iteration > 1 && model.log_likelihood - previous < options.tolerance * std::abs(previous))
+      break;
+    previous = model.log_likelihood;
+  }
+}
+
 }  // namespace
 
 //---- mixture --------------------------------------------------------------------------------
@@ -215,19 +248,7 @@ void GaussianMixture::load(const nlohmann::json& model, const std::string& where
 
 GaussianMixture fit_gaussian_mixture(const Matrix& x, const MixtureOptions& options,
                                      uint64_t seed) {
-  check_options(options);
-  if (x.rows() == 0) throw Error("em", "no samples");
-  check_query(x, x.cols(), "em");
-  if (x.rows() < options.components)
-    throw Error("em", std::to_string(x.rows()) + " samples cannot fill " +
-                          std::to_string(options.components) + " clusters");
-  const Vector data_mean = x.colwise().mean().transpose();
-  const Vector data_variance =
-      ((x.rowwise() - data_mean.transpose()).array().square().colwise().sum() /
-       static_cast<double>(x.rows()))
-          .transpose()
-          .cwiseMax(options.variance_floor);
-
+  check_fit(x, options);
   std::mt19937_64 random(seed);
   GaussianMixture best;
   bool have_best = false;
@@ -235,20 +256,7 @@ GaussianMixture fit_gaussian_mixture(const Matrix& x, const MixtureOptions& opti
     GaussianMixture model;
     model.covariance = options.covariance;
     model.means = seed_centres(x, options.components, random);
-    Matrix responsibilities = nearest_centre_responsibilities(x, model.means);
-    double previous = kNegativeInfinity;
-    for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
-      maximise(x, responsibilities, options, data_variance, model);
-      const Matrix joint = model.log_joint(x);
-      const Vector normaliser = support::log_sum_exp_rows(joint);
-      model.log_likelihood = normaliser.sum();
-      model.iterations = iteration;
-      responsibilities = (joint.colwise() - normaliser).array().exp();
-      // Spec §1.16: stop when the relative gain falls below the tolerance.
-      if (iteration > 1 && model.log_likelihood - previous < options.tolerance * std::abs(previous))
-        break;
-      previous = model.log_likelihood;
-    }
+    climb(x, nearest_centre_responsibilities(x, model.means), options, model);
     if (!std::isfinite(model.log_likelihood)) continue;
     if (!have_best || model.log_likelihood > best.log_likelihood) {
       best = std::move(model);
@@ -257,6 +265,29 @@ GaussianMixture fit_gaussian_mixture(const Matrix& x, const MixtureOptions& opti
   }
   if (!have_best) throw Error("em", "every restart ended with a non-finite log-likelihood");
   return best;
+}
+
+GaussianMixture fit_gaussian_mixture_from(const Matrix& x, const std::vector<int>& groups,
+                                          const MixtureOptions& options) {
+  check_fit(x, options);
+  if (groups.size() != static_cast<size_t>(x.rows()))
+    throw Error("em", std::to_string(groups.size()) + " starting groups for " +
+                          std::to_string(x.rows()) + " samples");
+  Matrix responsibilities = Matrix::Zero(x.rows(), options.components);
+  for (size_t row = 0; row < groups.size(); ++row) {
+    if (groups[row] < 0 || groups[row] >= options.components)
+      throw Error("em", "sample " + std::to_string(row) + " starts in group " +
+                            std::to_string(groups[row]) + ", not one of the " +
+                            std::to_string(options.components) + " clusters");
+    responsibilities(static_cast<Eigen::Index>(row), groups[row]) = 1.0;
+  }
+  GaussianMixture model;
+  model.covariance = options.covariance;
+  model.means = Matrix::Zero(options.components, x.cols());
+  climb(x, std::move(responsibilities), options, model);
+  if (!std::isfinite(model.log_likelihood))
+    throw Error("em", "the fit from the given groups ended with a non-finite log-likelihood");
+  return model;
 }
 
 //---- classes to clusters --------------------------------------------------------------------
@@ -359,7 +390,7 @@ std::vector<int> map_clusters_to_classes(const std::vector<int>& clusters,
 
 ExpectationMaximization::ExpectationMaximization(const Parameters& parameters) {
   parameters.expect_only({"clusters", "covariance", "restarts", "iterations", "tolerance",
-                          "variance_floor", "mapping", "standardize"});
+                          "variance_floor", "mapping", "standardize", "init"});
   const auto whole = [&](const std::string& key, int64_t fallback, int64_t minimum) {
     const int64_t value = parameters.integer(key, fallback);
     if (value < minimum || value > 1000000)
@@ -382,6 +413,10 @@ ExpectationMaximization::ExpectationMaximization(const Parameters& parameters) {
     throw Error(parameters.where(), "mapping=" + mapping + ": expected majority or one-to-one");
   mapping_ = mapping == "one-to-one" ? ClusterMapping::kOneToOne : ClusterMapping::kMajority;
   standardize_ = parameters.flag("standardize", true);
+  const std::string init = parameters.text("init", "kmeans++");
+  if (init != "kmeans++" && init != "classes")
+    throw Error(parameters.where(), "init=" + init + ": expected kmeans++ or classes");
+  start_from_classes_ = init == "classes";
 }
 
 Parameters ExpectationMaximization::parameters() const {
@@ -394,6 +429,7 @@ Parameters ExpectationMaximization::parameters() const {
   parameters.set("variance_floor", support::format_number(options_.variance_floor));
   parameters.set("mapping", mapping_ == ClusterMapping::kOneToOne ? "one-to-one" : "majority");
   parameters.set("standardize", standardize_ ? "true" : "false");
+  parameters.set("init", start_from_classes_ ? "classes" : "kmeans++");
   return parameters;
 }
 
@@ -411,7 +447,12 @@ void ExpectationMaximization::fit(const Matrix& x, const std::vector<int>& y, in
   const Matrix z = standardizer_.transform(x);
   MixtureOptions options = options_;
   options.components = requested_clusters_ > 0 ? requested_clusters_ : class_count;
-  mixture_ = fit_gaussian_mixture(z, options, seed);
+  if (start_from_classes_ && options.components != class_count)
+    throw Error(name(), "init=classes starts one cluster per class: clusters=" +
+                            std::to_string(options.components) + " but " +
+                            std::to_string(class_count) + " classes");
+  mixture_ = start_from_classes_ ? fit_gaussian_mixture_from(z, y, options)
+                                 : fit_gaussian_mixture(z, options, seed);
   cluster_classes_ =
       map_clusters_to_classes(mixture_.assign(z), y, mixture_.components(), class_count, mapping_);
 }

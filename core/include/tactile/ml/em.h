@@ -20,7 +20,11 @@
 // (rows sum to 1 minus the responsibility of unmapped clusters).
 // Parameters: clusters (0 = class count), covariance (diagonal|full), restarts (10),
 // iterations (100), tolerance (1e-6), variance_floor (1e-6), mapping (majority|one-to-one),
-// standardize (true).
+// standardize (true), init (kmeans++|classes).
+//   init=classes is ours, a diagnostic, not the paper's unsupervised EM: the first
+// responsibilities are the training labels (cluster k starts as class k's Gaussian), then EM
+// runs unlabelled as usual. It shows what the descriptor's class clusters are worth to a
+// mixture, against what k-means++ restarts find from scratch.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -65,6 +69,11 @@ struct GaussianMixture {
 
 // Throws tactile::Error on no samples, fewer samples than components, NaN, or bad options.
 GaussianMixture fit_gaussian_mixture(const Matrix& x, const MixtureOptions& options, uint64_t seed);
+// One EM run whose first responsibilities are a hard grouping: sample i wholly in component
+// groups[i] (0..components-1). No randomness, no restarts. Throws as above, and on a group
+// count that differs from the samples or a group out of range.
+GaussianMixture fit_gaussian_mixture_from(const Matrix& x, const std::vector<int>& groups,
+                                          const MixtureOptions& options);
 
 enum class ClusterMapping { kMajority, kOneToOne };
 
@@ -98,6 +107,7 @@ class ExpectationMaximization : public Classifier {
   MixtureOptions options_;
   ClusterMapping mapping_ = ClusterMapping::kMajority;
   bool standardize_ = true;
+  bool start_from_classes_ = false;
   int class_count_ = 0;
   Standardizer standardizer_;
   GaussianMixture mixture_;
