@@ -298,6 +298,9 @@ TEST_F(FeaturesCommand, PredictWritesModelLabelsFromASavedModel) {
   ASSERT_EQ(trained.exit_code, 0) << trained.err;
   const nlohmann::json model = nlohmann::json::parse(test::read_text(folder_.file("model.json")));
   EXPECT_EQ(model["pipeline"], "generic");
+  // Every setting of the pipeline, the defaults of this build included, so that a later
+  // default cannot change what predict extracts with this model.
+  EXPECT_EQ(model["pipeline_params"], "modality=display,stream=,threshold=0.2");
   EXPECT_EQ(model["layout"], "grid:5x5");
   EXPECT_EQ(model["classes"], nlohmann::json({"press", "swipe"}));
 

@@ -321,6 +321,22 @@ TEST(FeatureRegistry, ListsGenericAndNamesAnUnknownPipeline) {
   }
 }
 
+// A saved model records its pipeline's settings with the defaults filled in: for every
+// pipeline the recorded text builds a pipeline that records the same text again, and the
+// values given stay as given.
+TEST(FeatureRegistry, EffectiveParametersRebuildTheSamePipeline) {
+  for (const std::string& name : feature_pipelines()) {
+    const std::string effective = effective_pipeline_parameters(name, "", "test");
+    EXPECT_EQ(effective_pipeline_parameters(name, effective, "test"), effective) << name;
+  }
+  const std::string kaboli = effective_pipeline_parameters("kaboli", "motion_hz=5", "test");
+  EXPECT_NE(kaboli.find("motion_hz=5"), std::string::npos) << kaboli;
+  EXPECT_NE(kaboli.find("motion_order=4"), std::string::npos) << kaboli;  // this build's default
+  EXPECT_NE(kaboli.find("threshold_mm="), std::string::npos) << kaboli;
+  EXPECT_THROW(effective_pipeline_parameters("kaboli", "motion_order=3", "test"), Error);
+  EXPECT_THROW(effective_pipeline_parameters("kaboli", "speed=3", "test"), Error);
+}
+
 }  // namespace
 }  // namespace tactile
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "tactile/error.h"
 #include "tactile/parameters.h"
 
@@ -39,6 +41,29 @@ TEST(Parameters, UnknownKeysAreRefusedWithTheKnownOnesListed) {
     EXPECT_NE(error.message().find("'kk'"), std::string::npos);
     EXPECT_NE(error.message().find("k, metric"), std::string::npos);
   }
+}
+
+TEST(Parameters, EveryGetterLeavesTheValueItAnswered) {
+  const Parameters parameters = Parameters::parse("k=3,metric=cosine,flag=yes", "x");
+  EXPECT_EQ(parameters.integer("k", 1), 3);
+  EXPECT_EQ(parameters.text("metric", "euclidean"), "cosine");
+  EXPECT_TRUE(parameters.flag("flag", false));
+  EXPECT_EQ(parameters.number("c", 0.1), 0.1);  // defaulted
+  EXPECT_EQ(parameters.integer("n", -7), -7);
+  EXPECT_FALSE(parameters.flag("off", false));
+  EXPECT_EQ(parameters.text("name", ""), "");
+  const std::map<std::string, std::string> expected = {
+      {"k", "3"},  {"metric", "cosine"}, {"flag", "true"}, {"c", "0.1"},
+      {"n", "-7"}, {"off", "false"},     {"name", ""}};
+  EXPECT_EQ(parameters.answered(), expected);
+  EXPECT_EQ(parameters.answered_text(), "c=0.1,flag=true,k=3,metric=cosine,n=-7,name=,off=false");
+  // Read back, the text gives the same answers, numbers to the last bit.
+  const Parameters again = Parameters::parse(parameters.answered_text(), "y");
+  EXPECT_EQ(again.number("c", 5.0), 0.1);
+  EXPECT_EQ(again.text("name", "other"), "");
+  const Parameters third = Parameters::parse("", "z");
+  EXPECT_EQ(third.number("x", 1.0 / 3.0), 1.0 / 3.0);
+  EXPECT_EQ(Parameters::parse(third.answered_text(), "z").number("x", 0.0), 1.0 / 3.0);
 }
 
 }  // namespace

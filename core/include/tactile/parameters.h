@@ -26,11 +26,21 @@ class Parameters {
   void expect_only(const std::vector<std::string>& known) const;
 
   const std::map<std::string, std::string>& values() const { return values_; }
+  // Every key a typed getter was asked for, with the value it answered: the given text, or
+  // the fallback written so that it reads back the same (numbers round-trip exactly). A method
+  // that reads all its parameters when built thus leaves its effective settings here, so a
+  // saved model can record them and not only what the user typed.
+  const std::map<std::string, std::string>& answered() const { return answered_; }
+  // answered() as "key=value,..." in key order.
+  std::string answered_text() const;
   std::string where() const { return where_; }
   void set_where(std::string where) { where_ = std::move(where); }
 
  private:
+  std::string answer(const std::string& key, std::string value) const;
+
   std::map<std::string, std::string> values_;
+  mutable std::map<std::string, std::string> answered_;
   std::string where_ = "parameters";
 };
 

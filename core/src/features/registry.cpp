@@ -78,4 +78,14 @@ std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name
   return found->make(parameters);
 }
 
+std::string effective_pipeline_parameters(const std::string& name, const std::string& parameters,
+                                          const std::string& where) {
+  const Parameters given = Parameters::parse(parameters, where);
+  make_feature_extractor(name, given);
+  for (const auto& [key, value] : given.answered())
+    if (value.find_first_of(",=") != std::string::npos)
+      throw Error(where, key + "=" + value + ": a value with ',' or '=' cannot be recorded");
+  return given.answered_text();
+}
+
 }  // namespace tactile

@@ -52,8 +52,15 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
     if (id != layout) layout.clear();
   }
   document["layout"] = layout;
-  document["pipeline"] = !pipeline.empty() ? pipeline : layout.empty() ? "" : skin_pipeline(layout);
-  document["pipeline_params"] = pipeline_params;
+  const std::string used = !pipeline.empty() ? pipeline
+                           : layout.empty()  ? ""
+                                             : skin_pipeline(layout);
+  document["pipeline"] = used;
+  // Every setting of the pipeline, defaults included, so that predicting with this model
+  // extracts as its training data was extracted even after a default changes.
+  document["pipeline_params"] =
+      used.empty() ? pipeline_params
+                   : effective_pipeline_parameters(used, pipeline_params, "pipeline parameters");
   // What every recording it learnt from had in common (a device's calibration, its signal
   // convention): given to a stream that carries no metadata (live packets).
   nlohmann::json common = nlohmann::json::object();

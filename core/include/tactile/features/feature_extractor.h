@@ -54,6 +54,12 @@ std::string skin_pipeline(const std::string& layout_id);
 // Throws tactile::Error naming the pipeline when unknown, or a parameter when bad.
 std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
                                                          const Parameters& parameters = {});
+// The settings a pipeline built from `parameters` ("key=value,...") works with: every
+// parameter it reads, given or defaulted, as "key=value,..." that builds the same pipeline
+// again (so a saved model keeps extracting as it was trained, whatever later defaults say).
+// Throws as make_feature_extractor.
+std::string effective_pipeline_parameters(const std::string& name, const std::string& parameters,
+                                          const std::string& where);
 
 // Sample index range [first, last) of a stream covered by [t0, t1), clamped to the stream.
 std::pair<int64_t, int64_t> sample_range(const Stream& stream, double t0, double t1);

@@ -23,7 +23,7 @@ struct SavedModel {
   std::vector<std::string> classes;   // index = the classifier's class index
   std::vector<std::string> features;  // the column names it was fitted on, in order
   std::string pipeline;               // feature pipeline name; "" when not known
-  std::string pipeline_params;        // its parameters, "key=value,..."
+  std::string pipeline_params;        // all its settings, "key=value,..."
   std::string layout;                 // the skin; "" when the table mixed or had none
   // Metadata every training recording shared (a device's calibration): what a stream without
   // metadata of its own (live packets) is given.
@@ -32,7 +32,9 @@ struct SavedModel {
 
 // Fits `specification` on every row of `dataset` and returns the model document:
 // save_classifier's fields plus classes, features, layout (the rows' `layout` metadata
-// when all agree) and pipeline (given, else the layout's own skin_pipeline).
+// when all agree), pipeline (given, else the layout's own skin_pipeline) and pipeline_params:
+// every setting that pipeline reads, the given ones and the defaults of this build (see
+// effective_pipeline_parameters). Throws tactile::Error on a bad pipeline or parameter.
 nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
                                   uint64_t seed, const std::string& pipeline = "",
                                   const std::string& pipeline_params = "");
