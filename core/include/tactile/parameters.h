@@ -29,7 +29,9 @@ class Parameters {
   // Every key a typed getter was asked for, with the value it answered: the given text, or
   // the fallback written so that it reads back the same (numbers round-trip exactly). A method
   // that reads all its parameters when built thus leaves its effective settings here, so a
-  // saved model can record them and not only what the user typed.
+  // saved model can record them and not only what the user typed. Because the getters write
+  // this record, one Parameters object must not be read from two threads at once (none is:
+  // every method reads its own copy when it is built).
   const std::map<std::string, std::string>& answered() const { return answered_; }
   // answered() as "key=value,..." in key order.
   std::string answered_text() const;
