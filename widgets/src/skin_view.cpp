@@ -169,7 +169,7 @@ void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTrans
 }
 
 void draw_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size, double value_min, double value_max,
-                 const std::string& label) {
+                 const std::string& label, bool change) {
   const float line = ImGui::GetTextLineHeight();
   const float bar_left = top_left.x + 8.0f;
   const float bar_top = top_left.y + 1.5f * line + 4.0f;
@@ -188,9 +188,12 @@ void draw_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size, double value_mi
   }
   draw.AddRect(ImVec2(bar_left, bar_top), ImVec2(bar_left + kLegendBarWidth, bar_bottom), kOutline);
   char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value_max);
+  std::snprintf(text, sizeof text, change ? "+%.3g" : "%.3g", value_max);
   draw.AddText(ImVec2(bar_left + kLegendBarWidth + 4.0f, bar_top - 0.5f * line), kText, text);
-  std::snprintf(text, sizeof text, "%.3g", value_min);
+  if (change)
+    std::snprintf(text, sizeof text, "rest");
+  else
+    std::snprintf(text, sizeof text, "%.3g", value_min);
   draw.AddText(ImVec2(bar_left + kLegendBarWidth + 4.0f, bar_bottom - 0.5f * line), kText, text);
   if (!label.empty()) {
     const ImVec4 clip(top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y);
@@ -364,7 +367,8 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
     const ImVec2 legend_min(origin.x + geometry.map_size.x, origin.y);
     draw_legend(draw, legend_min, ImVec2(size.x - geometry.map_size.x, size.y), value_min,
                 value_max,
-                style.modality_label.empty() ? layout.display_modality : style.modality_label);
+                style.modality_label.empty() ? layout.display_modality : style.modality_label,
+                style.values_are_change);
   }
 
   if (result.hovered_taxel >= 0) {

@@ -125,6 +125,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   const std::vector<float> values = skin_values_now(state, value_min, value_max);
   SkinViewStyle style;
   style.modality_label = current;
+  style.values_are_change = !state.show_raw_values;
   style.zoom = &state.skin_zoom;
   // The selected taxels, and the region of the selected label (a label on "all"
   // outlines nothing).

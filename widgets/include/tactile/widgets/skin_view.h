@@ -43,6 +43,9 @@ struct SkinViewStyle {
   bool show_legend = true;
   bool show_group_names = true;     // names of "body-part", "location" and "side" groups
   std::string modality_label = {};  // legend title; empty: the layout's display modality
+  // The values are changes from each taxel's rest level, not readings: the legend's scale
+  // reads "rest" at the bottom and "+max" at the top.
+  bool values_are_change = false;
   SkinViewZoom* zoom = nullptr;     // interactive zoom and pan when given
   std::span<const int64_t> selected_taxels = {};  // outlined (taxel ids)
 };
