@@ -23,6 +23,23 @@ struct ExperimentArgs {
   uint64_t seed = 1;
   bool quick = false;
   bool json = false;
+  bool keep = false;
+};
+
+// Removes the folder when it goes out of scope (the run ended, or failed), unless released.
+class RemoveWhenDone {
+ public:
+  explicit RemoveWhenDone(std::string folder) : folder_(std::move(folder)) {}
+  ~RemoveWhenDone() {
+    if (folder_.empty()) return;
+    std::error_code error;  // a folder that cannot be removed is left, never a crash
+    std::filesystem::remove_all(folder_, error);
+  }
+  RemoveWhenDone(const RemoveWhenDone&) = delete;
+  RemoveWhenDone& operator=(const RemoveWhenDone&) = delete;
+
+ private:
+  std::string folder_;
 };
 
 // A fresh folder under the system temp dir, so repeated runs never mix their simulations.
@@ -49,9 +66,14 @@ void run(const ExperimentArgs& args) {
   const std::vector<std::string> names = experiments::experiment_names();
   if (std::find(names.begin(), names.end(), args.name) == names.end())
     experiments::run_experiment(args.name, options);  // throws, listing the known names
+  // A run simulates hundreds of MB; in a folder of its own choosing it cleans up after
+  // itself unless asked to keep it (--keep), so repeated runs do not fill the disk.
+  std::unique_ptr<RemoveWhenDone> cleanup;
   if (args.work.empty()) {
     options.work_dir = default_work_dir(args.name);
-    std::cerr << "work folder: " << options.work_dir << "\n";
+    std::cerr << "work folder: " << options.work_dir
+              << (args.keep ? "" : " (removed when done; --keep or --work DIR keeps it)") << "\n";
+    if (!args.keep) cleanup = std::make_unique<RemoveWhenDone>(options.work_dir);
   } else {
     std::error_code error;
     std::filesystem::create_directories(args.work, error);
@@ -74,7 +96,7 @@ void run(const ExperimentArgs& args) {
     nlohmann::json document = report.json;
     document["name"] = report.name;
     document["paper"] = report.paper;
-    document["work_dir"] = options.work_dir;
+    if (!cleanup) document["work_dir"] = options.work_dir;  // only a folder that stays
     std::cout << document.dump(2) << "\n";
   } else {
     std::cout << experiments::format_report(report);
@@ -92,10 +114,13 @@ void register_experiment(CLI::App& app) {
   command->add_option("--data", args->data,
                       "recordings and labels.db of the skin (default: simulate)");
   command->add_option("--work", args->work,
-                      "folder for simulated data (default: a new folder under the temp dir)");
+                      "folder for simulated data, kept (default: a new folder under the temp "
+                      "dir, removed when done)");
   command->add_option("--seed", args->seed, "seed for simulation, folds and training");
   command->add_flag("--quick", args->quick, "a much smaller corpus, for smoke runs");
   command->add_flag("--json", args->json, "print the report as JSON");
+  command->add_flag("--keep", args->keep,
+                    "keep the default work folder (its simulated recordings and labels)");
   command->callback([args] { run(*args); });
 }
 

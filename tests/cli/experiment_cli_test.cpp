@@ -31,19 +31,34 @@ TEST(ExperimentCli, QuickFluxSomPrintsTablesAndSimulatesIntoWorkFolder) {
   EXPECT_EQ(document["tables"][0]["paper_components"], 8);
 }
 
-TEST(ExperimentCli, DefaultWorkFolderIsNamedOnStderr) {
+std::string work_folder_named_in(const std::string& err) {
+  const std::string marker = "work folder: ";
+  const size_t at = err.find(marker);
+  if (at == std::string::npos) return {};
+  const std::string line = err.substr(at + marker.size(), err.find('\n', at) - at - marker.size());
+  return line.substr(0, line.find(" (removed"));
+}
+
+// Without --work a run simulates into a folder of its own under the temp dir, named on
+// stderr, and removes it when done (hundreds of MB a run); --keep keeps it.
+TEST(ExperimentCli, DefaultWorkFolderIsRemovedWhenDoneUnlessKept) {
   TempFolder folder;
   const CommandResult result =
       run_program("tactile", "experiment tsa-classifiers --quick --json", folder);
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  const std::string marker = "work folder: ";
-  const size_t at = result.err.find(marker);
-  ASSERT_NE(at, std::string::npos) << result.err;
-  const std::string work =
-      result.err.substr(at + marker.size(), result.err.find('\n', at) - at - marker.size());
-  EXPECT_TRUE(std::filesystem::exists(work + "/tsa/labels.db")) << work;
-  EXPECT_EQ(nlohmann::json::parse(result.out)["work_dir"], work);
-  std::filesystem::remove_all(work);
+  const std::string work = work_folder_named_in(result.err);
+  ASSERT_FALSE(work.empty()) << result.err;
+  EXPECT_NE(result.err.find("removed when done"), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(work)) << work;
+  EXPECT_FALSE(nlohmann::json::parse(result.out).contains("work_dir"));
+
+  const CommandResult kept =
+      run_program("tactile", "experiment tsa-classifiers --quick --json --keep", folder);
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  const std::string kept_work = work_folder_named_in(kept.err);
+  EXPECT_TRUE(std::filesystem::exists(kept_work + "/tsa/labels.db")) << kept_work;
+  EXPECT_EQ(nlohmann::json::parse(kept.out)["work_dir"], kept_work);
+  std::filesystem::remove_all(kept_work);
 }
 
 TEST(ExperimentCli, UnknownNameFailsListingKnownExperiments) {
