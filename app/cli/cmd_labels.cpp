@@ -23,6 +23,7 @@
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/labels/quality.h"
+#include "tactile/text.h"
 
 namespace tactile::cli {
 
@@ -48,12 +49,6 @@ LabelFilter filter_from(const LabelsOptions& options) {
   return filter;
 }
 
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-
 // A note on one table row: line breaks and tabs shown, not obeyed.
 std::string one_line(const std::string& text) {
   std::string line;
@@ -74,9 +69,9 @@ void print_table(const std::vector<Label>& labels, std::ostream& out) {
   std::vector<std::vector<std::string>> rows = {{"id", "recording", "t0", "t1", "region", "class",
                                                  "annotator", "source", "confidence", "note"}};
   for (const Label& label : labels)
-    rows.push_back({std::to_string(label.id), label.recording, number_text(label.t0),
-                    number_text(label.t1), label.region, label.class_name, label.annotator,
-                    to_string(label.source), number_text(label.confidence), one_line(label.note)});
+    rows.push_back({std::to_string(label.id), label.recording, shortest_text(label.t0),
+                    shortest_text(label.t1), label.region, label.class_name, label.annotator,
+                    to_string(label.source), shortest_text(label.confidence), one_line(label.note)});
   std::vector<size_t> widths(rows.front().size(), 0);
   for (const auto& row : rows)
     for (size_t column = 0; column < row.size(); ++column)

@@ -10,6 +10,9 @@
 #include <iterator>
 #include <string>
 
+#include "tactile/live/udp.h"
+#include "test_paths.h"
+
 namespace tactile::test {
 
 inline std::string read_text(const std::filesystem::path& path) {
@@ -52,7 +55,7 @@ inline CommandResult run_program(const std::string& program, const std::string& 
                                  const TempFolder& folder) {
   const std::string out = folder.file(".stdout.txt");
   const std::string err = folder.file(".stderr.txt");
-  const std::string command = std::string(TACTILE_BIN_DIR) + "/" + program + " " + arguments +
+  const std::string command = tactile::test::bin_dir() + "/" + program + " " + arguments +
                               " >'" + out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(command.c_str());
   CommandResult result;
@@ -63,5 +66,8 @@ inline CommandResult run_program(const std::string& program, const std::string& 
   std::filesystem::remove(err);
   return result;
 }
+
+// A UDP port on the loopback that nobody holds now (the system picks it).
+inline uint16_t free_port() { return UdpSocket::bind_to({"127.0.0.1", 0}).local_port(); }
 
 }  // namespace tactile::test

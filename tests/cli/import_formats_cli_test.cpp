@@ -5,17 +5,19 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "cli_test_support.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "test_paths.h"
 
 namespace tactile {
 namespace {
 
 using test::run_program;
 
-const std::string kData = std::string(TACTILE_TEST_DATA_DIR) + "/import/";
+const std::string kData = tactile::test::test_data_dir() + "/import/";
 
 class ImportFormats : public ::testing::Test {
  protected:

@@ -13,13 +13,14 @@
 #include <string>
 
 #include "cli_test_support.h"
+#include "test_paths.h"
 
 namespace {
 
 using tactile::test::CommandResult;
 using tactile::test::read_text;
 
-const std::string kData = std::string(TACTILE_TEST_DATA_DIR) + "/io";
+const std::string kData = tactile::test::test_data_dir() + "/io";
 
 class IoCommand : public ::testing::Test {
  protected:

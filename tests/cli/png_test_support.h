@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace tactile {
@@ -33,6 +34,20 @@ inline int count_viridis_top(const Png& png) {
       count += std::abs(p[0] - 253) < 8 && std::abs(p[1] - 231) < 8 && std::abs(p[2] - 37) < 12;
     }
   return count;
+}
+
+// Distinct colours of an image region (every second pixel; the whole image by default): a view
+// that drew nothing has two or three.
+inline size_t colours_in(const Png& png, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
+  if (x1 < 0) x1 = png.width;
+  if (y1 < 0) y1 = png.height;
+  std::set<uint32_t> colours;
+  for (int y = y0; y < y1; y += 2)
+    for (int x = x0; x < x1; x += 2) {
+      const unsigned char* p = png.at(x, y);
+      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
+    }
+  return colours.size();
 }
 
 }  // namespace tactile

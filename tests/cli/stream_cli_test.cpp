@@ -17,12 +17,11 @@ namespace tactile {
 namespace {
 
 using test::CommandResult;
+using test::free_port;
 using test::run_program;
 using test::TempFolder;
 
 // A loopback port nobody uses right now (the kernel's pick, released again).
-uint16_t free_port() { return UdpSocket::bind_to({"127.0.0.1", 0}).local_port(); }
-
 // True once someone holds `port` (the listener has bound it), false after `timeout`.
 bool wait_until_bound(uint16_t port, std::chrono::seconds timeout) {
   const auto end = std::chrono::steady_clock::now() + timeout;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_test_support.h"
+#include "test_paths.h"
 
 namespace tactile {
 namespace {
@@ -94,9 +95,9 @@ TEST_F(VerifyCli, ADamagedLabelRowIsNamedAndLeftOutOfTheExport) {
 TEST_F(VerifyCli, UpgradeRewritesFilesOfTheEarlierFormat) {
   const std::string old_recording = folder.file("old.h5");
   const std::string old_store = folder.file("old.db");
-  std::filesystem::copy_file(std::string(TACTILE_TEST_DATA_DIR) + "/format_v1/fur-s01-t01.h5",
+  std::filesystem::copy_file(tactile::test::test_data_dir() + "/format_v1/fur-s01-t01.h5",
                              old_recording);
-  std::filesystem::copy_file(std::string(TACTILE_TEST_DATA_DIR) + "/format_v1/labels.db",
+  std::filesystem::copy_file(tactile::test::test_data_dir() + "/format_v1/labels.db",
                              old_store);
   EXPECT_EQ(tactile("verify " + old_recording + " " + old_store).exit_code, 1);
   const auto before = tactile("export " + old_recording + " --csv " + folder.file("before.csv"));

@@ -43,19 +43,6 @@ class WorkbenchClassifiers : public ::testing::Test {
   int scripts = 0;
 };
 
-// Distinct colours of an image region: an empty view has two or three.
-size_t colours_in(const Png& png, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
-  if (x1 < 0) x1 = png.width;
-  if (y1 < 0) y1 = png.height;
-  std::set<uint32_t> colours;
-  for (int y = y0; y < y1; y += 2)
-    for (int x = x0; x < x1; x += 2) {
-      const unsigned char* p = png.at(x, y);
-      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
-    }
-  return colours.size();
-}
-
 const char* kTrainAll =
     "wait 2\nclick item tab:model\nwait 2\nclick item button:Train all\nwait training\nwait 3\n";
 

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "cli_test_support.h"
+#include "test_paths.h"
 
 extern char** environ;
 
@@ -254,7 +255,7 @@ TEST_F(WorkbenchLabelling, MarksMadeWhilePlayingAreMovedBackByTheReactionTime) {
 TEST_F(WorkbenchLabelling, ALabelCommittedJustBeforeAKillIsInTheDatabase) {
   const std::string script_path =
       script("wait 2\ntime 3\nkey [\ntime 4\nkey ]\nkey 1\nkey Enter\nsleep 60\n");
-  const std::string program = std::string(TACTILE_BIN_DIR) + "/tactile-workbench-headless";
+  const std::string program = tactile::test::bin_dir() + "/tactile-workbench-headless";
   const std::string command = program + " " + arguments(script_path) + " >/dev/null 2>&1";
   pid_t child = 0;
   const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};

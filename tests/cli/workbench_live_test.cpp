@@ -22,19 +22,8 @@ namespace tactile {
 namespace {
 
 using test::CommandResult;
+using test::free_port;
 using test::run_program;
-
-uint16_t free_port() { return UdpSocket::bind_to({"127.0.0.1", 0}).local_port(); }
-
-size_t colours_in(const Png& png, int x0, int y0, int x1, int y1) {
-  std::set<uint32_t> colours;
-  for (int y = y0; y < y1; y += 2)
-    for (int x = x0; x < x1; x += 2) {
-      const unsigned char* p = png.at(x, y);
-      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
-    }
-  return colours.size();
-}
 
 class WorkbenchLive : public ::testing::Test {
  protected:

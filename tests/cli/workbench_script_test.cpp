@@ -92,17 +92,6 @@ TEST_F(WorkbenchScript, MenusAreChosenByName) {
   EXPECT_NEAR(png.height, exported["views"]["skin"]["height"].get<double>(), 1.0);
 }
 
-// Distinct colours of an image: a view that drew nothing has two or three.
-size_t colours_in(const Png& png) {
-  std::set<uint32_t> colours;
-  for (int y = 0; y < png.height; y += 2)
-    for (int x = 0; x < png.width; x += 2) {
-      const unsigned char* p = png.at(x, y);
-      colours.insert(p[0] << 16 | p[1] << 8 | p[2]);
-    }
-  return colours.size();
-}
-
 TEST_F(WorkbenchScript, EveryViewRendersAloneToAPngOfTheAskedSize) {
   for (const char* view : {"workspace", "info", "skin", "signals", "timeline"}) {
     const std::string png_path = folder.file(std::string(view) + ".png");
@@ -163,7 +152,7 @@ TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
 }
 
 TEST_F(WorkbenchScript, ARelativePathListsItsFolderAsTheWorkspace) {
-  const std::string command = "cd '" + folder.path().string() + "' && " + TACTILE_BIN_DIR +
+  const std::string command = "cd '" + folder.path().string() + "' && " + tactile::test::bin_dir() +
                               "/tactile-workbench-headless press.h5 --settings settings.json --script " +
                               script("state @relative.json\n") + " >/dev/null 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);

@@ -6,16 +6,18 @@
 
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/io/array_import.h"
 #include "tactile/io/csv.h"
+#include "test_paths.h"
 
 namespace tactile {
 namespace {
 
-const std::string kData = std::string(TACTILE_TEST_DATA_DIR) + "/import/";
+const std::string kData = tactile::test::test_data_dir() + "/import/";
 
 std::vector<uint8_t> bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

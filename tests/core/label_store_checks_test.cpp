@@ -13,6 +13,7 @@
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
 #include "tactile/io/verify.h"
+#include "test_paths.h"
 
 namespace tactile {
 namespace {
@@ -168,7 +169,7 @@ class LabelStoreSchema1 : public LabelStoreTest {
  protected:
   void SetUp() override {
     LabelStoreTest::SetUp();
-    std::filesystem::copy_file(std::string(TACTILE_TEST_DATA_DIR) + "/format_v1/labels.db", path_);
+    std::filesystem::copy_file(tactile::test::test_data_dir() + "/format_v1/labels.db", path_);
   }
 };
 

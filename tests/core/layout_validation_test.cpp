@@ -12,6 +12,7 @@
 
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
+#include "test_paths.h"
 
 namespace tactile {
 namespace {
@@ -267,7 +268,7 @@ TEST_F(LayoutFiles, AssetDirectoryComesFromTheEnvironmentWhenSet) {
   EXPECT_EQ(asset_dir(), directory_.string());
   EXPECT_EQ(load_layout("tiny").taxels.size(), 2u);
   ::unsetenv("TACTILE_ASSETS");
-  EXPECT_EQ(asset_dir(), std::string(TACTILE_ASSET_DIR));
+  EXPECT_EQ(asset_dir(), tactile::test::asset_dir());
 }
 
 TEST_F(LayoutFiles, FileDeclaringAnotherIdIsRejected) {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "ml_test_data.h"
 #include "tactile/error.h"

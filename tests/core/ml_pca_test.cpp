@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/ml/pca.h"

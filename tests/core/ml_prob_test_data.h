@@ -1,26 +1,17 @@
 #pragma once
 // Synthetic data for the probabilistic classifier tests: Gaussian blobs drawn with our own
 // Box-Muller transform (so the samples are the same on every standard library) and the
-// Bayes rule of the true densities they were drawn from.
+// Bayes rule of the true densities they were drawn from. Defined in ml_prob_test_data.cpp,
+// so the Eigen factorisations are compiled once, not in every test that draws blobs.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/LU>
-#include <cmath>
-#include <numbers>
 #include <random>
 #include <vector>
 
 namespace tactile::ml::test_data {
 
-inline double uniform_open(std::mt19937_64& random) {
-  return (static_cast<double>(random() >> 11) + 0.5) * 0x1.0p-53;
-}
-
-inline double standard_normal(std::mt19937_64& random) {
-  const double radius = std::sqrt(-2.0 * std::log(uniform_open(random)));
-  return radius * std::cos(2.0 * std::numbers::pi * uniform_open(random));
-}
+double uniform_open(std::mt19937_64& random);
+double standard_normal(std::mt19937_64& random);
 
 struct Blob {
   Eigen::VectorXd mean;
@@ -28,51 +19,15 @@ struct Blob {
 };
 
 // `count` rows drawn from N(mean, covariance).
-inline Eigen::MatrixXd draw(const Blob& blob, int count, std::mt19937_64& random) {
-  const Eigen::MatrixXd lower = blob.covariance.llt().matrixL();
-  Eigen::MatrixXd rows(count, blob.mean.size());
-  for (int row = 0; row < count; ++row) {
-    Eigen::VectorXd z(blob.mean.size());
-    for (Eigen::Index j = 0; j < z.size(); ++j) z(j) = standard_normal(random);
-    rows.row(row) = (blob.mean + lower * z).transpose();
-  }
-  return rows;
-}
+Eigen::MatrixXd draw(const Blob& blob, int count, std::mt19937_64& random);
 
 // Rows of each blob stacked in blob order, labels = blob index.
-inline void draw_classes(const std::vector<Blob>& blobs, int per_class, std::mt19937_64& random,
-                         Eigen::MatrixXd& x, std::vector<int>& y) {
-  x.resize(static_cast<Eigen::Index>(blobs.size()) * per_class, blobs.front().mean.size());
-  y.clear();
-  for (size_t k = 0; k < blobs.size(); ++k) {
-    x.middleRows(static_cast<Eigen::Index>(k) * per_class, per_class) =
-        draw(blobs[k], per_class, random);
-    y.insert(y.end(), static_cast<size_t>(per_class), static_cast<int>(k));
-  }
-}
+void draw_classes(const std::vector<Blob>& blobs, int per_class, std::mt19937_64& random,
+                  Eigen::MatrixXd& x, std::vector<int>& y);
 
 // The Bayes rule with equal priors: the blob of highest true density.
-inline std::vector<int> bayes_rule(const std::vector<Blob>& blobs, const Eigen::MatrixXd& x) {
-  std::vector<int> decision(static_cast<size_t>(x.rows()), 0);
-  for (Eigen::Index row = 0; row < x.rows(); ++row) {
-    double best = -INFINITY;
-    for (size_t k = 0; k < blobs.size(); ++k) {
-      const Eigen::VectorXd centred = x.row(row).transpose() - blobs[k].mean;
-      const double log_density = -0.5 * (std::log(blobs[k].covariance.determinant()) +
-                                         centred.dot(blobs[k].covariance.ldlt().solve(centred)));
-      if (log_density > best) {
-        best = log_density;
-        decision[static_cast<size_t>(row)] = static_cast<int>(k);
-      }
-    }
-  }
-  return decision;
-}
+std::vector<int> bayes_rule(const std::vector<Blob>& blobs, const Eigen::MatrixXd& x);
 
-inline double agreement(const std::vector<int>& a, const std::vector<int>& b) {
-  int same = 0;
-  for (size_t i = 0; i < a.size(); ++i) same += a[i] == b[i];
-  return static_cast<double>(same) / static_cast<double>(a.size());
-}
+double agreement(const std::vector<int>& a, const std::vector<int>& b);
 
 }  // namespace tactile::ml::test_data

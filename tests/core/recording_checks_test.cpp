@@ -12,13 +12,14 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/verify.h"
+#include "test_paths.h"
 
 namespace tactile {
 namespace {
 
 using testing::TemporaryDirectory;
 
-const std::string kFormat1 = std::string(TACTILE_TEST_DATA_DIR) + "/format_v1/fur-s01-t01.h5";
+const std::string kFormat1 = tactile::test::test_data_dir() + "/format_v1/fur-s01-t01.h5";
 
 Recording ramp_recording() {
   Recording recording;

@@ -11,6 +11,7 @@
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/sim/simulator.h"
+#include "test_statistics.h"
 
 namespace tactile {
 
@@ -64,11 +65,6 @@ Eigen::VectorXf rest_level(const Stream& stream, double t0, double seconds) {
 // Pressure seen by each cell: how far its reading fell below its quiescent level.
 Eigen::VectorXf drop_at(const Stream& stream, const Eigen::VectorXf& rest, int64_t frame) {
   return rest - stream.samples.row(frame).transpose();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
 // Spec §3.2: first-order high-pass at 0.2 Hz of u = 1023 - raw.
@@ -280,8 +276,8 @@ TEST(FurSimulator, StrokeContactTravelsWhilePushStaysPut) {
       ASSERT_FALSE(centres.empty());
       travel[label.class_name].push_back(longest_travel(centres));
     }
-  EXPECT_GT(median(travel["stroke"]), 60.0);
-  EXPECT_GT(median(travel["stroke"]), 3.0 * median(travel["push"]));
+  EXPECT_GT(test::median(travel["stroke"]), 60.0);
+  EXPECT_GT(test::median(travel["stroke"]), 3.0 * test::median(travel["push"]));
 }
 
 TEST(FurSimulator, FondleIsDoneInSeveralWaysMostOftenByKneadingInPlace) {
@@ -339,7 +335,7 @@ TEST(FurSimulator, FrontAndBackApproachesTouchDifferentPartsOfTheHead) {
       for (const Point2& centre : contact_centres(trial, label))
         heights[trial.recording.metadata.at("approach")].push_back(centre.y);
   // From the front the hand lands on the crown (small y), from behind lower down.
-  EXPECT_LT(median(heights["front"]) + 60.0, median(heights["back"]));
+  EXPECT_LT(test::median(heights["front"]) + 60.0, test::median(heights["back"]));
 }
 
 TEST(FurSimulator, QuiescentOffsetShiftsAfterAContactButTheHighPassRemovesIt) {

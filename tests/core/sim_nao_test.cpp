@@ -13,6 +13,7 @@
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/sim/simulator.h"
+#include "test_statistics.h"
 
 namespace tactile {
 
@@ -112,11 +113,6 @@ void for_each_label(const std::string& class_name, Visit visit) {
   for (const SimulatedTrial& trial : stationary_trials())
     for (const Label& label : trial.labels)
       if (label.class_name == class_name) visit(trial.recording.streams.front(), label);
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
 }
 
 // Energy of the accelerometer axes of `cell` above `low_hz` in [first, last] (DFT power per
@@ -335,8 +331,8 @@ TEST(SimNao, SlapsAreShorterThanPushes) {
                  [&](const Stream& s, const Label& l) { slaps.push_back(contact_time(s, l)); });
   for_each_label("push",
                  [&](const Stream& s, const Label& l) { pushes.push_back(contact_time(s, l)); });
-  EXPECT_LT(median(slaps), 0.2);
-  EXPECT_GT(median(pushes), 1.0);
+  EXPECT_LT(test::median(slaps), 0.2);
+  EXPECT_GT(test::median(pushes), 1.0);
   EXPECT_LT(*std::max_element(slaps.begin(), slaps.end()),
             *std::min_element(pushes.begin(), pushes.end()));
 }
@@ -392,7 +388,7 @@ TEST(SimNao, ScratchShakesAboveFiftyHertzMoreThanPush) {
                  [&](const Stream& s, const Label& l) { scratches.push_back(high_energy(s, l)); });
   for_each_label("push",
                  [&](const Stream& s, const Label& l) { pushes.push_back(high_energy(s, l)); });
-  EXPECT_GT(median(scratches), 5.0 * median(pushes));
+  EXPECT_GT(test::median(scratches), 5.0 * test::median(pushes));
 }
 
 // Variance of each accelerometer axis after a 0.5 s moving average (what is left below ~2 Hz).
@@ -590,7 +586,7 @@ TEST(SimNao, HandWarmsTouchedCellsByLessThanOneDegree) {
     }
   });
   ASSERT_FALSE(rises.empty());
-  EXPECT_GT(median(rises), 0.05);
+  EXPECT_GT(test::median(rises), 0.05);
 }
 
 }  // namespace

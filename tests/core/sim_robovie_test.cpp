@@ -8,6 +8,7 @@
 
 #include "tactile/error.h"
 #include "tactile/sim/robovie_sim.h"
+#include "test_statistics.h"
 
 namespace tactile {
 namespace {
@@ -64,11 +65,6 @@ std::map<std::string, double> part_rms(const Stream& skin, double t0, double t1,
   std::map<std::string, double> result;
   for (const auto& [part, sum] : sums) result[part] = sum.first / sum.second;
   return result;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
 std::string loudest(const std::map<std::string, double>& rms) {
@@ -328,9 +324,9 @@ TEST(SimRobovie, TheRobotPlaysEachStagesOwnMovementInEveryTrial) {
     }
   }
   for (const char* stage : {"Whee!", "Let's play!"}) {
-    const double typical = median(arms[stage]);
+    const double typical = test::median(arms[stage]);
     for (const double value : arms[stage]) EXPECT_NEAR(value, typical, 0.25 * typical) << stage;
-    EXPECT_GT(typical, 2.0 * median(arms["talking"])) << stage;
+    EXPECT_GT(typical, 2.0 * test::median(arms["talking"])) << stage;
   }
 }
 

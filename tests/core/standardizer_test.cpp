@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "tactile/ml/classifier.h"
 
 namespace tactile::ml {

@@ -1,4 +1,5 @@
 // The layout JSON loader and its validation (assets/layouts/*.json, or a user's own layout).
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "fuzz_support.h"

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "tactile/error.h"
@@ -20,11 +21,6 @@ namespace tactile {
 namespace fs = std::filesystem;
 
 namespace {
-
-bool fail(WorkbenchState& state, const std::string& message) {
-  state.error = message;
-  return false;
-}
 
 std::string label_database(const WorkbenchState& state) {
   if (state.document && !state.document->labels_path.empty()) return state.document->labels_path;

@@ -29,11 +29,6 @@ double mark_time(const WorkbenchState& state) {
   return std::clamp(t, state.clock.start(), state.clock.end());
 }
 
-bool fail(WorkbenchState& state, const std::string& message) {
-  state.error = message;
-  return false;
-}
-
 // After an edit: the lanes are rebuilt from the store, what was made is selected.
 void after_edit(WorkbenchState& state, int64_t selected, const std::string& notice) {
   state.document->reload_labels();

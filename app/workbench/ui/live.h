@@ -4,7 +4,7 @@
 // buffer, the recorder (if recording) and the contact detector (if recording starts by
 // itself), and, following, moves the plots and the skin to the newest sample.
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "workbench_state.h"

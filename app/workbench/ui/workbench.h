@@ -3,7 +3,7 @@
 // program, which only supply the frame loop and the OpenGL backend. It arranges the
 // views (views.h) with splitters, runs the menus and carries out the views' requests.
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <array>
 #include <initializer_list>
 #include <optional>

@@ -233,4 +233,10 @@ struct WorkbenchState {
   FileBrowser file_browser;
 };
 
+// Puts `message` on the status bar's error line; false, so that a step can `return fail(...)`.
+inline bool fail(WorkbenchState& state, const std::string& message) {
+  state.error = message;
+  return false;
+}
+
 }  // namespace tactile

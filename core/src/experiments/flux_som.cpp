@@ -1,6 +1,7 @@
 // `flux-som`: the silicone flux sensor paper (file 004) — PCA to 90 % variance, a 7 x 7 SOM
 // labelled into class regions (Fig 8B) and its confusion matrix (Fig 8C), spec §5.8-5.13.
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "experiment_data.h"
 #include "tactile/error.h"
@@ -8,6 +9,7 @@
 #include "tactile/ml/evaluation.h"
 #include "tactile/ml/pca.h"
 #include "tactile/ml/som.h"
+#include "tactile/text.h"
 
 namespace tactile::experiments {
 
@@ -15,12 +17,6 @@ namespace {
 
 constexpr int kPaperComponents = 8;         // §5.13: 8 components explain 90 % of variance
 constexpr double kVarianceFraction = 0.90;  // §5.8
-
-std::string fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
 
 }  // namespace
 
@@ -121,7 +117,7 @@ ExperimentReport run_flux_som(const ExperimentOptions& options) {
   matrix.note =
       "The paper shows Fig 8C without an accuracy (it calls a class correct when its "
       "diagonal cell is non-zero, which is not an accuracy); chance is " +
-      fixed(100.0 / class_count, 1) + " %. Simulated skins: figures differ.";
+      fixed_text(100.0 / class_count, 1) + " %. Simulated skins: figures differ.";
   report.tables.push_back(matrix);
 
   nlohmann::json confusion_json = nlohmann::json::array();

@@ -1,4 +1,5 @@
 #include <array>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "kaboli_common.h"

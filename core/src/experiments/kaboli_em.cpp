@@ -1,9 +1,11 @@
 #include <array>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "kaboli_common.h"
 #include "tactile/experiments/kaboli.h"
 #include "tactile/ml/em.h"
+#include "tactile/text.h"
 
 namespace tactile::experiments {
 
@@ -28,11 +30,6 @@ double log_likelihood_per_sample(const Scored& scored) {
   return em.mixture().log_likelihood / static_cast<double>(scored.train_rows);
 }
 
-std::string fixed(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.2f", value);
-  return text;
-}
 }  // namespace
 
 ExperimentReport run_kaboli_em(const ExperimentOptions& options) {
@@ -66,8 +63,8 @@ ExperimentReport run_kaboli_em(const ExperimentOptions& options) {
     if (options.progress) options.progress("em", ++done, static_cast<int>(kScenarios.size()));
     table.rows.push_back({scenario.name, set_name(scenario.train), set_name(scenario.test),
                           percent(scored.accuracy), percent(scenario.paper_accuracy),
-                          percent(from_classes.accuracy), fixed(likelihood),
-                          fixed(class_likelihood)});
+                          percent(from_classes.accuracy), fixed_text(likelihood, 2),
+                          fixed_text(class_likelihood, 2)});
     nlohmann::json entry;
     entry["title"] = scenario.name;
     entry["train"] = set_name(scenario.train);

@@ -1,5 +1,6 @@
 #include "kaboli_common.h"
 #include "tactile/experiments/kaboli.h"
+#include <nlohmann/json.hpp>
 
 namespace tactile::experiments {
 

@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "experiment_data.h"
 #include "tactile/error.h"
 #include "tactile/experiments/robovie.h"
 #include "tactile/ml/clafic.h"
 #include "tactile/ml/evaluation.h"
+#include "tactile/text.h"
 
 namespace tactile::experiments {
 
@@ -42,12 +44,6 @@ const std::vector<Condition>& conditions() {
        ">= 60 % for classes 1, 8, 11, 15 with ~5 %", 0.6, 0.05, {1, 8, 11, 15}},
   };
   return list;
-}
-
-std::string fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
 }
 
 double mean(const std::vector<double>& values) {
@@ -134,8 +130,8 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
       at_60 += recognition >= 0.6 ? 1 : 0;
       at_80 += recognition >= 0.8 ? 1 : 0;
       per_class.rows[static_cast<size_t>(k)].push_back(
-          fixed(100.0 * recognition, 0) + " / " +
-          fixed(100.0 * rates.false_alarm[static_cast<size_t>(k)], 0));
+          fixed_text(100.0 * recognition, 0) + " / " +
+          fixed_text(100.0 * rates.false_alarm[static_cast<size_t>(k)], 0));
     }
     // Mean recognition over the classes the paper names for this condition: the figure to hold
     // against its reading (spec §4.11).
@@ -162,7 +158,7 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
                             percent_text(mean(rates.false_alarm)), percent_text(unknown),
                             std::to_string(at_60), std::to_string(at_80),
                             named.empty() ? "-" : percent_text(mean(named)), percent_text(fraction),
-                            fixed(sensors, 1), condition.paper});
+                            fixed_text(sensors, 1), condition.paper});
 
     nlohmann::json confusion_json = nlohmann::json::array();
     for (int k = 0; k < class_count; ++k) {

@@ -2,10 +2,12 @@
 // Learner presets on the 4-D event vector, stratified 7-fold CV (spec §2.13-2.15).
 #include <array>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "experiment_data.h"
 #include "tactile/experiments/tsa.h"
 #include "tactile/ml/evaluation.h"
+#include "tactile/text.h"
 
 namespace tactile::experiments {
 
@@ -33,12 +35,6 @@ const std::array<Preset, 10> kPresets = {{
 }};
 
 const std::array<const char*, 6> kPaperClasses = {"T1", "T2", "T3", "T4", "T5", "T6"};
-
-std::string fixed(double value, int decimals) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
 
 }  // namespace
 
@@ -88,13 +84,13 @@ ExperimentReport run_tsa_classifiers(const ExperimentOptions& options) {
       const double ours = figures[static_cast<size_t>(k)].recall;
       recall_sum += ours;
       recall[classes[static_cast<size_t>(k)]] = ours;
-      std::string cell = fixed(100.0 * ours, 0) + " / ";
+      std::string cell = fixed_text(100.0 * ours, 0) + " / ";
       // Paper columns follow T1..T6; a class the paper does not have shows "-".
       size_t paper_column = kPaperClasses.size();
       for (size_t p = 0; p < kPaperClasses.size(); ++p)
         if (classes[static_cast<size_t>(k)] == kPaperClasses[p]) paper_column = p;
       if (paper_column < kPaperClasses.size()) {
-        cell += fixed(preset.paper_recall[paper_column], 0);
+        cell += fixed_text(preset.paper_recall[paper_column], 0);
         paper_recall[classes[static_cast<size_t>(k)]] = preset.paper_recall[paper_column] / 100.0;
       } else {
         cell += "-";
@@ -102,8 +98,8 @@ ExperimentReport run_tsa_classifiers(const ExperimentOptions& options) {
       row.push_back(cell);
     }
     const double mean_recall = recall_sum / class_count;
-    row.push_back(fixed(100.0 * mean_recall, 2));
-    row.push_back(fixed(preset.paper_mean, 2));
+    row.push_back(fixed_text(100.0 * mean_recall, 2));
+    row.push_back(fixed_text(preset.paper_mean, 2));
     row.push_back(percent_text(accuracy));
     table.rows.push_back(row);
 

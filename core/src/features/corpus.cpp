@@ -14,6 +14,7 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -31,12 +32,6 @@ struct RecordingRows {
   std::vector<SkippedSegment> skipped;
   std::exception_ptr error;
 };
-
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
 
 RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusRecording& job) {
   RecordingRows rows;
@@ -71,8 +66,8 @@ RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusR
     rows.subjects.push_back(subject == recording.metadata.end() ? "" : subject->second);
     Metadata metadata = shared;
     metadata["region"] = segment.region;
-    metadata["t0"] = number_text(segment.t0);
-    metadata["t1"] = number_text(segment.t1);
+    metadata["t0"] = shortest_text(segment.t0);
+    metadata["t1"] = shortest_text(segment.t1);
     rows.metadata.push_back(std::move(metadata));
   }
   return rows;

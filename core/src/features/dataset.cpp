@@ -15,6 +15,7 @@
 #include "dataset_files.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/error.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -51,12 +52,6 @@ void check_dataset(const std::string& path, const Dataset& dataset) {
       if (!std::isfinite(dataset.features(row, column)))
         throw Error(path, "row " + std::to_string(row + 1) + " feature '" +
                               dataset.columns[column].name + "' is not finite");
-}
-
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
 }
 
 }  // namespace dataset_files
@@ -123,7 +118,7 @@ void write_dataset_csv(const std::string& path, const Dataset& dataset) {
   text += "\n";
   for (int64_t row = 0; row < dataset.rows(); ++row) {
     for (int64_t column = 0; column < dataset.features.cols(); ++column)
-      text += number_text(dataset.features(row, column)) + ",";
+      text += shortest_text(dataset.features(row, column)) + ",";
     const std::string where = "row " + std::to_string(row + 1);
     check_one_line(path, dataset.classes[row], where + " class");
     check_one_line(path, dataset.subjects[row], where + " subject");

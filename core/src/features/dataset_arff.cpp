@@ -11,6 +11,7 @@
 #include "tactile/io/atomic_file.h"
 #include "tactile/error.h"
 #include "tactile/features/dataset.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -82,7 +83,7 @@ void write_dataset_arff(const std::string& path, const Dataset& dataset,
   text += "}\n\n@data\n";
   for (int64_t row = 0; row < dataset.rows(); ++row) {
     for (int64_t column = 0; column < dataset.features.cols(); ++column)
-      text += dataset_files::number_text(dataset.features(row, column)) + ",";
+      text += shortest_text(dataset.features(row, column)) + ",";
     text += arff_name(dataset.classes[row]) + "\n";
   }
   write_file_atomically(path, text);

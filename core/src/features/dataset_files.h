@@ -20,8 +20,6 @@ inline constexpr const char* kSegmentIdColumn = "segment_id";
 // feature value is NaN or infinite (naming its row and column).
 void check_dataset(const std::string& path, const Dataset& dataset);
 
-// Shortest text that reads back as the same double (std::to_chars).
-std::string number_text(double value);
 
 // Writes `text` to a temporary file beside `path`, then renames it over `path`; on any
 

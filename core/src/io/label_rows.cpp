@@ -5,20 +5,15 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <nlohmann/json.hpp>
 
 #include "row_checksum.h"
 #include "tactile/error.h"
+#include "tactile/text.h"
 
 namespace tactile::label_rows {
 
 namespace {
-
-// Shortest text that reads back as the same double, for error messages.
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
 
 using row_checksum::Field;
 
@@ -80,13 +75,13 @@ void validate(const Label& label, const std::string& where) {
   if (!std::isfinite(label.t0)) throw Error(where, "t0 is not a finite number");
   if (!std::isfinite(label.t1)) throw Error(where, "t1 is not a finite number");
   if (!(label.t0 < label.t1))
-    throw Error(where, "t0 (" + number_text(label.t0) + " s) must be before t1 (" +
-                           number_text(label.t1) + " s)");
+    throw Error(where, "t0 (" + shortest_text(label.t0) + " s) must be before t1 (" +
+                           shortest_text(label.t1) + " s)");
   if (label.region.empty()) throw Error(where, "region is empty (use \"all\" for the whole skin)");
   if (label.class_name.empty()) throw Error(where, "class is empty");
   // Written this way round so that NaN fails too.
   if (!(label.confidence >= 0.0 && label.confidence <= 1.0))
-    throw Error(where, "confidence " + number_text(label.confidence) + " is outside [0, 1]");
+    throw Error(where, "confidence " + shortest_text(label.confidence) + " is outside [0, 1]");
 }
 
 bool is_iso_time(const std::string& text) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
 #include <utility>

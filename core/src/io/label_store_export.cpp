@@ -13,6 +13,7 @@
 #include "label_rows.h"
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -76,13 +77,6 @@ class AtomicFile {
   bool committed_ = false;
 };
 
-// Shortest text that reads back as the same double.
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-
 // RFC 4180: a field holding a comma, a quote or a line break is quoted, and
 // its quotes doubled.
 std::string csv_field(const std::string& text) {
@@ -105,9 +99,9 @@ void LabelStore::export_csv(const std::string& path, const LabelFilter& filter) 
   for (const Label& label : labels) {
     std::string line = std::to_string(label.id);
     for (const std::string& field :
-         {csv_field(label.recording), number_text(label.t0), number_text(label.t1),
+         {csv_field(label.recording), shortest_text(label.t0), shortest_text(label.t1),
           csv_field(label.region), csv_field(label.class_name), csv_field(label.annotator),
-          std::string(to_string(label.source)), number_text(label.confidence),
+          std::string(to_string(label.source)), shortest_text(label.confidence),
           csv_field(label.note), csv_field(label.created), csv_field(label.modified)})
       line += "," + field;
     file.write(line + "\r\n");

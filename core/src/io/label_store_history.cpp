@@ -5,6 +5,7 @@
 #include "sqlite_statement.h"
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
+#include <nlohmann/json.hpp>
 
 namespace tactile {
 

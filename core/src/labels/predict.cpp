@@ -8,22 +8,18 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/parameters.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
 namespace {
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.4g", value);
-  return text;
-}
 
 }  // namespace
 
@@ -198,7 +194,7 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
     label.annotator = kModelAnnotator;
     label.source = LabelSource::kModel;
     label.confidence = std::clamp(confidence.score, 0.0, 1.0);
-    label.note = "margin=" + number_text(confidence.margin) + " model=" + specification;
+    label.note = "margin=" + significant_text(confidence.margin, 4) + " model=" + specification;
     predictions.labels.push_back(std::move(label));
   }
   return predictions;

@@ -15,14 +15,13 @@
 
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
 namespace {
 
 using Json = nlohmann::json;
-
-std::string in_quotes(const std::string& text) { return "\"" + text + "\""; }
 
 // Reads JSON values of one file, naming the file and the entry in every error.
 class Reader {

@@ -9,12 +9,11 @@
 
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
 namespace {
-
-std::string in_quotes(const std::string& text) { return "\"" + text + "\""; }
 
 // "taxel 7", or "taxel 3 "c03"" when the name says more than the id.
 std::string describe(const Taxel& taxel) {

@@ -137,12 +137,6 @@ std::vector<Point2> taxel_outline(const Taxel& taxel) {
 
 //---- Finding layouts --------------------------------------------------------------------------
 
-std::string asset_dir() {
-  const char* from_environment = std::getenv("TACTILE_ASSETS");
-  if (from_environment != nullptr && from_environment[0] != '\0') return from_environment;
-  return TACTILE_ASSET_DIR;
-}
-
 std::vector<std::string> builtin_layout_ids() { return {"nao", "tsa", "fur", "robovie", "flux"}; }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 
 #include "model_json.h"
 #include "tactile/error.h"
@@ -14,7 +15,7 @@ namespace tactile::ml {
 
 namespace {
 
-const char* const kWhere = "clafic";
+const char* const kClaficWhere = "clafic";
 
 // Flips each column so its largest-|.| entry (first on ties) is positive: the sign
 // convention of the spec's test vectors.
@@ -199,7 +200,7 @@ ClaficClassifier::ClaficClassifier(const Parameters& parameters) {
 
 Parameters ClaficClassifier::parameters() const {
   Parameters parameters;
-  parameters.set_where(kWhere);
+  parameters.set_where(kClaficWhere);
   parameters.set("c1", model_json::format_number(options_.c1));
   parameters.set("c2", model_json::format_number(options_.c2));
   parameters.set("tau", model_json::format_number(tau_));
@@ -216,10 +217,10 @@ Parameters ClaficClassifier::parameters() const {
 // CLAFIC is deterministic: the seed is not used.
 void ClaficClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                            uint64_t /*seed*/) {
-  check_training_set(x, y, class_count, kWhere);
+  check_training_set(x, y, class_count, kClaficWhere);
   if (dimension_overrides_.size() > 1 &&
       dimension_overrides_.size() != static_cast<size_t>(class_count))
-    throw Error(kWhere, "dimensions lists " + std::to_string(dimension_overrides_.size()) +
+    throw Error(kClaficWhere, "dimensions lists " + std::to_string(dimension_overrides_.size()) +
                             " values for " + std::to_string(class_count) + " classes");
   std::vector<std::vector<Eigen::Index>> rows(static_cast<size_t>(class_count));
   for (size_t row = 0; row < y.size(); ++row)
@@ -268,8 +269,8 @@ std::vector<int> ClaficClassifier::leave_one_out(const Matrix& x, const std::vec
 }
 
 Matrix ClaficClassifier::discrimination(const Matrix& x) const {
-  check_fitted(!subspaces_.empty(), kWhere);
-  check_query(x, feature_count_, kWhere);
+  check_fitted(!subspaces_.empty(), kClaficWhere);
+  check_query(x, feature_count_, kClaficWhere);
   Matrix values(x.rows(), static_cast<Eigen::Index>(subspaces_.size()));
   for (size_t k = 0; k < subspaces_.size(); ++k)
     values.col(static_cast<Eigen::Index>(k)) = clafic_discrimination(x, subspaces_[k].bank_basis);
@@ -288,7 +289,7 @@ std::vector<int> ClaficClassifier::predict(const Matrix& x) const {
 
 const ClaficSubspace& ClaficClassifier::subspace(int class_index) const {
   if (class_index < 0 || static_cast<size_t>(class_index) >= subspaces_.size())
-    throw Error(kWhere, "no subspace for class " + std::to_string(class_index));
+    throw Error(kClaficWhere, "no subspace for class " + std::to_string(class_index));
   return subspaces_[static_cast<size_t>(class_index)];
 }
 

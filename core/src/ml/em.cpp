@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <random>
 
@@ -12,7 +13,6 @@ namespace tactile::ml {
 
 namespace {
 
-constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // A component whose summed responsibility is below this holds no sample any more.
 constexpr double kEmptyComponent = 1e-10;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "probabilistic_support.h"
@@ -11,7 +12,6 @@ namespace tactile::ml {
 
 namespace {
 
-constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
 
 // Σ + ridge I is positive definite in exact arithmetic; rounding can still defeat Cholesky
 // when ridge is tiny against the largest variance, so the ridge grows tenfold at most this

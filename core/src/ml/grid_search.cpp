@@ -1,6 +1,7 @@
 #include "tactile/ml/grid_search.h"
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/ml/checks.h"
@@ -10,7 +11,7 @@ namespace tactile::ml {
 
 namespace {
 
-const char* const kWhere = "classifier grid-search";
+const char* const kGridSearchWhere = "classifier grid-search";
 constexpr size_t kMostCandidates = 10'000;
 
 std::vector<std::string> alternatives(const std::string& key, const std::string& values) {
@@ -19,7 +20,7 @@ std::vector<std::string> alternatives(const std::string& key, const std::string&
   while (true) {
     const size_t bar = values.find('|', start);
     const std::string value = values.substr(start, bar == std::string::npos ? bar : bar - start);
-    if (value.empty()) throw Error(kWhere, key + "=" + values + ": an empty alternative");
+    if (value.empty()) throw Error(kGridSearchWhere, key + "=" + values + ": an empty alternative");
     result.push_back(value);
     if (bar == std::string::npos) return result;
     start = bar + 1;
@@ -32,12 +33,12 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
                                            std::vector<std::pair<std::string, std::string>> axes,
                                            Protocol inner)
     : base_(std::move(base)), axes_(std::move(axes)), inner_(std::move(inner)) {
-  if (base_.empty()) throw Error(kWhere, "base= is required, e.g. grid:base=knn,k=1|3|5");
+  if (base_.empty()) throw Error(kGridSearchWhere, "base= is required, e.g. grid:base=knn,k=1|3|5");
   if (base_ == "grid-search" || base_ == "grid")
-    throw Error(kWhere, "base=" + base_ + ": a grid search cannot search a grid search");
+    throw Error(kGridSearchWhere, "base=" + base_ + ": a grid search cannot search a grid search");
   if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
       inner_.kind == Protocol::Kind::kSplit)
-    throw Error(kWhere, "inner=" + inner_.to_string() +
+    throw Error(kGridSearchWhere, "inner=" + inner_.to_string() +
                             ": the inner protocol must be kfold, loo or holdout");
   // The cartesian product, the last key varying fastest.
   std::vector<std::string> specifications = {""};
@@ -47,7 +48,7 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
       for (const std::string& value : alternatives(key, values))
         extended.push_back(prefix + (prefix.empty() ? "" : ",") + key + "=" + value);
     if (extended.size() > kMostCandidates)
-      throw Error(kWhere, "more than " + std::to_string(kMostCandidates) + " combinations");
+      throw Error(kGridSearchWhere, "more than " + std::to_string(kMostCandidates) + " combinations");
     specifications = std::move(extended);
   }
   for (const std::string& parameters : specifications) {
@@ -88,7 +89,7 @@ Parameters GridSearchClassifier::parameters() const {
 
 void GridSearchClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                uint64_t seed) {
-  check_training_set(x, y, class_count, kWhere);
+  check_training_set(x, y, class_count, kGridSearchWhere);
   Dataset inner;
   inner.features = x;
   for (int label : y) inner.classes.push_back(std::to_string(label));
@@ -108,20 +109,20 @@ void GridSearchClassifier::fit(const Matrix& x, const std::vector<int>& y, int c
         candidates_[i].inner_accuracy = -1.0;
         continue;
       }
-      throw Error(kWhere, "inner " + inner_.to_string() + " on " + std::to_string(x.rows()) +
+      throw Error(kGridSearchWhere, "inner " + inner_.to_string() + " on " + std::to_string(x.rows()) +
                               " training rows: " + error.what());
     }
     if (candidates_[i].inner_accuracy > candidates_[best].inner_accuracy) best = i;
   }
   if (candidates_[best].inner_accuracy < 0.0)
-    throw Error(auto_ ? "classifier auto" : kWhere, "no candidate could learn from " + std::to_string(x.rows()) + " training rows");
+    throw Error(auto_ ? "classifier auto" : kGridSearchWhere, "no candidate could learn from " + std::to_string(x.rows()) + " training rows");
   std::unique_ptr<Classifier> chosen = make_classifier(candidates_[best].specification);
   chosen->fit(x, y, class_count, seed);
   chosen_ = std::move(chosen);
 }
 
 const Classifier& GridSearchClassifier::chosen() const {
-  if (!chosen_) throw Error(kWhere, "not fitted");
+  if (!chosen_) throw Error(kGridSearchWhere, "not fitted");
   return *chosen_;
 }
 
@@ -164,7 +165,7 @@ std::unique_ptr<Classifier> make_grid_search_classifier(const Parameters& parame
     try {
       inner = Protocol::parse(parameters.text("inner", ""));
     } catch (const Error& error) {
-      throw Error(kWhere, "inner=" + parameters.text("inner", "") + ": " + error.message());
+      throw Error(kGridSearchWhere, "inner=" + parameters.text("inner", "") + ": " + error.message());
     }
   }
   return std::make_unique<GridSearchClassifier>(parameters.text("base", ""), std::move(axes),

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <numeric>
 
 #include "tactile/error.h"

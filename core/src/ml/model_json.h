@@ -3,6 +3,7 @@
 // doubles (nlohmann writes the shortest text that reads back to the same double).
 
 #include <charconv>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 

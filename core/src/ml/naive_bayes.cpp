@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "probabilistic_support.h"
@@ -12,7 +13,6 @@ namespace tactile::ml {
 
 namespace {
 
-constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
 const double kLogTwoPi = std::log(2.0 * std::numbers::pi);
 
 std::string read_priors_mode(const Parameters& parameters) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "probabilistic_support.h"
 #include "tactile/error.h"

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -12,6 +13,12 @@
 
 #include "tactile/ml/checks.h"
 #include "tactile/ml/classifier.h"
+
+namespace tactile::ml {
+
+inline constexpr double kNegativeInfinity = -std::numeric_limits<double>::infinity();
+
+}  // namespace tactile::ml
 
 namespace tactile::ml::support {
 

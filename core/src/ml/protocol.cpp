@@ -15,13 +15,13 @@ namespace tactile::ml {
 
 namespace {
 
-const char* const kWhere = "--protocol";
+const char* const kProtocolWhere = "--protocol";
 
 int64_t parse_whole(const std::string& text, const std::string& protocol, const char* what) {
   int64_t value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc() || end != text.data() + text.size())
-    throw Error(kWhere, protocol + ": " + what + " '" + text + "' is not a whole number");
+    throw Error(kProtocolWhere, protocol + ": " + what + " '" + text + "' is not a whole number");
   return value;
 }
 
@@ -30,7 +30,7 @@ double parse_fraction(const std::string& text, const std::string& protocol) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
       !(value > 0.0 && value < 1.0))
-    throw Error(kWhere, protocol + ": the test fraction '" + text + "' is not between 0 and 1");
+    throw Error(kProtocolWhere, protocol + ": the test fraction '" + text + "' is not between 0 and 1");
   return value;
 }
 
@@ -105,42 +105,42 @@ Protocol Protocol::parse(const std::string& text) {
   const std::string argument = colon == std::string::npos ? "" : text.substr(colon + 1);
   const bool has_argument = colon != std::string::npos;
   if (kind == "loo" || kind == "loso") {
-    if (has_argument) throw Error(kWhere, "'" + text + "': " + kind + " takes no argument");
+    if (has_argument) throw Error(kProtocolWhere, "'" + text + "': " + kind + " takes no argument");
     protocol.kind = kind == "loo" ? Kind::kLeaveOneOut : Kind::kLeaveOneSubjectOut;
     protocol.folds = 0;
     return protocol;
   }
   if (kind == "group") {
     if (argument.empty())
-      throw Error(kWhere, "'" + text + "': expected group:COLUMN, e.g. group:recording or group:session");
+      throw Error(kProtocolWhere, "'" + text + "': expected group:COLUMN, e.g. group:recording or group:session");
     protocol.kind = Kind::kLeaveOneGroupOut;
     protocol.group_column = argument;
     protocol.folds = 0;
     return protocol;
   }
   if (kind == "kfold") {
-    if (!has_argument) throw Error(kWhere, "'" + text + "': expected kfold:K or kfold:KxR");
+    if (!has_argument) throw Error(kProtocolWhere, "'" + text + "': expected kfold:K or kfold:KxR");
     const auto [folds, repetitions] = split_times(argument);
     if (folds.empty() || repetitions.empty())
-      throw Error(kWhere,
+      throw Error(kProtocolWhere,
                   "'" + text + "': expected kfold:K or kfold:KxR, e.g. kfold:10 or kfold:5x10");
     protocol.kind = Kind::kKFold;
     const int64_t k = parse_whole(folds, text, "the fold count");
     const int64_t r = parse_whole(repetitions, text, "the repetition count");
-    if (k < 2 || k > 1'000'000) throw Error(kWhere, text + ": k-fold needs at least 2 folds");
-    if (r < 1 || r > 10'000) throw Error(kWhere, text + ": repetitions must be 1..10000");
+    if (k < 2 || k > 1'000'000) throw Error(kProtocolWhere, text + ": k-fold needs at least 2 folds");
+    if (r < 1 || r > 10'000) throw Error(kProtocolWhere, text + ": repetitions must be 1..10000");
     protocol.folds = static_cast<int>(k);
     protocol.repetitions = static_cast<int>(r);
     return protocol;
   }
   if (kind == "holdout") {
     if (!has_argument)
-      throw Error(kWhere, "'" + text + "': expected holdout:FxR, e.g. holdout:0.15x10");
+      throw Error(kProtocolWhere, "'" + text + "': expected holdout:FxR, e.g. holdout:0.15x10");
     const auto [fraction, repetitions] = split_times(argument);
     protocol.kind = Kind::kHoldout;
     protocol.test_fraction = parse_fraction(fraction, text);
     const int64_t r = parse_whole(repetitions, text, "the repetition count");
-    if (r < 1 || r > 10'000) throw Error(kWhere, text + ": repetitions must be 1..10000");
+    if (r < 1 || r > 10'000) throw Error(kProtocolWhere, text + ": repetitions must be 1..10000");
     protocol.repetitions = static_cast<int>(r);
     protocol.folds = 0;
     return protocol;
@@ -149,18 +149,18 @@ Protocol Protocol::parse(const std::string& text) {
     const size_t slash = argument.find('/');
     if (!has_argument || slash == std::string::npos ||
         argument.find('/', slash + 1) != std::string::npos)
-      throw Error(kWhere, "'" + text +
+      throw Error(kProtocolWhere, "'" + text +
                               "': expected split:TRAIN/TEST with one '/', e.g. "
                               "split:side=back,condition=stationary/side=front");
     protocol.kind = Kind::kSplit;
     protocol.train_query = argument.substr(0, slash);
     protocol.test_query = argument.substr(slash + 1);
     if (protocol.train_query.empty() || protocol.test_query.empty())
-      throw Error(kWhere, "'" + text + "': the train and the test query must both be given");
+      throw Error(kProtocolWhere, "'" + text + "': the train and the test query must both be given");
     protocol.folds = 1;
     return protocol;
   }
-  throw Error(kWhere, "unknown protocol '" + text +
+  throw Error(kProtocolWhere, "unknown protocol '" + text +
                           "' (known: kfold:K[xR], loo, loso, group:COLUMN, holdout:FxR, split:QUERY/QUERY)");
 }
 
@@ -225,9 +225,9 @@ std::vector<int64_t> rows_matching(const Dataset& dataset, const std::string& qu
 
 std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, uint64_t seed) {
   const int64_t row_count = dataset.rows();
-  if (row_count == 0) throw Error(kWhere, "the dataset has no rows");
+  if (row_count == 0) throw Error(kProtocolWhere, "the dataset has no rows");
   if (static_cast<int64_t>(dataset.classes.size()) != row_count)
-    throw Error(kWhere, "the dataset has " + std::to_string(dataset.classes.size()) +
+    throw Error(kProtocolWhere, "the dataset has " + std::to_string(dataset.classes.size()) +
                             " classes for " + std::to_string(row_count) + " rows");
   const std::string name = protocol.to_string();
   std::mt19937_64 random(seed);
@@ -235,9 +235,9 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
   switch (protocol.kind) {
     case Protocol::Kind::kKFold: {
       if (protocol.folds < 2 || protocol.repetitions < 1)
-        throw Error(kWhere, name + ": needs at least 2 folds and 1 repetition");
+        throw Error(kProtocolWhere, name + ": needs at least 2 folds and 1 repetition");
       if (protocol.folds > row_count)
-        throw Error(kWhere, name + ": " + std::to_string(protocol.folds) + " folds but only " +
+        throw Error(kProtocolWhere, name + ": " + std::to_string(protocol.folds) + " folds but only " +
                                 std::to_string(row_count) + " rows");
       const auto per_class = rows_per_class(dataset);
       for (int repetition = 0; repetition < protocol.repetitions; ++repetition) {
@@ -251,18 +251,18 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
       break;
     }
     case Protocol::Kind::kLeaveOneOut:
-      if (row_count < 2) throw Error(kWhere, "loo needs at least 2 rows");
+      if (row_count < 2) throw Error(kProtocolWhere, "loo needs at least 2 rows");
       for (int64_t row = 0; row < row_count; ++row) folds.push_back(fold_of_test({row}, row_count));
       break;
     case Protocol::Kind::kLeaveOneSubjectOut: {
       if (static_cast<int64_t>(dataset.subjects.size()) != row_count)
-        throw Error(kWhere, "loso needs a subject for every row; the dataset has none");
+        throw Error(kProtocolWhere, "loso needs a subject for every row; the dataset has none");
       std::vector<std::string> order;
       std::map<std::string, std::vector<int64_t>> rows_of;
       for (int64_t row = 0; row < row_count; ++row) {
         const std::string& subject = dataset.subjects[static_cast<size_t>(row)];
         if (subject.empty())
-          throw Error(kWhere,
+          throw Error(kProtocolWhere,
                       "loso needs a subject for every row; row " + std::to_string(row) +
                           " (segment " +
                           std::to_string(row < static_cast<int64_t>(dataset.segment_ids.size())
@@ -274,7 +274,7 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
         rows.push_back(row);
       }
       if (order.size() < 2)
-        throw Error(kWhere,
+        throw Error(kProtocolWhere,
                     "loso needs at least 2 subjects; the dataset has only '" + order[0] + "'");
       for (const std::string& subject : order)
         folds.push_back(fold_of_test(rows_of[subject], row_count));
@@ -298,7 +298,7 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
           if (found != dataset.metadata[r].end()) value = found->second;
         }
         if (value.empty())
-          throw Error(kWhere, name + ": row " + std::to_string(row) + " has no value in column '" + column + "'");
+          throw Error(kProtocolWhere, name + ": row " + std::to_string(row) + " has no value in column '" + column + "'");
         values[r] = std::move(value);
       }
       std::vector<std::string> order;
@@ -309,14 +309,14 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
         rows.push_back(row);
       }
       if (order.size() < 2)
-        throw Error(kWhere, name + " needs at least 2 groups; column '" + column + "' has only '" + order[0] + "'");
+        throw Error(kProtocolWhere, name + " needs at least 2 groups; column '" + column + "' has only '" + order[0] + "'");
       for (const std::string& group : order) folds.push_back(fold_of_test(rows_of[group], row_count));
       break;
     }
     case Protocol::Kind::kHoldout: {
       if (!(protocol.test_fraction > 0.0 && protocol.test_fraction < 1.0) ||
           protocol.repetitions < 1)
-        throw Error(kWhere, name + ": the test fraction must lie between 0 and 1");
+        throw Error(kProtocolWhere, name + ": the test fraction must lie between 0 and 1");
       const auto per_class = rows_per_class(dataset);
       for (int repetition = 0; repetition < protocol.repetitions; ++repetition) {
         std::vector<int64_t> test;
@@ -331,19 +331,19 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
           test.insert(test.end(), members.begin(), members.begin() + count);
         }
         if (test.empty())
-          throw Error(kWhere, name + ": leaves no test row (classes too small for this fraction)");
+          throw Error(kProtocolWhere, name + ": leaves no test row (classes too small for this fraction)");
         folds.push_back(fold_of_test(std::move(test), row_count));
       }
       break;
     }
     case Protocol::Kind::kSplit: {
-      const std::vector<int64_t> train = rows_matching(dataset, protocol.train_query, kWhere);
-      const std::vector<int64_t> test = rows_matching(dataset, protocol.test_query, kWhere);
+      const std::vector<int64_t> train = rows_matching(dataset, protocol.train_query, kProtocolWhere);
+      const std::vector<int64_t> test = rows_matching(dataset, protocol.test_query, kProtocolWhere);
       std::vector<int64_t> both;
       std::set_intersection(train.begin(), train.end(), test.begin(), test.end(),
                             std::back_inserter(both));
       if (!both.empty())
-        throw Error(kWhere, name + ": row " + std::to_string(both.front()) + " and " +
+        throw Error(kProtocolWhere, name + ": row " + std::to_string(both.front()) + " and " +
                                 std::to_string(both.size() - 1) +
                                 " more match both the train and the test query");
       folds.push_back({train, test});

@@ -3,6 +3,7 @@
 // workbench pick it up from here.
 #include <algorithm>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numeric>
 
 #include "model_json.h"
@@ -14,7 +15,7 @@ namespace tactile::ml {
 
 namespace {
 
-const char* const kWhere = "som";
+const char* const kSomWhere = "som";
 
 // Squared distance of two neurons on the grid (whole numbers, so comparisons are exact).
 int grid_squared_distance(const SomMap& map, int from, int to) {
@@ -118,7 +119,7 @@ SomClassifier::SomClassifier(const Parameters& parameters) {
 
 Parameters SomClassifier::parameters() const {
   Parameters parameters;
-  parameters.set_where(kWhere);
+  parameters.set_where(kSomWhere);
   parameters.set("rows", std::to_string(map_.rows));
   parameters.set("columns", std::to_string(map_.columns));
   parameters.set("epochs", std::to_string(schedule_.epochs));
@@ -145,7 +146,7 @@ Matrix SomClassifier::scale(const Matrix& x) const {
 
 void SomClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                         uint64_t seed) {
-  check_training_set(x, y, class_count, kWhere);
+  check_training_set(x, y, class_count, kSomWhere);
   minimum_ = x.colwise().minCoeff().transpose();
   range_ = x.colwise().maxCoeff().transpose() - minimum_;
   class_count_ = class_count;
@@ -242,8 +243,8 @@ void SomClassifier::label_neurons(const Matrix& scaled, const std::vector<int>& 
 }
 
 Matrix SomClassifier::scores(const Matrix& x) const {
-  check_fitted(!map_.hits.empty(), kWhere);
-  check_query(x, minimum_.size(), kWhere);
+  check_fitted(!map_.hits.empty(), kSomWhere);
+  check_query(x, minimum_.size(), kSomWhere);
   const Matrix scaled = scale(x);
   Matrix values = Matrix::Constant(x.rows(), class_count_, std::numeric_limits<double>::lowest());
   for (Eigen::Index row = 0; row < scaled.rows(); ++row) {
@@ -259,8 +260,8 @@ Matrix SomClassifier::scores(const Matrix& x) const {
 
 // Spec §5.12: the winner's label.
 std::vector<int> SomClassifier::predict(const Matrix& x) const {
-  check_fitted(!map_.hits.empty(), kWhere);
-  check_query(x, minimum_.size(), kWhere);
+  check_fitted(!map_.hits.empty(), kSomWhere);
+  check_query(x, minimum_.size(), kSomWhere);
   const Matrix scaled = scale(x);
   std::vector<int> classes(static_cast<size_t>(x.rows()));
   for (Eigen::Index row = 0; row < scaled.rows(); ++row)

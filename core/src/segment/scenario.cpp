@@ -5,16 +5,11 @@
 
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
 namespace {
-
-std::string number_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.9g", value);
-  return text;
-}
 
 const Stream& required_stream(const Recording& recording, const std::string& name,
                               const std::string& why) {
@@ -46,12 +41,12 @@ std::vector<StageCommand> read_commands(const Recording& recording, const Stream
     const double time = commands.time_of(k);
     if (!std::isfinite(value) || value != std::floor(value) || value < 0 ||
         value >= static_cast<double>(classes))
-      throw Error(where, "stage " + number_text(value) + " is not a stage of layout " + layout.id +
+      throw Error(where, "stage " + significant_text(value, 9) + " is not a stage of layout " + layout.id +
                              " (0.." + std::to_string(classes - 1) + ")");
     if (!std::isfinite(time)) throw Error(where, "time stamp is not finite");
     if (!stages.empty() && time < stages.back().time)
-      throw Error(where, "time stamp goes back (" + number_text(time) + " s after " +
-                             number_text(stages.back().time) + " s)");
+      throw Error(where, "time stamp goes back (" + significant_text(time, 9) + " s after " +
+                             significant_text(stages.back().time, 9) + " s)");
     stages.push_back({time, static_cast<int64_t>(value)});
   }
   return stages;

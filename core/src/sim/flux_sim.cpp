@@ -23,7 +23,7 @@ using sim::FingerContact;
 using sim::FluxGeometry;
 using sim::Random;
 
-constexpr int kDefaultRepetitions = 10;
+constexpr int kFluxRepetitions = 10;
 // The paper's relaxation, "almost 7 seconds" (§5.2).
 constexpr double kRelaxationTime = 7.0;  // s
 // Rest between gestures, drawn independently of the class. The spec's analysis window is 5 s
@@ -125,7 +125,7 @@ std::vector<Zone> zones_of(const SkinLayout& layout, const FluxGeometry& geometr
 }
 
 // One gesture as the hand performs it.
-struct Gesture {
+struct FluxGesture {
   int class_index = 0;
   std::string region;
   double onset = 0.0, duration = 0.0, rise = 0.0, fall = 0.0;     // s
@@ -140,7 +140,7 @@ double jitter(Random& random, double spread) {
   return std::exp(random.truncated_normal(0.0, spread));
 }
 
-Gesture plan_gesture(const ClassIntent& intent, const std::vector<Zone>& zones,
+FluxGesture plan_gesture(const ClassIntent& intent, const std::vector<Zone>& zones,
                      const FluxGeometry& geometry, const Subject& subject, Random& random,
                      const std::string& where, const std::string& class_name) {
   const int zone_count = static_cast<int>(zones.size());
@@ -151,7 +151,7 @@ Gesture plan_gesture(const ClassIntent& intent, const std::vector<Zone>& zones,
   const double margin = 2.0;  // mm: the finger's centre stays on the sensor
   auto on_surface_v = [&](double v) { return std::clamp(v, margin, geometry.height - margin); };
 
-  Gesture gesture;
+  FluxGesture gesture;
   gesture.v_start = on_surface_v(subject.preferred_v * geometry.height + random.normal(0.0, 4.0));
   if (!intent.slide) {
     gesture.duration = std::clamp(subject.hold_time * jitter(random, 0.3), 0.12, 3.0);
@@ -189,7 +189,7 @@ Gesture plan_gesture(const ClassIntent& intent, const std::vector<Zone>& zones,
 }
 
 // The finger at time t: position along a minimum-jerk path, force under the contact envelope.
-FingerContact finger_at(const Gesture& gesture, const Subject& subject, double t) {
+FingerContact finger_at(const FluxGesture& gesture, const Subject& subject, double t) {
   const double s = std::clamp((t - gesture.onset) / gesture.duration, 0.0, 1.0);
   // Flash & Hogan minimum-jerk profile: s' = 10 s^3 - 15 s^4 + 6 s^5.
   const double progress = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
@@ -266,7 +266,7 @@ float adc_counts(double value) {
 // What the device records while the hand performs `gestures`: one row per sample until
 // `duration`, one column per real serpentine channel, in ADC counts.
 Stream record_skin(const SkinLayout& layout, const FluxGeometry& geometry,
-                   const std::vector<Gesture>& gestures, const Subject& subject, uint64_t seed,
+                   const std::vector<FluxGesture>& gestures, const Subject& subject, uint64_t seed,
                    double rate, double duration, Random& random, RoomTemperature& room) {
   const int64_t count = static_cast<int64_t>(std::ceil(duration * rate));
   // The stream holds the device's real channels only; the virtual sums are preprocessing's.
@@ -357,13 +357,13 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
   Random random(derive_engine(options.seed, "flux-trial", subject_index, trial_index));
 
   // The sequence of gestures and rests.
-  const int repetitions = options.repetitions > 0 ? options.repetitions : kDefaultRepetitions;
+  const int repetitions = options.repetitions > 0 ? options.repetitions : kFluxRepetitions;
   const std::vector<int> order =
       sim::shuffled_classes(static_cast<int>(layout.classes.size()), repetitions, random);
-  std::vector<Gesture> gestures;
+  std::vector<FluxGesture> gestures;
   double clock = random.uniform(2.0, 4.0);  // lead-in at rest: V0 is taken at start-up
   for (int class_index : order) {
-    Gesture gesture = plan_gesture(intents[class_index], zones, geometry, subject, random, where,
+    FluxGesture gesture = plan_gesture(intents[class_index], zones, geometry, subject, random, where,
                                    layout.classes[class_index]);
     gesture.class_index = class_index;
     gesture.onset = clock;
@@ -383,7 +383,7 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
   std::snprintf(temperature_text, sizeof(temperature_text), "%.2f", room.start());
   result.recording.metadata["temperature_c"] = temperature_text;
 
-  for (const Gesture& gesture : gestures) {
+  for (const FluxGesture& gesture : gestures) {
     Label label;
     label.recording = result.recording.id;
     label.t0 = gesture.onset;

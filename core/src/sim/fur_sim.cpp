@@ -27,7 +27,7 @@ using sim::fur::FurSensor;
 
 // The paper's five testers gave 399 gestures, about 13 per class each: five per class in
 // one trial makes three trials a subject's share.
-constexpr int kDefaultRepetitions = 5;
+constexpr int kFurRepetitions = 5;
 // Sub-steps per frame: a slap lasts two or three frames, so the hand moves on a finer clock
 // and the microcontroller's low-pass turns it into frames.
 constexpr int kSubsteps = 16;
@@ -107,7 +107,7 @@ SimulatedTrial simulate_fur_trial(const SkinLayout& layout, const SimulationOpti
   std::vector<sim::fur::Gesture> gestures;
   for (const std::string& name : layout.classes) gestures.push_back(sim::fur::gesture_of(name));
   const double rate = layout.sample_rate_hz > 0 ? layout.sample_rate_hz : 15.0;
-  const int repetitions = options.repetitions > 0 ? options.repetitions : kDefaultRepetitions;
+  const int repetitions = options.repetitions > 0 ? options.repetitions : kFurRepetitions;
 
   Random device(derive_engine(options.seed, "fur-device"));
   FurSensor sensor(layout, device);

@@ -16,7 +16,7 @@ namespace {
 using sim::nao::Gesture;
 using sim::nao::SideArea;
 
-constexpr int kDefaultRepetitions = 3;  // the paper's training subjects: 3 per class
+constexpr int kNaoRepetitions = 3;  // the paper's training subjects: 3 per class
 
 // Paper 000, Table 4: the multiple touch actions (front, back).
 constexpr const char* kMultiTouchPairs[][2] = {
@@ -80,7 +80,7 @@ SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOpti
     throw Error("--side", "multi-touch uses both sides at once; leave the side out");
   if (layout.classes.empty()) throw Error("layout " + layout.id, "has no classes to simulate");
   const double rate_hz = layout.sample_rate_hz > 0.0 ? layout.sample_rate_hz : 250.0;
-  const int repetitions = options.repetitions > 0 ? options.repetitions : kDefaultRepetitions;
+  const int repetitions = options.repetitions > 0 ? options.repetitions : kNaoRepetitions;
   const std::vector<SideArea> sides = find_sides(layout);
 
   sim::Random habit_random(derive_engine(options.seed, "nao-subject", subject));

@@ -99,6 +99,11 @@ float quantize(double value, double low, double high, int bits) {
   return static_cast<float>(low + level * (high - low) / levels);
 }
 
+double minimum_jerk(double progress) {
+  const double p = std::clamp(progress, 0.0, 1.0);
+  return p * p * p * (10.0 - 15.0 * p + 6.0 * p * p);
+}
+
 double contact_envelope(double t, double onset, double duration, double rise, double fall) {
   const double end = onset + duration;
   if (t <= onset || t >= end) return 0.0;

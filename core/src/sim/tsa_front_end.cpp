@@ -143,12 +143,6 @@ double pad_coverage(const Point2& pad, double sensing_radius, const Footprint& f
 
 namespace {
 
-// Minimum-jerk progress 0..1: hands start and stop smoothly (Flash & Hogan).
-double minimum_jerk(double tau) {
-  tau = std::clamp(tau, 0.0, 1.0);
-  return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
-}
-
 }  // namespace
 
 Footprint footprint_at(const Touch& touch, double t) {

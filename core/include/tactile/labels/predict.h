@@ -5,7 +5,7 @@
 // source `model` (the prediction lane), each with its score and margin.
 
 #include <memory>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

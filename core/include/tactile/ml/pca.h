@@ -7,7 +7,7 @@
 // presets (95 %, spec §2.12).
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "tactile/ml/classifier.h"
 

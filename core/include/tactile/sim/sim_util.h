@@ -42,6 +42,10 @@ float quantize(double value, double low, double high, int bits);
 // raised-cosine fall over `fall` s ending at onset + duration. Zero outside.
 double contact_envelope(double t, double onset, double duration, double rise, double fall);
 
+// Minimum-jerk progress 0 -> 1 of `progress` in [0, 1] (clamped): how a hand moves from one place
+// to another, starting and stopping smoothly (Flash & Hogan).
+double minimum_jerk(double progress);
+
 // Classes 0..count-1, each `repetitions` times, in a random order where no class
 // follows itself when that can be avoided.
 std::vector<int> shuffled_classes(int count, int repetitions, Random& random);

@@ -16,11 +16,6 @@ namespace tactile::sim::nao {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kGravity = 9.81;
-
-double minimum_jerk(double p) { return p * p * p * (10.0 - 15.0 * p + 6.0 * p * p); }
-
 // The torso's path: position (m) in a world frame with the robot's axes at rest (x: left,
 // y: down, z: forward), its pitch (forward lean) and roll (sideways sway) in rad, and how busy
 // its joints are (0 still .. 1 moving).

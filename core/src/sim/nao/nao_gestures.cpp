@@ -13,7 +13,6 @@ namespace tactile::sim::nao {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // A hand starts and ends a gesture out of the proximity sensors' 200 mm range.
 constexpr double kOutOfRange = 230.0;
 // Hovering parts of the hand (the palm behind the fingertips, the fist above its base) stay at
@@ -154,12 +153,6 @@ void add_hovering_part(const Context& context, const HandPart& shape, double u, 
 }
 
 Point2 no_slide(double) { return {0.0, 0.0}; }
-
-// Minimum-jerk progress 0 -> 1 (how a hand moves from one place to another).
-double minimum_jerk(double progress) {
-  const double p = std::clamp(progress, 0.0, 1.0);
-  return p * p * p * (10.0 - 15.0 * p + 6.0 * p * p);
-}
 
 // An open hand: palm at the frame's origin and four fingers ahead of it. `shares` of the force
 // go to the palm and to each finger.

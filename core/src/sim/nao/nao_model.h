@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@
 #include "tactile/sim/sim_util.h"
 
 namespace tactile::sim::nao {
+
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kGravity = 9.81;  // m/s^2 per g
 
 //---- Hand -------------------------------------------------------------------------------------
 

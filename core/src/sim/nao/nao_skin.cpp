@@ -18,7 +18,6 @@ namespace tactile::sim::nao {
 
 namespace {
 
-constexpr double kGravity = 9.81;     // m/s^2 per g
 constexpr double kRasterStep = 0.5;   // mm between the points of a side's load raster
 constexpr double kPlateScale = 0.92;  // sensing plate / cell outline
 // Plate tilt on its silicone bed per N*mm of off-centre load: 1 N at a force sensor (6.7 mm out)

@@ -1,0 +1,21 @@
+#pragma once
+// Numbers and names as the programs print them, written once for every report and message.
+
+#include <string>
+
+namespace tactile {
+
+// The shortest text that reads back as the same double ("0.1", "1e-07"): for files and for
+// error messages that quote a value.
+std::string shortest_text(double value);
+
+// `value` with `decimals` digits after the point ("81.80"): for report tables.
+std::string fixed_text(double value, int decimals);
+
+// `value` with at most `digits` significant digits, printf's %g ("0.2346").
+std::string significant_text(double value, int digits);
+
+// "text" in double quotes, for messages that name a field or an id.
+std::string in_quotes(const std::string& text);
+
+}  // namespace tactile

@@ -1,0 +1,28 @@
+#include "tactile/text.h"
+
+#include <charconv>
+#include <cstdio>
+
+namespace tactile {
+
+std::string shortest_text(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string fixed_text(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+std::string significant_text(double value, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*g", digits, value);
+  return text;
+}
+
+std::string in_quotes(const std::string& text) { return "\"" + text + "\""; }
+
+}  // namespace tactile
