@@ -36,7 +36,8 @@ ExperimentReport run_kaboli_location(const ExperimentOptions& options) {
   report.tables.push_back(confusion_table(
       title, scored, kTable5, kTable5Accuracy,
       "Linear SVM, C by cross-validation on the training set (spec 1.14). " + corpus.notes()));
-  report.json["tables"] = {confusion_json(title, scored, kTable5, kTable5Accuracy)};
+  report.json["tables"] =
+      nlohmann::json::array({confusion_json(title, scored, kTable5, kTable5Accuracy)});
   report.json["accuracy"] = scored.accuracy;
   report.json["paper_accuracy"] = kTable5Accuracy;
   report.json["seed"] = options.seed;

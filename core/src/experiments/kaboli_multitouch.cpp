@@ -40,7 +40,8 @@ ExperimentReport run_kaboli_multitouch(const ExperimentOptions& options) {
       title, scored, kTable8, kTable8Accuracy,
       "Each body part of a multi-touch trial is classified on its own (spec 1.9). " +
           corpus.notes()));
-  report.json["tables"] = {confusion_json(title, scored, kTable8, kTable8Accuracy)};
+  report.json["tables"] =
+      nlohmann::json::array({confusion_json(title, scored, kTable8, kTable8Accuracy)});
   report.json["accuracy"] = scored.accuracy;
   report.json["paper_accuracy"] = kTable8Accuracy;
   report.json["seed"] = options.seed;
