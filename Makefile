@@ -1,6 +1,9 @@
 # The README's two commands. Both install what is missing, then build.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
+# Batched translation units (cmake/TactileBuild.cmake): a whole build in about half the time.
+# BATCH=OFF compiles one unit per file, quicker to rebuild after editing one file.
+BATCH ?= ON
 
 SANITIZE_DIR ?= build-asan
 
@@ -12,18 +15,29 @@ run: build
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
 
+# Ninja, a fast linker and ccache (all from scripts/install-deps.sh). A build folder made by
+# another generator is configured afresh.
+configure = if [ -f $(1)/CMakeCache.txt ] && ! grep -qx 'CMAKE_GENERATOR:INTERNAL=Ninja' $(1)/CMakeCache.txt; \
+	  then rm -rf $(1)/CMakeCache.txt $(1)/CMakeFiles; fi; \
+	  cmake -S . -B $(1) -G Ninja -DTACTILE_BATCH=$(BATCH)
+
 build: deps
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
+	$(call configure,$(BUILD_DIR)) -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD_DIR) -j$(JOBS)
 
 deps:
 	./scripts/install-deps.sh
 
-# The core and command-line tests (and the fuzz corpora) again, built with ASan and UBSan:
-# any finding aborts the test that met it (tests/fuzz/README.md, "Sanitizers").
+# The core and command-line tests (and the fuzz corpora) again, built by clang at -O2 with ASan
+# and UBSan: any finding aborts the test that met it (tests/fuzz/README.md, "Sanitizers").
+# clang, not g++ -O3: the same checks at a third of the compile time. The render tests are not
+# built here because they are not run here.
+SANITIZE_FLAGS = -O2 -DNDEBUG
 sanitize: deps
-	cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=Release -DTACTILE_SANITIZE=address,undefined \
-	  -DTACTILE_BUILD_BENCH=OFF -DTACTILE_BUILD_GUI=OFF
+	$(call configure,$(SANITIZE_DIR)) -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+	  -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS_RELEASE="$(SANITIZE_FLAGS)" \
+	  -DCMAKE_CXX_FLAGS_RELEASE="$(SANITIZE_FLAGS)" -DTACTILE_SANITIZE=address,undefined \
+	  -DTACTILE_BUILD_BENCH=OFF -DTACTILE_BUILD_GUI=OFF -DTACTILE_BUILD_RENDER_TESTS=OFF
 	cmake --build $(SANITIZE_DIR) -j$(JOBS)
 	cd $(SANITIZE_DIR) && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1 \

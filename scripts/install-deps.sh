@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  ninja-build mold lld ccache  # the build's generator, linker and compiler cache (README, "Tests and CI")
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libhdf5-dev libsqlite3-dev zlib1g-dev libsvm-dev
   libimgui-dev libstb-dev libglfw3-dev libgl-dev libgl1-mesa-dri libosmesa6-dev
