@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <span>
 
 #include "hdf5_object.h"
+#include "tactile/signal/minmax_pyramid.h"
 
 namespace tactile {
 
@@ -80,6 +82,56 @@ std::vector<std::string> stream_names(hid_t streams, const std::string& where) {
   return names;
 }
 
+// How many of the last overview block's samples (those from `first` up to `count`) its stored
+// minimum and maximum of every channel summarise exactly, as the writer computes them: the
+// largest such count, `first` when none. A block that cannot be read counts as agreeing, for
+// verify to report.
+hsize_t agreeing_count(hid_t group, hid_t samples, hsize_t channels, hsize_t block, hsize_t first,
+                       hsize_t count, const std::string& where) {
+  const hsize_t length = count - first;
+  std::vector<float> values(channels * length), low(channels), high(channels);
+  try {
+    read_block(samples, H5T_NATIVE_FLOAT, 2, 0, channels, first, length, values.data(),
+               where + "/samples");
+    Object minimum = hdf5::open_dataset(group, "overview_min", where + "/overview_min");
+    Object maximum = hdf5::open_dataset(group, "overview_max", where + "/overview_max");
+    read_block(minimum.id(), H5T_NATIVE_FLOAT, 2, 0, channels, first / block, 1, low.data(), where);
+    read_block(maximum.id(), H5T_NATIVE_FLOAT, 2, 0, channels, first / block, 1, high.data(),
+               where);
+  } catch (const Error&) {
+    return count;
+  }
+  auto same = [](float left, float right) { return std::memcmp(&left, &right, sizeof left) == 0; };
+  std::vector<MinMax> ranges(channels);
+  hsize_t agreeing = first;
+  for (hsize_t sample = 0; sample < length; ++sample) {
+    bool all = true;
+    for (hsize_t channel = 0; channel < channels; ++channel) {
+      MinMax& range = ranges[channel];
+      range.add(values[channel * length + sample]);
+      all = all && same(range.min, low[channel]) && same(range.max, high[channel]);
+    }
+    if (all) agreeing = first + sample + 1;
+  }
+  return agreeing;
+}
+
+// A cut-off recording ends where its overview and its samples agree. The writer appends a
+// flush's samples, then its overview, so a kill between the two leaves the last block
+// summarising fewer samples than the file holds past its start (the flush before's), or, when
+// the overview had grown but its values had not reached the disk, none: then the block before
+// is the last one written whole, and is checked in turn.
+hsize_t summarised_count(hid_t group, hid_t samples, hsize_t channels, hsize_t block,
+                         hsize_t count, const std::string& where) {
+  while (count > 0 && channels > 0) {
+    const hsize_t first = (count - 1) / block * block;
+    const hsize_t agreeing = agreeing_count(group, samples, channels, block, first, count, where);
+    if (agreeing > first || first == 0) return agreeing;
+    count = first;
+  }
+  return count;
+}
+
 StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::string& path,
                             int format_version, bool cut_off, int64_t& overview_block) {
   const std::string where = path + ":/streams/" + name;
@@ -130,6 +182,8 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
       const std::vector<hsize_t> covered = hdf5::dataset_shape(dataset.id(), where + "/" + overview);
       if (covered.size() == 2) samples_count = std::min(samples_count, covered[1] * block_size);
     }
+    samples_count = summarised_count(group.id(), samples.id(), channels, block_size, samples_count,
+                                     where);
   }
   info.sample_count = static_cast<int64_t>(samples_count);
 
