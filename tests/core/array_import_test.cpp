@@ -19,7 +19,7 @@ namespace {
 
 const std::string kData = tactile::test::test_data_dir() + "/import/";
 
-std::vector<uint8_t> bytes_of(const std::string& path) {
+std::vector<uint8_t> file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
@@ -118,7 +118,7 @@ TEST(ArrayImport, ShapesThatDoNotFitAreRefusedWithTheLayout) {
 
 TEST(ArrayImport, EveryTruncationOfANpyOrNpzIsRefused) {
   for (const std::string name : {"frames.npy", "frames.npz", "plain.npz"}) {
-    const std::vector<uint8_t> whole = bytes_of(kData + name);
+    const std::vector<uint8_t> whole = file_bytes(kData + name);
     testing::TemporaryDirectory directory;
     const std::string path = directory.file(name);
     for (size_t length = 0; length < whole.size(); length += (length < 200 ? 1 : 97)) {
@@ -132,7 +132,7 @@ TEST(ArrayImport, EveryTruncationOfANpyOrNpzIsRefused) {
 }
 
 TEST(ArrayImport, ADamagedDeflateStreamIsRefused) {
-  std::vector<uint8_t> bytes = bytes_of(kData + "frames.npz");
+  std::vector<uint8_t> bytes = file_bytes(kData + "frames.npz");
   bytes[200] ^= 0xFF;  // inside the deflated pressure array
   testing::TemporaryDirectory directory;
   const std::string path = directory.file("bad.npz");

@@ -14,6 +14,7 @@
 namespace tactile {
 namespace {
 
+using testing::bit_equal;
 using testing::TemporaryDirectory;
 using testing::write_text;
 
@@ -324,11 +325,6 @@ Stream random_stream(int64_t samples, int channels, uint32_t seed) {
   stream.samples(2, 0) = 3e-39f;  // subnormal
   stream.samples(3, 0) = std::numeric_limits<float>::lowest();
   return stream;
-}
-
-bool bit_equal(const SampleMatrix& left, const SampleMatrix& right) {
-  return left.rows() == right.rows() && left.cols() == right.cols() &&
-         std::memcmp(left.data(), right.data(), sizeof(float) * size_t(left.size())) == 0;
 }
 
 TEST(CsvExport, ExportThenImportIsBitExact) {

@@ -160,12 +160,12 @@ TEST(ThresholdSegmenter, RecordingWithoutCalibrationIsAnErrorNamingIt) {
   }
 }
 
-struct Extracted {
+struct FurExtraction {
   std::vector<FeatureColumn> columns;
   FeatureResult result;
 };
 
-Extracted extract_fur(const SkinLayout& layout, const Recording& raw, const Label& label,
+FurExtraction extract_fur(const SkinLayout& layout, const Recording& raw, const Label& label,
                       const std::string& parameters = "calibration_peak=200") {
   const auto extractor = make_fur_extractor(Parameters::parse(parameters, "--params"));
   const Recording preprocessed = extractor->preprocess(raw, layout);
@@ -178,7 +178,7 @@ TEST(FurExtractor, PressOnOneCellGivesItsAreaPositionAndDecayingPressure) {
   const std::vector<Label> labels =
       segment_threshold(raw, layout, Parameters::parse("calibration_peak=200", "--params"));
   ASSERT_EQ(labels.size(), 1u);
-  const Extracted extracted = extract_fur(layout, raw, labels[0]);
+  const FurExtraction extracted = extract_fur(layout, raw, labels[0]);
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   ASSERT_EQ(extracted.columns.size(), 15u);
   const std::vector<double>& values = extracted.result.values;
@@ -198,7 +198,7 @@ TEST(FurExtractor, FourteenFeatureVariantJoinsTheCentreVariances) {
   Label label;
   label.t0 = 2.0;
   label.t1 = 2.4;
-  const Extracted extracted =
+  const FurExtraction extracted =
       extract_fur(layout, press_recording(layout), label, "calibration_peak=200,fur_features=14");
   ASSERT_EQ(extracted.columns.size(), 14u);
   EXPECT_EQ(extracted.columns[12].name, "centre_variance");
@@ -214,7 +214,7 @@ TEST(FurExtractor, MissingSampleAndEmptySpanAreSkippedWithReasons) {
   Label label;
   label.t0 = 2.0;
   label.t1 = 2.4;
-  const Extracted missing = extract_fur(layout, raw, label);
+  const FurExtraction missing = extract_fur(layout, raw, label);
   EXPECT_TRUE(missing.result.values.empty());
   EXPECT_NE(missing.result.skip_reason.find("f017"), std::string::npos)
       << missing.result.skip_reason;
@@ -227,7 +227,7 @@ TEST(FurExtractor, QuietSegmentHasFiniteFeaturesAndZeroCentre) {
   Label label;
   label.t0 = 6.0;
   label.t1 = 8.0;
-  const Extracted extracted = extract_fur(layout, press_recording(layout), label);
+  const FurExtraction extracted = extract_fur(layout, press_recording(layout), label);
   ASSERT_EQ(extracted.result.values.size(), 15u);
   EXPECT_EQ(extracted.result.values[0], 30.0);
   for (double value : extracted.result.values) EXPECT_TRUE(std::isfinite(value));

@@ -20,6 +20,7 @@
 namespace tactile {
 namespace {
 
+using testing::bit_equal;
 using testing::TemporaryDirectory;
 
 // Random finite floats of every magnitude (uniform bit patterns), with the values
@@ -45,13 +46,6 @@ SampleMatrix random_samples(int64_t samples, int64_t channels, uint32_t seed) {
   for (size_t index = 0; index < std::size(specials) && index < size_t(matrix.size()); ++index)
     matrix.data()[index] = specials[index];
   return matrix;
-}
-
-bool bit_equal(const SampleMatrix& left, const SampleMatrix& right) {
-  // memcmp must not be given the null data of an empty matrix, even for no bytes (UBSan).
-  return left.rows() == right.rows() && left.cols() == right.cols() &&
-         (left.size() == 0 ||
-          std::memcmp(left.data(), right.data(), sizeof(float) * size_t(left.size())) == 0);
 }
 
 Recording three_stream_recording() {

@@ -4,10 +4,13 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+
+#include "tactile/io/recording.h"
 
 namespace tactile::testing {
 
@@ -38,6 +41,14 @@ class TemporaryDirectory {
  private:
   std::filesystem::path path_;
 };
+
+// Same shape and the same bits in every sample (NaNs included).
+inline bool bit_equal(const SampleMatrix& left, const SampleMatrix& right) {
+  // memcmp must not be given the null data of an empty matrix, even for no bytes (UBSan).
+  return left.rows() == right.rows() && left.cols() == right.cols() &&
+         (left.size() == 0 ||
+          std::memcmp(left.data(), right.data(), sizeof(float) * size_t(left.size())) == 0);
+}
 
 inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);

@@ -18,6 +18,7 @@ namespace {
 
 using testing::k4_cells;
 using testing::k4_recording;
+using testing::segment;
 using testing::K4Recording;
 using Vector = std::vector<double>;
 
@@ -116,15 +117,6 @@ TEST(ZeroMean, RemovesTheMeanOfEachSignal) {
 }
 
 //---- The extractor on a hand-built NAO recording
-
-Label segment(double t0, double t1, const std::string& region) {
-  Label label;
-  label.recording = "r";
-  label.t0 = t0;
-  label.t1 = t1;
-  label.region = region;
-  return label;
-}
 
 FeatureResult extract(const FeatureExtractor& extractor, const K4Recording& k4,
                       const Label& label) {

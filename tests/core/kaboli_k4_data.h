@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "nao_test_recording.h"
+#include "tactile/io/label.h"
 
 namespace tactile::testing {
 
@@ -61,6 +62,16 @@ inline K4Recording k4_recording() {
     set_signal(k4.recording, k4.layout, cell, "prox", proximity[static_cast<size_t>(cell - 1)]);
   }
   return k4;
+}
+
+// A segment of the K4 recording ("r") over `region`.
+inline Label segment(double t0, double t1, const std::string& region) {
+  Label label;
+  label.recording = "r";
+  label.t0 = t0;
+  label.t1 = t1;
+  label.region = region;
+  return label;
 }
 
 }  // namespace tactile::testing

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "ml_prob_test_data.h"
+#include "ml_toy_sets.h"
 #include "tactile/error.h"
 #include "tactile/ml/naive_bayes.h"
 
@@ -16,13 +17,6 @@ double normal_density(double value, double mean, double variance) {
          std::sqrt(2 * std::numbers::pi * variance);
 }
 
-Matrix column(std::initializer_list<double> values) {
-  Matrix x(static_cast<Eigen::Index>(values.size()), 1);
-  Eigen::Index row = 0;
-  for (double value : values) x(row++, 0) = value;
-  return x;
-}
-
 std::vector<test_data::Blob> independent_blobs() {
   return {{Eigen::Vector2d(0, 0), Eigen::Vector2d(1.0, 0.5).asDiagonal()},
           {Eigen::Vector2d(1.2, 1.0), Eigen::Vector2d(0.3, 2.0).asDiagonal()},
@@ -32,7 +26,7 @@ std::vector<test_data::Blob> independent_blobs() {
 //---- gaussian-nb --------------------------------------------------------------------------
 
 TEST(GaussianNaiveBayes, PosteriorUsesUnbiasedVariancesAndEmpiricalPriors) {
-  const Matrix x = column({0, 2, 4, 5, 6});
+  const Matrix x = toy::column({0, 2, 4, 5, 6});
   const std::vector<int> y = {0, 0, 1, 1, 1};
   GaussianNaiveBayes classifier;
   classifier.fit(x, y, 2, 0);
@@ -41,7 +35,7 @@ TEST(GaussianNaiveBayes, PosteriorUsesUnbiasedVariancesAndEmpiricalPriors) {
   EXPECT_NEAR(classifier.variances()(1, 0), 1.0 + smoothing, 1e-15);
   const double joint_a = 0.4 * normal_density(3, 1, 2 + smoothing);
   const double joint_b = 0.6 * normal_density(3, 5, 1 + smoothing);
-  const Matrix posterior = classifier.scores(column({3}));
+  const Matrix posterior = classifier.scores(toy::column({3}));
   EXPECT_NEAR(posterior(0, 0), joint_a / (joint_a + joint_b), 1e-12);
   EXPECT_NEAR(posterior(0, 1), joint_b / (joint_a + joint_b), 1e-12);
 }
@@ -124,7 +118,7 @@ TEST(KernelNaiveBayes, DefaultWidthIsMatlabsSilvermanRule) {
 }
 
 TEST(KernelNaiveBayes, DensityIsTheMeanOfNormalKernels) {
-  const Matrix x = column({0, 1, 3});
+  const Matrix x = toy::column({0, 1, 3});
   const std::vector<int> y = {0, 0, 1};
   KernelNaiveBayes classifier(Parameters::parse("width=0.5", "test"));
   classifier.fit(x, y, 2, 0);
@@ -132,7 +126,7 @@ TEST(KernelNaiveBayes, DensityIsTheMeanOfNormalKernels) {
   const double density_b = normal_density(2, 3, 0.25);
   const double joint_a = 2.0 / 3.0 * density_a;
   const double joint_b = 1.0 / 3.0 * density_b;
-  EXPECT_NEAR(classifier.scores(column({2}))(0, 0), joint_a / (joint_a + joint_b), 1e-12);
+  EXPECT_NEAR(classifier.scores(toy::column({2}))(0, 0), joint_a / (joint_a + joint_b), 1e-12);
 }
 
 TEST(KernelNaiveBayes, WidthsFallBackWhenAClassFeatureIsConstant) {

@@ -18,7 +18,7 @@ Matrix three_centres() {
   return centres;
 }
 
-SupportVectorMachine make(const std::string& preset, const std::string& parameters = "") {
+SupportVectorMachine make_svm(const std::string& preset, const std::string& parameters = "") {
   return SupportVectorMachine(preset, Parameters::parse(parameters, preset));
 }
 
@@ -29,7 +29,7 @@ TEST(SupportVectorMachine, SeparatesTwoDistantBlobsWithALinearKernel) {
   centres << -3, 0, 3, 0;
   const toy::LabelledSet train = toy::blobs(centres, 40, 0.7, 1);
   const toy::LabelledSet test = toy::blobs(centres, 40, 0.7, 2);
-  SupportVectorMachine svm = make("linear-svm");
+  SupportVectorMachine svm = make_svm("linear-svm");
   svm.fit(train.x, train.y, 2, 7);
   EXPECT_EQ(toy::accuracy(svm.predict(test.x), test.y), 1.0);
   // The separating direction is the first feature: w = Σ coef_i sv_i points from class 1 to 0.
@@ -43,7 +43,7 @@ TEST(SupportVectorMachine, EveryPresetClassifiesThreeBlobs) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 30, 1.0, 3);
   const toy::LabelledSet test = toy::blobs(three_centres(), 30, 1.0, 4);
   for (const std::string& preset : svm_preset_names()) {
-    SupportVectorMachine svm = make(preset);
+    SupportVectorMachine svm = make_svm(preset);
     svm.fit(train.x, train.y, 3, 11);
     EXPECT_EQ(svm.learners().size(), 3u) << preset;
     EXPECT_GE(toy::accuracy(svm.predict(test.x), test.y), 0.95) << preset;
@@ -55,18 +55,18 @@ TEST(SupportVectorMachine, NonLinearKernelsLearnExclusiveOrAndTheLinearOneCannot
   const toy::LabelledSet test = toy::exclusive_or(25, 0.25, 6);
   for (const std::string preset :
        {"quadratic-svm", "cubic-svm", "medium-gaussian-svm", "fine-gaussian-svm"}) {
-    SupportVectorMachine svm = make(preset);
+    SupportVectorMachine svm = make_svm(preset);
     svm.fit(train.x, train.y, 2, 13);
     EXPECT_GE(toy::accuracy(svm.predict(test.x), test.y), 0.95) << preset;
   }
-  SupportVectorMachine linear = make("linear-svm");
+  SupportVectorMachine linear = make_svm("linear-svm");
   linear.fit(train.x, train.y, 2, 13);
   EXPECT_LE(toy::accuracy(linear.predict(test.x), test.y), 0.75);
 }
 
 TEST(SupportVectorMachine, ScoresAreVoteFractionsThatSumToOne) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 20, 1.0, 8);
-  SupportVectorMachine svm = make("medium-gaussian-svm");
+  SupportVectorMachine svm = make_svm("medium-gaussian-svm");
   svm.fit(train.x, train.y, 4, 1);  // class 3 has no training sample
   const Matrix scores = svm.scores(train.x);
   ASSERT_EQ(scores.rows(), train.x.rows());
@@ -123,7 +123,7 @@ void expect_same_decisions_as_libsvm(const std::string& preset, const std::strin
                                      int kernel, int degree, double gamma, double coef0) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 25, 2.0, 21);  // overlapping
   const toy::LabelledSet test = toy::blobs(three_centres(), 25, 2.5, 22);
-  SupportVectorMachine svm = make(preset, parameters);
+  SupportVectorMachine svm = make_svm(preset, parameters);
   svm.fit(train.x, train.y, 3, 5);
 
   Standardizer standardizer;
@@ -196,7 +196,7 @@ TEST(AutoKernelScale, FallsBackToOneWhenPositivePointsSitOnNegativeOnes) {
 
 TEST(SupportVectorMachine, QuadraticPresetChoosesTheAutoScalePerPair) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 20, 1.0, 30);
-  SupportVectorMachine svm = make("quadratic-svm");
+  SupportVectorMachine svm = make_svm("quadratic-svm");
   svm.fit(train.x, train.y, 3, 4);
   Standardizer standardizer;
   standardizer.fit(train.x);
@@ -215,9 +215,9 @@ TEST(SupportVectorMachine, AutoScaleIsReproducibleFromTheSeed) {
   Matrix centres(2, 3);
   centres << 0, 0, 0, 2, 2, 2;
   const toy::LabelledSet train = toy::blobs(centres, 160, 1.0, 31);  // over 100 per class
-  SupportVectorMachine first = make("cubic-svm");
-  SupportVectorMachine again = make("cubic-svm");
-  SupportVectorMachine other = make("cubic-svm");
+  SupportVectorMachine first = make_svm("cubic-svm");
+  SupportVectorMachine again = make_svm("cubic-svm");
+  SupportVectorMachine other = make_svm("cubic-svm");
   first.fit(train.x, train.y, 2, 77);
   again.fit(train.x, train.y, 2, 77);
   other.fit(train.x, train.y, 2, 78);
@@ -233,11 +233,11 @@ TEST(SupportVectorMachine, GaussianPresetsScaleWithTheSquareRootOfTheFeatureCoun
   const std::pair<const char*, double> expected[] = {
       {"fine-gaussian-svm", 0.5}, {"medium-gaussian-svm", 2.0}, {"coarse-gaussian-svm", 8.0}};
   for (const auto& [preset, scale] : expected) {
-    SupportVectorMachine svm = make(preset);
+    SupportVectorMachine svm = make_svm(preset);
     svm.fit(train.x, train.y, 2, 1);
     EXPECT_DOUBLE_EQ(svm.learners()[0].scale, scale) << preset;
   }
-  SupportVectorMachine fixed = make("medium-gaussian-svm", "scale=3");
+  SupportVectorMachine fixed = make_svm("medium-gaussian-svm", "scale=3");
   fixed.fit(train.x, train.y, 2, 1);
   EXPECT_DOUBLE_EQ(fixed.learners()[0].scale, 3.0);
 }
@@ -245,31 +245,31 @@ TEST(SupportVectorMachine, GaussianPresetsScaleWithTheSquareRootOfTheFeatureCoun
 //---- Parameters, save and load -----------------------------------------------------------------
 
 TEST(SupportVectorMachine, ParametersNameDefaultsAndRejectUnknownKeys) {
-  EXPECT_EQ(make("quadratic-svm").parameters().text("scale", ""), "auto");
-  EXPECT_EQ(make("fine-gaussian-svm").parameters().text("scale", ""), "0.25sqrtP");
-  EXPECT_EQ(make("coarse-gaussian-svm").parameters().text("scale", ""), "4sqrtP");
-  EXPECT_EQ(make("linear-svm", "c=10").parameters().text("c", ""), "10");
-  EXPECT_THROW(make("linear-svm", "gamma=1"), Error);
-  EXPECT_THROW(make("linear-svm", "c=0"), Error);
-  EXPECT_THROW(make("linear-svm", "c=-1"), Error);
-  EXPECT_THROW(make("cubic-svm", "scale=wide"), Error);
-  EXPECT_THROW(make("cubic-svm", "scale=-2sqrtP"), Error);
-  EXPECT_THROW(make("sigmoid-svm"), Error);
+  EXPECT_EQ(make_svm("quadratic-svm").parameters().text("scale", ""), "auto");
+  EXPECT_EQ(make_svm("fine-gaussian-svm").parameters().text("scale", ""), "0.25sqrtP");
+  EXPECT_EQ(make_svm("coarse-gaussian-svm").parameters().text("scale", ""), "4sqrtP");
+  EXPECT_EQ(make_svm("linear-svm", "c=10").parameters().text("c", ""), "10");
+  EXPECT_THROW(make_svm("linear-svm", "gamma=1"), Error);
+  EXPECT_THROW(make_svm("linear-svm", "c=0"), Error);
+  EXPECT_THROW(make_svm("linear-svm", "c=-1"), Error);
+  EXPECT_THROW(make_svm("cubic-svm", "scale=wide"), Error);
+  EXPECT_THROW(make_svm("cubic-svm", "scale=-2sqrtP"), Error);
+  EXPECT_THROW(make_svm("sigmoid-svm"), Error);
   // What parameters() prints parses back to the same settings.
-  const SupportVectorMachine fine = make("fine-gaussian-svm", "c=2.5");
+  const SupportVectorMachine fine = make_svm("fine-gaussian-svm", "c=2.5");
   const Parameters printed = fine.parameters();
   std::string text;
   for (const auto& [key, value] : printed.values()) text += key + "=" + value + ",";
-  EXPECT_EQ(make("fine-gaussian-svm", text).parameters().values(), printed.values());
+  EXPECT_EQ(make_svm("fine-gaussian-svm", text).parameters().values(), printed.values());
 }
 
 TEST(SupportVectorMachine, SaveAndLoadGiveIdenticalScores) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 30, 2.0, 50);
   const toy::LabelledSet test = toy::blobs(three_centres(), 30, 2.0, 51);
   for (const std::string preset : {"quadratic-svm", "fine-gaussian-svm", "linear-svm"}) {
-    SupportVectorMachine svm = make(preset);
+    SupportVectorMachine svm = make_svm(preset);
     svm.fit(train.x, train.y, 3, 52);
-    SupportVectorMachine restored = make(preset);
+    SupportVectorMachine restored = make_svm(preset);
     restored.load(nlohmann::json::parse(svm.save().dump()));
     EXPECT_EQ(restored.decision_values(test.x), svm.decision_values(test.x)) << preset;
     EXPECT_EQ(restored.scores(test.x), svm.scores(test.x)) << preset;
@@ -278,14 +278,14 @@ TEST(SupportVectorMachine, SaveAndLoadGiveIdenticalScores) {
 
 TEST(SupportVectorMachine, LoadRejectsAModelOfAnotherKernelOrBrokenShape) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 10, 1.0, 53);
-  SupportVectorMachine svm = make("cubic-svm");
+  SupportVectorMachine svm = make_svm("cubic-svm");
   svm.fit(train.x, train.y, 3, 1);
   const nlohmann::json model = svm.save();
-  SupportVectorMachine linear = make("linear-svm");
+  SupportVectorMachine linear = make_svm("linear-svm");
   EXPECT_THROW(linear.load(model), Error);
   nlohmann::json broken = model;
   broken["learners"][0]["support_vectors"][0] = {1.0};
-  SupportVectorMachine cubic = make("cubic-svm");
+  SupportVectorMachine cubic = make_svm("cubic-svm");
   EXPECT_THROW(cubic.load(broken), Error);
   broken = model;
   broken.erase("standardizer");
@@ -297,7 +297,7 @@ TEST(SupportVectorMachine, LoadRejectsAModelOfAnotherKernelOrBrokenShape) {
 
 TEST(SupportVectorMachine, NotANumberInTrainingOrTestDataNamesTheRow) {
   toy::LabelledSet train = toy::blobs(three_centres(), 10, 1.0, 60);
-  SupportVectorMachine svm = make("linear-svm");
+  SupportVectorMachine svm = make_svm("linear-svm");
   train.x(13, 1) = std::nan("");
   try {
     svm.fit(train.x, train.y, 3, 1);
@@ -314,7 +314,7 @@ TEST(SupportVectorMachine, NotANumberInTrainingOrTestDataNamesTheRow) {
 }
 
 TEST(SupportVectorMachine, ZeroSamplesOrLabelsOutOfRangeAreErrors) {
-  SupportVectorMachine svm = make("linear-svm");
+  SupportVectorMachine svm = make_svm("linear-svm");
   EXPECT_THROW(svm.fit(Matrix(0, 2), {}, 2, 1), Error);
   EXPECT_THROW(svm.fit(Matrix::Zero(2, 2), {0, 2}, 2, 1), Error);
   EXPECT_THROW(svm.fit(Matrix::Zero(2, 2), {0}, 2, 1), Error);
@@ -328,7 +328,7 @@ TEST(SupportVectorMachine, AClassWithOneSampleIsStillLearned) {
   x.row(30) << 0, 6;
   std::vector<int> y = train.y;
   y.push_back(2);
-  SupportVectorMachine svm = make("linear-svm");
+  SupportVectorMachine svm = make_svm("linear-svm");
   svm.fit(x, y, 3, 1);
   Matrix probe(1, 2);
   probe << 0, 6.5;
@@ -342,25 +342,25 @@ TEST(SupportVectorMachine, ConstantFeaturesAndMoreFeaturesThanSamplesGiveFiniteS
   x.col(5) << 1, 0, 1, 7, 8, 7;
   const std::vector<int> y = {0, 0, 0, 1, 1, 1};
   for (const std::string& preset : svm_preset_names()) {
-    SupportVectorMachine svm = make(preset);
+    SupportVectorMachine svm = make_svm(preset);
     svm.fit(x, y, 2, 3);
     EXPECT_TRUE(svm.scores(x).allFinite()) << preset;
     EXPECT_EQ(svm.predict(x), y) << preset;
   }
   // Every feature constant: the auto scale falls back to 1 and nothing is NaN.
-  SupportVectorMachine flat = make("quadratic-svm");
+  SupportVectorMachine flat = make_svm("quadratic-svm");
   flat.fit(Matrix::Constant(6, 3, 2.0), y, 2, 3);
   EXPECT_EQ(flat.learners()[0].scale, 1.0);
   EXPECT_TRUE(flat.scores(Matrix::Constant(2, 3, 2.0)).allFinite());
 }
 
 TEST(SupportVectorMachine, ASingleTrainingClassAlwaysWins) {
-  SupportVectorMachine svm = make("medium-gaussian-svm");
+  SupportVectorMachine svm = make_svm("medium-gaussian-svm");
   svm.fit(Matrix::Random(5, 2), {1, 1, 1, 1, 1}, 3, 1);
   const Matrix scores = svm.scores(Matrix::Random(4, 2));
   EXPECT_EQ(scores.col(1), Vector::Ones(4));
   EXPECT_EQ(scores.col(0).sum() + scores.col(2).sum(), 0.0);
-  SupportVectorMachine restored = make("medium-gaussian-svm");
+  SupportVectorMachine restored = make_svm("medium-gaussian-svm");
   restored.load(svm.save());
   EXPECT_EQ(restored.predict(Matrix::Zero(2, 2)), (std::vector<int>{1, 1}));
 }
@@ -377,7 +377,7 @@ TEST(SupportVectorMachine, RegistryFactoriesBuildTheNamedPresets) {
   for (const auto& [name, factory] : factories) {
     const std::unique_ptr<Classifier> classifier = factory(none);
     EXPECT_EQ(classifier->name(), name);
-    EXPECT_EQ(classifier->parameters().values(), make(name).parameters().values());
+    EXPECT_EQ(classifier->parameters().values(), make_svm(name).parameters().values());
   }
   EXPECT_THROW(make_cubic_svm_classifier(Parameters::parse("order=4", "cubic-svm")), Error);
 }

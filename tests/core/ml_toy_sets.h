@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -11,6 +12,14 @@
 #include "tactile/ml/classifier.h"
 
 namespace tactile::ml::toy {
+
+// A one-feature matrix holding `values` in its column.
+inline Matrix column(std::initializer_list<double> values) {
+  Matrix x(static_cast<Eigen::Index>(values.size()), 1);
+  Eigen::Index row = 0;
+  for (const double value : values) x(row++, 0) = value;
+  return x;
+}
 
 struct LabelledSet {
   Matrix x;

@@ -10,33 +10,26 @@
 namespace tactile::ml {
 namespace {
 
-DecisionTree make(const std::string& preset, const std::string& parameters = "") {
+DecisionTree make_tree(const std::string& preset, const std::string& parameters = "") {
   return DecisionTree(preset, Parameters::parse(parameters, preset));
 }
 
-Matrix column(std::initializer_list<double> values) {
-  Matrix x(static_cast<Eigen::Index>(values.size()), 1);
-  Eigen::Index row = 0;
-  for (const double value : values) x(row++, 0) = value;
-  return x;
-}
-
 TEST(DecisionTree, SplitsOneFeatureAtTheMidpointOfTheGap) {
-  const Matrix x = column({1, 2, 3, 4, 10, 11, 12, 13});
-  DecisionTree tree = make("tree", "min_parent=2");
+  const Matrix x = toy::column({1, 2, 3, 4, 10, 11, 12, 13});
+  DecisionTree tree = make_tree("tree", "min_parent=2");
   tree.fit(x, {0, 0, 0, 0, 1, 1, 1, 1}, 2, 0);
   ASSERT_EQ(tree.nodes().size(), 3u);
   EXPECT_EQ(tree.nodes()[0].feature, 0);
   EXPECT_EQ(tree.nodes()[0].threshold, 7.0);
   EXPECT_EQ(tree.nodes()[1].class_fractions, (std::vector<double>{1.0, 0.0}));
   EXPECT_EQ(tree.nodes()[2].class_fractions, (std::vector<double>{0.0, 1.0}));
-  EXPECT_EQ(tree.predict(column({6.99, 7.0})), (std::vector<int>{0, 1}));
+  EXPECT_EQ(tree.predict(toy::column({6.99, 7.0})), (std::vector<int>{0, 1}));
 }
 
 TEST(DecisionTree, EqualGiniCutsGoToTheLowerThreshold) {
   // Cuts 2.5 and 5.5 both leave a Gini of 1/3; the lower wins, then the right child splits.
-  const Matrix x = column({0, 1, 2, 3, 4, 5, 6, 7, 8});
-  DecisionTree tree = make("tree", "min_parent=2");
+  const Matrix x = toy::column({0, 1, 2, 3, 4, 5, 6, 7, 8});
+  DecisionTree tree = make_tree("tree", "min_parent=2");
   tree.fit(x, {0, 0, 0, 1, 1, 1, 2, 2, 2}, 3, 0);
   ASSERT_EQ(tree.split_count(), 2);
   EXPECT_EQ(tree.nodes()[0].threshold, 2.5);
@@ -48,16 +41,16 @@ TEST(DecisionTree, EqualGiniCutsGoToTheLowerThreshold) {
 TEST(DecisionTree, TheLastSplitGoesToTheNodeWithTheLargestGain) {
   // Root cut 51 separates {0, 1, 1} from {2, 2, 2, 2, 3, 3}; with one split left the right
   // node (gain 8/27) is split before the left one (gain 4/27).
-  const Matrix x = column({0, 1, 2, 100, 101, 102, 103, 104, 105});
+  const Matrix x = toy::column({0, 1, 2, 100, 101, 102, 103, 104, 105});
   const std::vector<int> y = {0, 1, 1, 2, 2, 2, 2, 3, 3};
-  DecisionTree tree = make("tree", "max_splits=2,min_parent=2");
+  DecisionTree tree = make_tree("tree", "max_splits=2,min_parent=2");
   tree.fit(x, y, 4, 0);
   ASSERT_EQ(tree.split_count(), 2);
   EXPECT_EQ(tree.nodes()[0].threshold, 51.0);
   EXPECT_EQ(tree.nodes()[1].feature, -1);
   EXPECT_EQ(tree.nodes()[2].threshold, 103.5);
   EXPECT_NEAR(tree.nodes()[1].class_fractions[1], 2.0 / 3.0, 1e-15);
-  DecisionTree full = make("tree", "min_parent=2");
+  DecisionTree full = make_tree("tree", "min_parent=2");
   full.fit(x, y, 4, 0);
   EXPECT_EQ(full.split_count(), 3);
   EXPECT_EQ(full.predict(x), y);
@@ -65,14 +58,14 @@ TEST(DecisionTree, TheLastSplitGoesToTheNodeWithTheLargestGain) {
 
 TEST(DecisionTree, MediumTreeStopsAtTwentySplits) {
   const toy::LabelledSet train = toy::exclusive_or(100, 1.0, 1);  // heavily overlapping corners
-  DecisionTree medium = make("medium-tree");
+  DecisionTree medium = make_tree("medium-tree");
   medium.fit(train.x, train.y, 2, 0);
   EXPECT_EQ(medium.split_count(), 20);
-  DecisionTree fine = make("tree");
+  DecisionTree fine = make_tree("tree");
   fine.fit(train.x, train.y, 2, 0);
   EXPECT_GT(fine.split_count(), 20);
   EXPECT_LE(fine.split_count(), 100);
-  DecisionTree stump = make("tree", "max_splits=0");
+  DecisionTree stump = make_tree("tree", "max_splits=0");
   stump.fit(train.x, train.y, 2, 0);
   EXPECT_EQ(stump.nodes().size(), 1u);
   EXPECT_EQ(stump.nodes()[0].class_fractions, (std::vector<double>{0.5, 0.5}));
@@ -82,7 +75,7 @@ TEST(DecisionTree, LearnsExclusiveOrAndThreeBlobs) {
   const toy::LabelledSet train = toy::exclusive_or(30, 0.2, 2);
   const toy::LabelledSet test = toy::exclusive_or(30, 0.2, 3);
   // Grown until pure: fitctree's MinParentSize 10 would leave mixed leaves of nine points.
-  DecisionTree tree = make("tree", "min_parent=2");
+  DecisionTree tree = make_tree("tree", "min_parent=2");
   tree.fit(train.x, train.y, 2, 0);
   EXPECT_EQ(toy::accuracy(tree.predict(train.x), train.y), 1.0);
   EXPECT_GE(toy::accuracy(tree.predict(test.x), test.y), 0.95);
@@ -91,24 +84,24 @@ TEST(DecisionTree, LearnsExclusiveOrAndThreeBlobs) {
   centres << 0, 0, 5, 0, 0, 5;
   const toy::LabelledSet blobs = toy::blobs(centres, 30, 1.0, 4);
   const toy::LabelledSet fresh = toy::blobs(centres, 30, 1.0, 5);
-  DecisionTree medium = make("medium-tree");
+  DecisionTree medium = make_tree("medium-tree");
   medium.fit(blobs.x, blobs.y, 3, 0);
   EXPECT_GE(toy::accuracy(medium.predict(fresh.x), fresh.y), 0.9);
 }
 
 TEST(DecisionTree, MinimumParentSizeStopsSmallNodes) {
-  const Matrix x = column({1, 2, 3, 4, 10, 11, 12, 13});
-  DecisionTree tree = make("medium-tree");  // fitctree's MinParentSize 10 > 8 samples
+  const Matrix x = toy::column({1, 2, 3, 4, 10, 11, 12, 13});
+  DecisionTree tree = make_tree("medium-tree");  // fitctree's MinParentSize 10 > 8 samples
   tree.fit(x, {0, 0, 0, 0, 1, 1, 1, 1}, 2, 0);
   EXPECT_EQ(tree.split_count(), 0);
 }
 
 TEST(DecisionTree, ScoresAreTheLeafClassFractions) {
   // Equal values cannot be cut apart: the leaf at x = 1 keeps two of class 0, one of class 1.
-  const Matrix x = column({1, 1, 1, 2, 2});
-  DecisionTree tree = make("tree", "min_parent=2");
+  const Matrix x = toy::column({1, 1, 1, 2, 2});
+  DecisionTree tree = make_tree("tree", "min_parent=2");
   tree.fit(x, {0, 0, 1, 1, 1}, 2, 0);
-  const Matrix scores = tree.scores(column({0.0, 5.0}));
+  const Matrix scores = tree.scores(toy::column({0.0, 5.0}));
   EXPECT_NEAR(scores(0, 0), 2.0 / 3.0, 1e-15);
   EXPECT_NEAR(scores(0, 1), 1.0 / 3.0, 1e-15);
   EXPECT_EQ(scores(1, 1), 1.0);
@@ -119,9 +112,9 @@ TEST(DecisionTree, ScoresAreTheLeafClassFractions) {
 TEST(DecisionTree, SaveAndLoadGiveIdenticalScores) {
   const toy::LabelledSet train = toy::exclusive_or(40, 0.5, 6);
   const toy::LabelledSet test = toy::exclusive_or(40, 0.5, 7);
-  DecisionTree tree = make("medium-tree");
+  DecisionTree tree = make_tree("medium-tree");
   tree.fit(train.x, train.y, 2, 0);
-  DecisionTree restored = make("medium-tree");
+  DecisionTree restored = make_tree("medium-tree");
   restored.load(nlohmann::json::parse(tree.save().dump()));
   EXPECT_EQ(restored.scores(test.x), tree.scores(test.x));
 
@@ -134,39 +127,39 @@ TEST(DecisionTree, SaveAndLoadGiveIdenticalScores) {
 }
 
 TEST(DecisionTree, BadInputIsAnError) {
-  DecisionTree tree = make("tree");
+  DecisionTree tree = make_tree("tree");
   EXPECT_THROW(tree.fit(Matrix(0, 1), {}, 2, 0), Error);
-  Matrix x = column({1, 2, std::nan(""), 4});
+  Matrix x = toy::column({1, 2, std::nan(""), 4});
   EXPECT_THROW(tree.fit(x, {0, 0, 1, 1}, 2, 0), Error);
-  EXPECT_THROW(tree.scores(column({1})), Error);  // never fitted
-  tree.fit(column({1, 2, 3, 4}), {0, 0, 1, 1}, 2, 0);
+  EXPECT_THROW(tree.scores(toy::column({1})), Error);  // never fitted
+  tree.fit(toy::column({1, 2, 3, 4}), {0, 0, 1, 1}, 2, 0);
   EXPECT_THROW(tree.scores(Matrix::Zero(1, 3)), Error);
-  EXPECT_THROW(tree.scores(column({NAN})), Error);
-  EXPECT_THROW(make("tree", "depth=3"), Error);
-  EXPECT_THROW(make("tree", "max_splits=-1"), Error);
-  EXPECT_THROW(make("tree", "min_leaf=0"), Error);
-  EXPECT_THROW(make("big-tree"), Error);
+  EXPECT_THROW(tree.scores(toy::column({NAN})), Error);
+  EXPECT_THROW(make_tree("tree", "depth=3"), Error);
+  EXPECT_THROW(make_tree("tree", "max_splits=-1"), Error);
+  EXPECT_THROW(make_tree("tree", "min_leaf=0"), Error);
+  EXPECT_THROW(make_tree("big-tree"), Error);
 }
 
 TEST(DecisionTree, ConstantFeaturesOneSampleClassesAndWideDataAreFine) {
   // 4 samples, 6 features, only feature 4 varies; class 2 has one sample.
   Matrix x = Matrix::Constant(4, 6, 3.0);
   x.col(4) << 0, 1, 5, 9;
-  DecisionTree tree = make("tree", "min_parent=2");
+  DecisionTree tree = make_tree("tree", "min_parent=2");
   tree.fit(x, {0, 0, 1, 2}, 3, 0);
   EXPECT_EQ(tree.predict(x), (std::vector<int>{0, 0, 1, 2}));
-  DecisionTree flat = make("tree", "min_parent=2");
+  DecisionTree flat = make_tree("tree", "min_parent=2");
   flat.fit(Matrix::Constant(4, 2, 1.0), {0, 1, 1, 1}, 2, 0);
   EXPECT_EQ(flat.split_count(), 0);
   EXPECT_NEAR(flat.scores(Matrix::Zero(1, 2))(0, 1), 0.75, 1e-15);
 }
 
 TEST(DecisionTree, ParametersListTheEffectiveSettings) {
-  const Parameters medium = make("medium-tree").parameters();
+  const Parameters medium = make_tree("medium-tree").parameters();
   EXPECT_EQ(medium.integer("max_splits", 0), 20);
   EXPECT_EQ(medium.integer("min_parent", 0), 10);
   EXPECT_EQ(medium.integer("min_leaf", 0), 1);
-  EXPECT_EQ(make("tree").parameters().integer("max_splits", 0), 100);
+  EXPECT_EQ(make_tree("tree").parameters().integer("max_splits", 0), 100);
 }
 
 TEST(DecisionTree, RegistryFactoriesBuildTheNamedPresets) {

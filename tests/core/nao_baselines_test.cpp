@@ -17,6 +17,7 @@ namespace {
 
 using testing::k4_cells;
 using testing::k4_recording;
+using testing::segment;
 using testing::K4Recording;
 using Vector = std::vector<double>;
 
@@ -158,15 +159,6 @@ TEST(KooDescriptor, SingleSampleGivesZeros) {
 }
 
 //---- Extractors on the K4 recording
-
-Label segment(double t0, double t1, const std::string& region) {
-  Label label;
-  label.recording = "r";
-  label.t0 = t0;
-  label.t1 = t1;
-  label.region = region;
-  return label;
-}
 
 Parameters k4_parameters() {
   Parameters parameters;

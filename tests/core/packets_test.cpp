@@ -15,15 +15,15 @@ namespace {
 using test::documented_range;
 using test::grid_stream;
 
-std::span<const uint8_t> bytes_of(const std::string& text) {
+std::span<const uint8_t> span_of(const std::string& text) {
   return {reinterpret_cast<const uint8_t*>(text.data()), text.size()};
 }
 
 //---- CRC and header --------------------------------------------------------------------
 
 TEST(PacketCrc, CheckStringGivesTheStandardCrc32) {
-  EXPECT_EQ(crc32(bytes_of("123456789")), 0xCBF43926u);
-  EXPECT_EQ(crc32(bytes_of("")), 0u);
+  EXPECT_EQ(crc32(span_of("123456789")), 0xCBF43926u);
+  EXPECT_EQ(crc32(span_of("")), 0u);
 }
 
 TEST(PacketHeader, IsLaidOutByteByByteAsDocumented) {

@@ -14,7 +14,7 @@
 namespace tactile {
 namespace {
 
-constexpr double kRate = 100.0;
+constexpr double kSourceRate = 100.0;
 
 // A noisy rest level per channel with a few touches (bumps), some NaN gaps.
 Recording noisy_recording(int64_t samples, int channels, unsigned seed) {
@@ -22,7 +22,7 @@ Recording noisy_recording(int64_t samples, int channels, unsigned seed) {
   std::normal_distribution<float> noise(0.0f, 1.0f);
   Stream stream;
   stream.name = "skin";
-  stream.rate_hz = kRate;
+  stream.rate_hz = kSourceRate;
   stream.start_time = 2.0;
   for (int channel = 0; channel < channels; ++channel)
     stream.channels.push_back(std::string(1, 'c').append(std::to_string(channel)));
@@ -60,7 +60,7 @@ TEST_F(SourcePair, FileAndMemoryAnswerTheSameMinMaxPerColumn) {
       const auto from_file = file.minmax_over_time(channel, t0, t1, columns);
       const auto from_memory = memory.minmax_over_time(channel, t0, t1, columns);
       ASSERT_EQ(from_file.size(), from_memory.size());
-      const double samples_per_column = (t1 - t0) / columns * kRate;
+      const double samples_per_column = (t1 - t0) / columns * kSourceRate;
       for (size_t c = 0; c < from_file.size(); ++c) {
         if (samples_per_column < 256) {
           EXPECT_EQ(from_file[c], from_memory[c]) << "channel " << channel << " column " << c;

@@ -40,7 +40,7 @@ const std::vector<SimulatedTrial>& corpus() {
   return trials;
 }
 
-const Stream& skin(const SimulatedTrial& trial) { return trial.recording.streams.at(0); }
+const Stream& fur_skin(const SimulatedTrial& trial) { return trial.recording.streams.at(0); }
 
 struct FrameRange {
   int64_t first = 0, last = 0;
@@ -98,9 +98,9 @@ TEST(FurSimulator, SameSeedSubjectAndTrialGiveIdenticalBytes) {
   options.repetitions = 2;
   const SimulatedTrial first = simulate_fur_trial(fur_layout(), options, 2, 1);
   const SimulatedTrial second = simulate_fur_trial(fur_layout(), options, 2, 1);
-  ASSERT_EQ(skin(first).samples.rows(), skin(second).samples.rows());
-  EXPECT_EQ(0, std::memcmp(skin(first).samples.data(), skin(second).samples.data(),
-                           sizeof(float) * skin(first).samples.size()));
+  ASSERT_EQ(fur_skin(first).samples.rows(), fur_skin(second).samples.rows());
+  EXPECT_EQ(0, std::memcmp(fur_skin(first).samples.data(), fur_skin(second).samples.data(),
+                           sizeof(float) * fur_skin(first).samples.size()));
   ASSERT_EQ(first.labels.size(), second.labels.size());
   for (size_t k = 0; k < first.labels.size(); ++k) {
     EXPECT_EQ(first.labels[k].t0, second.labels[k].t0);
@@ -112,8 +112,8 @@ TEST(FurSimulator, SameSeedSubjectAndTrialGiveIdenticalBytes) {
 
   options.seed = 6;
   const SimulatedTrial other = simulate_fur_trial(fur_layout(), options, 2, 1);
-  const bool same_shape = skin(other).samples.rows() == skin(first).samples.rows();
-  EXPECT_FALSE(same_shape && skin(other).samples == skin(first).samples);
+  const bool same_shape = fur_skin(other).samples.rows() == fur_skin(first).samples.rows();
+  EXPECT_FALSE(same_shape && fur_skin(other).samples == fur_skin(first).samples);
 }
 
 TEST(FurSimulator, RecordingCarriesIdLayoutApproachAndCalibration) {
@@ -125,7 +125,7 @@ TEST(FurSimulator, RecordingCarriesIdLayoutApproachAndCalibration) {
   EXPECT_TRUE(approach == "front" || approach == "back");
   // A subject's two trials come from opposite sides.
   EXPECT_NE(approach, corpus()[2].recording.metadata.at("approach"));
-  const Stream& stream = skin(trial);
+  const Stream& stream = fur_skin(trial);
   EXPECT_EQ(stream.name, "skin");
   EXPECT_DOUBLE_EQ(stream.rate_hz, 15.0);
   EXPECT_EQ(stream.channel_count(), 160);
@@ -163,7 +163,7 @@ TEST(FurSimulator, LabelsAreDisjointGroundTruthInsideTheRecording) {
       EXPECT_EQ(label.recording, trial.recording.id);
       EXPECT_GT(label.t0, previous_end + 1.0) << "a rest of over a second separates gestures";
       EXPECT_GT(label.t1, label.t0);
-      EXPECT_LT(label.t1, skin(trial).duration());
+      EXPECT_LT(label.t1, fur_skin(trial).duration());
       EXPECT_EQ(label.source, LabelSource::kGroundTruth);
       EXPECT_EQ(label.annotator, "simulator");
       EXPECT_EQ(label.confidence, 1.0);
@@ -177,7 +177,7 @@ TEST(FurSimulator, LabelsAreDisjointGroundTruthInsideTheRecording) {
 
 TEST(FurSimulator, EveryValueIsAWholeCountInsideTheTenBitRange) {
   for (const SimulatedTrial& trial : corpus()) {
-    const auto& samples = skin(trial).samples;
+    const auto& samples = fur_skin(trial).samples;
     EXPECT_TRUE(samples.allFinite());
     EXPECT_GE(samples.minCoeff(), 0.0f);
     EXPECT_LE(samples.maxCoeff(), 1023.0f);
@@ -187,7 +187,7 @@ TEST(FurSimulator, EveryValueIsAWholeCountInsideTheTenBitRange) {
 
 TEST(FurSimulator, QuietFurReadsAboutHalfTheRangeAndFallsWhenPressed) {
   const SimulatedTrial& trial = corpus()[0];
-  const Eigen::VectorXf rest = rest_level(skin(trial), trial.labels[0].t0, 1.5);
+  const Eigen::VectorXf rest = rest_level(fur_skin(trial), trial.labels[0].t0, 1.5);
   EXPECT_GT(rest.mean(), 250.0f);
   EXPECT_LT(rest.mean(), 700.0f);
   // Bigger (lower) cells conduct more at rest, so they read lower (paper 002 §2.1).
@@ -200,9 +200,9 @@ TEST(FurSimulator, TickleNeverSaturatesWhileTheOtherGesturesMostlyDo) {
   std::map<std::string, int> gestures, saturated;
   for (const SimulatedTrial& trial : corpus())
     for (const Label& label : trial.labels) {
-      const FrameRange range = frames_of(skin(trial), label.t0, label.t1);
+      const FrameRange range = frames_of(fur_skin(trial), label.t0, label.t1);
       const float lowest =
-          skin(trial).samples.middleRows(range.first, range.last - range.first + 1).minCoeff();
+          fur_skin(trial).samples.middleRows(range.first, range.last - range.first + 1).minCoeff();
       ++gestures[label.class_name];
       if (lowest == 0.0f) ++saturated[label.class_name];  // the ADC floor
     }
@@ -217,7 +217,7 @@ TEST(FurSimulator, NormalisedByItsCalibrationOnlyTickleStaysBelowFullScale) {
   // drives some cell to 1.
   std::map<std::string, int> gestures, full;
   for (const SimulatedTrial& trial : corpus()) {
-    const Stream& stream = skin(trial);
+    const Stream& stream = fur_skin(trial);
     const std::vector<double> peaks = calibration_peaks(trial);
     std::vector<std::vector<double>> filtered;
     for (int64_t channel = 0; channel < stream.channel_count(); ++channel)
@@ -239,7 +239,7 @@ TEST(FurSimulator, NormalisedByItsCalibrationOnlyTickleStaysBelowFullScale) {
 
 // Drop-weighted centre of the cells pressed well below their rest level, per frame.
 std::vector<Point2> contact_centres(const SimulatedTrial& trial, const Label& label) {
-  const Stream& stream = skin(trial);
+  const Stream& stream = fur_skin(trial);
   const Eigen::VectorXf rest = rest_level(stream, label.t0, 0.8);
   const FrameRange range = frames_of(stream, label.t0, label.t1);
   std::vector<Point2> centres;
@@ -302,7 +302,7 @@ TEST(FurSimulator, FondleIsDoneInSeveralWaysMostOftenByKneadingInPlace) {
 
 // Seconds during which some cell reads well below its quiet level.
 double contact_seconds(const SimulatedTrial& trial, const Label& label) {
-  const Stream& stream = skin(trial);
+  const Stream& stream = fur_skin(trial);
   const Eigen::VectorXf rest = rest_level(stream, label.t0, 0.8);
   const FrameRange range = frames_of(stream, label.t0, label.t1 + 0.5);
   int64_t first = -1, last = -1;
@@ -341,7 +341,7 @@ TEST(FurSimulator, FrontAndBackApproachesTouchDifferentPartsOfTheHead) {
 TEST(FurSimulator, QuiescentOffsetShiftsAfterAContactButTheHighPassRemovesIt) {
   int pushes = 0, shifted = 0;
   for (const SimulatedTrial& trial : corpus()) {
-    const Stream& stream = skin(trial);
+    const Stream& stream = fur_skin(trial);
     const std::vector<double> peaks = calibration_peaks(trial);
     for (size_t k = 0; k + 1 < trial.labels.size(); ++k) {
       const Label& label = trial.labels[k];

@@ -22,7 +22,7 @@ SimulatedTrial simulate_nao_trial(const SkinLayout&, const SimulationOptions&, i
 
 namespace {
 
-constexpr double kRate = 250.0;
+constexpr double kNaoRate = 250.0;
 constexpr double kTouchThreshold = 0.1;  // N on a cell (three sensors) above its rest level
 
 const SkinLayout& nao() {
@@ -81,7 +81,7 @@ class CellForce {
   explicit CellForce(const Stream& stream) : stream_(stream) {
     for (size_t cell = 0; cell < nao().taxels.size(); ++cell) {
       std::vector<double> rest;
-      for (int64_t s = 0; s < static_cast<int64_t>(kRate); ++s) rest.push_back(raw(cell, s));
+      for (int64_t s = 0; s < static_cast<int64_t>(kNaoRate); ++s) rest.push_back(raw(cell, s));
       std::nth_element(rest.begin(), rest.begin() + rest.size() / 2, rest.end());
       rest_.push_back(rest[rest.size() / 2]);
     }
@@ -106,7 +106,7 @@ class CellForce {
   std::vector<double> rest_;
 };
 
-int64_t sample_at(double t) { return static_cast<int64_t>(std::llround(t * kRate)); }
+int64_t sample_at(double t) { return static_cast<int64_t>(std::llround(t * kNaoRate)); }
 
 template <class Visit>
 void for_each_label(const std::string& class_name, Visit visit) {
@@ -126,7 +126,7 @@ double accel_energy_above(const Stream& stream, int cell, int64_t first, int64_t
     double mean = 0.0;
     for (int64_t s = first; s <= last; ++s) mean += stream.samples(s, col);
     mean /= static_cast<double>(count);
-    for (int64_t bin = static_cast<int64_t>(std::ceil(low_hz * count / kRate)); bin <= count / 2;
+    for (int64_t bin = static_cast<int64_t>(std::ceil(low_hz * count / kNaoRate)); bin <= count / 2;
          ++bin) {
       double re = 0.0, im = 0.0;
       for (int64_t s = 0; s < count; ++s) {
@@ -220,7 +220,7 @@ TEST(SimNao, LabelsLieInsideTheRecordingAndCoverEveryTouch) {
       if (labelled[s]) continue;
       for (size_t cell = 0; cell < nao().taxels.size(); ++cell)
         ASSERT_LT(force(static_cast<int>(cell), s), kTouchThreshold)
-            << "unlabelled touch at " << s / kRate << " s on cell " << cell;
+            << "unlabelled touch at " << s / kNaoRate << " s on cell " << cell;
     }
   }
 }
@@ -324,7 +324,7 @@ TEST(SimNao, SlapsAreShorterThanPushes) {
       for (int cell : side_cells(label.region)) total += std::max(0.0, force(cell, s));
       loaded += total > 2.0 * kTouchThreshold;
     }
-    return loaded / kRate;
+    return loaded / kNaoRate;
   };
   std::vector<double> slaps, pushes;
   for_each_label("slap",

@@ -221,12 +221,12 @@ TEST(FrameEdgeSegmenter, RejectsAnUnknownParameterByName) {
   }
 }
 
-struct Extracted {
+struct TsaExtraction {
   std::vector<FeatureColumn> columns;
   FeatureResult result;
 };
 
-Extracted extract_tsa(const SkinLayout& layout, const Recording& raw, const Label& label,
+TsaExtraction extract_tsa(const SkinLayout& layout, const Recording& raw, const Label& label,
                       const std::string& parameters = "") {
   const auto extractor = make_tsa_event_extractor(Parameters::parse(parameters, "--params"));
   const Recording preprocessed = extractor->preprocess(raw, layout);
@@ -238,7 +238,7 @@ TEST(TsaEventExtractor, SlidingFingerGoesLeftToRightOnSheetSix) {
   const Recording raw = sliding_touch_recording(layout);
   const std::vector<Label> labels = segment_frame_edge(raw, layout, {});
   ASSERT_EQ(labels.size(), 1u);
-  const Extracted extracted = extract_tsa(layout, raw, labels.front());
+  const TsaExtraction extracted = extract_tsa(layout, raw, labels.front());
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   ASSERT_EQ(extracted.columns.size(), 4u);
   EXPECT_EQ(extracted.columns[0].name, "time");
@@ -267,7 +267,7 @@ TEST(TsaEventExtractor, ToyFramesOnSheetFiveGiveTheFeatureVectorOfSpecVectorT3) 
   Label label;
   label.t0 = 40.0 / 8.0;
   label.t1 = 43.0 / 8.0;
-  const Extracted extracted =
+  const TsaExtraction extracted =
       extract_tsa(layout, raw, label, "iir_n=1,min_threshold=1,tsa_features=EXTENDED");
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   const std::vector<double> expected = {0.375,   3,       3.96212, 5, 4.66667,  6,
@@ -282,7 +282,7 @@ TEST(TsaEventExtractor, ExtendedAndOneHotColumnsMatchTheirValues) {
   const Recording raw = sliding_touch_recording(layout);
   const std::vector<Label> labels = segment_frame_edge(raw, layout, {});
   ASSERT_EQ(labels.size(), 1u);
-  const Extracted extracted = extract_tsa(layout, raw, labels.front(),
+  const TsaExtraction extracted = extract_tsa(layout, raw, labels.front(),
                                           "tsa_features=EXTENDED,direction=onehot,location=onehot");
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   ASSERT_EQ(extracted.columns.size(), 1u + 11u + 1u + 42u + 8u);
@@ -305,7 +305,7 @@ TEST(TsaEventExtractor, GroundTruthLabelOnTheLocationFindsTheTouchedSheet) {
   label.t0 = 5.0;
   label.t1 = 6.0;
   label.region = location_of(layout, "m03.s2");
-  const Extracted extracted = extract_tsa(layout, sliding_touch_recording(layout), label);
+  const TsaExtraction extracted = extract_tsa(layout, sliding_touch_recording(layout), label);
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   EXPECT_DOUBLE_EQ(extracted.result.values[0], 1.0);  // frames 40..47, cut by the label
   EXPECT_EQ(extracted.result.values[3], 6.0);
@@ -316,7 +316,7 @@ TEST(TsaEventExtractor, SegmentWithoutContactIsSkippedWithAReason) {
   Label label;
   label.t0 = 1.0;
   label.t1 = 3.0;
-  const Extracted extracted = extract_tsa(layout, sliding_touch_recording(layout), label);
+  const TsaExtraction extracted = extract_tsa(layout, sliding_touch_recording(layout), label);
   EXPECT_TRUE(extracted.result.values.empty());
   EXPECT_NE(extracted.result.skip_reason.find("no pad triggered"), std::string::npos);
 }
@@ -329,7 +329,7 @@ TEST(TsaEventExtractor, MissingSampleInTheSegmentIsSkippedNamingTheChannel) {
   Label label;
   label.t0 = 5.0;
   label.t1 = 6.0;
-  const Extracted extracted = extract_tsa(layout, raw, label);
+  const TsaExtraction extracted = extract_tsa(layout, raw, label);
   EXPECT_NE(extracted.result.skip_reason.find("m03.s2.p05"), std::string::npos)
       << extracted.result.skip_reason;
 }

@@ -16,7 +16,7 @@ namespace {
 
 // Paper 002, Table 1 left (spec §3.11): LOO, all users, features 1-10; rows true, columns
 // predicted, order slap, pat, fondle, stroke, tickle, push.
-const std::array<const char*, 6> kPaperClasses = {"slap",   "pat",    "fondle",
+const std::array<const char*, 6> kFurPaperClasses = {"slap",   "pat",    "fondle",
                                                   "stroke", "tickle", "push"};
 const int kPaperConfusion[6][6] = {{55, 0, 0, 3, 1, 0}, {1, 46, 2, 1, 3, 1}, {2, 7, 35, 9, 10, 7},
                                    {1, 1, 6, 65, 3, 5}, {1, 2, 2, 2, 60, 1}, {2, 0, 0, 1, 0, 64}};
@@ -153,8 +153,8 @@ ExperimentReport run_fur_ml(const ExperimentOptions& options) {
     row.push_back(
         percent_text(support > 0 ? static_cast<double>(confusion(truth, truth)) / support : 0.0));
     std::string paper_cell = "-";
-    for (size_t p = 0; p < kPaperClasses.size(); ++p)
-      if (classes[static_cast<size_t>(truth)] == kPaperClasses[p]) {
+    for (size_t p = 0; p < kFurPaperClasses.size(); ++p)
+      if (classes[static_cast<size_t>(truth)] == kFurPaperClasses[p]) {
         int paper_support = 0;
         for (int c = 0; c < 6; ++c) paper_support += kPaperConfusion[p][c];
         paper_cell = percent_text(static_cast<double>(kPaperConfusion[p][p]) / paper_support);

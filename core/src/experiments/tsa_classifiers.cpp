@@ -34,7 +34,7 @@ const std::array<Preset, 10> kPresets = {{
     {"Subspace KNN", "subspace-knn", {63, 73, 71, 78, 67, 50}, 67.00},
 }};
 
-const std::array<const char*, 6> kPaperClasses = {"T1", "T2", "T3", "T4", "T5", "T6"};
+const std::array<const char*, 6> kTsaPaperClasses = {"T1", "T2", "T3", "T4", "T5", "T6"};
 
 }  // namespace
 
@@ -86,10 +86,10 @@ ExperimentReport run_tsa_classifiers(const ExperimentOptions& options) {
       recall[classes[static_cast<size_t>(k)]] = ours;
       std::string cell = fixed_text(100.0 * ours, 0) + " / ";
       // Paper columns follow T1..T6; a class the paper does not have shows "-".
-      size_t paper_column = kPaperClasses.size();
-      for (size_t p = 0; p < kPaperClasses.size(); ++p)
-        if (classes[static_cast<size_t>(k)] == kPaperClasses[p]) paper_column = p;
-      if (paper_column < kPaperClasses.size()) {
+      size_t paper_column = kTsaPaperClasses.size();
+      for (size_t p = 0; p < kTsaPaperClasses.size(); ++p)
+        if (classes[static_cast<size_t>(k)] == kTsaPaperClasses[p]) paper_column = p;
+      if (paper_column < kTsaPaperClasses.size()) {
         cell += fixed_text(preset.paper_recall[paper_column], 0);
         paper_recall[classes[static_cast<size_t>(k)]] = preset.paper_recall[paper_column] / 100.0;
       } else {

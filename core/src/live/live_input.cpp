@@ -24,6 +24,7 @@
 #include "tactile/live/playback.h"
 #include "tactile/live/udp.h"
 #include "tactile/sim/simulator.h"
+#include "system_error.h"
 
 namespace tactile {
 
@@ -63,8 +64,6 @@ double number_in(const std::string& text, const std::string& what, const std::st
     throw Error(option, what + " \"" + text + "\" is not a number");
   return value;
 }
-
-std::string system_error(const std::string& what) { return what + ": " + strerror(errno); }
 
 //---- UDP
 

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "tactile/error.h"
+#include "system_error.h"
 
 namespace tactile {
 
@@ -53,8 +54,6 @@ sockaddr_in socket_address(const UdpEndpoint& endpoint) {
     throw Error(endpoint.url(), "not a dotted IPv4 address");
   return address;
 }
-
-std::string system_error(const std::string& what) { return what + ": " + strerror(errno); }
 
 int open_socket(const std::string& where) {
   const int descriptor = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "tactile/error.h"
+#include "thresholds.h"
 #include "training_checks.h"
 
 namespace tactile::ml {
@@ -38,11 +39,6 @@ SortedFeatures sort_features(const Matrix& x) {
                      [&](int64_t a, int64_t b) { return x(a, feature) < x(b, feature); });
   }
   return sorted;
-}
-
-double midpoint(double lower, double upper) {
-  const double middle = lower + (upper - lower) / 2.0;
-  return lower < middle ? middle : upper;
 }
 
 // Weighted least-squares stump: minimising Σ w (z - f)² with f constant on each side of a

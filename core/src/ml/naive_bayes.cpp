@@ -8,6 +8,7 @@
 
 #include "probabilistic_support.h"
 #include "tactile/error.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile::ml {
 
@@ -20,17 +21,6 @@ std::string read_priors_mode(const Parameters& parameters) {
   if (mode != "empirical" && mode != "uniform")
     throw Error(parameters.where(), "priors=" + mode + ": expected empirical or uniform");
   return mode;
-}
-
-double median(std::vector<double> values) {
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle),
-                   values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower =
-      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
-  return 0.5 * (lower + upper);
 }
 
 // Width by Silverman's rule, falling back to the sample std when the MAD vanishes; 0 for a
@@ -61,9 +51,9 @@ Matrix log_posterior_to_scores(Matrix log_joint, const Vector& priors) {
 double silverman_width(const Vector& values) {
   if (values.size() == 0) return 0.0;
   std::vector<double> samples(values.data(), values.data() + values.size());
-  const double centre = median(samples);
+  const double centre = stats::median(samples);
   for (double& value : samples) value = std::abs(value - centre);
-  const double robust_deviation = median(samples) / 0.6745;
+  const double robust_deviation = stats::median(samples) / 0.6745;
   // Silverman's rule of thumb for a normal kernel: h = σ (4 / (3 n))^(1/5).
   return robust_deviation * std::pow(4.0 / (3.0 * static_cast<double>(values.size())), 0.2);
 }

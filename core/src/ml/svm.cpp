@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
+#include "tactile/stats/statistics.h"
 #include "training_checks.h"
 
 namespace tactile::ml {
@@ -107,17 +108,6 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   return gather_rows(x, order);
 }
 
-double median(std::vector<double> values) {
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle),
-                   values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower =
-      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
-  return 0.5 * (lower + upper);
-}
-
 struct ModelDeleter {
   void operator()(svm_model* model) const { svm_free_and_destroy_model(&model); }
 };
@@ -171,7 +161,7 @@ double auto_kernel_scale(const Matrix& positive, const Matrix& negative, std::mt
       static_cast<double>(drawn_negative.rows()) / static_cast<double>(negative.rows()) *
       static_cast<double>(drawn_positive.rows()) / static_cast<double>(positive.rows());
   const double scale =
-      median(std::move(nearest)) *
+      stats::median(std::move(nearest)) *
       std::pow(std::sqrt(sampled_fraction), 1.0 / static_cast<double>(positive.cols()));
   return std::isfinite(scale) && scale > 0.0 ? scale : 1.0;
 }

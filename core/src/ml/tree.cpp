@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "tactile/error.h"
+#include "thresholds.h"
 #include "training_checks.h"
 
 namespace tactile::ml {
@@ -23,13 +24,6 @@ struct Split {
 // minimises their size-weighted Gini.
 double purity(double sum_of_squares, int64_t samples) {
   return samples > 0 ? sum_of_squares / static_cast<double>(samples) : 0.0;
-}
-
-// The midpoint between two consecutive distinct values, kept strictly above the lower one
-// so that `lower < threshold` holds even when the two are adjacent doubles.
-double midpoint(double lower, double upper) {
-  const double middle = lower + (upper - lower) / 2.0;
-  return lower < middle ? middle : upper;
 }
 
 // CART's search: every feature, every cut between distinct sorted values, children no

@@ -12,6 +12,8 @@ namespace tactile::stats {
 double mean(std::span<const double> x);
 // Population variance (1/T) Σ (x - mean)²; 0 for T = 0.
 double variance(std::span<const double> x);
+// The middle value, the mean of the two middle values for an even count; 0 for no values.
+double median(std::vector<double> values);
 // Sample standard deviation with 1/(T-1); 0 for T <= 1.
 double sample_std(std::span<const double> x);
 // x[t+1] - x[t], length T-1 (empty for T < 2).
