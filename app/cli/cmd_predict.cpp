@@ -53,9 +53,9 @@ std::vector<Label> segments_of(const PredictOptions& options, const LabelStore& 
   if (!options.segments.empty())
     return segment_recording(options.segments, recording, layout,
                              Parameters::parse(options.params, "--params"));
-  std::vector<Label> segments = labels_of(store, recording.id, LabelSource::kSegmenter);
-  if (segments.empty()) segments = labels_of(store, recording.id, LabelSource::kGroundTruth);
-  return segments;
+  LabelFilter of_recording;
+  of_recording.recording = recording.id;
+  return segments_to_predict(store.list(of_recording));
 }
 
 void run_predict(const PredictOptions& options) {
@@ -78,11 +78,10 @@ void run_predict(const PredictOptions& options) {
     for (const SkippedSegment& skipped : predictions.skipped)
       std::cerr << "skipped: " << skipped.recording << " " << skipped.t0 << "-" << skipped.t1
                 << " s: " << skipped.reason << "\n";
-    LabelFilter earlier;
-    earlier.recording = recording.id;
-    earlier.source = LabelSource::kModel;
-    const int64_t removed = store.remove_where(earlier, kModelAnnotator);
-    store.add_many(predictions.labels);
+    // The model's lane replaced, in one transaction (labels/predict.h, as the workbench's).
+    size_t removed = 0;
+    store.apply(prediction_edit(store, recording.id, predictions.labels, &removed),
+                kModelAnnotator);
     total += static_cast<int64_t>(predictions.labels.size());
     std::cout << recording.id << ": " << predictions.labels.size() << " predictions of "
               << segments.size() << " segments";

@@ -29,17 +29,6 @@ struct SegmentOptions {
   bool replace = false;
 };
 
-// Removes the recording's earlier labels of this segmenter, leaving other methods'
-// segments alone, in one transaction.
-int64_t remove_earlier(LabelStore& store, const std::string& recording,
-                       const std::string& annotator) {
-  LabelFilter filter;
-  filter.recording = recording;
-  filter.source = LabelSource::kSegmenter;
-  filter.annotator = annotator;
-  return store.remove_where(filter, annotator);
-}
-
 void run_segment(const SegmentOptions& options) {
   const std::vector<std::string> methods = segmenter_methods();
   if (std::find(methods.begin(), methods.end(), options.method) == methods.end()) {
@@ -56,18 +45,16 @@ void run_segment(const SegmentOptions& options) {
   for (const std::string& file : files) {
     const Recording recording = read_recording(file);
     const SkinLayout layout = load_layout(recording.layout_id);
-    std::vector<Label> labels = segment_recording(options.method, recording, layout, parameters);
-    for (Label& label : labels)
-      if (label.class_name.empty()) label.class_name = kUnknownClass;
-    // Suggestions an annotator rejected stay rejected.
-    const size_t rejected = drop_rejected(labels, store.rejections(recording.id));
-    int64_t removed = 0;
-    if (options.replace) removed = remove_earlier(store, recording.id, annotator);
-    store.add_many(labels);
-    total += static_cast<int64_t>(labels.size());
-    std::cout << recording.id << ": " << labels.size() << " segments";
-    if (options.replace) std::cout << " (replaced " << removed << ")";
-    if (rejected > 0) std::cout << " (" << rejected << " left out: rejected before)";
+    // Suggestions an annotator rejected stay rejected; --replace removes the method's
+    // earlier ones, in the same transaction (labels/suggestions.h, as the workbench's G).
+    const SegmenterRun run = segmenter_run(
+        store, recording.id, options.method,
+        segment_recording(options.method, recording, layout, parameters), options.replace);
+    store.apply(run.edit, annotator);
+    total += static_cast<int64_t>(run.edit.add.size());
+    std::cout << recording.id << ": " << run.edit.add.size() << " segments";
+    if (options.replace) std::cout << " (replaced " << run.replaced << ")";
+    if (run.rejected > 0) std::cout << " (" << run.rejected << " left out: rejected before)";
     std::cout << "\n";
   }
   std::cout << total << " segments from " << files.size()

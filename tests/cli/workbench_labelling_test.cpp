@@ -9,9 +9,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -58,6 +60,18 @@ class WorkbenchLabelling : public ::testing::Test {
         "tactile", "labels list " + database() + " --source manual --json", folder);
     EXPECT_EQ(listed.exit_code, 0) << listed.err;
     return nlohmann::json::parse(listed.out)["labels"];
+  }
+  // Every label in the database, ids and times aside, in a fixed order.
+  nlohmann::json all_labels() {
+    const auto listed =
+        test::run_program("tactile", "labels list " + database() + " --json", folder);
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+    nlohmann::json labels = nlohmann::json::parse(listed.out)["labels"];
+    for (nlohmann::json& label : labels)
+      for (const char* field : {"id", "created", "modified"}) label.erase(field);
+    std::sort(labels.begin(), labels.end(),
+              [](const nlohmann::json& a, const nlohmann::json& b) { return a.dump() < b.dump(); });
+    return labels;
   }
   nlohmann::json state(const std::string& name) {
     std::ifstream in(folder.file(name));
@@ -170,6 +184,44 @@ TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRe
   EXPECT_EQ(lane_size(state("rerun.json"), lane), suggestions - 1);
   EXPECT_NE(state("rerun.json")["notice"].get<std::string>().find("(1 rejected before)"),
             std::string::npos);
+}
+
+// G, accept one suggestion and reject the next, G again, Ctrl+Z: the database is as it was
+// before the second run (a run was two journal batches, and undo left both runs stacked).
+TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRerunRestoresTheLabelsBeforeIt) {
+  ASSERT_EQ(workbench("wait 2\nkey G\nwait 1\nkey 6\nkey A\nwait 1\nkey R\nwait 1\n").exit_code, 0);
+  const nlohmann::json before = all_labels();
+  ASSERT_GE(before.size(), 3u);
+  const auto result = workbench(
+      "wait 2\nkey G\nwait 1\nstate @rerun.json\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(state("rerun.json")["notice"].get<std::string>().find("(1 rejected before)"),
+            std::string::npos);
+  EXPECT_EQ(state("undone.json")["notice"], "undone");
+  EXPECT_EQ(all_labels(), before);
+  const auto check = test::run_program("tactile", "labels check " + database(), folder);
+  EXPECT_EQ(check.out.find("overlap"), std::string::npos) << check.out;
+}
+
+// An operator's label, G, Ctrl+Z: the run goes and the label stays (undo took the label).
+TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRunTakesBackTheRunNotTheLabelBeforeIt) {
+  const auto result = workbench(
+      "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 2\nkey Enter\nwait 1\nstate @labelled.json\n"
+      "key G\nwait 1\nstate @run.json\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // Lane id -> labels, for the lanes that hold any.
+  auto lanes = [](const nlohmann::json& state) {
+    std::map<std::string, int> sizes;
+    for (const auto& lane : state["lanes"])
+      if (lane["labels"].get<int>() > 0) sizes[lane["id"]] = lane["labels"].get<int>();
+    return sizes;
+  };
+  const std::map<std::string, int> labelled = lanes(state("labelled.json"));
+  EXPECT_GT(lanes(state("run.json")).size(), labelled.size());
+  EXPECT_EQ(lanes(state("undone.json")), labelled);
+  const nlohmann::json labels = manual_labels();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_EQ(labels[0]["class"], vocabulary[1]);
 }
 
 TEST_F(WorkbenchLabelling, TheQualityViewListsIssuesAndAgreementAndAClickGoesThere) {

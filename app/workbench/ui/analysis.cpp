@@ -185,21 +185,14 @@ bool predict_open_recording(WorkbenchState& state) {
     Document& document = *state.document;
     const SavedModel model = read_model_file(analysis.model_path);
     // The recording's segmenter suggestions, else its ground truth, as `tactile predict`.
-    std::vector<Label> segments;
-    for (LabelSource source : {LabelSource::kSegmenter, LabelSource::kGroundTruth}) {
-      for (const Label& label : document.labels)
-        if (label.source == source) segments.push_back(label);
-      if (!segments.empty()) break;
-    }
+    const std::vector<Label> segments = segments_to_predict(document.labels);
     if (segments.empty()) return fail(state, "no segments to predict: run a segmenter (Labels menu)");
     const Predictions predictions =
         predict_segments(model, whole_recording(document), document.layout, segments);
+    // The model's lane replaced as one edit of the operator's: Ctrl+Z takes it back.
     LabelStore& store = document.label_store();
-    LabelFilter earlier;
-    earlier.recording = document.recording_id();
-    earlier.source = LabelSource::kModel;
-    store.remove_where(earlier, kModelAnnotator);
-    store.add_many(predictions.labels);
+    store.apply(prediction_edit(store, document.recording_id(), predictions.labels),
+                state.labelling.annotator);
     document.reload_labels();
     state.error.clear();
     state.notice = std::to_string(predictions.labels.size()) + " predictions by " +

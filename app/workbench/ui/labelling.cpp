@@ -269,24 +269,18 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
   try {
     const Parameters parameters =
         Parameters::parse(state.labelling.segmenter_params.data(), "segmenter parameters");
-    std::vector<Label> segments =
-        segment_recording(method, whole_recording(document), document.layout, parameters);
-    for (Label& segment : segments)
-      if (segment.class_name.empty()) segment.class_name = kUnknownClass;
     LabelStore& store = document.label_store();
-    const size_t rejected = drop_rejected(segments, store.rejections(document.recording_id()));
-    const std::string annotator = "segmenter:" + method;
-    LabelFilter earlier;
-    earlier.recording = document.recording_id();
-    earlier.source = LabelSource::kSegmenter;
-    earlier.annotator = annotator;
-    store.remove_where(earlier, state.labelling.annotator);
-    store.add_many(segments);
-    after_edit(state, 0,
-               method + ": " + std::to_string(segments.size()) + " suggestions" +
-                   (rejected > 0 ? " (" + std::to_string(rejected) + " rejected before)" : "") +
-                   "; A accepts, R rejects");
-    select_next_suggestion(state, annotator, -1e300);
+    // One edit journalled under the operator: Ctrl+Z takes back the whole run.
+    const SegmenterRun run = segmenter_run(
+        store, document.recording_id(), method,
+        segment_recording(method, whole_recording(document), document.layout, parameters));
+    store.apply(run.edit, state.labelling.annotator);
+    after_edit(
+        state, 0,
+        method + ": " + std::to_string(run.edit.add.size()) + " suggestions" +
+            (run.rejected > 0 ? " (" + std::to_string(run.rejected) + " rejected before)" : "") +
+            "; A accepts, R rejects");
+    select_next_suggestion(state, run.annotator, -1e300);
     return true;
   } catch (const Error& error) {
     return fail(state, error.what());

@@ -197,15 +197,29 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
   return found;
 }
 
-// Inserts a new label (id and times assigned here) and journals it. `time` "" = now.
+// Inserts a new label (id and times assigned here) and journals it under `by` ("" = the
+// label's annotator). `time` "" = now.
 int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch,
-                   const std::string& time) {
+                   const std::string& time, const std::string& by = {}) {
   label.id = 0;
   label.created = label.modified = time.empty() ? label_rows::now_utc() : time;
   label.id = label_rows::store(database, path, label);
-  label_rows::write_journal(database, path, batch, label.annotator, "insert", label.id, "",
-                            label_rows::state_json(label), label.created);
+  label_rows::write_journal(database, path, batch, by.empty() ? label.annotator : by, "insert",
+                            label.id, "", label_rows::state_json(label), label.created);
   return label.id;
+}
+
+// Replaces an existing label's values (its creation time kept) and journals it under `by`
+// ("" = the label's annotator).
+void update_existing(sqlite3* database, const std::string& path, const Label& before,
+                     const Label& label, int64_t batch, const std::string& by = {}) {
+  Label after = label;
+  after.created = before.created;
+  after.modified = label_rows::now_utc();
+  label_rows::store(database, path, after);
+  label_rows::write_journal(database, path, batch, by.empty() ? after.annotator : by, "update",
+                            after.id, label_rows::state_json(before),
+                            label_rows::state_json(after));
 }
 
 // Deletes an existing label and journals it.
@@ -355,13 +369,7 @@ void LabelStore::update(const Label& label) {
   sqlite::Transaction transaction(database_, path_);
   const std::optional<Label> before = label_rows::load(database_, path_, label.id);
   if (!before) throw Error(where, "no such label to update");
-  Label after = label;
-  after.created = before->created;
-  after.modified = label_rows::now_utc();
-  label_rows::store(database_, path_, after);
-  label_rows::write_journal(database_, path_, label_rows::next_batch(database_, path_),
-                            after.annotator, "update", after.id, label_rows::state_json(before),
-                            label_rows::state_json(after));
+  update_existing(database_, path_, *before, label, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
   transaction.commit();
 }
@@ -393,6 +401,35 @@ int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& a
   label_rows::clear_redo_chain(database_, path_);
   transaction.commit();
   return static_cast<int64_t>(doomed.size());
+}
+
+std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string& by) {
+  const std::string what = path_ + " edit by " + (by.empty() ? std::string("(nobody)") : by);
+  for (size_t i = 0; i < edit.add.size(); ++i)
+    label_rows::validate(edit.add[i], what + ", new label " + std::to_string(i + 1) + " of " +
+                                          std::to_string(edit.add.size()));
+  for (const Label& label : edit.update)
+    label_rows::validate(label, label_rows::where_label(path_, label.id));
+  std::vector<int64_t> ids;
+  if (edit.empty()) return ids;
+  sqlite::Transaction transaction(database_, path_);
+  const int64_t batch = label_rows::next_batch(database_, path_);
+  for (const int64_t id : edit.remove) {
+    const std::optional<Label> before = label_rows::load(database_, path_, id);
+    if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
+    delete_existing(database_, path_, *before, by, batch);
+  }
+  for (const Label& label : edit.update) {
+    const std::optional<Label> before = label_rows::load(database_, path_, label.id);
+    if (!before) throw Error(label_rows::where_label(path_, label.id), "no such label to update");
+    update_existing(database_, path_, *before, label, batch, by);
+  }
+  ids.reserve(edit.add.size());
+  for (const Label& label : edit.add)
+    ids.push_back(insert_new(database_, path_, label, batch, fixed_time_, by));
+  label_rows::clear_redo_chain(database_, path_);
+  transaction.commit();
+  return ids;
 }
 
 //---- Queries

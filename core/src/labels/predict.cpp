@@ -200,6 +200,28 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
   return predictions;
 }
 
+std::vector<Label> segments_to_predict(const std::vector<Label>& labels) {
+  std::vector<Label> segments;
+  for (const LabelSource source : {LabelSource::kSegmenter, LabelSource::kGroundTruth}) {
+    for (const Label& label : labels)
+      if (label.source == source) segments.push_back(label);
+    if (!segments.empty()) break;
+  }
+  return segments;
+}
+
+LabelEdit prediction_edit(const LabelStore& store, const std::string& recording,
+                          const std::vector<Label>& predictions, size_t* replaced) {
+  LabelFilter earlier;
+  earlier.recording = recording;
+  earlier.source = LabelSource::kModel;
+  LabelEdit edit;
+  for (const Label& label : store.list(earlier)) edit.remove.push_back(label.id);
+  if (replaced != nullptr) *replaced = edit.remove.size();
+  edit.add = predictions;
+  return edit;
+}
+
 double prediction_margin(const Label& label) {
   const size_t at = label.note.find("margin=");
   if (at == std::string::npos) return label.confidence;

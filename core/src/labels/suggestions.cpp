@@ -22,4 +22,23 @@ size_t drop_rejected(std::vector<Label>& segments, const std::vector<Rejection>&
   return before - segments.size();
 }
 
+SegmenterRun segmenter_run(const LabelStore& store, const std::string& recording,
+                           const std::string& method, std::vector<Label> segments, bool replace) {
+  SegmenterRun run;
+  run.annotator = "segmenter:" + method;
+  for (Label& segment : segments)
+    if (segment.class_name.empty()) segment.class_name = kUnknownClass;
+  run.rejected = drop_rejected(segments, store.rejections(recording));
+  if (replace) {
+    LabelFilter earlier;
+    earlier.recording = recording;
+    earlier.source = LabelSource::kSegmenter;
+    earlier.annotator = run.annotator;
+    for (const Label& label : store.list(earlier)) run.edit.remove.push_back(label.id);
+    run.replaced = run.edit.remove.size();
+  }
+  run.edit.add = std::move(segments);
+  return run;
+}
+
 }  // namespace tactile

@@ -63,6 +63,16 @@ struct StoreProblem {
   std::string where(const std::string& path) const;
 };
 
+// One user action on the labels, as a whole: the labels it removes, adds and changes. A
+// segmenter run removes its earlier suggestions and adds new ones; a prediction replaces the
+// model's lane. LabelStore::apply writes it as one journal batch, so one undo reverts it all.
+struct LabelEdit {
+  std::vector<int64_t> remove;  // ids of existing labels
+  std::vector<Label> add;       // new labels (id and times are assigned by the store)
+  std::vector<Label> update;    // existing labels (by id) with their new values
+  bool empty() const { return remove.empty() && add.empty() && update.empty(); }
+};
+
 // The JSON export's document for these labels: {"labels": [...]}, indented.
 std::string labels_json(const std::vector<Label>& labels);
 
@@ -106,6 +116,12 @@ class LabelStore {
   std::vector<int64_t> add_many(const std::vector<Label>& labels);
   // Removes every label the filter matches, in one transaction; returns how many.
   int64_t remove_where(const LabelFilter& filter, const std::string& annotator = {});
+  // The whole edit or nothing, in one transaction and one journal batch whose every row is
+  // journalled under `by` (the person or program that made the edit), so that undo(by)
+  // reverts exactly this edit, whichever lanes it touched. Removals first, then updates,
+  // then insertions; returns the new labels' ids in the order of edit.add. Throws naming the
+  // first label that is invalid or no longer exists, leaving the store unchanged.
+  std::vector<int64_t> apply(const LabelEdit& edit, const std::string& by);
 
   // Rejects a suggestion: removes the segmenter's label (journalled as the annotator's
   // edit, so undo brings it back) and remembers its span, in one transaction. Throws

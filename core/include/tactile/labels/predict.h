@@ -12,6 +12,7 @@
 #include "tactile/features/corpus.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/label.h"
+#include "tactile/io/label_store.h"
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/ml/classifier.h"
@@ -59,6 +60,16 @@ struct Predictions {
 // the pipeline's columns are not the model's features.
 Predictions predict_segments(const SavedModel& model, const Recording& recording,
                              const SkinLayout& layout, const std::vector<Label>& segments);
+
+// The segments a model predicts on by default: the recording's segmenter suggestions among
+// `labels` (one recording's), else its ground truth; none when it has neither.
+std::vector<Label> segments_to_predict(const std::vector<Label>& labels);
+
+// The model's lane of a recording replaced by `predictions`, as one edit: its earlier
+// predictions removed, the new ones added (LabelStore::apply, by kModelAnnotator or the
+// person who asked). Returns the edit and, in `replaced`, how many it removes.
+LabelEdit prediction_edit(const LabelStore& store, const std::string& recording,
+                          const std::vector<Label>& predictions, size_t* replaced = nullptr);
 
 // The margin a prediction label carries in its note ("margin=0.25 ..."); its confidence
 // when the note has none.
