@@ -116,6 +116,51 @@ TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
   EXPECT_NE(next["true"], next["predicted"]);
 }
 
+// The SOM map and the scatter's PCA run on a worker: the window goes on drawing frames, and
+// each result is applied frames after its job started (it was fitted inside one frame,
+// 18-20 s at 454 x 1692); a screenshot waits for the view's job.
+TEST_F(WorkbenchClassifiers, TheSomMapAndTheScatterAreComputedWhileFramesGoOn) {
+  ASSERT_EQ(
+      test::run_program(
+          "tactile",
+          "simulate --skin flux --subjects 2 --repetitions 3 --out " + folder.file("flux"), folder)
+          .exit_code,
+      0);
+  const std::string table = folder.file("flux/features.csv");
+  ASSERT_EQ(test::run_program("tactile",
+                              "features --pipeline flux --labels " + folder.file("flux/labels.db") +
+                                  " --out " + table,
+                              folder)
+                .exit_code,
+            0);
+  const auto run = workbench("--features " + table,
+                             "wait 2\nclick item tab:som\nwait jobs\nwait 1\nstate @som.json\n"
+                             "click item tab:scatter\nwait jobs\nwait 1\nstate @scatter.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  auto job = [](const nlohmann::json& state, const std::string& name) {
+    for (const auto& entry : state["jobs"])
+      if (entry["name"] == name) return entry;
+    return nlohmann::json();
+  };
+  const nlohmann::json som_state = state("som.json");
+  const nlohmann::json som = job(som_state, "SOM map");
+  ASSERT_FALSE(som.is_null()) << som_state["jobs"];
+  EXPECT_EQ(som["status"], "done");
+  EXPECT_GT(som["finished_frame"].get<int>(), som["started_frame"].get<int>());
+  EXPECT_FALSE(som_state["analysis"]["som"].is_null());
+  EXPECT_EQ(som_state["error"], "");
+  const nlohmann::json scatter = job(state("scatter.json"), "scatter");
+  ASSERT_FALSE(scatter.is_null()) << state("scatter.json")["jobs"];
+  EXPECT_EQ(scatter["status"], "done");
+  EXPECT_GT(scatter["finished_frame"].get<int>(), scatter["started_frame"].get<int>());
+
+  // Rendered to a PNG on its own, the view shows the map, not the progress of its job.
+  const auto shot = workbench("--features " + table + " --view som --headless --screenshot " +
+                              folder.file("som-alone.png"));
+  ASSERT_EQ(shot.exit_code, 0) << shot.err;
+  EXPECT_GT(colours_in(read_png(folder.file("som-alone.png"))), 30u);
+}
+
 TEST_F(WorkbenchClassifiers, ResultFilesOpenFromTheCommandLine) {
   // A table and a result of one skin, made with the command line.
   ASSERT_EQ(test::run_program("tactile", "simulate --skin flux --subjects 2 --repetitions 3 --out " +

@@ -5,14 +5,15 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "tactile/error.h"
-#include "tactile/labels/predict.h"
 #include "labelling.h"
+#include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/labels/predict.h"
 #include "tactile/ml/pca.h"
 #include "views.h"
 
@@ -56,12 +57,15 @@ void reset_views(AnalysisState& analysis) {
   analysis.som_for = nullptr;
   analysis.som_neuron = -1;
   analysis.scatter_for = nullptr;
+  analysis.scatter_job.reset();  // cancelled: it was for the table before
+  analysis.som_held = analysis.scatter_held = false;
 }
 
 void set_dataset(AnalysisState& analysis, Dataset dataset) {
   analysis.dataset_layout = layout_of(dataset);
   analysis.dataset = std::move(dataset);
   analysis.som.reset();
+  analysis.som_job.reset();
   reset_views(analysis);
 }
 
@@ -391,26 +395,80 @@ std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
 
 //---- Derived views --------------------------------------------------------------------------
 
+namespace {
+
+// A job's end, applied on the window's thread: its result when it gave one to apply.
+template <typename Result>
+std::optional<Result> finished_view_job(WorkbenchState& state, std::unique_ptr<Job<Result>>& job) {
+  if (!job || job->status() == JobStatus::kRunning) return std::nullopt;
+  std::optional<Result> result = job->take();
+  if (job->status() == JobStatus::kFailed) fail(state, job->name() + ": " + job->error());
+  if (job->status() == JobStatus::kCancelled) state.notice = job->name() + ": cancelled";
+  for (auto record = state.job_log.rbegin(); record != state.job_log.rend(); ++record)
+    if (record->name == job->name() && record->status == "running") {
+      record->status = to_string(job->status());
+      record->finished_frame = state.frame;
+      break;
+    }
+  job.reset();
+  return result;
+}
+
+// Starts a view's job and logs it (state JSON "jobs").
+template <typename Result>
+void start_view_job(WorkbenchState& state, std::unique_ptr<Job<Result>>& job,
+                    const std::string& name, std::function<Result(JobProgress&)> work) {
+  job = std::make_unique<Job<Result>>(name, std::move(work));
+  state.job_log.push_back({name, "running", state.frame, -1});
+  if (state.job_log.size() > 20) state.job_log.erase(state.job_log.begin());
+}
+
+}  // namespace
+
 bool ensure_som(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   // The rows' winners are for this table (none without a table).
   const void* table = analysis.dataset ? &*analysis.dataset : nullptr;
+  if (analysis.som_job && analysis.som_job->status() == JobStatus::kCancelled)
+    analysis.som_held = true;
+  if (std::optional<AnalysisState::SomFit> fit = finished_view_job(state, analysis.som_job)) {
+    analysis.som = std::move(fit->som);
+    analysis.som_classes = std::move(fit->classes);
+    analysis.som_winners = std::move(fit->winners);
+    analysis.som_for = table;
+  }
   if (analysis.som && analysis.som_for == table) return true;
+  if (analysis.som_job) return false;                    // fitting: the view shows its progress
+  if (!analysis.som && analysis.som_held) return false;  // cancelled: the view offers it again
   try {
     if (!analysis.som) {
       if (!analysis.dataset) return false;
-      // The map of the table: the flux paper's 7 x 7 SOM fitted on every row.
-      const Dataset& dataset = *analysis.dataset;
-      analysis.som_classes = dataset.class_names();
-      std::vector<int> labels;
-      for (const std::string& name : dataset.classes)
-        labels.push_back(static_cast<int>(std::find(analysis.som_classes.begin(),
-                                                    analysis.som_classes.end(), name) -
-                                          analysis.som_classes.begin()));
-      auto som = std::make_unique<ml::SomClassifier>(Parameters::parse("epochs=200", "som"));
-      som->fit(dataset.features, labels, static_cast<int>(analysis.som_classes.size()), 1);
-      analysis.som = std::move(som);
+      // The map of the table: the flux paper's 7 x 7 SOM fitted on every row, on a worker
+      // (18-20 s on a 454 x 1692 table), with its rows' winners.
+      start_view_job<AnalysisState::SomFit>(
+          state, analysis.som_job, "SOM map", [dataset = *analysis.dataset](JobProgress& progress) {
+            AnalysisState::SomFit fit;
+            fit.classes = dataset.class_names();
+            std::vector<int> labels;
+            for (const std::string& name : dataset.classes)
+              labels.push_back(static_cast<int>(
+                  std::find(fit.classes.begin(), fit.classes.end(), name) - fit.classes.begin()));
+            fit.som = std::make_unique<ml::SomClassifier>(Parameters::parse("epochs=200", "som"));
+            fit.som->set_epoch_observer([&progress](int epoch, int epochs) {
+              progress.report(static_cast<double>(epoch) / epochs,
+                              "epoch " + std::to_string(epoch) + " of " + std::to_string(epochs));
+              progress.check();
+            });
+            fit.som->fit(dataset.features, labels, static_cast<int>(fit.classes.size()), 1);
+            fit.som->set_epoch_observer(nullptr);
+            const ml::Matrix scaled = fit.som->scale(dataset.features);
+            for (Eigen::Index row = 0; row < scaled.rows(); ++row)
+              fit.winners.push_back(ml::som_winner(fit.som->map(), scaled.row(row).transpose()));
+            return fit;
+          });
+      return false;
     }
+    // A loaded map: the winners of this table's rows (a pass over the rows, no fit).
     analysis.som_winners.clear();
     if (analysis.dataset && analysis.dataset->features.cols() == analysis.som->map().weights.cols()) {
       const ml::Matrix scaled = analysis.som->scale(analysis.dataset->features);
@@ -428,21 +486,39 @@ bool ensure_som(WorkbenchState& state) {
 bool ensure_scatter(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!analysis.dataset) return false;
+  if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
+    analysis.scatter_held = true;
+  if (std::optional<AnalysisState::ScatterFit> fit =
+          finished_view_job(state, analysis.scatter_job)) {
+    analysis.scatter = std::move(fit->scatter);
+    analysis.scatter_explained = fit->explained;
+    return analysis.scatter.rows() > 0;
+  }
+  if (analysis.scatter_job) return false;   // computing: the view shows its progress
+  if (analysis.scatter_held) return false;  // cancelled: the view offers it again
   if (analysis.scatter_for == &*analysis.dataset) return analysis.scatter.rows() > 0;
   analysis.scatter_for = &*analysis.dataset;
   analysis.scatter.resize(0, 2);
-  try {
-    ml::PcaOptions options;
-    options.components = std::min<int>(2, static_cast<int>(analysis.dataset->features.cols()));
-    const ml::Pca pca = ml::fit_pca(analysis.dataset->features, options);
-    ml::Matrix projected = pca.transform(analysis.dataset->features);
-    if (projected.cols() < 2) projected.conservativeResize(Eigen::NoChange, 2), projected.col(1).setZero();
-    analysis.scatter = projected;
-    analysis.scatter_explained = pca.cumulative_ratio()(std::min<Eigen::Index>(1, pca.kept - 1));
-  } catch (const std::exception& error) {
-    return fail(state, std::string("scatter: ") + error.what());
-  }
-  return true;
+  // The table on its first two principal components, on a worker (7.8 s at 454 x 1692).
+  start_view_job<AnalysisState::ScatterFit>(
+      state, analysis.scatter_job, "scatter",
+      [features = analysis.dataset->features](JobProgress& progress) {
+        progress.report(0.0, "principal components of " + std::to_string(features.rows()) + " x " +
+                                 std::to_string(features.cols()));
+        ml::PcaOptions options;
+        options.components = std::min<int>(2, static_cast<int>(features.cols()));
+        const ml::Pca pca = ml::fit_pca(features, options);
+        progress.check();
+        AnalysisState::ScatterFit fit;
+        fit.scatter = pca.transform(features);
+        if (fit.scatter.cols() < 2) {
+          fit.scatter.conservativeResize(Eigen::NoChange, 2);
+          fit.scatter.col(1).setZero();
+        }
+        fit.explained = pca.cumulative_ratio()(std::min<Eigen::Index>(1, pca.kept - 1));
+        return fit;
+      });
+  return false;
 }
 
 bool ensure_somatosensory(WorkbenchState& state) {

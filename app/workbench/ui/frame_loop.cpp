@@ -51,7 +51,8 @@ bool FrameLoop::end(const std::function<Image()>& grab) {
     }
     return !workbench_.quit_requested();
   }
-  if (!args_.screenshot.empty() && frame_ >= args_.frames) {
+  // A screenshot shows what its view computes: frames go on while a view's job runs.
+  if (!args_.screenshot.empty() && frame_ >= args_.frames && !workbench_.jobs_running()) {
     write_png(args_.screenshot, image());
     std::cout << "wrote " << args_.screenshot << "\n";
     if (!workbench_.error().empty()) exit_code_ = 1;

@@ -137,6 +137,20 @@ void ScriptPlayer::expand(const ScriptStep& step) {
   } else if (command == "time") {
     const double t = std::stod(step.words[0]);
     once([t](Workbench& workbench, ImGuiIO&) { workbench.seek(t); });
+  } else if (command == "wait" && step.words[0] == "jobs") {
+    // Frames go on being drawn until no view's job (SOM, scatter) runs; ten minutes at most.
+    auto deadline = std::make_shared<std::optional<Clock::time_point>>();
+    actions_.push_back([this, step, deadline](Workbench& workbench, ImGuiIO&) {
+      const auto now = Clock::now();
+      if (!*deadline) *deadline = now + std::chrono::minutes(10);
+      if (!workbench.jobs_running()) return true;
+      if (now >= **deadline) {
+        fail(step, "a view's job still running after 10 minutes");
+        return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      return false;
+    });
   } else if (command == "wait" && step.words[0] == "training") {
     // Frames go on being drawn (the window stays responsive) until the run ends; ten
     // minutes at most.
@@ -199,7 +213,7 @@ void ScriptPlayer::expand(const ScriptStep& step) {
         },
         step);
   } else if (command == "click" && (step.words[0] == "recording" || step.words[0] == "item" ||
-                                     (step.words[0] == "cell" && step.words.size() == 3))) {
+                                    (step.words[0] == "cell" && step.words.size() == 3))) {
     const std::string name = step.words[0] == "recording" ? "recording:" + step.words[1]
                              : step.words[0] == "cell" ? "cell:" + step.words[1] + "/" + step.words[2]
                                                        : step.rest.substr(step.rest.find_first_not_of(" \t", 4));

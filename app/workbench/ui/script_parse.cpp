@@ -128,10 +128,10 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
     if (step.words.size() < arity->second.first || step.words.size() > arity->second.second)
       throw Error(place, step.command + ": wrong number of arguments (docs/SCRIPTING.md)");
     // Check what can be checked before anything runs.
-    if (step.command == "wait" && step.words[0] == "training") {
-      // Draws frames until the model panel's run ends.
+    if (step.command == "wait" && (step.words[0] == "training" || step.words[0] == "jobs")) {
+      // Draws frames until the model panel's run, or the views' jobs, end.
     } else if (step.command == "time" || step.command == "wait" || step.command == "play" ||
-        step.command == "sleep") {
+               step.command == "sleep") {
       const double value = parse_number(step, 0, where);
       if (value < 0) throw Error(place, step.command + ": must not be negative");
       // `wait 0.5` would draw no frame at all: a script meaning seconds gets told so.

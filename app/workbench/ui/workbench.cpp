@@ -555,6 +555,12 @@ void Workbench::save_settings() const {
 
 //---- State as JSON
 
+bool Workbench::jobs_running() const {
+  const AnalysisState& analysis = state_.analysis;
+  return (analysis.som_job && analysis.som_job->status() == JobStatus::kRunning) ||
+         (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kRunning);
+}
+
 nlohmann::json Workbench::state_json() const {
   nlohmann::json json;
   const Document* document = state_.document.get();
@@ -627,6 +633,13 @@ nlohmann::json Workbench::state_json() const {
   json["error"] = state_.error;
   json["notice"] = state_.notice;
   json["frame"] = state_.frame;
+  nlohmann::json jobs = nlohmann::json::array();
+  for (const WorkbenchState::JobRecord& record : state_.job_log)
+    jobs.push_back({{"name", record.name},
+                    {"status", record.status},
+                    {"started_frame", record.started_frame},
+                    {"finished_frame", record.finished_frame}});
+  json["jobs"] = jobs;
   return json;
 }
 

@@ -10,20 +10,21 @@
 #include <memory>
 #include <optional>
 #include <set>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "document.h"
 #include "file_browser.h"
+#include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/quality.h"
+#include "tactile/layout/somatosensory.h"
 #include "tactile/live/live_receiver.h"
 #include "tactile/live/live_recorder.h"
 #include "tactile/live/live_source.h"
 #include "tactile/live/online_classifier.h"
 #include "tactile/live/playback.h"
-#include "tactile/layout/somatosensory.h"
 #include "tactile/ml/evaluation.h"
 #include "tactile/ml/som.h"
 #include "tactile/ml/training_job.h"
@@ -125,6 +126,13 @@ struct AnalysisState {
   bool landing_pending = false;  // land_on asked; carried out once its recording is open
   double replay_until = -1.0;  // the clock pauses here (the landed segment's end)
   // The SOM map: a SOM fitted on the table (or loaded), and each row's winner.
+  struct SomFit {
+    std::unique_ptr<ml::SomClassifier> som;
+    std::vector<std::string> classes;
+    std::vector<int> winners;
+  };
+  std::unique_ptr<Job<SomFit>> som_job;  // fitting the table's map on a worker
+  bool som_held = false;                 // cancelled: not started again until asked
   std::unique_ptr<ml::SomClassifier> som;
   std::vector<std::string> som_classes;
   std::vector<int> som_winners;  // per dataset row
@@ -132,6 +140,12 @@ struct AnalysisState {
   bool u_matrix = false;
   int som_neuron = -1;  // clicked
   // The scatter: the table's rows on the first two principal components.
+  struct ScatterFit {
+    Eigen::MatrixXd scatter;
+    double explained = 0.0;
+  };
+  std::unique_ptr<Job<ScatterFit>> scatter_job;  // the PCA on a worker
+  bool scatter_held = false;                     // cancelled: not started again until asked
   Eigen::MatrixXd scatter;
   double scatter_explained = 0.0;
   const void* scatter_for = nullptr;
@@ -224,6 +238,12 @@ struct WorkbenchState {
   std::string notice;  // the last message (an export written, ...)
   UiTargets targets;   // last frame's
   int64_t frame = 0;
+  // The views' jobs (SOM, scatter), newest last: when each started and was applied, by frame.
+  struct JobRecord {
+    std::string name, status;  // "running", then done / failed / cancelled
+    int64_t started_frame = 0, finished_frame = -1;
+  };
+  std::vector<JobRecord> job_log;
 
   // Requests from views, carried out by the workbench after the frame.
   std::optional<std::string> open_request;

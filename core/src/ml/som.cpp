@@ -185,6 +185,7 @@ void SomClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_co
                       ((-map_.weights).rowwise() + sample.transpose());
     }
     error.mean /= static_cast<double>(order.size());
+    if (epoch_observer_) epoch_observer_(epoch + 1, schedule_.epochs);
   }
   label_neurons(scaled, y, class_count);
 }

@@ -25,6 +25,7 @@
 // std::numeric_limits<double>::lowest().
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -79,6 +80,11 @@ class SomClassifier : public Classifier {
   const std::vector<SomEpochError>& training_errors() const { return training_errors_; }
   // The inputs as the map sees them (min-max scaled when scale=true).
   Matrix scale(const Matrix& x) const;
+  // Called by fit after each epoch with (epochs done, epochs): for progress, and to stop a
+  // fit by throwing (a cancelled job). Not saved with the model.
+  void set_epoch_observer(std::function<void(int, int)> observer) {
+    epoch_observer_ = std::move(observer);
+  }
 
  private:
   void label_neurons(const Matrix& scaled, const std::vector<int>& y, int class_count);
@@ -92,6 +98,7 @@ class SomClassifier : public Classifier {
   Vector minimum_;
   Vector range_;
   std::vector<SomEpochError> training_errors_;
+  std::function<void(int, int)> epoch_observer_;
 };
 
 // The registry's factory for `som`.

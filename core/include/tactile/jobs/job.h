@@ -1,0 +1,113 @@
+#pragma once
+// A step that may take longer than a frame, run on a worker thread: the window's thread starts
+// it, draws its progress, may cancel it, and takes its result in one step when it is done. The
+// worker runs below the window's priority, so the frames keep their time. Cancel is
+// cooperative: the work calls JobProgress::check() between steps (a SOM epoch, a file) and
+// ends within one step.
+//
+//   Job<Pca> job("scatter", [table](JobProgress& progress) { return fit_pca(table, {}); });
+//   ... each frame: draw job.progress(); if (auto pca = job.take()) apply(*pca);
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+namespace tactile {
+
+enum class JobStatus { kRunning, kDone, kFailed, kCancelled };
+const char* to_string(JobStatus status);
+
+// Thrown by JobProgress::check() in a cancelled job; ends the job as cancelled.
+struct JobCancelled {};
+
+// The state a worker and the thread that polls it share.
+class JobProgress {
+ public:
+  // `fraction` of the work done (0..1) and what is being done ("epoch 40 of 200").
+  void report(double fraction, std::string stage = {});
+  bool cancelled() const { return cancel_.load(); }
+  // Throws JobCancelled once the job was cancelled.
+  void check() const {
+    if (cancelled()) throw JobCancelled{};
+  }
+
+  // For the polling side.
+  double fraction() const { return fraction_.load(); }
+  std::string stage() const;
+  void cancel() { cancel_.store(true); }
+  // The flag itself, for code that takes a cancel flag (corpus extraction).
+  const std::atomic<bool>* flag() const { return &cancel_; }
+
+ private:
+  std::atomic<bool> cancel_{false};
+  std::atomic<double> fraction_{0.0};
+  mutable std::mutex mutex_;
+  std::string stage_;
+};
+
+// The part of a job that does not depend on its result's type.
+class JobRunner {
+ public:
+  JobRunner(std::string name, std::function<void(JobProgress&)> work);
+  ~JobRunner();  // cancels and waits for the worker
+  JobRunner(const JobRunner&) = delete;
+  JobRunner& operator=(const JobRunner&) = delete;
+
+  const std::string& name() const { return name_; }
+  JobStatus status() const { return status_.load(); }
+  double progress() const { return progress_.fraction(); }
+  std::string stage() const { return progress_.stage(); }
+  std::string error() const;  // when failed: what the work threw
+  void cancel() { progress_.cancel(); }
+  void wait();  // blocks until the worker ends (tests and the command line)
+
+ private:
+  std::string name_;
+  JobProgress progress_;
+  std::atomic<JobStatus> status_{JobStatus::kRunning};
+  mutable std::mutex mutex_;
+  std::string error_;
+  std::thread worker_;
+};
+
+template <typename Result>
+class Job {
+ public:
+  Job(std::string name, std::function<Result(JobProgress&)> work)
+      : result_(std::make_shared<Slot>()),
+        runner_(std::move(name), [slot = result_, work = std::move(work)](JobProgress& progress) {
+          Result result = work(progress);
+          const std::lock_guard<std::mutex> lock(slot->mutex);
+          slot->value.emplace(std::move(result));
+        }) {}
+
+  const std::string& name() const { return runner_.name(); }
+  JobStatus status() const { return runner_.status(); }
+  double progress() const { return runner_.progress(); }
+  std::string stage() const { return runner_.stage(); }
+  std::string error() const { return runner_.error(); }
+  void cancel() { runner_.cancel(); }
+  void wait() { runner_.wait(); }
+  // The result once done, moved out on the first call; nothing before and after.
+  std::optional<Result> take() {
+    if (status() != JobStatus::kDone) return std::nullopt;
+    const std::lock_guard<std::mutex> lock(result_->mutex);
+    std::optional<Result> taken = std::move(result_->value);
+    result_->value.reset();
+    return taken;
+  }
+
+ private:
+  struct Slot {
+    std::mutex mutex;
+    std::optional<Result> value;
+  };
+  std::shared_ptr<Slot> result_;
+  JobRunner runner_;  // last: joined before the slot goes
+};
+
+}  // namespace tactile

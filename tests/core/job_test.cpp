@@ -1,0 +1,113 @@
+// Job: a step on a worker thread with progress, cancel and its result taken once.
+#include "tactile/jobs/job.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "tactile/ml/som.h"
+#include "tactile/parameters.h"
+
+namespace tactile {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(Job, RunsOnAWorkerReportsProgressAndGivesItsResultOnce) {
+  const std::thread::id caller = std::this_thread::get_id();
+  Job<std::thread::id> job("worker", [](JobProgress& progress) {
+    progress.report(0.5, "half way");
+    return std::this_thread::get_id();
+  });
+  job.wait();
+  EXPECT_EQ(job.status(), JobStatus::kDone);
+  EXPECT_DOUBLE_EQ(job.progress(), 1.0);
+  EXPECT_EQ(job.stage(), "half way");
+  const std::optional<std::thread::id> ran_on = job.take();
+  ASSERT_TRUE(ran_on);
+  EXPECT_NE(*ran_on, caller);
+  EXPECT_FALSE(job.take());
+}
+
+TEST(Job, GivesNothingBeforeItIsDone) {
+  std::atomic<bool> release{false};
+  Job<int> job("held", [&](JobProgress&) {
+    while (!release.load()) std::this_thread::sleep_for(1ms);
+    return 7;
+  });
+  EXPECT_EQ(job.status(), JobStatus::kRunning);
+  EXPECT_FALSE(job.take());
+  release.store(true);
+  job.wait();
+  EXPECT_EQ(job.take(), 7);
+}
+
+TEST(Job, AFailureKeepsWhatTheWorkThrew) {
+  Job<int> job("failing", [](JobProgress&) -> int { throw std::runtime_error("no table"); });
+  job.wait();
+  EXPECT_EQ(job.status(), JobStatus::kFailed);
+  EXPECT_EQ(job.error(), "no table");
+  EXPECT_FALSE(job.take());
+}
+
+TEST(Job, CancelEndsAWorkThatChecksBetweenSteps) {
+  Job<int> job("endless", [](JobProgress& progress) {
+    for (;;) {
+      progress.check();
+      std::this_thread::sleep_for(1ms);
+    }
+    return 0;
+  });
+  std::this_thread::sleep_for(20ms);
+  const auto asked = std::chrono::steady_clock::now();
+  job.cancel();
+  job.wait();
+  EXPECT_LT(std::chrono::steady_clock::now() - asked, 500ms);
+  EXPECT_EQ(job.status(), JobStatus::kCancelled);
+  EXPECT_FALSE(job.take());
+}
+
+TEST(Job, DestroyingARunningJobCancelsAndWaitsForIt) {
+  std::atomic<bool> started{false}, ended{false};
+  {
+    Job<int> job("dropped", [&](JobProgress& progress) {
+      started.store(true);
+      while (!progress.cancelled()) std::this_thread::sleep_for(1ms);
+      ended.store(true);
+      return 0;
+    });
+    while (!started.load()) std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_TRUE(ended.load());
+}
+
+// The workbench's SOM fit as a job: cancelled mid-fit, it stops within an epoch.
+TEST(Job, ASomFitStopsAtTheEpochAfterCancel) {
+  ml::Matrix x = ml::Matrix::Random(200, 40);
+  std::vector<int> y(200);
+  for (size_t i = 0; i < y.size(); ++i) y[i] = static_cast<int>(i % 3);
+  std::atomic<int> epochs_seen{0};
+  Job<int> job("som", [&](JobProgress& progress) {
+    ml::SomClassifier som(Parameters::parse("epochs=100000", "som"));
+    som.set_epoch_observer([&](int epoch, int epochs) {
+      epochs_seen.store(epoch);
+      progress.report(static_cast<double>(epoch) / epochs, "epoch " + std::to_string(epoch));
+      progress.check();
+    });
+    som.fit(x, y, 3, 1);
+    return 1;
+  });
+  while (epochs_seen.load() < 2) std::this_thread::sleep_for(1ms);
+  const auto asked = std::chrono::steady_clock::now();
+  job.cancel();
+  job.wait();
+  EXPECT_LT(std::chrono::steady_clock::now() - asked, 500ms);
+  EXPECT_EQ(job.status(), JobStatus::kCancelled);
+  EXPECT_GT(job.progress(), 0.0);
+  EXPECT_NE(job.stage().find("epoch"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tactile
