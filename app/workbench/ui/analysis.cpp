@@ -425,18 +425,30 @@ void start_view_job(WorkbenchState& state, std::unique_ptr<Job<Result>>& job,
 
 }  // namespace
 
-bool ensure_som(WorkbenchState& state) {
+void poll_view_jobs(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  // The rows' winners are for this table (none without a table).
-  const void* table = analysis.dataset ? &*analysis.dataset : nullptr;
   if (analysis.som_job && analysis.som_job->status() == JobStatus::kCancelled)
     analysis.som_held = true;
   if (std::optional<AnalysisState::SomFit> fit = finished_view_job(state, analysis.som_job)) {
     analysis.som = std::move(fit->som);
     analysis.som_classes = std::move(fit->classes);
     analysis.som_winners = std::move(fit->winners);
-    analysis.som_for = table;
+    analysis.som_for = analysis.dataset ? &*analysis.dataset : nullptr;
   }
+  if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
+    analysis.scatter_held = true;
+  if (std::optional<AnalysisState::ScatterFit> fit =
+          finished_view_job(state, analysis.scatter_job)) {
+    analysis.scatter = std::move(fit->scatter);
+    analysis.scatter_explained = fit->explained;
+  }
+}
+
+bool ensure_som(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  // The rows' winners are for this table (none without a table).
+  const void* table = analysis.dataset ? &*analysis.dataset : nullptr;
+  poll_view_jobs(state);
   if (analysis.som && analysis.som_for == table) return true;
   if (analysis.som_job) return false;                    // fitting: the view shows its progress
   if (!analysis.som && analysis.som_held) return false;  // cancelled: the view offers it again
@@ -486,14 +498,7 @@ bool ensure_som(WorkbenchState& state) {
 bool ensure_scatter(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!analysis.dataset) return false;
-  if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
-    analysis.scatter_held = true;
-  if (std::optional<AnalysisState::ScatterFit> fit =
-          finished_view_job(state, analysis.scatter_job)) {
-    analysis.scatter = std::move(fit->scatter);
-    analysis.scatter_explained = fit->explained;
-    return analysis.scatter.rows() > 0;
-  }
+  poll_view_jobs(state);
   if (analysis.scatter_job) return false;   // computing: the view shows its progress
   if (analysis.scatter_held) return false;  // cancelled: the view offers it again
   if (analysis.scatter_for == &*analysis.dataset) return analysis.scatter.rows() > 0;

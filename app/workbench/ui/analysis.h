@@ -54,6 +54,9 @@ struct RowOutcome {
 };
 std::vector<RowOutcome> row_outcomes(const WorkbenchState& state);
 
+// Applies the views' jobs that ended (the SOM map, the scatter), once a frame whichever view
+// is shown, so a result never waits for its tab.
+void poll_view_jobs(WorkbenchState& state);
 // The SOM map of the current table (fitted once per table, or the opened model).
 bool ensure_som(WorkbenchState& state);
 // The table's rows on their first two principal components (computed once per table).

@@ -220,6 +220,7 @@ void Workbench::frame(double seconds) {
     until = -1.0;
   }
   poll_training(state_);
+  poll_view_jobs(state_);
   ImGuiIO& io = ImGui::GetIO();
   if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
     state_.clock.toggle();
@@ -556,9 +557,9 @@ void Workbench::save_settings() const {
 //---- State as JSON
 
 bool Workbench::jobs_running() const {
-  const AnalysisState& analysis = state_.analysis;
-  return (analysis.som_job && analysis.som_job->status() == JobStatus::kRunning) ||
-         (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kRunning);
+  // Until its result is applied on the window's thread: a job that has just ended is still
+  // "running" for a screenshot, whose frame must show the result, not the progress.
+  return state_.analysis.som_job || state_.analysis.scatter_job;
 }
 
 nlohmann::json Workbench::state_json() const {

@@ -28,7 +28,8 @@ class Workbench {
   // Advances the replay clock by `seconds` of wall time and draws one frame.
   void frame(double seconds);
   bool quit_requested() const { return state_.quit; }
-  // A view's job (SOM, scatter) is running: a screenshot waits for it (`wait jobs`).
+  // A view's job (SOM, scatter) runs or its result is not applied yet: a screenshot waits
+  // for it, and so does `wait jobs`.
   bool jobs_running() const;
   // The last error (opening a file, ...), shown in the status bar; "" when none.
   const std::string& error() const { return state_.error; }
