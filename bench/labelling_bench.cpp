@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "osmesa_renderer.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
@@ -26,16 +27,12 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using tactile::bench::percentile;
 constexpr double kSeconds = 3600.0;
 constexpr double kRate = 100.0;
 
 double milliseconds_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-double percentile(std::vector<double> values, double fraction) {
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(fraction * static_cast<double>(values.size() - 1))];
 }
 
 // A 1-hour grid:4x4 recording and a label store with `count` labels over it, in three

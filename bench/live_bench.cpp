@@ -35,8 +35,8 @@
 #include <thread>
 #include <vector>
 
+#include "bench_support.h"
 #include "live.h"
-#include "osmesa_renderer.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/labels/predict.h"
@@ -50,12 +50,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using tactile::LiveSampleSource;
-
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(fraction * static_cast<double>(values.size() - 1))];
-}
+using tactile::bench::percentile;
 
 double resident_mb() {
   std::ifstream statm("/proc/self/statm");
@@ -64,27 +59,6 @@ double resident_mb() {
   return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1 << 20);
 }
 
-// 60 frames a second of the whole workbench, as a window's swap would pace them.
-struct Frames {
-  tactile::OffscreenRenderer renderer{1400, 800};
-  Clock::time_point next = Clock::now();
-  std::vector<double> ms;
-  double draw(tactile::Workbench& workbench) {
-    const auto begin = Clock::now();
-    renderer.new_frame();
-    workbench.frame(1.0 / 60.0);
-    renderer.render();
-    const double took = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
-    ms.push_back(took);
-    next += std::chrono::microseconds(16667);
-    if (next > Clock::now())
-      std::this_thread::sleep_until(next);
-    else
-      next = Clock::now();
-    return took;
-  }
-};
-
 int ingest(double factor, double seconds) {
   const uint16_t port = tactile::UdpSocket::bind_to({"127.0.0.1", 0}).local_port();
   tactile::WorkbenchOptions options;
@@ -92,7 +66,7 @@ int ingest(double factor, double seconds) {
   options.skin = "nao";
   options.buffer_seconds = 60.0;
   options.settings_path = "/tmp/live_bench_settings.json";
-  Frames frames;
+  tactile::bench::PacedFrames frames(1400, 800);
   tactile::Workbench workbench(options);
   tactile::WorkbenchState& state = workbench.state();
   if (!state.error.empty()) {
@@ -230,7 +204,7 @@ int soak(const std::string& skin, double factor, double minutes, const std::stri
   options.record_path = record;
   options.buffer_seconds = buffer;
   options.settings_path = "/tmp/live_bench_settings.json";
-  Frames frames;
+  tactile::bench::PacedFrames frames(1400, 800);
   tactile::Workbench workbench(options);
   tactile::WorkbenchState& state = workbench.state();
   if (!state.error.empty()) {

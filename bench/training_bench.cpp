@@ -13,18 +13,14 @@
 #include <vector>
 
 #include "analysis.h"
-#include "osmesa_renderer.h"
+#include "bench_support.h"
 #include "tactile/sim/workspace.h"
 #include "workbench.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double percentile(std::vector<double> values, double fraction) {
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(fraction * static_cast<double>(values.size() - 1))];
-}
+using tactile::bench::percentile;
 
 }  // namespace
 
@@ -40,7 +36,7 @@ int main(int argc, char** argv) {
     options.trials = 2;
     tactile::write_simulation(folder.string(), "fur", options);
   }
-  tactile::OffscreenRenderer renderer(1400, 800);
+  tactile::bench::PacedFrames frames(1400, 800);
   tactile::WorkbenchOptions options;
   options.open_path = (folder / "fur-s01-t01.h5").string();
   options.settings_path = (folder / "settings.json").string();
@@ -49,17 +45,7 @@ int main(int argc, char** argv) {
   // Frames as a user sees them: the recording replaying at 1x, 60 frames a second (a
   // window's swap waits for the display; here a sleep until the next sixtieth).
   state.clock.play();
-  auto next = Clock::now();
-  const auto draw = [&] {
-    const auto begin = Clock::now();
-    renderer.new_frame();
-    workbench.frame(1.0 / 60.0);
-    renderer.render();
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
-    next += std::chrono::microseconds(16667);
-    if (next > Clock::now()) std::this_thread::sleep_until(next); else next = Clock::now();
-    return ms;
-  };
+  const auto draw = [&] { return frames.draw(workbench); };
   for (int k = 0; k < 30; ++k) draw();  // warm up: font atlas, caches
   std::vector<double> idle, training;
   for (int k = 0; k < 300; ++k) idle.push_back(draw());

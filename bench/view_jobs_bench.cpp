@@ -15,19 +15,14 @@
 #include <vector>
 
 #include "analysis.h"
-#include "osmesa_renderer.h"
+#include "bench_support.h"
 #include "tactile/features/dataset.h"
 #include "workbench.h"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double percentile(std::vector<double> values, double fraction) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[static_cast<size_t>(fraction * static_cast<double>(values.size() - 1))];
-}
+using tactile::bench::percentile;
 
 // Six classes whose features differ in their mean, so the map and the scatter have structure.
 void write_table(const std::string& path) {
@@ -62,24 +57,14 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(folder);
   const std::string table = (folder / "table-454x1692.csv").string();
   if (!std::filesystem::exists(table)) write_table(table);
-  tactile::OffscreenRenderer renderer(1600, 900);
+  tactile::bench::PacedFrames frames(1600, 900);
   tactile::WorkbenchOptions options;
   options.features_path = table;
   options.only_view = "confusion";  // idle: no job of its own
   options.settings_path = (folder / "settings.json").string();
   tactile::Workbench workbench(options);
   tactile::WorkbenchState& state = workbench.state();
-  auto next = Clock::now();
-  const auto draw = [&] {
-    const auto begin = Clock::now();
-    renderer.new_frame();
-    workbench.frame(1.0 / 60.0);
-    renderer.render();
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - begin).count();
-    next += std::chrono::microseconds(16667);
-    if (next > Clock::now()) std::this_thread::sleep_until(next); else next = Clock::now();
-    return ms;
-  };
+  const auto draw = [&] { return frames.draw(workbench); };
   for (int k = 0; k < 30; ++k) draw();  // warm up: font atlas, caches
   std::vector<double> idle;
   for (int k = 0; k < 300; ++k) idle.push_back(draw());
@@ -90,18 +75,19 @@ int main(int argc, char** argv) {
   // Each view's job: started by drawing the view, frames drawn until its result is applied.
   for (const char* view : {"scatter", "som"}) {
     state.options.only_view = view;
-    std::vector<double> frames;
+    std::vector<double> job_frames;
     const auto start = Clock::now();
-    frames.push_back(draw());
-    while (workbench.jobs_running()) frames.push_back(draw());
+    job_frames.push_back(draw());
+    while (workbench.jobs_running()) job_frames.push_back(draw());
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     const size_t longest = static_cast<size_t>(
-        std::max_element(frames.begin(), frames.end()) - frames.begin());
-    std::printf(",\n \"%s\": {\"seconds\": %.2f, \"frames\": %zu, \"ms_median\": %.2f, "
-                "\"ms_p99\": %.2f, \"ms_max\": %.2f, \"longest_frame\": %zu, "
-                "\"max_over_idle_median\": %.2f}",
-                view, seconds, frames.size(), percentile(frames, 0.5), percentile(frames, 0.99),
-                percentile(frames, 1.0), longest, percentile(frames, 1.0) / percentile(idle, 0.5));
+        std::max_element(job_frames.begin(), job_frames.end()) - job_frames.begin());
+    std::printf(
+        ",\n \"%s\": {\"seconds\": %.2f, \"frames\": %zu, \"ms_median\": %.2f, "
+        "\"ms_p99\": %.2f, \"ms_max\": %.2f, \"longest_frame\": %zu, "
+        "\"max_over_idle_median\": %.2f}",
+        view, seconds, job_frames.size(), percentile(job_frames, 0.5), percentile(job_frames, 0.99),
+        percentile(job_frames, 1.0), longest, percentile(job_frames, 1.0) / percentile(idle, 0.5));
   }
   std::printf("}\n");
   if (!state.error.empty()) std::fprintf(stderr, "view_jobs_bench: %s\n", state.error.c_str());

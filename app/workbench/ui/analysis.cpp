@@ -63,7 +63,7 @@ void reset_views(AnalysisState& analysis) {
 
 void set_dataset(AnalysisState& analysis, Dataset dataset) {
   analysis.dataset_layout = layout_of(dataset);
-  analysis.dataset = std::move(dataset);
+  analysis.dataset = std::make_shared<const Dataset>(std::move(dataset));
   analysis.som.reset();
   analysis.som_job.reset();
   reset_views(analysis);
@@ -458,7 +458,8 @@ bool ensure_som(WorkbenchState& state) {
       // The map of the table: the flux paper's 7 x 7 SOM fitted on every row, on a worker
       // (18-20 s on a 454 x 1692 table), with its rows' winners.
       start_view_job<AnalysisState::SomFit>(
-          state, analysis.som_job, "SOM map", [dataset = *analysis.dataset](JobProgress& progress) {
+          state, analysis.som_job, "SOM map", [table = analysis.dataset](JobProgress& progress) {
+            const Dataset& dataset = *table;
             AnalysisState::SomFit fit;
             fit.classes = dataset.class_names();
             std::vector<int> labels;
@@ -506,8 +507,8 @@ bool ensure_scatter(WorkbenchState& state) {
   analysis.scatter.resize(0, 2);
   // The table on its first two principal components, on a worker (7.8 s at 454 x 1692).
   start_view_job<AnalysisState::ScatterFit>(
-      state, analysis.scatter_job, "scatter",
-      [features = analysis.dataset->features](JobProgress& progress) {
+      state, analysis.scatter_job, "scatter", [table = analysis.dataset](JobProgress& progress) {
+        const Eigen::MatrixXd& features = table->features;
         progress.report(0.0, "principal components of " + std::to_string(features.rows()) + " x " +
                                  std::to_string(features.cols()));
         ml::PcaOptions options;

@@ -112,7 +112,9 @@ struct AnalysisState {
   std::string results_from;  // what they are of ("nao, kaboli features", a file)
   int current = -1;          // the row whose views are shown
   std::string model_path;    // the last single classifier trained, fitted on every row
-  std::optional<Dataset> dataset;  // the feature table the results are about
+  // The feature table the results are about; shared (never changed) with the views' jobs,
+  // so starting one copies nothing on the window's thread.
+  std::shared_ptr<const Dataset> dataset;
   std::string dataset_layout;      // its skin
   int sort_column = 1;             // the table's: 0 name, 1 accuracy, 2 mean recall, 3 time
   bool sort_ascending = false;
