@@ -235,7 +235,7 @@ namespace {
 TEST_F(WorkbenchClassifiers, PredictionsAreConfirmedAndCorrectedByKeys) {
   auto run = workbench(demo("fur-s01-t01.h5"),
                        "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\n"
-                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait 2\n"
+                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n"
                        "state @predicted.json\nkey U\nwait 2\nstate @uncertain.json\nkey Y\nwait 2\n"
                        "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;

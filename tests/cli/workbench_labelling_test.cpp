@@ -157,9 +157,9 @@ TEST_F(WorkbenchLabelling, LanesShowEachTierAndAClickInOneSelectsItsLabel) {
 
 TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRejectedOut) {
   const auto result = workbench(
-      "wait 2\nmenu Labels/Run segmenter/threshold\nwait 1\nstate @suggested.json\n"
+      "wait 2\nmenu Labels/Run segmenter/threshold\nwait jobs\nstate @suggested.json\n"
       "key 2\nkey A\nwait 1\nstate @accepted.json\nkey R\nwait 1\nstate @rejected.json\n"
-      "menu Labels/Run segmenter/threshold\nwait 1\nstate @rerun.json\n");
+      "menu Labels/Run segmenter/threshold\nwait jobs\nstate @rerun.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   auto lane_size = [](const nlohmann::json& state, const std::string& id) {
     for (const auto& lane : state["lanes"])
@@ -189,11 +189,11 @@ TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRe
 // G, accept one suggestion and reject the next, G again, Ctrl+Z: the database is as it was
 // before the second run (a run was two journal batches, and undo left both runs stacked).
 TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRerunRestoresTheLabelsBeforeIt) {
-  ASSERT_EQ(workbench("wait 2\nkey G\nwait 1\nkey 6\nkey A\nwait 1\nkey R\nwait 1\n").exit_code, 0);
+  ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\nkey 6\nkey A\nwait 1\nkey R\nwait 1\n").exit_code, 0);
   const nlohmann::json before = all_labels();
   ASSERT_GE(before.size(), 3u);
   const auto result = workbench(
-      "wait 2\nkey G\nwait 1\nstate @rerun.json\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
+      "wait 2\nkey G\nwait jobs\nstate @rerun.json\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(state("rerun.json")["notice"].get<std::string>().find("(1 rejected before)"),
             std::string::npos);
@@ -207,7 +207,7 @@ TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRerunRestoresTheLabelsBeforeIt) {
 TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRunTakesBackTheRunNotTheLabelBeforeIt) {
   const auto result = workbench(
       "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 2\nkey Enter\nwait 1\nstate @labelled.json\n"
-      "key G\nwait 1\nstate @run.json\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
+      "key G\nwait jobs\nstate @run.json\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   // Lane id -> labels, for the lanes that hold any.
   auto lanes = [](const nlohmann::json& state) {

@@ -15,6 +15,7 @@
 #include "tactile/io/label_store.h"
 #include "tactile/labels/predict.h"
 #include "tactile/ml/pca.h"
+#include "jobs.h"
 #include "views.h"
 
 namespace tactile {
@@ -49,7 +50,8 @@ std::string layout_of(const Dataset& dataset) {
   return layout;
 }
 
-void reset_views(AnalysisState& analysis) {
+void reset_views(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
   analysis.cell_true = analysis.cell_predicted = -1;
   analysis.cell_rows.clear();
   analysis.cell_selected = 0;
@@ -57,16 +59,17 @@ void reset_views(AnalysisState& analysis) {
   analysis.som_for = nullptr;
   analysis.som_neuron = -1;
   analysis.scatter_for = nullptr;
-  analysis.scatter_job.reset();  // cancelled: it was for the table before
+  retire_job(state, std::move(analysis.scatter_job));  // it was for the table before
   analysis.som_held = analysis.scatter_held = false;
 }
 
-void set_dataset(AnalysisState& analysis, Dataset dataset) {
+void set_dataset(WorkbenchState& state, Dataset dataset) {
+  AnalysisState& analysis = state.analysis;
   analysis.dataset_layout = layout_of(dataset);
   analysis.dataset = std::make_shared<const Dataset>(std::move(dataset));
   analysis.som.reset();
-  analysis.som_job.reset();
-  reset_views(analysis);
+  retire_job(state, std::move(analysis.som_job));
+  reset_views(state);
 }
 
 }  // namespace
@@ -145,7 +148,7 @@ void poll_training(WorkbenchState& state) {
       }
       analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
                               std::to_string(outcome->dataset.rows()) + " segments";
-      set_dataset(analysis, std::move(outcome->dataset));
+      set_dataset(state, std::move(outcome->dataset));
       int best = -1;
       for (size_t k = 0; k < analysis.results.size(); ++k)
         if (analysis.results[k].result &&
@@ -185,27 +188,52 @@ bool predict_open_recording(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!state.document) return fail(state, "open a recording to predict");
   if (analysis.model_path.empty()) return fail(state, "Run one classifier first: its model predicts");
+  const Document& document = *state.document;
+  // The recording's segmenter suggestions, else its ground truth, as `tactile predict`.
+  std::vector<Label> segments = segments_to_predict(document.labels);
+  if (segments.empty()) return fail(state, "no segments to predict: run a segmenter (Labels menu)");
+  // On a worker: the model's pipeline reads the whole recording (2.6-3.3 s for 40 minutes of
+  // a 64-taxel strip). A second Predict replaces a run still going.
+  start_job<AnalysisState::PredictionsMade>(
+      state, analysis.predict_job, "predict",
+      [read = recording_for_job(document, 0.3), layout = document.layout, path = document.path,
+       model_path = analysis.model_path, segments = std::move(segments)](JobProgress& progress) {
+        const SavedModel model = read_model_file(model_path);
+        const Recording recording = read(progress);
+        return AnalysisState::PredictionsMade{
+            path, fs::path(model_path).stem().string(),
+            predict_segments(model, recording, layout, segments,
+                             progress.steps("features of " + std::to_string(segments.size()) +
+                                                " segments",
+                                            0.3, 1.0))};
+      });
+  state.error.clear();
+  state.notice = "predicting " + std::to_string(segments.size()) + " segments...";
+  return true;
+}
+
+namespace {
+
+void apply_finished_prediction(WorkbenchState& state) {
+  std::optional<AnalysisState::PredictionsMade> made = finished_job(state, state.analysis.predict_job);
+  if (!made) return;
+  if (!state.document || state.document->path != made->document) return;  // another file now
   try {
     Document& document = *state.document;
-    const SavedModel model = read_model_file(analysis.model_path);
-    // The recording's segmenter suggestions, else its ground truth, as `tactile predict`.
-    const std::vector<Label> segments = segments_to_predict(document.labels);
-    if (segments.empty()) return fail(state, "no segments to predict: run a segmenter (Labels menu)");
-    const Predictions predictions =
-        predict_segments(model, whole_recording(document), document.layout, segments);
     // The model's lane replaced as one edit of the operator's: Ctrl+Z takes it back.
     LabelStore& store = document.label_store();
-    store.apply(prediction_edit(store, document.recording_id(), predictions.labels),
+    store.apply(prediction_edit(store, document.recording_id(), made->predictions.labels),
                 state.labelling.annotator);
     document.reload_labels();
     state.error.clear();
-    state.notice = std::to_string(predictions.labels.size()) + " predictions by " +
-                   fs::path(analysis.model_path).stem().string() + " (U: the least sure)";
+    state.notice = std::to_string(made->predictions.labels.size()) + " predictions by " +
+                   made->model + " (U: the least sure)";
   } catch (const std::exception& error) {
-    return fail(state, std::string("predict: ") + error.what());
+    fail(state, std::string("predict: ") + error.what());
   }
-  return true;
 }
+
+}  // namespace
 
 //---- Files ----------------------------------------------------------------------------------
 
@@ -247,7 +275,7 @@ bool open_evaluation_file(WorkbenchState& state, const std::string& path) {
     if (!features.empty()) {
       fs::path table(features);
       if (table.is_relative() && !fs::exists(table)) table = fs::path(path).parent_path() / table;
-      if (fs::exists(table)) set_dataset(analysis, read_dataset_csv(table.string()));
+      if (fs::exists(table)) set_dataset(state, read_dataset_csv(table.string()));
     }
   } catch (const std::exception& error) {
     return fail(state, std::string("cannot open the evaluation: ") + error.what());
@@ -276,7 +304,7 @@ bool open_model_file(WorkbenchState& state, const std::string& path) {
 
 bool open_features_file(WorkbenchState& state, const std::string& path) {
   try {
-    set_dataset(state.analysis, read_dataset_csv(path));
+    set_dataset(state, read_dataset_csv(path));
     if (state.analysis.results.empty()) state.analysis.tab_request = "scatter";
   } catch (const std::exception& error) {
     return fail(state, std::string("cannot open the features: ") + error.what());
@@ -395,41 +423,19 @@ std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
 
 //---- Derived views --------------------------------------------------------------------------
 
-namespace {
-
-// A job's end, applied on the window's thread: its result when it gave one to apply.
-template <typename Result>
-std::optional<Result> finished_view_job(WorkbenchState& state, std::unique_ptr<Job<Result>>& job) {
-  if (!job || job->status() == JobStatus::kRunning) return std::nullopt;
-  std::optional<Result> result = job->take();
-  if (job->status() == JobStatus::kFailed) fail(state, job->name() + ": " + job->error());
-  if (job->status() == JobStatus::kCancelled) state.notice = job->name() + ": cancelled";
-  for (auto record = state.job_log.rbegin(); record != state.job_log.rend(); ++record)
-    if (record->name == job->name() && record->status == "running") {
-      record->status = to_string(job->status());
-      record->finished_frame = state.frame;
-      break;
-    }
-  job.reset();
-  return result;
-}
-
-// Starts a view's job and logs it (state JSON "jobs").
-template <typename Result>
-void start_view_job(WorkbenchState& state, std::unique_ptr<Job<Result>>& job,
-                    const std::string& name, std::function<Result(JobProgress&)> work) {
-  job = std::make_unique<Job<Result>>(name, std::move(work));
-  state.job_log.push_back({name, "running", state.frame, -1});
-  if (state.job_log.size() > 20) state.job_log.erase(state.job_log.begin());
-}
-
-}  // namespace
-
-void poll_view_jobs(WorkbenchState& state) {
+void poll_jobs(WorkbenchState& state) {
+  drop_ended_jobs(state);
+  apply_finished_segmenter(state);
+  apply_finished_prediction(state);
   AnalysisState& analysis = state.analysis;
+  if (std::optional<AnalysisState::MapMade> made = finished_job(state, analysis.map_job))
+    if (made->key == analysis.map_for) {
+      analysis.map = std::move(made->map);
+      analysis.map_layout.reset();
+    }
   if (analysis.som_job && analysis.som_job->status() == JobStatus::kCancelled)
     analysis.som_held = true;
-  if (std::optional<AnalysisState::SomFit> fit = finished_view_job(state, analysis.som_job)) {
+  if (std::optional<AnalysisState::SomFit> fit = finished_job(state, analysis.som_job)) {
     analysis.som = std::move(fit->som);
     analysis.som_classes = std::move(fit->classes);
     analysis.som_winners = std::move(fit->winners);
@@ -438,7 +444,7 @@ void poll_view_jobs(WorkbenchState& state) {
   if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
     analysis.scatter_held = true;
   if (std::optional<AnalysisState::ScatterFit> fit =
-          finished_view_job(state, analysis.scatter_job)) {
+          finished_job(state, analysis.scatter_job)) {
     analysis.scatter = std::move(fit->scatter);
     analysis.scatter_explained = fit->explained;
   }
@@ -448,7 +454,7 @@ bool ensure_som(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   // The rows' winners are for this table (none without a table).
   const void* table = analysis.dataset ? &*analysis.dataset : nullptr;
-  poll_view_jobs(state);
+  poll_jobs(state);
   if (analysis.som && analysis.som_for == table) return true;
   if (analysis.som_job) return false;                    // fitting: the view shows its progress
   if (!analysis.som && analysis.som_held) return false;  // cancelled: the view offers it again
@@ -457,7 +463,7 @@ bool ensure_som(WorkbenchState& state) {
       if (!analysis.dataset) return false;
       // The map of the table: the flux paper's 7 x 7 SOM fitted on every row, on a worker
       // (18-20 s on a 454 x 1692 table), with its rows' winners.
-      start_view_job<AnalysisState::SomFit>(
+      start_job<AnalysisState::SomFit>(
           state, analysis.som_job, "SOM map", [table = analysis.dataset](JobProgress& progress) {
             const Dataset& dataset = *table;
             AnalysisState::SomFit fit;
@@ -499,14 +505,14 @@ bool ensure_som(WorkbenchState& state) {
 bool ensure_scatter(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!analysis.dataset) return false;
-  poll_view_jobs(state);
+  poll_jobs(state);
   if (analysis.scatter_job) return false;   // computing: the view shows its progress
   if (analysis.scatter_held) return false;  // cancelled: the view offers it again
   if (analysis.scatter_for == &*analysis.dataset) return analysis.scatter.rows() > 0;
   analysis.scatter_for = &*analysis.dataset;
   analysis.scatter.resize(0, 2);
   // The table on its first two principal components, on a worker (7.8 s at 454 x 1692).
-  start_view_job<AnalysisState::ScatterFit>(
+  start_job<AnalysisState::ScatterFit>(
       state, analysis.scatter_job, "scatter", [table = analysis.dataset](JobProgress& progress) {
         const Eigen::MatrixXd& features = table->features;
         progress.report(0.0, "principal components of " + std::to_string(features.rows()) + " x " +
@@ -540,34 +546,69 @@ bool ensure_somatosensory(WorkbenchState& state) {
   analysis.map_for = key;
   analysis.map.reset();
   analysis.map_layout.reset();
-  try {
-    if (analysis.somatosensory_corpus) {
-      // Every recording of this skin in the workspace (the others are left out).
-      std::vector<std::string> files;
-      for (const std::string& file : state.workspace_files) {
-        if (state.damaged.count(file)) continue;
-        try {
-          if (RecordingFile(file).layout_id() == layout.id) files.push_back(file);
-        } catch (const Error&) {
-        }
-      }
-      const std::string cache = somatosensory_corpus_cache_path(state.workspace, layout.id, modality);
-      analysis.map = read_somatosensory_corpus_cache(cache, files);
-      if (!analysis.map) {
-        analysis.map = somatosensory_corpus_map(files, layout, state.modality);
-        write_somatosensory_corpus_cache(cache, files, *analysis.map);
-      }
-    } else {
-      analysis.map = read_somatosensory_cache(state.document->path, modality);
-      if (!analysis.map) {
-        analysis.map = somatosensory_map(state.document->samples(), layout, state.modality);
-        write_somatosensory_cache(state.document->path, *analysis.map);
-      }
-    }
-  } catch (const std::exception& error) {
-    return fail(state, std::string("somatosensory map: ") + error.what());
+  // On a worker, cache and all (8.3 s for 30 min of Robovie's 274 channels the first time); a
+  // map asked for meanwhile (another modality, the corpus) replaces it.
+  if (analysis.somatosensory_corpus) {
+    std::vector<std::string> files;
+    for (const std::string& file : state.workspace_files)
+      if (!state.damaged.count(file)) files.push_back(file);
+    start_job<AnalysisState::MapMade>(
+        state, analysis.map_job, "somatosensory map (all recordings)",
+        [key, files, layout, modality, index = state.modality,
+         cache = somatosensory_corpus_cache_path(state.workspace, layout.id, modality)](
+            JobProgress& progress) {
+          // Every recording of this skin in the workspace (the others are left out).
+          std::vector<std::string> same_skin;
+          for (const std::string& file : files) {
+            progress.check();
+            try {
+              if (RecordingFile(file).layout_id() == layout.id) same_skin.push_back(file);
+            } catch (const Error&) {
+            }
+          }
+          AnalysisState::MapMade made{key, {}};
+          if (std::optional<SomatosensoryMap> cached = read_somatosensory_corpus_cache(cache, same_skin)) {
+            made.map = std::move(*cached);
+            return made;
+          }
+          made.map = somatosensory_corpus_map(
+              same_skin, layout, index,
+              progress.steps("correlations over " + std::to_string(same_skin.size()) + " recordings"));
+          write_somatosensory_corpus_cache(cache, same_skin, made.map);
+          return made;
+        });
+  } else if (!dynamic_cast<const FileSampleSource*>(&state.document->samples())) {
+    // A live stream: over what has arrived so far, copied now; no cache (nothing on disk yet).
+    start_job<AnalysisState::MapMade>(
+        state, analysis.map_job, "somatosensory map",
+        [key, read = recording_for_job(*state.document, 0.0), layout, index = state.modality](
+            JobProgress& progress) {
+          const Recording recording = read(progress);
+          return AnalysisState::MapMade{
+              key, somatosensory_map(MemorySampleSource(recording, recording.streams.front()), layout,
+                                     index, progress.steps("correlations of the taxels"))};
+        });
+  } else {
+    start_job<AnalysisState::MapMade>(
+        state, analysis.map_job, "somatosensory map",
+        [key, path = state.document->path, stream = state.document->samples().info().stream, layout,
+         modality, index = state.modality](JobProgress& progress) {
+          AnalysisState::MapMade made{key, {}};
+          if (std::optional<SomatosensoryMap> cached = read_somatosensory_cache(path, modality)) {
+            made.map = std::move(*cached);
+            return made;
+          }
+          FileSourceOptions options;
+          options.stream = stream;
+          options.cache_bytes = int64_t{8} << 20;
+          options.damaged_chunks_as_gaps = true;
+          made.map = somatosensory_map(FileSampleSource(path, options), layout, index,
+                                       progress.steps("correlations of the taxels"));
+          write_somatosensory_cache(path, made.map);
+          return made;
+        });
   }
-  return true;
+  return false;
 }
 
 //---- Keys -----------------------------------------------------------------------------------

@@ -16,8 +16,8 @@ bool start_training(WorkbenchState& state, const std::string& classifier);
 void poll_training(WorkbenchState& state);
 
 // Applies the last model trained here (one classifier: fitted on every row and saved in
-// the workspace's models/ folder) to the open recording's segments; its answers replace
-// the recording's prediction lane.
+// the workspace's models/ folder) to the open recording's segments, as a job; when it ends
+// its answers replace the recording's prediction lane as one command (poll_jobs).
 bool predict_open_recording(WorkbenchState& state);
 
 // The evaluation the views show (the current row of the results), or null.
@@ -54,14 +54,15 @@ struct RowOutcome {
 };
 std::vector<RowOutcome> row_outcomes(const WorkbenchState& state);
 
-// Applies the views' jobs that ended (the SOM map, the scatter), once a frame whichever view
-// is shown, so a result never waits for its tab.
-void poll_view_jobs(WorkbenchState& state);
+// Applies the jobs that ended (segmenter run, prediction, SOM map, scatter, somatosensory
+// map), once a frame whichever view is shown, so a result never waits for its tab.
+void poll_jobs(WorkbenchState& state);
 // The SOM map of the current table (fitted once per table, or the opened model).
 bool ensure_som(WorkbenchState& state);
 // The table's rows on their first two principal components (computed once per table).
 bool ensure_scatter(WorkbenchState& state);
-// The open recording's somatosensory map for the current modality (cached beside it).
+// The open recording's (or the workspace's) somatosensory map for the current modality, from
+// its cache or computed on a worker; false until it is there (the view shows the job).
 bool ensure_somatosensory(WorkbenchState& state);
 
 // Keys of the classifier views: N / Shift+N walk the misclassified segments, Enter

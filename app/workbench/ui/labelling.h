@@ -8,6 +8,8 @@
 // Ctrl+Z / Ctrl+Shift+Z undo and redo through the store's journal, Escape drops the
 // marks. Each edit is one transaction in the label store the moment it is made.
 
+#include <functional>
+
 #include "workbench_state.h"
 
 namespace tactile {
@@ -31,14 +33,16 @@ bool undo_edit(WorkbenchState& state, bool redo);
 // and moves the cursor to its start.
 bool walk_labels(WorkbenchState& state, int direction);
 
-// The whole open recording as segmenters and models take it (a job, not a view: it
-// reads every sample once).
-Recording whole_recording(const Document& document);
+// How a job reads the whole open recording: through a reader of its own on the file (the
+// window's source stays the window's), reporting progress up to `share` of the job; for a
+// live stream, a copy of what has arrived, taken now.
+std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double share);
 
-// Runs a segmenter on the open recording (parameters from the Labels menu): its
-// segments replace its earlier ones for this recording, less the rejected ones, and
-// the first is selected.
+// Runs a segmenter on the open recording (parameters from the Labels menu) as a job; when it
+// ends (apply_finished_segmenter, once a frame) its segments replace its earlier ones for
+// this recording, less the rejected ones, as one command, and the first is selected.
 bool run_segmenter(WorkbenchState& state, const std::string& method);
+void apply_finished_segmenter(WorkbenchState& state);
 // A: the selected suggestion (a segmenter's label) becomes a label of the operator's
 // lane with its bounds and region, and the class chosen with 1-9 (else its own when
 // it has one); R: rejects it (remembered in the store). Both move to the next one.

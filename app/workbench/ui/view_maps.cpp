@@ -7,32 +7,13 @@
 #include <cstdio>
 
 #include "analysis.h"
+#include "jobs.h"
 #include "tactile/widgets/signal_plot.h"
 #include "views.h"
 
 namespace tactile {
 
 namespace {
-
-// A view's computation on a worker: what it does, how far, and Cancel; once cancelled, a
-// button that starts it again. False when there is neither.
-template <typename Result>
-bool draw_job(WorkbenchState& state, Job<Result>* job, bool& held, const char* what) {
-  if (held) {
-    ImGui::Text("%s: cancelled", what);
-    if (ImGui::Button("Compute")) held = false;
-    remember_item(state, "button:Compute");
-    return true;
-  }
-  if (!job || job->status() != JobStatus::kRunning) return false;
-  ImGui::Text("%s: computing on a worker, the window stays live", job->name().c_str());
-  if (ImGui::Button("Cancel")) job->cancel();
-  remember_item(state, "button:Cancel");
-  ImGui::SameLine();
-  const std::string stage = job->stage();
-  ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(-1, 0), stage.c_str());
-  return true;
-}
 
 ImU32 colour_of_class(const std::vector<std::string>& classes, const std::string& name, int alpha) {
   const auto found = std::find(classes.begin(), classes.end(), name);
@@ -70,7 +51,7 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("scatter_view", size, false);
   AnalysisState& analysis = state.analysis;
   if (!analysis.dataset || !ensure_scatter(state)) {
-    if (!draw_job(state, analysis.scatter_job.get(), analysis.scatter_held, "scatter"))
+    if (!draw_job(state, analysis.scatter_job.get(), &analysis.scatter_held, "scatter"))
       ImGui::TextDisabled("No feature table: train in the Model tab, or open one with --features.");
     ImGui::EndChild();
     return;
@@ -140,7 +121,7 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("som_view", size, false);
   AnalysisState& analysis = state.analysis;
   if (!ensure_som(state)) {
-    if (!draw_job(state, analysis.som_job.get(), analysis.som_held, "SOM map"))
+    if (!draw_job(state, analysis.som_job.get(), &analysis.som_held, "SOM map"))
       ImGui::TextDisabled(
           "No SOM: train (the map is fitted on the feature table), or open --model.");
     ImGui::EndChild();

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "analysis.h"
+#include "jobs.h"
 #include "tactile/labels/region.h"
 #include "views.h"
 
@@ -153,6 +154,9 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
                         map.taxels.size(), static_cast<long long>(map.samples), map.source.c_str(),
                         map.negative_eigenvalue_ratio);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", map.source.c_str());
+  } else if (state.analysis.somatosensory) {
+    // Computing: the body map meanwhile, the job's progress above it.
+    draw_job(state, state.analysis.map_job.get(), nullptr, "somatosensory map");
   }
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis.h"
+#include "jobs.h"
 #include "labelling.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
@@ -220,7 +221,7 @@ void Workbench::frame(double seconds) {
     until = -1.0;
   }
   poll_training(state_);
-  poll_view_jobs(state_);
+  poll_jobs(state_);
   ImGuiIO& io = ImGui::GetIO();
   if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
     state_.clock.toggle();
@@ -462,7 +463,8 @@ void Workbench::draw_menu_bar() {
 }
 
 void Workbench::draw_status_bar() {
-  if (!state_.error.empty()) {
+  if (draw_job_status(state_)) {
+  } else if (!state_.error.empty()) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", state_.error.c_str());
   } else if (!state_.notice.empty()) {
     ImGui::TextUnformatted(state_.notice.c_str());
@@ -559,7 +561,7 @@ void Workbench::save_settings() const {
 bool Workbench::jobs_running() const {
   // Until its result is applied on the window's thread: a job that has just ended is still
   // "running" for a screenshot, whose frame must show the result, not the progress.
-  return state_.analysis.som_job || state_.analysis.scatter_job;
+  return !pending_jobs(state_).empty();
 }
 
 nlohmann::json Workbench::state_json() const {

@@ -18,6 +18,7 @@
 #include "file_browser.h"
 #include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
+#include "tactile/labels/predict.h"
 #include "tactile/labels/quality.h"
 #include "tactile/layout/somatosensory.h"
 #include "tactile/live/live_receiver.h"
@@ -94,6 +95,13 @@ struct LabellingState {
   // A dragged edge's new bounds (label, t0, t1), committed at the start of the next
   // frame: an edit rebuilds the lanes, which the frame that drew them still uses.
   std::optional<std::tuple<int64_t, double, double>> move_request;
+  // A segmenter run (G) on a worker: the segments it found, stored when it ends.
+  struct SegmentsFound {
+    std::string document;  // the recording's path, so a result for a closed file is dropped
+    std::string method;
+    std::vector<Label> segments;
+  };
+  std::unique_ptr<Job<SegmentsFound>> segment_job;
   std::string active_lane() const { return "manual:" + annotator; }
 };
 
@@ -112,6 +120,13 @@ struct AnalysisState {
   std::string results_from;  // what they are of ("nao, kaboli features", a file)
   int current = -1;          // the row whose views are shown
   std::string model_path;    // the last single classifier trained, fitted on every row
+  // Predict on a worker: the model's answers, stored as one edit when it ends.
+  struct PredictionsMade {
+    std::string document;  // the recording's path
+    std::string model;     // the model file's name
+    Predictions predictions;
+  };
+  std::unique_ptr<Job<PredictionsMade>> predict_job;
   // The feature table the results are about; shared (never changed) with the views' jobs,
   // so starting one copies nothing on the window's thread.
   std::shared_ptr<const Dataset> dataset;
@@ -157,6 +172,11 @@ struct AnalysisState {
   std::optional<SomatosensoryMap> map;
   std::optional<SkinLayout> map_layout;  // the layout with its taxels moved onto the map
   std::string map_for;  // recording path + modality it was made for
+  struct MapMade {
+    std::string key;  // as map_for
+    SomatosensoryMap map;
+  };
+  std::unique_ptr<Job<MapMade>> map_job;  // computing (or reading the cache of) a map
   std::string tab_request;  // a view tab to bring to front next frame
 };
 
@@ -240,12 +260,14 @@ struct WorkbenchState {
   std::string notice;  // the last message (an export written, ...)
   UiTargets targets;   // last frame's
   int64_t frame = 0;
-  // The views' jobs (SOM, scatter), newest last: when each started and was applied, by frame.
+  // The jobs, newest last: when each started and when it was applied, by frame.
   struct JobRecord {
     std::string name, status;  // "running", then done / failed / cancelled
     int64_t started_frame = 0, finished_frame = -1;
   };
   std::vector<JobRecord> job_log;
+  // Jobs cancelled or replaced by a newer request, kept until their worker has ended.
+  std::vector<std::unique_ptr<AnyJob>> retired_jobs;
 
   // Requests from views, carried out by the workbench after the frame.
   std::optional<std::string> open_request;

@@ -138,7 +138,8 @@ SavedModel read_model_file(const std::string& path) {
 }
 
 Predictions predict_segments(const SavedModel& model, const Recording& recording,
-                             const SkinLayout& layout, const std::vector<Label>& segments) {
+                             const SkinLayout& layout, const std::vector<Label>& segments,
+                             const std::function<void(double)>& step) {
   const std::string where = recording.id.empty() ? std::string("predict") : recording.id;
   if (model.pipeline.empty())
     throw Error(where, "the model does not say which feature pipeline made its features");
@@ -155,10 +156,12 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
                            " columns on " + layout.id + ", not the model's " +
                            std::to_string(model.features.size()) + " features");
   const Recording prepared = extractor->preprocess(recording, layout);
+  if (step) step(0.0);
   Predictions predictions;
   std::vector<std::vector<double>> rows;
   std::vector<const Label*> kept;
   for (const Label& segment : segments) {
+    if (step) step(static_cast<double>(&segment - segments.data()) / static_cast<double>(segments.size()));
     const FeatureResult result = extractor->extract(SegmentInput{prepared, layout, segment});
     std::string reason = result.skip_reason;
     if (reason.empty() && result.values.size() != columns.size())

@@ -22,7 +22,7 @@ CorrelationSums::CorrelationSums(int taxels)
     : sum_(Eigen::VectorXd::Zero(taxels)), products_(Eigen::MatrixXd::Zero(taxels, taxels)) {}
 
 void CorrelationSums::add(const SampleSource& source, const std::vector<int>& columns,
-                          int64_t block, const std::atomic<bool>* cancel) {
+                          int64_t block, const std::function<void(double)>& step) {
   if (static_cast<Eigen::Index>(columns.size()) != sum_.size())
     throw Error("somatosensory map", "expected " + std::to_string(sum_.size()) + " columns, got " +
                                          std::to_string(columns.size()));
@@ -33,7 +33,7 @@ void CorrelationSums::add(const SampleSource& source, const std::vector<int>& co
   if (present.empty()) return;
   const int64_t total = source.sample_count();
   for (int64_t first = 0; first < total; first += block) {
-    if (cancel && cancel->load()) throw Error("somatosensory map", "cancelled");
+    if (step && first > 0) step(static_cast<double>(first) / static_cast<double>(total));
     const int64_t count = std::min(block, total - first);
     const Eigen::MatrixXd samples = source.read(present, first, count).cast<double>();
     // Rows with a gap (NaN: a damaged chunk) are left out.
@@ -107,14 +107,14 @@ SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
 }
 
 SomatosensoryMap somatosensory_map(const SampleSource& source, const SkinLayout& layout,
-                                   int modality, const std::atomic<bool>* cancel) {
+                                   int modality, const std::function<void(double)>& step) {
   const std::vector<int> all = taxel_columns(layout, source.info().channels, modality);
   std::vector<int> columns;
   std::vector<int64_t> taxels;
   for (size_t k = 0; k < all.size(); ++k)
     if (all[k] >= 0) columns.push_back(all[k]), taxels.push_back(layout.taxels[k].id);
   CorrelationSums sums(static_cast<int>(columns.size()));
-  sums.add(source, columns, 8192, cancel);
+  sums.add(source, columns, 8192, step);
   SomatosensoryMap map = somatosensory_map(layout, modality, taxels, sums.correlation());
   map.samples = sums.samples();
   map.source = source.info().recording_id;
@@ -226,11 +226,12 @@ bool write_somatosensory_cache(const std::string& recording_path, const Somatose
 
 SomatosensoryMap somatosensory_corpus_map(const std::vector<std::string>& recordings,
                                           const SkinLayout& layout, int modality,
-                                          const std::atomic<bool>* cancel) {
+                                          const std::function<void(double)>& step) {
   std::vector<int64_t> taxels;
   std::unique_ptr<CorrelationSums> sums;
   std::string names;
-  for (const std::string& path : recordings) {
+  for (size_t file = 0; file < recordings.size(); ++file) {
+    const std::string& path = recordings[file];
     const FileSampleSource source(path);
     if (source.info().layout_id != layout.id)
       throw Error(path, "a recording of skin '" + source.info().layout_id + "', the map is of '" +
@@ -246,7 +247,10 @@ SomatosensoryMap somatosensory_corpus_map(const std::vector<std::string>& record
     } else if (present != taxels) {
       throw Error(path, "carries other taxels than the first recording of the corpus");
     }
-    sums->add(source, columns, 8192, cancel);
+    const double done = static_cast<double>(file), files = static_cast<double>(recordings.size());
+    sums->add(source, columns, 8192, [&](double fraction) {
+      if (step) step((done + fraction) / files);
+    });
     names += (names.empty() ? "" : ", ") + fs::path(path).filename().string();
   }
   if (!sums) throw Error("somatosensory map", "no recordings in the corpus");

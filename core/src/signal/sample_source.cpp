@@ -163,4 +163,32 @@ int64_t MemorySampleSource::memory_bytes() const {
   return bytes;
 }
 
+Recording read_all(const SampleSource& source, const std::function<void(double)>& step) {
+  const SourceInfo& info = source.info();
+  Recording recording;
+  recording.id = info.recording_id;
+  recording.layout_id = info.layout_id;
+  recording.metadata = info.metadata;
+  Stream stream;
+  stream.name = info.stream;
+  stream.rate_hz = info.rate_hz;
+  stream.start_time = info.start_time;
+  stream.channels = info.channels;
+  stream.units = info.units;
+  const int64_t count = source.sample_count();
+  std::vector<int> channels(static_cast<size_t>(source.channel_count()));
+  for (size_t k = 0; k < channels.size(); ++k) channels[k] = static_cast<int>(k);
+  stream.samples.resize(count, static_cast<Eigen::Index>(channels.size()));
+  const int64_t block = std::max<int64_t>(1, (int64_t{1} << 20) / std::max<int64_t>(1, channels.size()));
+  for (int64_t first = 0; first < count; first += block) {
+    const int64_t rows = std::min(block, count - first);
+    stream.samples.middleRows(first, rows) = source.read(channels, first, rows);
+    if (step) step(static_cast<double>(first + rows) / static_cast<double>(count));
+  }
+  if (const std::vector<double>* times = source.timestamps())
+    stream.timestamps.assign(times->begin(), times->begin() + std::min<int64_t>(count, times->size()));
+  recording.streams = {std::move(stream)};
+  return recording;
+}
+
 }  // namespace tactile

@@ -35,6 +35,15 @@ class JobProgress {
     if (cancelled()) throw JobCancelled{};
   }
 
+  // The callback core functions take as `step(fraction)` (reading a recording, a map's
+  // correlations, predicting segments): reports fraction under `stage`, then check().
+  std::function<void(double)> steps(std::string stage, double from = 0.0, double to = 1.0) {
+    return [this, stage = std::move(stage), from, to](double fraction) {
+      report(from + (to - from) * fraction, stage);
+      check();
+    };
+  }
+
   // For the polling side.
   double fraction() const { return fraction_.load(); }
   std::string stage() const;
@@ -74,8 +83,22 @@ class JobRunner {
   std::thread worker_;
 };
 
+// Any job, whatever its result: what a window lists, draws and cancels.
+class AnyJob {
+ public:
+  virtual ~AnyJob() = default;
+  virtual JobRunner& runner() = 0;
+  const std::string& name() { return runner().name(); }
+  JobStatus status() { return runner().status(); }
+  double progress() { return runner().progress(); }
+  std::string stage() { return runner().stage(); }
+  std::string error() { return runner().error(); }
+  void cancel() { runner().cancel(); }
+  void wait() { runner().wait(); }
+};
+
 template <typename Result>
-class Job {
+class Job final : public AnyJob {
  public:
   Job(std::string name, std::function<Result(JobProgress&)> work)
       : result_(std::make_shared<Slot>()),
@@ -85,13 +108,7 @@ class Job {
           slot->value.emplace(std::move(result));
         }) {}
 
-  const std::string& name() const { return runner_.name(); }
-  JobStatus status() const { return runner_.status(); }
-  double progress() const { return runner_.progress(); }
-  std::string stage() const { return runner_.stage(); }
-  std::string error() const { return runner_.error(); }
-  void cancel() { runner_.cancel(); }
-  void wait() { runner_.wait(); }
+  JobRunner& runner() override { return runner_; }
   // The result once done, moved out on the first call; nothing before and after.
   std::optional<Result> take() {
     if (status() != JobStatus::kDone) return std::nullopt;

@@ -4,6 +4,7 @@
 // classes), applied to the segments of new recordings. Its answers become labels of
 // source `model` (the prediction lane), each with its score and margin.
 
+#include <functional>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
@@ -57,9 +58,12 @@ struct Predictions {
 // segment's bounds and region, class = the answer ("unknown" when the model answers so),
 // confidence = its score and note "margin=M model=SPEC" (ml::confidence_of). Throws
 // tactile::Error when the model has no pipeline, the recording is of another skin, or
-// the pipeline's columns are not the model's features.
+// the pipeline's columns are not the model's features. `step(fraction of the segments)` is
+// called after the pipeline's preprocessing and after each segment (a job's progress and
+// cancel: the callback throws).
 Predictions predict_segments(const SavedModel& model, const Recording& recording,
-                             const SkinLayout& layout, const std::vector<Label>& segments);
+                             const SkinLayout& layout, const std::vector<Label>& segments,
+                             const std::function<void(double)>& step = {});
 
 // The segments a model predicts on by default: the recording's segmenter suggestions among
 // `labels` (one recording's), else its ground truth; none when it has neither.

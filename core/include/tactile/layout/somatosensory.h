@@ -5,8 +5,8 @@
 // or a corpus (correlations from pooled sums), chunk by chunk through the SampleSource,
 // and cached beside the data.
 
-#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -32,10 +32,10 @@ class CorrelationSums {
  public:
   explicit CorrelationSums(int taxels);
   // Adds every sample of the given columns (one per taxel, -1: absent, left at zero),
-  // reading `block` samples at a time. Throws tactile::Error("somatosensory map",
-  // "cancelled") when `cancel` becomes true.
+  // reading `block` samples at a time; `step(fraction of the source)` is called after each
+  // block (a job reports progress there, and ends there when cancelled: the callback throws).
   void add(const SampleSource& source, const std::vector<int>& columns, int64_t block = 8192,
-           const std::atomic<bool>* cancel = nullptr);
+           const std::function<void(double)>& step = {});
   // R; a taxel that never varied correlates 0 with every other (1 with itself).
   Eigen::MatrixXd correlation() const;
   int64_t samples() const { return count_; }
@@ -54,7 +54,7 @@ SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
                                    const Eigen::MatrixXd& correlation);
 // Over one source's whole span.
 SomatosensoryMap somatosensory_map(const SampleSource& source, const SkinLayout& layout,
-                                   int modality, const std::atomic<bool>* cancel = nullptr);
+                                   int modality, const std::function<void(double)>& step = {});
 
 nlohmann::json to_json(const SomatosensoryMap& map);
 SomatosensoryMap somatosensory_from_json(const nlohmann::json& document, const std::string& where);
@@ -67,11 +67,12 @@ std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& reco
 // Best effort: a folder that cannot be written leaves no cache (returns false).
 bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map);
 
-// Over a corpus: every recording (files of the same skin) pooled into one correlation.
+// Over a corpus: every recording (files of the same skin) pooled into one correlation;
+// `step(fraction of the corpus)` as in CorrelationSums::add.
 // Throws tactile::Error naming a file of another skin, or one that cannot be read.
 SomatosensoryMap somatosensory_corpus_map(const std::vector<std::string>& recordings,
                                           const SkinLayout& layout, int modality,
-                                          const std::atomic<bool>* cancel = nullptr);
+                                          const std::function<void(double)>& step = {});
 // The corpus cache: FOLDER/LAYOUT.somatosensory-MODALITY.json, valid while every
 // recording's size and modification time are those stored (and no file came or went).
 std::string somatosensory_corpus_cache_path(const std::string& folder, const std::string& layout,

@@ -11,6 +11,7 @@
 // Calls are safe from several threads; the UI thread and a job may share a source.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -90,6 +91,11 @@ class SampleSource {
   MinMax channel_extent(int channel) const;
   std::vector<float> values_at_time(double t) const { return values_at(index_at(t)); }
 };
+
+// Every sample of the source as a recording of one stream (its info, units, timestamps), read
+// in blocks of about a million values; `step(fraction)` is called after each block, so a job
+// reports its progress there and ends there when cancelled (the callback throws).
+Recording read_all(const SampleSource& source, const std::function<void(double)>& step = {});
 
 //---- Samples held in memory
 

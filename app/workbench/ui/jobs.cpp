@@ -1,0 +1,78 @@
+#include "jobs.h"
+
+#include <imgui.h>
+
+#include "views.h"
+
+namespace tactile {
+
+void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job) {
+  if (!job) return;
+  if (job->status() == JobStatus::kRunning) {
+    job->cancel();
+    log_job_end(state, job->name(), "replaced");
+  }
+  state.retired_jobs.push_back(std::move(job));
+}
+
+void drop_ended_jobs(WorkbenchState& state) {
+  std::erase_if(state.retired_jobs,
+                [](const std::unique_ptr<AnyJob>& job) { return job->status() != JobStatus::kRunning; });
+}
+
+std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
+  std::vector<AnyJob*> jobs;
+  for (AnyJob* job : std::initializer_list<AnyJob*>{
+           state.labelling.segment_job.get(), state.analysis.predict_job.get(),
+           state.analysis.som_job.get(), state.analysis.scatter_job.get(),
+           state.analysis.map_job.get()})
+    if (job) jobs.push_back(job);
+  return jobs;
+}
+
+void log_job_start(WorkbenchState& state, const std::string& name) {
+  state.job_log.push_back({name, "running", state.frame, -1});
+  if (state.job_log.size() > 20) state.job_log.erase(state.job_log.begin());
+}
+
+void log_job_end(WorkbenchState& state, const std::string& name, const std::string& status) {
+  for (auto record = state.job_log.rbegin(); record != state.job_log.rend(); ++record)
+    if (record->name == name && record->status == "running") {
+      record->status = status;
+      record->finished_frame = state.frame;
+      return;
+    }
+}
+
+bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) {
+  if (held && *held) {
+    ImGui::Text("%s: cancelled", what);
+    if (ImGui::Button("Compute")) *held = false;
+    remember_item(state, "button:Compute");
+    return true;
+  }
+  if (!job || job->status() != JobStatus::kRunning) return false;
+  ImGui::Text("%s: computing on a worker, the window stays live", job->name().c_str());
+  if (ImGui::Button("Cancel")) job->cancel();
+  remember_item(state, "button:Cancel");
+  ImGui::SameLine();
+  const std::string stage = job->stage();
+  ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(-1, 0), stage.c_str());
+  return true;
+}
+
+bool draw_job_status(WorkbenchState& state) {
+  AnyJob* job = state.labelling.segment_job ? static_cast<AnyJob*>(state.labelling.segment_job.get())
+                                            : state.analysis.predict_job.get();
+  if (!job || job->status() != JobStatus::kRunning) return false;
+  if (ImGui::SmallButton("Cancel")) job->cancel();
+  remember_item(state, "button:Cancel job");
+  ImGui::SameLine();
+  const std::string stage = job->name() + ": " + job->stage();
+  ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(320, 0), stage.c_str());
+  ImGui::SameLine();
+  ImGui::TextDisabled("the window stays live; the result is applied when it ends");
+  return true;
+}
+
+}  // namespace tactile
