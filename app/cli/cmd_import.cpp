@@ -14,6 +14,7 @@
 #include "tactile/io/csv.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/labels/commands.h"
 #include "tactile/layout/skin_layout.h"
 
 namespace tactile::cli {
@@ -185,12 +186,9 @@ void run_import(const ImportOptions& options) {
     labels += imported.labels.size();
     if (imported.labels.empty() || options.labels.empty()) continue;
     if (!store) store = std::make_unique<LabelStore>(options.labels);
-    // Importing the same file again replaces its ground truth instead of doubling it.
-    LabelFilter previous;
-    previous.recording = recording.id;
-    previous.source = LabelSource::kGroundTruth;
-    store->remove_where(previous, "import");
-    store->add_many(imported.labels);
+    // Importing the same file again replaces its ground truth instead of doubling it; one
+    // command, so `undo` by "import" takes back the whole import.
+    store->apply(ground_truth_import(*store, recording.id, imported.labels), "import");
     stored += imported.labels.size();
   }
   if (labels == 0) return;

@@ -220,10 +220,10 @@ void apply_finished_prediction(WorkbenchState& state) {
   if (!state.document || state.document->path != made->document) return;  // another file now
   try {
     Document& document = *state.document;
-    // The model's lane replaced as one edit of the operator's: Ctrl+Z takes it back.
-    LabelStore& store = document.label_store();
-    store.apply(prediction_edit(store, document.recording_id(), made->predictions.labels),
-                state.labelling.annotator);
+    // The model's lane replaced as one command of the operator's: Ctrl+Z takes it back.
+    if (!apply_command(state, prediction_edit(document.label_store(), document.recording_id(),
+                                              made->predictions.labels)))
+      return;
     document.reload_labels();
     state.error.clear();
     state.notice = std::to_string(made->predictions.labels.size()) + " predictions by " +

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "tactile/error.h"
+#include "tactile/labels/commands.h"
 #include "tactile/labels/predict.h"
 #include "tactile/labels/region.h"
 #include "tactile/labels/suggestions.h"
@@ -53,6 +54,17 @@ bool own(const WorkbenchState& state, const Label& label) {
 }
 
 }  // namespace
+
+std::optional<std::vector<int64_t>> apply_command(WorkbenchState& state, const LabelEdit& edit) {
+  try {
+    std::vector<int64_t> ids = state.document->label_store().apply(edit, state.labelling.annotator);
+    return ids;
+  } catch (const Error& error) {
+    fail(state, error.what());
+    return std::nullopt;
+  }
+}
+
 
 const LaneIndex* active_lane(const WorkbenchState& state) {
   if (!state.document) return nullptr;
@@ -100,21 +112,8 @@ bool confirm_prediction(WorkbenchState& state, const std::string& corrected_clas
     return fail(state, "select a prediction (a label of the model lane) first");
   const std::string class_name = corrected_class.empty() ? selected->class_name : corrected_class;
   if (class_name == kUnknownClass) return fail(state, "the model answered unknown: press its digit");
-  try {
-    Label label = *selected;
-    label.id = 0;
-    label.class_name = class_name;
-    label.annotator = state.labelling.annotator;
-    label.source = LabelSource::kManual;
-    label.confidence = 1.0;
-    label.note = (corrected_class.empty() || corrected_class == selected->class_name
-                      ? "confirmed model: "
-                      : "corrected model: ") +
-                 selected->class_name;
-    state.document->label_store().add(label);
-  } catch (const Error& error) {
-    return fail(state, error.what());
-  }
+  if (!apply_command(state, adopt_edit(*selected, class_name, state.labelling.annotator)))
+    return false;
   after_edit(state, 0,
              (class_name == selected->class_name ? "confirmed " : "corrected to ") + class_name +
                  " " + format_seconds(selected->t0));
@@ -170,7 +169,9 @@ bool commit_label(WorkbenchState& state) {
       label.class_name = labelling.pending_class;
       label.annotator = labelling.annotator;
       label.source = LabelSource::kManual;
-      const int64_t id = document.label_store().add(label);
+      const auto ids = apply_command(state, LabelEdit{.add = {label}});
+      if (!ids) return false;
+      const int64_t id = ids->front();
       labelling.mark_start.reset();
       labelling.mark_end.reset();
       labelling.pending_class.clear();
@@ -181,12 +182,10 @@ bool commit_label(WorkbenchState& state) {
     // No marks: a class key then Enter changes the class of the selected own label.
     const std::optional<Label> selected = selected_label(state);
     if (selected && own(state, *selected) && !labelling.pending_class.empty()) {
-      Label changed = *selected;
-      changed.class_name = labelling.pending_class;
-      document.label_store().update(changed);
+      if (!apply_command(state, class_edit(*selected, labelling.pending_class))) return false;
+      after_edit(state, selected->id, "label " + std::to_string(selected->id) + " is now " +
+                                          labelling.pending_class);
       labelling.pending_class.clear();
-      after_edit(state, changed.id, "label " + std::to_string(changed.id) + " is now " +
-                                        changed.class_name);
       return true;
     }
     return fail(state, "set the start and end with [ and ] first");
@@ -201,11 +200,7 @@ bool remove_selected_label(WorkbenchState& state) {
   if (!own(state, *selected))
     return fail(state, "only labels of your own lane (" + state.labelling.annotator +
                            ") are removed with Delete");
-  try {
-    state.document->label_store().remove(selected->id, state.labelling.annotator);
-  } catch (const Error& error) {
-    return fail(state, error.what());
-  }
+  if (!apply_command(state, LabelEdit{.remove = {selected->id}})) return false;
   after_edit(state, 0, "removed label " + std::to_string(selected->id));
   return true;
 }
@@ -290,11 +285,10 @@ void apply_finished_segmenter(WorkbenchState& state) {
   if (!state.document || state.document->path != found->document) return;  // another file now
   try {
     Document& document = *state.document;
-    LabelStore& store = document.label_store();
-    // One edit journalled under the operator: Ctrl+Z takes back the whole run.
-    const SegmenterRun run =
-        segmenter_run(store, document.recording_id(), found->method, std::move(found->segments));
-    store.apply(run.edit, state.labelling.annotator);
+    // One command: Ctrl+Z takes back the whole run, its removals and its insertions.
+    const SegmenterRun run = segmenter_run(document.label_store(), document.recording_id(),
+                                           found->method, std::move(found->segments));
+    if (!apply_command(state, run.edit)) return;
     after_edit(
         state, 0,
         found->method + ": " + std::to_string(run.edit.add.size()) + " suggestions" +
@@ -313,18 +307,8 @@ bool accept_suggestion(WorkbenchState& state) {
   std::string class_name = state.labelling.pending_class;
   if (class_name.empty() && selected->class_name != kUnknownClass) class_name = selected->class_name;
   if (class_name.empty()) return fail(state, "choose the class with 1-9, then A");
-  try {
-    Label label = *selected;
-    label.id = 0;
-    label.class_name = class_name;
-    label.annotator = state.labelling.annotator;
-    label.source = LabelSource::kManual;
-    label.confidence = 1.0;
-    label.note.clear();
-    state.document->label_store().add(label);
-  } catch (const Error& error) {
-    return fail(state, error.what());
-  }
+  if (!apply_command(state, adopt_edit(*selected, class_name, state.labelling.annotator)))
+    return false;
   state.labelling.pending_class.clear();
   after_edit(state, 0, "accepted " + class_name + " " + format_seconds(selected->t0));
   select_next_suggestion(state, selected->annotator, selected->t0);
@@ -335,11 +319,7 @@ bool reject_suggestion(WorkbenchState& state) {
   const std::optional<Label> selected = selected_label(state);
   if (!selected || selected->source != LabelSource::kSegmenter)
     return fail(state, "select a suggestion (a segmenter's label) to reject");
-  try {
-    state.document->label_store().reject(selected->id, state.labelling.annotator);
-  } catch (const Error& error) {
-    return fail(state, error.what());
-  }
+  if (!apply_command(state, LabelEdit{.reject = {selected->id}})) return false;
   after_edit(state, 0, "rejected the suggestion at " + format_seconds(selected->t0));
   select_next_suggestion(state, selected->annotator, selected->t0);
   return true;
@@ -352,13 +332,7 @@ bool move_label_bounds(WorkbenchState& state, int64_t id, double t0, double t1) 
     if (candidate.id == id) label = candidate;
   if (!label || !own(state, *label)) return fail(state, "only your own labels are moved");
   if (!(t0 < t1)) return fail(state, "a label must end after it starts");
-  label->t0 = t0;
-  label->t1 = t1;
-  try {
-    state.document->label_store().update(*label);
-  } catch (const Error& error) {
-    return fail(state, error.what());
-  }
+  if (!apply_command(state, bounds_edit(*label, t0, t1))) return false;
   after_edit(state, id, "label " + std::to_string(id) + " now " + format_seconds(t0) + " to " +
                             format_seconds(t1));
   return true;

@@ -9,6 +9,8 @@
 // marks. Each edit is one transaction in the label store the moment it is made.
 
 #include <functional>
+#include <optional>
+#include <vector>
 
 #include "workbench_state.h"
 
@@ -20,6 +22,11 @@ void handle_labelling_keys(WorkbenchState& state);
 // The type-ahead class picker (key C; for vocabularies beyond the nine digit keys):
 // type part of a name, Enter takes the first match as the class. Drawn every frame.
 void draw_class_picker(WorkbenchState& state);
+
+// Carries out one command (tactile/labels/commands.h): the edit written in one transaction
+// and one journal batch under the operator, so Ctrl+Z takes it back whole. Returns the new
+// labels' ids; nothing when the store refused (the reason in state.error).
+std::optional<std::vector<int64_t>> apply_command(WorkbenchState& state, const LabelEdit& edit);
 
 // The edits the keys make; also for mouse actions. Each reports failure in
 // state.error and returns false.

@@ -532,7 +532,7 @@ CheckedJournal read_journal(const sqlite::Statement& statement) {
   auto bad = [&row, &entry](const char* field, const std::string& what) {
     row.problem = row_problem("journal", entry.sequence, field, what);
   };
-  static const std::set<std::string> kActions = {"insert", "update", "delete", "undo", "redo"};
+  static const std::set<std::string> kActions = {"insert", "update", "delete", "reject", "undo", "redo"};
   if (row.problem) return row;
   if (undone != 0 && undone != 1) return bad("undone", "neither 0 nor 1"), row;
   if (!is_iso_time(entry.time)) return bad("time", "'" + entry.time + "' is not a time"), row;
@@ -579,6 +579,49 @@ void clear_redo_chain(sqlite3* database, const std::string& path) {
   }
   for (const auto& [sequence, undone] : rows)
     set_undone(database, path, sequence, undone, std::nullopt);
+}
+
+std::vector<row_checksum::Field> rejection_fields(const Rejection& rejection) {
+  return {{"recording", rejection.recording}, {"method", rejection.method},
+          {"t0", rejection.t0},               {"t1", rejection.t1},
+          {"annotator", rejection.annotator}, {"time", rejection.time}};
+}
+
+void remember_rejection(sqlite3* database, const std::string& path, const Label& suggestion,
+                        const std::string& annotator) {
+  const std::string where = where_label(path, suggestion.id);
+  Rejection rejection{0, suggestion.recording, suggestion.annotator, suggestion.t0, suggestion.t1,
+                      annotator, now_utc()};
+  {
+    sqlite::Statement insert(database, where,
+                             "INSERT INTO rejections (recording, method, t0, t1, annotator, time, "
+                             "checksum) VALUES (?, ?, ?, ?, ?, ?, '')");
+    insert.bind(1, rejection.recording)
+        .bind(2, rejection.method)
+        .bind(3, rejection.t0)
+        .bind(4, rejection.t1)
+        .bind(5, rejection.annotator)
+        .bind(6, rejection.time);
+    insert.run();
+  }
+  rejection.id = sqlite3_last_insert_rowid(database);
+  sqlite::Statement seal(database, where, "UPDATE rejections SET checksum = ? WHERE id = ?");
+  seal.bind(1, row_checksum::compute("rejections", rejection.id, rejection_fields(rejection)))
+      .bind(2, rejection.id);
+  seal.run();
+}
+
+void forget_rejection(sqlite3* database, const std::string& path, const Label& suggestion,
+                      const std::string& annotator) {
+  sqlite::Statement erase(database, where_label(path, suggestion.id),
+                          "DELETE FROM rejections WHERE id = (SELECT MAX(id) FROM rejections WHERE "
+                          "recording = ? AND method = ? AND t0 = ? AND t1 = ? AND annotator = ?)");
+  erase.bind(1, suggestion.recording)
+      .bind(2, suggestion.annotator)
+      .bind(3, suggestion.t0)
+      .bind(4, suggestion.t1)
+      .bind(5, annotator);
+  erase.run();
 }
 
 void add_checksums(sqlite3* database, const std::string& path) {

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "row_checksum.h"
 #include "sqlite_statement.h"
 #include "tactile/error.h"
 #include "tactile/io/label.h"
@@ -111,6 +112,15 @@ void write_journal(sqlite3* database, const std::string& path, int64_t batch,
                    const std::string& time = {});
 // A new edit makes the undone edits unrecoverable by redo.
 void clear_redo_chain(sqlite3* database, const std::string& path);
+
+// Rejections (suggestions an annotator rejected), inside the caller's transaction: the fields
+// their checksum covers; one remembered for `suggestion`; and the newest one of `suggestion` by
+// `annotator` forgotten again (an undone reject).
+std::vector<row_checksum::Field> rejection_fields(const Rejection& rejection);
+void remember_rejection(sqlite3* database, const std::string& path, const Label& suggestion,
+                        const std::string& annotator);
+void forget_rejection(sqlite3* database, const std::string& path, const Label& suggestion,
+                      const std::string& annotator);
 
 // The journal's columns in the order read_journal() expects.
 inline constexpr const char* kJournalColumns =

@@ -419,6 +419,19 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
     if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
     delete_existing(database_, path_, *before, by, batch);
   }
+  for (const int64_t id : edit.reject) {
+    // The suggestion goes and its span is remembered, journalled as a "reject": its undo
+    // brings the suggestion back and forgets the rejection.
+    const std::optional<Label> suggestion = label_rows::load(database_, path_, id);
+    const std::string where = label_rows::where_label(path_, id);
+    if (!suggestion) throw Error(where, "no such label to reject");
+    if (suggestion->source != LabelSource::kSegmenter)
+      throw Error(where, "only a segmenter's suggestion can be rejected");
+    label_rows::remember_rejection(database_, path_, *suggestion, by);
+    label_rows::erase(database_, path_, id);
+    label_rows::write_journal(database_, path_, batch, by, "reject", id,
+                              label_rows::state_json(suggestion), "");
+  }
   for (const Label& label : edit.update) {
     const std::optional<Label> before = label_rows::load(database_, path_, label.id);
     if (!before) throw Error(label_rows::where_label(path_, label.id), "no such label to update");
@@ -495,45 +508,10 @@ int64_t LabelStore::count(const std::string& recording) const {
 
 //---- Suggestions
 
-namespace {
-
-std::vector<row_checksum::Field> rejection_fields(const Rejection& rejection) {
-  return {{"recording", rejection.recording}, {"method", rejection.method},
-          {"t0", rejection.t0},               {"t1", rejection.t1},
-          {"annotator", rejection.annotator}, {"time", rejection.time}};
-}
-
-}  // namespace
-
 void LabelStore::reject(int64_t label_id, const std::string& annotator) {
-  sqlite::Transaction transaction(database_, path_);
-  const std::optional<Label> label = label_rows::load(database_, path_, label_id);
-  const std::string where = label_rows::where_label(path_, label_id);
-  if (!label) throw Error(where, "no such label to reject");
-  if (label->source != LabelSource::kSegmenter)
-    throw Error(where, "only a segmenter's suggestion can be rejected");
-  Rejection rejection{0, label->recording, label->annotator, label->t0, label->t1, annotator,
-                      label_rows::now_utc()};
-  {
-    sqlite::Statement insert(database_, where,
-                             "INSERT INTO rejections (recording, method, t0, t1, annotator, time, "
-                             "checksum) VALUES (?, ?, ?, ?, ?, ?, '')");
-    insert.bind(1, rejection.recording)
-        .bind(2, rejection.method)
-        .bind(3, rejection.t0)
-        .bind(4, rejection.t1)
-        .bind(5, rejection.annotator)
-        .bind(6, rejection.time);
-    insert.run();
-  }
-  rejection.id = sqlite3_last_insert_rowid(database_);
-  sqlite::Statement seal(database_, where, "UPDATE rejections SET checksum = ? WHERE id = ?");
-  seal.bind(1, row_checksum::compute("rejections", rejection.id, rejection_fields(rejection)))
-      .bind(2, rejection.id);
-  seal.run();
-  delete_existing(database_, path_, *label, annotator, label_rows::next_batch(database_, path_));
-  label_rows::clear_redo_chain(database_, path_);
-  transaction.commit();
+  LabelEdit edit;
+  edit.reject = {label_id};
+  apply(edit, annotator);
 }
 
 std::vector<Rejection> LabelStore::rejections(const std::string& recording) const {
@@ -547,7 +525,7 @@ std::vector<Rejection> LabelStore::rejections(const std::string& recording) cons
     Rejection rejection{select.integer(0), select.text(1), select.text(2), select.real(3),
                         select.real(4),    select.text(5), select.text(6)};
     const auto wrong = row_checksum::mismatches("rejections", rejection.id,
-                                                rejection_fields(rejection), select.text(7));
+                                                label_rows::rejection_fields(rejection), select.text(7));
     if (!wrong.empty()) {
       problems.push_back({"rejections", rejection.id, wrong.front(),
                           "value does not match its checksum"});

@@ -11,7 +11,7 @@ namespace tactile {
 
 namespace {
 
-constexpr const char* kEditActions = "action IN ('insert', 'update', 'delete')";
+constexpr const char* kEditActions = "action IN ('insert', 'update', 'delete', 'reject')";
 
 struct EditRow {
   int64_t sequence = 0;
@@ -61,6 +61,16 @@ void move_label(sqlite3* database, const std::string& path, const EditRow& row,
     label_rows::store(database, path, *target);
   else
     label_rows::erase(database, path, row.label_id);
+  // A reject also remembered the suggestion's span: forgotten when it comes back, remembered
+  // again when it goes (by whom the reject was journalled).
+  if (row.action == "reject") {
+    if (target)
+      label_rows::forget_rejection(database, path, *target, row.annotator);
+    else
+      label_rows::remember_rejection(database, path,
+                                     *label_rows::state_from_json(expected_json, where),
+                                     row.annotator);
+  }
   label_rows::write_journal(database, path, batch, annotator.empty() ? row.annotator : annotator,
                             verb, row.label_id, current_json, target_json);
 }

@@ -63,14 +63,16 @@ struct StoreProblem {
   std::string where(const std::string& path) const;
 };
 
-// One user action on the labels, as a whole: the labels it removes, adds and changes. A
-// segmenter run removes its earlier suggestions and adds new ones; a prediction replaces the
-// model's lane. LabelStore::apply writes it as one journal batch, so one undo reverts it all.
+// One user action on the labels, as a whole (the command of the workbench and the command
+// line): the labels it removes, rejects, changes and adds. A segmenter run removes its earlier
+// suggestions and adds new ones; a prediction replaces the model's lane; an accept adds one
+// label. LabelStore::apply writes it as one journal batch, so one undo reverts it all.
 struct LabelEdit {
   std::vector<int64_t> remove;  // ids of existing labels
   std::vector<Label> add;       // new labels (id and times are assigned by the store)
   std::vector<Label> update;    // existing labels (by id) with their new values
-  bool empty() const { return remove.empty() && add.empty() && update.empty(); }
+  std::vector<int64_t> reject;  // suggestions rejected: removed, their spans remembered
+  bool empty() const { return remove.empty() && add.empty() && update.empty() && reject.empty(); }
 };
 
 // The JSON export's document for these labels: {"labels": [...]}, indented.
@@ -118,14 +120,14 @@ class LabelStore {
   int64_t remove_where(const LabelFilter& filter, const std::string& annotator = {});
   // The whole edit or nothing, in one transaction and one journal batch whose every row is
   // journalled under `by` (the person or program that made the edit), so that undo(by)
-  // reverts exactly this edit, whichever lanes it touched. Removals first, then updates,
-  // then insertions; returns the new labels' ids in the order of edit.add. Throws naming the
+  // reverts exactly this edit, whichever lanes it touched. Removals first, then rejections,
+  // updates and insertions; returns the new labels' ids in the order of edit.add. Throws naming the
   // first label that is invalid or no longer exists, leaving the store unchanged.
   std::vector<int64_t> apply(const LabelEdit& edit, const std::string& by);
 
-  // Rejects a suggestion: removes the segmenter's label (journalled as the annotator's
-  // edit, so undo brings it back) and remembers its span, in one transaction. Throws
-  // when the label is not a segmenter's.
+  // Rejects a suggestion: removes the segmenter's label and remembers its span, one edit
+  // journalled under the annotator (its undo brings the label back and forgets the span).
+  // Throws when the label is not a segmenter's. The same as apply() with edit.reject.
   void reject(int64_t label_id, const std::string& annotator);
   // The rejections of a recording's suggestions (damaged rows left out, in problems()).
   std::vector<Rejection> rejections(const std::string& recording) const;

@@ -1,0 +1,40 @@
+#pragma once
+// The label commands: every change a user makes to the labels is one LabelEdit (label_store.h),
+// written by LabelStore::apply under the person who made it as one journal batch, so that
+// undo(that person) takes back exactly that action, whatever lanes it touched, also after a
+// restart, and redo puts it back. The workbench's keys, menus and scripts and the command line
+// build their edits here (and in suggestions.h, predict.h), so each policy is written once.
+//
+//   commit a label      LabelEdit{.add = {label}}
+//   change its class    LabelEdit{.update = {label with the class}}   (also a dragged edge)
+//   delete              LabelEdit{.remove = {id}}
+//   accept / confirm    adopt_edit(suggestion or prediction, class, annotator)
+//   reject              LabelEdit{.reject = {id}}
+//   segmenter run       segmenter_run(...).edit          (suggestions.h)
+//   predict             prediction_edit(...)             (predict.h)
+//   import              ground_truth_import(...)
+
+#include <string>
+#include <vector>
+
+#include "tactile/io/label.h"
+#include "tactile/io/label_store.h"
+
+namespace tactile {
+
+// A suggestion (a segmenter's label) accepted, or a prediction confirmed or corrected: a label
+// of `annotator`'s own lane with its bounds and region, class `class_name`, confidence 1. A
+// prediction's copy notes what the model said ("confirmed model: tap", "corrected model: tap").
+Label adopted_label(const Label& label, const std::string& class_name, const std::string& annotator);
+LabelEdit adopt_edit(const Label& label, const std::string& class_name, const std::string& annotator);
+
+// A changed copy of `label` as an edit of it: its class, or its bounds (a dragged edge).
+LabelEdit class_edit(Label label, const std::string& class_name);
+LabelEdit bounds_edit(Label label, double t0, double t1);
+
+// Imported ground truth of one recording: the recording's earlier ground truth removed, the
+// imported labels added, as one edit (importing the same file again replaces, never doubles).
+LabelEdit ground_truth_import(const LabelStore& store, const std::string& recording,
+                              const std::vector<Label>& labels);
+
+}  // namespace tactile
