@@ -258,6 +258,38 @@ TEST_F(WorkbenchClassifiers, PredictionsAreConfirmedAndCorrectedByKeys) {
   EXPECT_NE(labels[1]["note"].get<std::string>().find("model"), std::string::npos);
 }
 
+// Predict, confirm and correct are commands: each undone exactly by Ctrl+Z (in a new process)
+// and redone by Ctrl+Shift+Z, the whole label table compared.
+TEST_F(WorkbenchClassifiers, PredictConfirmAndCorrectEachUndoAsOneCommand) {
+  const auto all_labels = [&] {
+    const auto listed = test::run_program("tactile", "labels list " + demo("labels.db") + " --json", folder);
+    nlohmann::json labels = nlohmann::json::parse(listed.out)["labels"];
+    for (nlohmann::json& label : labels)
+      for (const char* field : {"id", "created", "modified"}) label.erase(field);
+    return labels;
+  };
+  const std::string recording = demo("fur-s01-t01.h5");
+  const auto expect_one_undo = [&](const std::string& command) {
+    const nlohmann::json before = all_labels();
+    const auto done = workbench(recording, command + "state @done.json\n");
+    ASSERT_EQ(done.exit_code, 0) << done.err;
+    ASSERT_EQ(state("done.json")["error"], "");
+    const nlohmann::json after = all_labels();
+    ASSERT_NE(after, before) << command;
+    ASSERT_EQ(workbench(recording, "wait 2\nkey Ctrl+Z\nwait 1\nstate @undone.json\n").exit_code, 0);
+    EXPECT_EQ(state("undone.json")["notice"], "undone");
+    EXPECT_EQ(all_labels(), before) << command;
+    ASSERT_EQ(workbench(recording, "wait 2\nkey Ctrl+Shift+Z\nwait 1\n").exit_code, 0);
+    EXPECT_EQ(all_labels(), after) << command;
+  };
+  // The model is trained in the same process as Predict (the panel predicts with its last run).
+  expect_one_undo(
+      "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\nwait 2\n"
+      "click item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n");
+  expect_one_undo("wait 2\nkey U\nwait 2\nkey Y\nwait 2\n");
+  expect_one_undo("wait 2\nkey U\nwait 2\nkey 1\nwait 2\n");
+}
+
 // Each classifier view exports headless, and the somatosensory map of Robovie's films.
 TEST_F(WorkbenchClassifiers, SomatosensoryMapRendersAndIsCachedBesideTheRecording) {
   const std::string png = folder.file("somatosensory.png");

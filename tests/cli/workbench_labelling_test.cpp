@@ -73,6 +73,35 @@ class WorkbenchLabelling : public ::testing::Test {
               [](const nlohmann::json& a, const nlohmann::json& b) { return a.dump() < b.dump(); });
     return labels;
   }
+  // One command, run by `command` (a script), undone by Ctrl+Z in a new process and redone by
+  // Ctrl+Shift+Z: the whole label table is as before the command, then as after it, and the
+  // store's check finds no overlap.
+  void expect_one_undo(const std::string& command) {
+    const nlohmann::json before = all_labels();
+    const auto done = workbench(command + "state @done.json\n");
+    ASSERT_EQ(done.exit_code, 0) << done.err;
+    ASSERT_EQ(state("done.json")["error"], "") << command;
+    const nlohmann::json after = all_labels();
+    ASSERT_NE(after, before) << "the command changed nothing: " << command;
+    ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nstate @undone.json\n").exit_code, 0);
+    EXPECT_EQ(state("undone.json")["notice"], "undone");
+    EXPECT_EQ(all_labels(), before) << command;
+    const auto check = test::run_program("tactile", "labels check " + database(), folder);
+    EXPECT_EQ(check.out.find("overlap"), std::string::npos) << check.out;
+    ASSERT_EQ(workbench("wait 2\nkey Ctrl+Shift+Z\nwait 1\n").exit_code, 0);
+    EXPECT_EQ(all_labels(), after) << command;
+  }
+  // The middle of the first suggestion of a segmenter's lane in the database.
+  double first_suggestion(const std::string& method) {
+    const auto listed = test::run_program(
+        "tactile", "labels list " + database() + " --source segmenter --json", folder);
+    const nlohmann::json labels = nlohmann::json::parse(listed.out)["labels"];
+    for (const nlohmann::json& label : labels)
+      if (label["annotator"] == "segmenter:" + method)
+        return 0.5 * (label["t0"].get<double>() + label["t1"].get<double>());
+    ADD_FAILURE() << "no suggestion of " << method;
+    return 0.0;
+  }
   nlohmann::json state(const std::string& name) {
     std::ifstream in(folder.file(name));
     return nlohmann::json::parse(in);
@@ -222,6 +251,55 @@ TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRunTakesBackTheRunNotTheLabelBefo
   const nlohmann::json labels = manual_labels();
   ASSERT_EQ(labels.size(), 1u);
   EXPECT_EQ(labels[0]["class"], vocabulary[1]);
+}
+
+// One of every command kind of the labelling keys, each undone exactly (after a restart) and
+// redone.
+constexpr const char* kCommitOne = "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 2\nkey Enter\nwait 1\n";
+
+TEST_F(WorkbenchLabelling, CommittingALabelUndoesAsOneCommand) { expect_one_undo(kCommitOne); }
+
+TEST_F(WorkbenchLabelling, AClassChangeUndoesAsOneCommand) {
+  ASSERT_EQ(workbench(kCommitOne).exit_code, 0);
+  expect_one_undo("wait 2\ntime 0\nkey Tab\nkey 3\nkey Enter\nwait 1\n");
+  EXPECT_EQ(manual_labels()[0]["class"], vocabulary[2]);  // redone
+}
+
+TEST_F(WorkbenchLabelling, ADeleteUndoesAsOneCommand) {
+  ASSERT_EQ(workbench(kCommitOne).exit_code, 0);
+  expect_one_undo("wait 2\ntime 0\nkey Tab\nkey Delete\nwait 1\n");
+  EXPECT_EQ(manual_labels().size(), 0u);
+}
+
+TEST_F(WorkbenchLabelling, ADraggedEdgeUndoesAsOneCommand) {
+  ASSERT_EQ(workbench("wait 2\nkey S\ndrag time 13 15 in timeline\nkey 1\nkey Enter\nwait 1\n").exit_code, 0);
+  expect_one_undo("wait 2\nkey S\ndrag time 15 17 in timeline\nwait 2\n");
+}
+
+TEST_F(WorkbenchLabelling, AnAcceptedSuggestionUndoesAsOneCommand) {
+  ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\n").exit_code, 0);
+  const double t = first_suggestion("adaptive");
+  expect_one_undo("wait 2\nclick time " + std::to_string(t) +
+                  " in lane:segmenter:segmenter:adaptive\nkey 2\nkey A\nwait 1\n");
+  EXPECT_EQ(manual_labels().size(), 1u);
+}
+
+// A reject's undo also forgets the rejection: a rerun of the segmenter suggests it again.
+TEST_F(WorkbenchLabelling, ARejectedSuggestionUndoesAsOneCommandAndComesBackInARerun) {
+  ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\nstate @first.json\n").exit_code, 0);
+  const double t = first_suggestion("adaptive");
+  expect_one_undo("wait 2\nclick time " + std::to_string(t) +
+                  " in lane:segmenter:segmenter:adaptive\nkey R\nwait 1\n");
+  // Redone: rejected again. Undone once more, then a rerun: nothing left out.
+  ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nkey G\nwait jobs\nstate @rerun.json\n").exit_code, 0);
+  EXPECT_EQ(state("rerun.json")["notice"].get<std::string>().find("rejected before"),
+            std::string::npos)
+      << state("rerun.json")["notice"];
+  EXPECT_EQ(state("rerun.json")["notice"], state("first.json")["notice"]);
+}
+
+TEST_F(WorkbenchLabelling, ASegmenterRunUndoesAsOneCommand) {
+  expect_one_undo("wait 2\nkey G\nwait jobs\n");
 }
 
 TEST_F(WorkbenchLabelling, TheQualityViewListsIssuesAndAgreementAndAClickGoesThere) {

@@ -9,6 +9,7 @@
 #include "label_store_fixture.h"
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
+#include "tactile/labels/commands.h"
 #include "tactile/labels/predict.h"
 #include "tactile/labels/suggestions.h"
 
@@ -223,6 +224,86 @@ TEST(SegmentsToPredict, AreTheSuggestionsElseTheGroundTruthElseNone) {
   ASSERT_EQ(from_truth.size(), 1u);
   EXPECT_EQ(from_truth[0].source, LabelSource::kGroundTruth);
   EXPECT_TRUE(segments_to_predict({manual}).empty());
+}
+
+}  // namespace
+}  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// A reject is an edit too: its undo brings the suggestion back and forgets its span (a rerun
+// suggests it again), its redo removes it and remembers the span again.
+TEST_F(LabelStoreTest, ARejectsUndoForgetsTheRejectionAndItsRedoRemembersIt) {
+  LabelStore store(path_);
+  store.apply(segmenter_run(store, "r1", "threshold", suggestions("threshold", 3)).edit, "ana");
+  const std::vector<Row> before = table(store);
+  const int64_t second = store.list()[1].id;
+  LabelEdit edit;
+  edit.reject = {second};
+  store.apply(edit, "ana");
+  EXPECT_FALSE(store.get(second));
+  ASSERT_EQ(store.rejections("r1").size(), 1u);
+  EXPECT_EQ(store.journal(1)[0].action, "reject");
+  const SegmenterRun rerun = segmenter_run(store, "r1", "threshold", suggestions("threshold", 3));
+  EXPECT_EQ(rerun.rejected, 1u);
+
+  ASSERT_TRUE(store.undo("ana"));
+  EXPECT_EQ(table(store), before);
+  EXPECT_TRUE(store.rejections("r1").empty());
+  EXPECT_EQ(segmenter_run(store, "r1", "threshold", suggestions("threshold", 3)).rejected, 0u);
+
+  ASSERT_TRUE(store.redo("ana"));
+  EXPECT_FALSE(store.get(second));
+  EXPECT_EQ(store.rejections("r1").size(), 1u);
+  EXPECT_TRUE(store.check().empty());
+  // Not a suggestion: refused, nothing changed.
+  const int64_t own = store.add(make_label("r1", 20.0, 21.0, "pat"));
+  edit.reject = {own};
+  EXPECT_THROW(store.apply(edit, "ana"), Error);
+  EXPECT_TRUE(store.get(own));
+}
+
+// The commands' policies: an adopted suggestion or prediction, an imported ground truth.
+TEST_F(LabelStoreTest, AnAdoptedLabelIsTheOperatorsWithTheModelsAnswerInItsNote) {
+  Label prediction = make_label("r1", 1.0, 2.0, "tap", "model");
+  prediction.id = 7;
+  prediction.source = LabelSource::kModel;
+  prediction.confidence = 0.4;
+  const Label confirmed = adopted_label(prediction, "tap", "ana");
+  EXPECT_EQ(confirmed.id, 0);
+  EXPECT_EQ(confirmed.source, LabelSource::kManual);
+  EXPECT_EQ(confirmed.annotator, "ana");
+  EXPECT_EQ(confirmed.confidence, 1.0);
+  EXPECT_EQ(confirmed.note, "confirmed model: tap");
+  EXPECT_EQ(adopted_label(prediction, "slap", "ana").note, "corrected model: tap");
+  Label suggestion = make_label("r1", 1.0, 2.0, "unknown", "segmenter:adaptive");
+  suggestion.source = LabelSource::kSegmenter;
+  suggestion.note = "quiet";
+  const Label accepted = adopted_label(suggestion, "pat", "ana");
+  EXPECT_EQ(accepted.class_name, "pat");
+  EXPECT_EQ(accepted.note, "");
+  EXPECT_EQ(accepted.t0, 1.0);
+  EXPECT_EQ(accepted.region, suggestion.region);
+}
+
+TEST_F(LabelStoreTest, AnImportReplacesTheRecordingsGroundTruthAsOneEdit) {
+  LabelStore store(path_);
+  Label truth = make_label("r1", 0.0, 1.0, "pat", "simulator");
+  truth.source = LabelSource::kGroundTruth;
+  store.add(truth);
+  Label other = truth;
+  other.recording = "r2";
+  store.add(other);
+  const std::vector<Row> before = table(store);
+  truth.t0 = 5.0, truth.t1 = 6.0;
+  store.apply(ground_truth_import(store, "r1", {truth, truth}), "import");
+  LabelFilter r1;
+  r1.recording = "r1";
+  ASSERT_EQ(store.list(r1).size(), 2u);
+  EXPECT_EQ(store.list(r1)[0].t0, 5.0);
+  ASSERT_TRUE(store.undo("import"));
+  EXPECT_EQ(table(store), before);
 }
 
 }  // namespace
