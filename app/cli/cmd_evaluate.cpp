@@ -18,6 +18,7 @@
 #include "tactile/ml/classifier.h"
 #include "tactile/labels/predict.h"
 #include "tactile/ml/evaluation.h"
+#include "tactile/ml/train_all.h"
 
 namespace tactile::cli {
 
@@ -132,30 +133,14 @@ void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protoco
   control.threads = args.threads;
   control.scores = !args.out.empty();
   control.progress = [&](int done, int total) { bar.update(done, total); };
-  std::vector<ml::PresetOutcome> outcomes = ml::evaluate_all(dataset, protocol, args.seed, control);
+  ml::TrainAllResult all{protocol.to_string(), args.seed, args.features,
+                         ml::evaluate_all(dataset, protocol, args.seed, control)};
   bar.finish();
-  std::stable_sort(outcomes.begin(), outcomes.end(),
-                   [](const ml::PresetOutcome& a, const ml::PresetOutcome& b) {
-                     const double x = a.result ? a.result->accuracy : -1.0;
-                     const double y = b.result ? b.result->accuracy : -1.0;
-                     return x > y;
-                   });
-  nlohmann::json table = nlohmann::json::array(), evaluations = nlohmann::json::array();
-  for (const ml::PresetOutcome& outcome : outcomes) {
-    table.push_back(ml::summary_json(outcome));
-    if (!outcome.result) continue;
-    evaluations.push_back(ml::to_json(*outcome.result, true));
-    evaluations.back()["features"] = args.features;
-  }
-  if (!args.out.empty()) {
-    write_json_file(args.out,
-                    {{"protocol", protocol.to_string()},
-                     {"seed", args.seed},
-                     {"features", args.features},
-                     {"presets", table},
-                     {"evaluations", evaluations}},
-                    "evaluation");
-  }
+  ml::sort_best_first(all.outcomes);
+  const std::vector<ml::PresetOutcome>& outcomes = all.outcomes;
+  nlohmann::json table = nlohmann::json::array();
+  for (const ml::PresetOutcome& outcome : outcomes) table.push_back(ml::summary_json(outcome));
+  if (!args.out.empty()) ml::write_train_all_file(args.out, all);
   if (args.json) {
     std::cout << nlohmann::json{{"protocol", protocol.to_string()}, {"presets", table}}.dump(2)
               << "\n";

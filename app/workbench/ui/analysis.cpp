@@ -15,6 +15,7 @@
 #include "tactile/io/label_store.h"
 #include "tactile/labels/predict.h"
 #include "tactile/ml/pca.h"
+#include "tactile/ml/train_all.h"
 #include "jobs.h"
 #include "views.h"
 
@@ -28,14 +29,6 @@ std::string label_database(const WorkbenchState& state) {
   if (state.document && !state.document->labels_path.empty()) return state.document->labels_path;
   if (!state.options.labels_path.empty()) return state.options.labels_path;
   return (fs::path(state.workspace) / "labels.db").string();
-}
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open");
-  nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
-  if (document.is_discarded()) throw Error(path, "not JSON");
-  return document;
 }
 
 // The table's skin: the rows' layout metadata when all agree.
@@ -149,12 +142,7 @@ void poll_training(WorkbenchState& state) {
       analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
                               std::to_string(outcome->dataset.rows()) + " segments";
       set_dataset(state, std::move(outcome->dataset));
-      int best = -1;
-      for (size_t k = 0; k < analysis.results.size(); ++k)
-        if (analysis.results[k].result &&
-            (best < 0 || analysis.results[k].result->accuracy >
-                             analysis.results[static_cast<size_t>(best)].result->accuracy))
-          best = static_cast<int>(k);
+      const int best = ml::best_outcome(analysis.results);
       choose_result(state, best);
       state.notice = best < 0 ? "no classifier fitted the data"
                               : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
@@ -240,40 +228,15 @@ void apply_finished_prediction(WorkbenchState& state) {
 bool open_evaluation_file(WorkbenchState& state, const std::string& path) {
   AnalysisState& analysis = state.analysis;
   try {
-    const nlohmann::json document = read_json(path);
-    std::vector<ml::PresetOutcome> results;
-    std::string features;
-    if (document.is_object() && document.contains("evaluations")) {  // evaluate --classifier all
-      if (!document["evaluations"].is_array()) throw Error(path, "'evaluations' is not a list");
-      for (size_t k = 0; k < document["evaluations"].size(); ++k) {
-        ml::PresetOutcome outcome;
-        outcome.result = ml::evaluation_from_json(document["evaluations"][k],
-                                                  path + ": evaluations[" + std::to_string(k) + "]");
-        outcome.classifier = outcome.result->classifier;
-        results.push_back(std::move(outcome));
-      }
-      if (document.contains("presets") && document["presets"].is_array())
-        for (const nlohmann::json& preset : document["presets"])
-          if (preset.is_object() && preset.contains("skipped"))
-            results.push_back({preset.value("classifier", std::string("?")), std::nullopt,
-                               preset.value("skipped", std::string())});
-      features = document.value("features", std::string());
-    } else {
-      ml::PresetOutcome outcome;
-      outcome.result = ml::evaluation_from_json(document, path);
-      outcome.classifier = outcome.result->classifier;
-      results.push_back(std::move(outcome));
-      features = document.value("features", std::string());
-    }
-    if (results.empty()) throw Error(path, "holds no evaluation");
-    analysis.results = std::move(results);
+    ml::TrainAllResult opened = ml::read_train_all_file(path);
+    analysis.results = std::move(opened.outcomes);
     analysis.results_from = fs::path(path).filename().string();
     analysis.dataset.reset();
     analysis.som.reset();
     analysis.som_classes.clear();
     // The table it was made from, for the scatter and the SOM (relative to the result).
-    if (!features.empty()) {
-      fs::path table(features);
+    if (!opened.features.empty()) {
+      fs::path table(opened.features);
       if (table.is_relative() && !fs::exists(table)) table = fs::path(path).parent_path() / table;
       if (fs::exists(table)) set_dataset(state, read_dataset_csv(table.string()));
     }

@@ -10,12 +10,10 @@
 #include "tactile/io/label_store.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/live/online_classifier.h"
 #include "tactile/signal/sample_source.h"
 
 namespace tactile {
-
-// The annotator of live decisions (transient labels of the prediction lane).
-inline constexpr const char* kOnlineAnnotator = "online";
 
 struct Document {
   std::string path;         // absolute

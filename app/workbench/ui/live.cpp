@@ -74,8 +74,8 @@ void auto_record(WorkbenchState& state) {
   if (live.recorder && live.recorder_automatic && live.detector->quiet_for_long()) stop_recording(state);
 }
 
-// Online decisions: each becomes a transient label of the "online" lane (consecutive
-// decisions of one class grow one label) and the newest is written over the skin.
+// Online decisions: each goes into the transient "online" lane (add_online_decision) and the
+// newest is written over the skin.
 void classify(WorkbenchState& state) {
   LiveState& live = state.live;
   if (!live.online) return;
@@ -83,36 +83,10 @@ void classify(WorkbenchState& state) {
   std::vector<OnlineDecision> decisions = live.online->take();
   if (decisions.empty()) return;
   Document& document = *state.document;
+  // The lane holds what the buffer holds.
+  const double oldest = document.source->time_of(live_source(state).first_kept());
   for (OnlineDecision& decision : decisions) {
-    std::vector<Label>& lane = document.transient_labels;
-    if (decision.final) {
-      // The touch's final answer replaces the provisional ones over it.
-      std::erase_if(lane, [&](const Label& label) {
-        return label.note == "provisional" && label.t1 >= decision.t0 && label.t0 <= decision.t1;
-      });
-    }
-    Label* last = lane.empty() ? nullptr : &lane.back();
-    const std::string kind = decision.final ? "final" : "provisional";
-    if (last && last->class_name == decision.class_name && last->note == kind && !decision.final &&
-        decision.t0 <= last->t1 + 0.5) {
-      last->t1 = std::max(last->t1, decision.t1);  // the same answer goes on
-      last->confidence = std::clamp(decision.score, 0.0, 1.0);
-    } else {
-      Label label;
-      label.recording = document.recording_id();
-      // Windows overlap; a label starts where the one before it ends.
-      label.t0 = last && last->note != "final" ? std::max(decision.t0, last->t1) : decision.t0;
-      label.t1 = std::max(label.t0, decision.t1);
-      label.class_name = decision.class_name;
-      label.annotator = kOnlineAnnotator;
-      label.source = LabelSource::kModel;
-      label.confidence = std::clamp(decision.score, 0.0, 1.0);
-      label.note = kind;
-      lane.push_back(std::move(label));
-    }
-    // The lane holds what the buffer holds.
-    const double oldest = document.source->time_of(live_source(state).first_kept());
-    std::erase_if(lane, [&](const Label& label) { return label.t1 < oldest; });
+    add_online_decision(document.transient_labels, decision, document.recording_id(), oldest);
     live.shown = decision;
     live.decisions.push_back(std::move(decision));
   }

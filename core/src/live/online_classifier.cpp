@@ -229,4 +229,31 @@ void OnlineClassifier::run() {
   }
 }
 
+void add_online_decision(std::vector<Label>& lane, const OnlineDecision& decision,
+                         const std::string& recording, double oldest) {
+  if (decision.final)
+    std::erase_if(lane, [&](const Label& label) {
+      return label.note == "provisional" && label.t1 >= decision.t0 && label.t0 <= decision.t1;
+    });
+  Label* last = lane.empty() ? nullptr : &lane.back();
+  const std::string kind = decision.final ? "final" : "provisional";
+  if (last && last->class_name == decision.class_name && last->note == kind && !decision.final &&
+      decision.t0 <= last->t1 + 0.5) {
+    last->t1 = std::max(last->t1, decision.t1);  // the same answer goes on
+    last->confidence = std::clamp(decision.score, 0.0, 1.0);
+  } else {
+    Label label;
+    label.recording = recording;
+    label.t0 = last && last->note != "final" ? std::max(decision.t0, last->t1) : decision.t0;
+    label.t1 = std::max(label.t0, decision.t1);
+    label.class_name = decision.class_name;
+    label.annotator = kOnlineAnnotator;
+    label.source = LabelSource::kModel;
+    label.confidence = std::clamp(decision.score, 0.0, 1.0);
+    label.note = kind;
+    lane.push_back(std::move(label));
+  }
+  std::erase_if(lane, [&](const Label& label) { return label.t1 < oldest; });
+}
+
 }  // namespace tactile

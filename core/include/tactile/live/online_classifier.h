@@ -50,6 +50,17 @@ struct OnlineDecision {
   double seconds = 0.0;       // wall time from asking to answering
 };
 
+// The annotator of online decisions as labels (transient labels of the prediction lane).
+inline constexpr const char* kOnlineAnnotator = "online";
+
+// One decision into the lane of online labels (source model, annotator kOnlineAnnotator, note
+// "provisional" or "final"): a provisional answer that goes on in the same class grows the last
+// label; a new one starts where the one before ends (the windows overlap); a touch's final
+// answer replaces the provisional labels over it. Labels that end before `oldest` (what the
+// live buffer no longer holds) go.
+void add_online_decision(std::vector<Label>& lane, const OnlineDecision& decision,
+                         const std::string& recording, double oldest);
+
 class OnlineClassifier {
  public:
   // Throws tactile::Error when the model has no pipeline or is of another skin.
