@@ -7,7 +7,8 @@
 //    minutes of Robovie's 274 films (13 simulated trials end to end).
 // Both are made once in DIR. One run, so the figures are ratios; before these were jobs, each
 // ran inside one frame (the table: 18-20 s, 7.8 s, 2.9 s, 2.6-3.3 s, 8.3 s).
-//   view_jobs_bench DIR
+//   view_jobs_bench DIR [JOB...]   (scatter som segmenter predict somatosensory_map; all by
+//                                   default; predict trains first)
 #include <imgui.h>
 
 #include <algorithm>
@@ -142,10 +143,14 @@ void print_job(const char* name, const Measured& job, double idle_median, double
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: view_jobs_bench DIR\n");
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: view_jobs_bench DIR [JOB...]\n");
     return 2;
   }
+  const std::vector<std::string> asked(argv + 2, argv + argc);
+  const auto wants = [&](const std::string& job) {
+    return asked.empty() || std::find(asked.begin(), asked.end(), job) != asked.end();
+  };
   const std::filesystem::path folder = argv[1];
   std::filesystem::create_directories(folder);
   const std::string table = (folder / "table-454x1692.csv").string();
@@ -170,6 +175,7 @@ int main(int argc, char** argv) {
         percentile(idle, 1.0));
     // Each view's job: started by drawing the view, frames drawn until its result is applied.
     for (const char* view : {"scatter", "som"}) {
+    if (!wants(view)) continue;
       state.options.only_view = view;
       const Measured job = until_done(workbench, draw, [] {});
       // Cancel: the view's result dropped, the job started again by drawing it.
@@ -208,20 +214,24 @@ int main(int argc, char** argv) {
   const auto labels_now = [&] { return store.count(at.document->recording_id()); };
   const int64_t before = labels_now();
   const auto segment = [&] { tactile::run_segmenter(at, "adaptive"); };
-  const double segment_cancel = cancel_after(window, frame, segment, 3);
-  const bool segment_unchanged = labels_now() == before;
-  print_job("segmenter", until_done(window, frame, segment), median, segment_cancel);
-  // Predict takes the ground truth when there are no suggestions: the run above is undone.
-  tactile::undo_edit(at, false);
-  at.analysis.segments = tactile::LabelSource::kGroundTruth;
-  std::snprintf(at.analysis.protocol.data(), at.analysis.protocol.size(), "kfold:3");
-  print_job("train", until_done(window, frame, [&] { tactile::start_training(at, "linear-svm"); }),
-            median, -1.0);
-  const int64_t trained = labels_now();
-  const auto predict = [&] { tactile::predict_open_recording(at); };
-  const double predict_cancel = cancel_after(window, frame, predict, 3);
-  const bool predict_unchanged = labels_now() == trained;
-  print_job("predict", until_done(window, frame, predict), median, predict_cancel);
+  bool segment_unchanged = true, predict_unchanged = true;
+  if (wants("segmenter")) {
+    const double segment_cancel = cancel_after(window, frame, segment, 3);
+    segment_unchanged = labels_now() == before;
+    print_job("segmenter", until_done(window, frame, segment), median, segment_cancel);
+    tactile::undo_edit(at, false);  // Predict takes the ground truth when there are no suggestions
+  }
+  if (wants("predict")) {
+    at.analysis.segments = tactile::LabelSource::kGroundTruth;
+    std::snprintf(at.analysis.protocol.data(), at.analysis.protocol.size(), "kfold:3");
+    print_job("train", until_done(window, frame, [&] { tactile::start_training(at, "linear-svm"); }),
+              median, -1.0);
+    const int64_t trained = labels_now();
+    const auto predict = [&] { tactile::predict_open_recording(at); };
+    const double predict_cancel = cancel_after(window, frame, predict, 3);
+    predict_unchanged = labels_now() == trained;
+    print_job("predict", until_done(window, frame, predict), median, predict_cancel);
+  }
   const auto map = [&] {
     std::filesystem::remove(tactile::somatosensory_cache_path(
         robovie.string(),
@@ -229,8 +239,10 @@ int main(int argc, char** argv) {
     at.analysis.somatosensory = true;
     at.analysis.map_for.clear();
   };
-  const double map_cancel = cancel_after(window, frame, map, 3);
-  print_job("somatosensory_map", until_done(window, frame, map), median, map_cancel);
+  if (wants("somatosensory_map")) {
+    const double map_cancel = cancel_after(window, frame, map, 3);
+    print_job("somatosensory_map", until_done(window, frame, map), median, map_cancel);
+  }
   std::printf(",\n \"cancel_left_the_store_as_it_was\": %s}\n",
               segment_unchanged && predict_unchanged ? "true" : "false");
   if (!at.error.empty()) std::fprintf(stderr, "view_jobs_bench: %s\n", at.error.c_str());

@@ -1,4 +1,6 @@
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
@@ -89,4 +91,27 @@ TEST(Pca, BadInputIsRefused) {
 }
 
 }  // namespace
+// Fewer rows than features: the components come from the N x N Gram matrix; the same
+// eigenvalues and scores as the P x P covariance gives, directly computed here.
+TEST(Pca, WithFewerRowsThanFeaturesGivesTheCovariancesComponents) {
+  Matrix x(12, 30);
+  std::srand(5);
+  x.setRandom();
+  x.col(3) = 2.0 * x.col(1) + 0.1 * x.col(7);
+  const Pca pca = fit_pca(x, {.components = 3, .variance_fraction = 0.9, .standardize = true});
+  const Matrix z = pca.standardizer.transform(x);
+  const Eigen::SelfAdjointEigenSolver<Matrix> direct((z.transpose() * z) / 11.0);
+  const Vector eigenvalues = direct.eigenvalues().reverse();
+  ASSERT_EQ(pca.eigenvalues.size(), 30);
+  for (int k = 0; k < 11; ++k) EXPECT_NEAR(pca.eigenvalues(k), eigenvalues(k), 1e-9) << k;
+  for (int k = 11; k < 30; ++k) EXPECT_EQ(pca.eigenvalues(k), 0.0);
+  Matrix loadings = direct.eigenvectors().rowwise().reverse().leftCols(3);
+  fix_column_signs(loadings);
+  EXPECT_LT((pca.transform(x) - z * loadings).cwiseAbs().maxCoeff(), 1e-9);
+  // By variance: never more components than have variance.
+  const Pca all = fit_pca(x, {.components = 0, .variance_fraction = 1.0, .standardize = true});
+  EXPECT_LE(all.kept, 11);
+  EXPECT_EQ(all.transform(x).cols(), all.kept);
+}
+
 }  // namespace tactile::ml

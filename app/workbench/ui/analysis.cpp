@@ -176,27 +176,39 @@ bool predict_open_recording(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!state.document) return fail(state, "open a recording to predict");
   if (analysis.model_path.empty()) return fail(state, "Run one classifier first: its model predicts");
-  const Document& document = *state.document;
+  Document& document = *state.document;
   // The recording's segmenter suggestions, else its ground truth, as `tactile predict`.
   std::vector<Label> segments = segments_to_predict(document.labels);
   if (segments.empty()) return fail(state, "no segments to predict: run a segmenter (Labels menu)");
-  // On a worker: the model's pipeline reads the whole recording (2.6-3.3 s for 40 minutes of
-  // a 64-taxel strip). A second Predict replaces a run still going.
-  start_job<AnalysisState::PredictionsMade>(
-      state, analysis.predict_job, "predict",
-      [read = recording_for_job(document, 0.3), layout = document.layout, path = document.path,
-       model_path = analysis.model_path, segments = std::move(segments)](JobProgress& progress) {
-        const SavedModel model = read_model_file(model_path);
-        const Recording recording = read(progress);
-        return AnalysisState::PredictionsMade{
-            path, fs::path(model_path).stem().string(),
-            predict_segments(model, recording, layout, segments,
-                             progress.steps("features of " + std::to_string(segments.size()) +
-                                                " segments",
-                                            0.3, 1.0))};
-      });
+  const size_t count = segments.size();
+  try {
+    const std::string database = document.label_store().path();
+    // On a worker, from reading the model to storing the answers (2.6-3.3 s for 40 minutes of
+    // a 64-taxel strip when it ran in one frame). A second Predict replaces a run still going.
+    start_job<AnalysisState::PredictionsMade>(
+        state, analysis.predict_job, "predict",
+        [read = recording_for_job(document, 0.2, 0.4), layout = document.layout, path = document.path,
+         model_path = analysis.model_path, segments = std::move(segments), database,
+         recording = document.recording_id(),
+         annotator = state.labelling.annotator](JobProgress& progress) {
+          const SavedModel model = read_model_file(model_path, progress.steps("reading the model", 0.0, 0.2));
+          const Recording whole = read(progress);
+          const Predictions predictions = predict_segments(
+              model, whole, layout, segments,
+              progress.steps("features of " + std::to_string(segments.size()) + " segments", 0.4, 1.0));
+          LabelStore store(database, LabelStore::OpenMode::kExisting);
+          const LabelEdit edit = prediction_edit(store, recording, predictions.labels);
+          progress.check();  // the last place to stop: what follows is one transaction
+          // The model's lane replaced as one command of the operator's: Ctrl+Z takes it back.
+          store.apply(edit, annotator);
+          return AnalysisState::PredictionsMade{path, fs::path(model_path).stem().string(),
+                                                predictions.labels.size()};
+        });
+  } catch (const std::exception& error) {
+    return fail(state, std::string("predict: ") + error.what());
+  }
   state.error.clear();
-  state.notice = "predicting " + std::to_string(segments.size()) + " segments...";
+  state.notice = "predicting " + std::to_string(count) + " segments...";
   return true;
 }
 
@@ -204,21 +216,11 @@ namespace {
 
 void apply_finished_prediction(WorkbenchState& state) {
   std::optional<AnalysisState::PredictionsMade> made = finished_job(state, state.analysis.predict_job);
-  if (!made) return;
-  if (!state.document || state.document->path != made->document) return;  // another file now
-  try {
-    Document& document = *state.document;
-    // The model's lane replaced as one command of the operator's: Ctrl+Z takes it back.
-    if (!apply_command(state, prediction_edit(document.label_store(), document.recording_id(),
-                                              made->predictions.labels)))
-      return;
-    document.reload_labels();
-    state.error.clear();
-    state.notice = std::to_string(made->predictions.labels.size()) + " predictions by " +
-                   made->model + " (U: the least sure)";
-  } catch (const std::exception& error) {
-    fail(state, std::string("predict: ") + error.what());
-  }
+  if (!made || !state.document || state.document->path != made->document) return;
+  state.document->reload_labels();
+  state.error.clear();
+  state.notice =
+      std::to_string(made->predicted) + " predictions by " + made->model + " (U: the least sure)";
 }
 
 }  // namespace
@@ -544,7 +546,7 @@ bool ensure_somatosensory(WorkbenchState& state) {
     // A live stream: over what has arrived so far, copied now; no cache (nothing on disk yet).
     start_job<AnalysisState::MapMade>(
         state, analysis.map_job, "somatosensory map",
-        [key, read = recording_for_job(*state.document, 0.0), layout, index = state.modality](
+        [key, read = recording_for_job(*state.document, 0.0, 0.0), layout, index = state.modality](
             JobProgress& progress) {
           const Recording recording = read(progress);
           return AnalysisState::MapMade{

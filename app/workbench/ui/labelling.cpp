@@ -237,15 +237,16 @@ bool select_next_suggestion(WorkbenchState& state, const std::string& method, do
 
 }  // namespace
 
-std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double share) {
+std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
+                                                         double to) {
   const SampleSource& source = document.samples();
   if (dynamic_cast<const FileSampleSource*>(&source))
-    return [path = document.path, stream = source.info().stream, share](JobProgress& progress) {
+    return [path = document.path, stream = source.info().stream, from, to](JobProgress& progress) {
       FileSourceOptions options;
       options.stream = stream;
       options.cache_bytes = int64_t{8} << 20;
       options.damaged_chunks_as_gaps = true;
-      return read_all(FileSampleSource(path, options), progress.steps("reading the recording", 0.0, share));
+      return read_all(FileSampleSource(path, options), progress.steps("reading the recording", from, to));
     };
   // A live stream: what has arrived so far (a bounded buffer), copied now.
   auto copy = std::make_shared<const Recording>(read_all(source));
@@ -254,22 +255,31 @@ std::function<Recording(JobProgress&)> recording_for_job(const Document& documen
 
 bool run_segmenter(WorkbenchState& state, const std::string& method) {
   if (!state.document) return false;
-  const Document& document = *state.document;
+  Document& document = *state.document;
   state.labelling.last_segmenter = method;
   try {
     const Parameters parameters =
         Parameters::parse(state.labelling.segmenter_params.data(), "segmenter parameters");
-    // On a worker: it reads every sample (2.9 s for 30 min of Robovie's 274 channels). A
-    // second G replaces a run still going.
+    const std::string database = document.label_store().path();  // created on first need
+    // On a worker, reading and storing included (2.9 s for 30 min of Robovie's 274 channels
+    // when it ran in one frame). A second G replaces a run still going.
     start_job<LabellingState::SegmentsFound>(
         state, state.labelling.segment_job, "segmenter " + method,
-        [read = recording_for_job(document, 0.8), layout = document.layout, method, parameters,
-         path = document.path](JobProgress& progress) {
-          const Recording recording = read(progress);
+        [read = recording_for_job(document, 0.0, 0.8), layout = document.layout, method, parameters,
+         path = document.path, database, recording = document.recording_id(),
+         annotator = state.labelling.annotator](JobProgress& progress) {
+          const Recording whole = read(progress);
           progress.report(0.8, "finding segments");
           progress.check();
-          return LabellingState::SegmentsFound{path, method,
-                                               segment_recording(method, recording, layout, parameters)};
+          std::vector<Label> segments = segment_recording(method, whole, layout, parameters);
+          progress.report(0.95, "storing the suggestions");
+          LabelStore store(database, LabelStore::OpenMode::kExisting);
+          const SegmenterRun run = segmenter_run(store, recording, method, std::move(segments));
+          progress.check();  // the last place to stop: what follows is one transaction
+          // One command of the operator's: Ctrl+Z takes back the whole run.
+          store.apply(run.edit, annotator);
+          return LabellingState::SegmentsFound{path, method, run.annotator, run.edit.add.size(),
+                                               run.rejected};
         });
     state.error.clear();
     state.notice = method + ": finding segments...";
@@ -281,23 +291,13 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
 
 void apply_finished_segmenter(WorkbenchState& state) {
   std::optional<LabellingState::SegmentsFound> found = finished_job(state, state.labelling.segment_job);
-  if (!found) return;
-  if (!state.document || state.document->path != found->document) return;  // another file now
-  try {
-    Document& document = *state.document;
-    // One command: Ctrl+Z takes back the whole run, its removals and its insertions.
-    const SegmenterRun run = segmenter_run(document.label_store(), document.recording_id(),
-                                           found->method, std::move(found->segments));
-    if (!apply_command(state, run.edit)) return;
-    after_edit(
-        state, 0,
-        found->method + ": " + std::to_string(run.edit.add.size()) + " suggestions" +
-            (run.rejected > 0 ? " (" + std::to_string(run.rejected) + " rejected before)" : "") +
-            "; A accepts, R rejects");
-    select_next_suggestion(state, run.annotator, -1e300);
-  } catch (const Error& error) {
-    fail(state, error.what());
-  }
+  if (!found || !state.document || state.document->path != found->document) return;
+  after_edit(state, 0,
+             found->method + ": " + std::to_string(found->added) + " suggestions" +
+                 (found->rejected > 0 ? " (" + std::to_string(found->rejected) + " rejected before)"
+                                      : "") +
+                 "; A accepts, R rejects");
+  select_next_suggestion(state, found->annotator, -1e300);
 }
 
 bool accept_suggestion(WorkbenchState& state) {

@@ -41,9 +41,10 @@ bool undo_edit(WorkbenchState& state, bool redo);
 bool walk_labels(WorkbenchState& state, int direction);
 
 // How a job reads the whole open recording: through a reader of its own on the file (the
-// window's source stays the window's), reporting progress up to `share` of the job; for a
-// live stream, a copy of what has arrived, taken now.
-std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double share);
+// window's source stays the window's), reporting progress from `from` to `to` of the job; for
+// a live stream, a copy of what has arrived, taken now.
+std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
+                                                         double to);
 
 // Runs a segmenter on the open recording (parameters from the Labels menu) as a job; when it
 // ends (apply_finished_segmenter, once a frame) its segments replace its earlier ones for

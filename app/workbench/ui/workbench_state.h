@@ -95,11 +95,12 @@ struct LabellingState {
   // A dragged edge's new bounds (label, t0, t1), committed at the start of the next
   // frame: an edit rebuilds the lanes, which the frame that drew them still uses.
   std::optional<std::tuple<int64_t, double, double>> move_request;
-  // A segmenter run (G) on a worker: the segments it found, stored when it ends.
+  // A segmenter run (G) on a worker, which also stores it (one command of the operator's, on
+  // the worker's own connection to the store): what it stored.
   struct SegmentsFound {
-    std::string document;  // the recording's path, so a result for a closed file is dropped
-    std::string method;
-    std::vector<Label> segments;
+    std::string document;  // the recording's path: the lanes are reloaded if it is still open
+    std::string method, annotator;  // "threshold", "segmenter:threshold"
+    size_t added = 0, rejected = 0;
   };
   std::unique_ptr<Job<SegmentsFound>> segment_job;
   std::string active_lane() const { return "manual:" + annotator; }
@@ -120,11 +121,11 @@ struct AnalysisState {
   std::string results_from;  // what they are of ("nao, kaboli features", a file)
   int current = -1;          // the row whose views are shown
   std::string model_path;    // the last single classifier trained, fitted on every row
-  // Predict on a worker: the model's answers, stored as one edit when it ends.
+  // Predict on a worker, which also stores the answers (one command of the operator's).
   struct PredictionsMade {
     std::string document;  // the recording's path
     std::string model;     // the model file's name
-    Predictions predictions;
+    size_t predicted = 0;
   };
   std::unique_ptr<Job<PredictionsMade>> predict_job;
   // The feature table the results are about; shared (never changed) with the views' jobs,

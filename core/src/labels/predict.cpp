@@ -125,15 +125,28 @@ SavedModel model_from_json(const nlohmann::json& document, const std::string& wh
   return model;
 }
 
-SavedModel read_model_file(const std::string& path) {
+SavedModel read_model_file(const std::string& path, const std::function<void(double)>& step) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open the model");
   nlohmann::json document;
+  // A model can be large (a kernel SVM keeps its support vectors): the parse calls `step`
+  // every 64k values with the share of the file read.
+  std::error_code error;
+  const double size = static_cast<double>(std::filesystem::file_size(path, error));
+  int64_t values = 0;
+  nlohmann::json::parser_callback_t each = nullptr;
+  if (step)
+    each = [&](int, nlohmann::json::parse_event_t, nlohmann::json&) {
+      if (++values % 65536 == 0 && size > 0)
+        step(std::min(1.0, static_cast<double>(in.tellg()) / size));
+      return true;
+    };
   try {
-    in >> document;
-  } catch (const nlohmann::json::exception& error) {
-    throw Error(path, std::string("not JSON: ") + error.what());
+    document = nlohmann::json::parse(in, each);
+  } catch (const nlohmann::json::exception& failure) {
+    throw Error(path, std::string("not JSON: ") + failure.what());
   }
+  if (step) step(1.0);
   return model_from_json(document, path);
 }
 

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "tactile/ml/pca.h"
 
 #include <Eigen/Eigenvalues>
@@ -37,12 +38,32 @@ Pca fit_pca(const Matrix& x, const PcaOptions& options) {
     pca.standardizer.scale = Vector::Ones(x.cols());
   }
   const Matrix z = pca.standardizer.transform(x);
-  // Spec §6.5: Cz = Zᵀ Z / (N-1), eigenvalues descending.
-  const Matrix covariance = (z.transpose() * z) / static_cast<double>(x.rows() - 1);
-  const Eigen::SelfAdjointEigenSolver<Matrix> solver(covariance);
-  if (solver.info() != Eigen::Success) throw Error(where, "eigendecomposition did not converge");
-  pca.eigenvalues = solver.eigenvalues().reverse().cwiseMax(0.0);
-  pca.loadings = solver.eigenvectors().rowwise().reverse();
+  const double n1 = static_cast<double>(x.rows() - 1);
+  if (x.rows() - 1 >= x.cols()) {
+    // Spec §6.5: Cz = Zᵀ Z / (N-1), eigenvalues descending.
+    const Eigen::SelfAdjointEigenSolver<Matrix> solver((z.transpose() * z) / n1);
+    if (solver.info() != Eigen::Success) throw Error(where, "eigendecomposition did not converge");
+    pca.eigenvalues = solver.eigenvalues().reverse().cwiseMax(0.0);
+    pca.loadings = solver.eigenvectors().rowwise().reverse();
+  } else {
+    // Fewer rows than features (454 segments x 1692 features): Cz has rank N-1 at most, and
+    // its nonzero eigenvalues are those of the N x N Gram matrix Z Zᵀ / (N-1), whose
+    // eigenvector u gives Cz's as v = Zᵀ u / sqrt((N-1) λ). The same components at N³
+    // instead of P³ (0.1 s instead of 4.7 s at 454 x 1692); the directions of no variance
+    // are left out of the loadings (their eigenvalues are 0).
+    const Eigen::SelfAdjointEigenSolver<Matrix> solver((z * z.transpose()) / n1);
+    if (solver.info() != Eigen::Success) throw Error(where, "eigendecomposition did not converge");
+    const Vector gram = solver.eigenvalues().reverse().cwiseMax(0.0);
+    const Matrix u = solver.eigenvectors().rowwise().reverse();
+    const double floor = gram.size() > 0 ? gram(0) * 1e-12 : 0.0;
+    Eigen::Index rank = 0;
+    while (rank < gram.size() && gram(rank) > floor) ++rank;
+    pca.eigenvalues = Vector::Zero(x.cols());
+    pca.eigenvalues.head(rank) = gram.head(rank);
+    pca.loadings = Matrix::Zero(x.cols(), std::max<Eigen::Index>(rank, options.components));
+    for (Eigen::Index k = 0; k < rank; ++k)
+      pca.loadings.col(k) = z.transpose() * u.col(k) / std::sqrt(n1 * gram(k));
+  }
   fix_column_signs(pca.loadings);
   const double total = pca.eigenvalues.sum();
   if (!(total > 0.0)) throw Error(where, "every feature is constant: no variance to explain");
@@ -59,6 +80,7 @@ Pca fit_pca(const Matrix& x, const PcaOptions& options) {
         break;
       }
     }
+    pca.kept = std::min(pca.kept, static_cast<int>(pca.loadings.cols()));
   }
   return pca;
 }

@@ -43,8 +43,9 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
 // Written to a temporary file and renamed: a failed write leaves no half file.
 void write_json_file(const std::string& path, const nlohmann::json& document,
                      const std::string& what);
-// Reads a model document. Throws tactile::Error naming the file and what is wrong.
-SavedModel read_model_file(const std::string& path);
+// Reads a model document; `step(share of the file read)` is called while parsing (a job's
+// progress and cancel). Throws tactile::Error naming the file and what is wrong.
+SavedModel read_model_file(const std::string& path, const std::function<void(double)>& step = {});
 SavedModel model_from_json(const nlohmann::json& document, const std::string& where);
 
 // The annotator of every prediction label.

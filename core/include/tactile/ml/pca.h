@@ -25,7 +25,8 @@ struct Pca {
   Standardizer standardizer;  // mean and scale of the training data (scale 1 when not standardised)
   Vector eigenvalues;         // all P, descending, negatives from rounding clamped to 0
   Vector explained_ratio;     // λ_a / Σ λ, all P
-  Matrix loadings;            // P x P, columns = components, sign-fixed
+  Matrix loadings;            // P x P, columns = components, sign-fixed; with fewer rows than
+                              // features, only the R components that have variance (P x R)
   int kept = 0;               // components kept
 
   // Scores of new rows on the kept components: standardise, then Z V[:, :kept].
