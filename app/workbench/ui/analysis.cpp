@@ -567,8 +567,9 @@ bool ensure_somatosensory(WorkbenchState& state) {
           options.stream = stream;
           options.cache_bytes = int64_t{8} << 20;
           options.damaged_chunks_as_gaps = true;
-          made.map = somatosensory_map(FileSampleSource(path, options), layout, index,
-                                       progress.steps("correlations of the taxels"));
+          progress.report(0.0, "opening the recording");
+          const FileSampleSource source(path, options);
+          made.map = somatosensory_map(source, layout, index, progress.steps("correlations of the taxels"));
           write_somatosensory_cache(path, made.map);
           return made;
         });

@@ -33,7 +33,7 @@ void CorrelationSums::add(const SampleSource& source, const std::vector<int>& co
   if (present.empty()) return;
   const int64_t total = source.sample_count();
   for (int64_t first = 0; first < total; first += block) {
-    if (step && first > 0) step(static_cast<double>(first) / static_cast<double>(total));
+    if (step) step(static_cast<double>(first) / static_cast<double>(total));
     const int64_t count = std::min(block, total - first);
     const Eigen::MatrixXd samples = source.read(present, first, count).cast<double>();
     // Rows with a gap (NaN: a damaged chunk) are left out.
