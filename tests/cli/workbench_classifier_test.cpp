@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <cstdlib>
 #include <set>
 
 #include "cli_test_support.h"
@@ -286,8 +287,57 @@ TEST_F(WorkbenchClassifiers, PredictConfirmAndCorrectEachUndoAsOneCommand) {
   expect_one_undo(
       "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\nwait 2\n"
       "click item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n");
+  const nlohmann::json job = state("done.json")["jobs"].back();  // a job, applied frames later
+  EXPECT_EQ(job["name"], "predict");
+  EXPECT_EQ(job["status"], "done");
+  EXPECT_GT(job["finished_frame"].get<int>(), job["started_frame"].get<int>());
   expect_one_undo("wait 2\nkey U\nwait 2\nkey Y\nwait 2\n");
   expect_one_undo("wait 2\nkey U\nwait 2\nkey 1\nwait 2\n");
+}
+
+// Cancel through the view's button ends the SOM's fit (15 s on a table of the size)
+// within frames, leaves no map, and Compute starts it again.
+TEST_F(WorkbenchClassifiers, CancellingTheSomMapsJobLeavesNoMapAndComputeStartsItAgain) {
+  const std::string table = folder.file("table.csv");
+  {
+    std::ofstream out(table);
+    for (int c = 0; c < 1692; ++c) out << "f" << c << ",";
+    out << "class,subject,recording,segment_id\n";
+    std::srand(3);
+    for (int row = 0; row < 454; ++row) {
+      for (int c = 0; c < 1692; ++c) out << 0.3 * (row % 6) + std::rand() / double(RAND_MAX) << ",";
+      out << "class" << row % 6 + 1 << ",s" << row % 10 + 1 << ",r" << row / 20 << "," << row + 1 << "\n";
+    }
+  }
+  const auto run = workbench("--features " + table,
+                             "wait 2\nclick item tab:som\nwait 3\nclick item button:Cancel\nwait jobs\n"
+                             "wait 1\nstate @cancelled.json\nclick item button:Compute\nwait 3\n"
+                             "state @again.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json cancelled = state("cancelled.json");
+  ASSERT_FALSE(cancelled["jobs"].empty()) << cancelled.dump(1);
+  const nlohmann::json job = cancelled["jobs"].back();
+  EXPECT_EQ(job["name"], "SOM map");
+  EXPECT_EQ(job["status"], "cancelled");
+  EXPECT_LT(job["finished_frame"].get<int>() - job["started_frame"].get<int>(), 60) << job;
+  EXPECT_TRUE(cancelled["analysis"]["som"].is_null());
+  const nlohmann::json again = state("again.json");
+  EXPECT_EQ(again["jobs"].back()["status"], "running");
+}
+
+// The somatosensory map is a job: chosen in the skin view's menu, computed while frames go on.
+TEST_F(WorkbenchClassifiers, TheSomatosensoryMapIsComputedWhileFramesGoOn) {
+  const auto run = workbench(demo("robovie-s01-t01.h5"),
+                             "wait 2\nclick item map\nwait 1\nclick item map:somatosensory\n"
+                             "wait jobs\nwait 1\nstate @map.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json map = state("map.json");
+  ASSERT_FALSE(map["jobs"].empty()) << map.dump(1);
+  const nlohmann::json job = map["jobs"].back();
+  EXPECT_EQ(job["name"], "somatosensory map");
+  EXPECT_EQ(job["status"], "done");
+  EXPECT_GT(job["finished_frame"].get<int>(), job["started_frame"].get<int>());
+  EXPECT_EQ(map["error"], "");
 }
 
 // Each classifier view exports headless, and the somatosensory map of Robovie's films.

@@ -298,8 +298,13 @@ TEST_F(WorkbenchLabelling, ARejectedSuggestionUndoesAsOneCommandAndComesBackInAR
   EXPECT_EQ(state("rerun.json")["notice"], state("first.json")["notice"]);
 }
 
+// The run is a job: applied frames after G, while the window went on drawing.
 TEST_F(WorkbenchLabelling, ASegmenterRunUndoesAsOneCommand) {
   expect_one_undo("wait 2\nkey G\nwait jobs\n");
+  const nlohmann::json job = state("done.json")["jobs"].back();
+  EXPECT_EQ(job["name"], "segmenter adaptive");
+  EXPECT_EQ(job["status"], "done");
+  EXPECT_GT(job["finished_frame"].get<int>(), job["started_frame"].get<int>());
 }
 
 TEST_F(WorkbenchLabelling, TheQualityViewListsIssuesAndAgreementAndAClickGoesThere) {
