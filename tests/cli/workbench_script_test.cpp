@@ -80,7 +80,7 @@ TEST_F(WorkbenchScript, ClickingATimeMovesTheCursorThereAndPlaybackAdvancesIt) {
 TEST_F(WorkbenchScript, MenusAreChosenByName) {
   const auto result = run(recording() + " --script " +
                           script("wait 2\nmenu View/Stacked lanes\nstate @stacked.json\n"
-                                 "menu File/Export view as PNG/Skin\nwait 2\nstate @exported.json\n"));
+                                 "menu File/Export view as PNG/Skin\nwait jobs\nstate @exported.json\n"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_TRUE(state("stacked.json")["plot"]["stacked"].get<bool>());
   const nlohmann::json exported = state("exported.json");

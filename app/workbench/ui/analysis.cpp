@@ -392,6 +392,8 @@ void poll_jobs(WorkbenchState& state) {
   drop_ended_jobs(state);
   apply_finished_segmenter(state);
   apply_finished_prediction(state);
+  if (std::optional<std::string> written = finished_job(state, state.export_job))
+    state.notice = "wrote " + *written;
   AnalysisState& analysis = state.analysis;
   if (std::optional<AnalysisState::MapMade> made = finished_job(state, analysis.map_job))
     if (made->key == analysis.map_for) {

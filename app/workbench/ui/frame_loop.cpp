@@ -24,16 +24,10 @@ bool FrameLoop::end(const std::function<Image()>& grab) {
   };
   if (auto request = workbench_.take_export()) {
     const ScreenRect& area = request->area;
-    try {
-      write_png(request->path, image().crop(static_cast<int>(std::floor(area.x0)),
-                                            static_cast<int>(std::floor(area.y0)),
-                                            static_cast<int>(std::ceil(area.width())),
-                                            static_cast<int>(std::ceil(area.height()))));
-      workbench_.state().notice = "wrote " + request->path;
-      std::cout << "wrote " << request->path << "\n";
-    } catch (const std::exception& failure) {
-      workbench_.fail(failure.what());
-    }
+    workbench_.write_export(*request, image().crop(static_cast<int>(std::floor(area.x0)),
+                                                   static_cast<int>(std::floor(area.y0)),
+                                                   static_cast<int>(std::ceil(area.width())),
+                                                   static_cast<int>(std::ceil(area.height()))));
   }
   if (player_) {
     player_->after_frame(workbench_, image);

@@ -287,6 +287,15 @@ void Workbench::carry_out_requests() {
 
 std::optional<ViewExport> Workbench::take_export() { return std::exchange(export_, std::nullopt); }
 
+void Workbench::write_export(const ViewExport& request, Image pixels) {
+  // Encoding and writing a PNG of the whole window takes tens of milliseconds: a job.
+  start_job<std::string>(state_, state_.export_job, "export " + request.view,
+                         [path = request.path, pixels = std::move(pixels)](JobProgress&) {
+                           write_png(path, pixels);
+                           return path;
+                         });
+}
+
 void Workbench::draw_view(const char* name, ImVec2 size) {
   const ViewSpec* view = find_view(name);
   const ImVec2 origin = ImGui::GetCursorScreenPos();

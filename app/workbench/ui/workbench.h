@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "tactile/widgets/image.h"
 #include "workbench_state.h"
 
 namespace tactile {
@@ -28,8 +29,8 @@ class Workbench {
   // Advances the replay clock by `seconds` of wall time and draws one frame.
   void frame(double seconds);
   bool quit_requested() const { return state_.quit; }
-  // A view's job (SOM, scatter) runs or its result is not applied yet: a screenshot waits
-  // for it, and so does `wait jobs`.
+  // A job (segmenter, predict, SOM, scatter, somatosensory map, export) runs or its result is
+  // not applied yet: a screenshot waits for it, and so does `wait jobs`.
   bool jobs_running() const;
   // The last error (opening a file, ...), shown in the status bar; "" when none.
   const std::string& error() const { return state_.error; }
@@ -43,6 +44,9 @@ class Workbench {
   void fail(const std::string& message) { state_.error = message; }
   // A view export requested this frame (File > Export view as PNG), taken once.
   std::optional<ViewExport> take_export();
+  // Writes the export's pixels (cropped from the rendered frame) as PNG on a worker; the
+  // notice names the file once it is written.
+  void write_export(const ViewExport& request, Image pixels);
   // The state as JSON (the script command `state PATH`).
   nlohmann::json state_json() const;
 

@@ -274,6 +274,7 @@ struct WorkbenchState {
   std::optional<std::string> open_request;
   std::optional<std::string> stream_request;
   std::optional<std::string> export_request;  // view name to export as PNG
+  std::unique_ptr<Job<std::string>> export_job;  // writing an exported view's PNG: its path
   bool quit = false;
   FileBrowser file_browser;
 };
