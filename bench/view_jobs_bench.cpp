@@ -104,9 +104,7 @@ Measured until_done(tactile::Workbench& workbench, Draw draw, const std::functio
   const auto begin = Clock::now();
   start();
   measured.frames.push_back(draw());
-  while (workbench.jobs_running() ||
-         (workbench.state().analysis.job &&
-          workbench.state().analysis.job->status() == tactile::ml::TrainingJob::Status::kRunning))
+  while (workbench.jobs_running() || workbench.state().analysis.job)
     measured.frames.push_back(draw());
   measured.frames.push_back(draw());  // the frame that applies a training result
   measured.seconds = std::chrono::duration<double>(Clock::now() - begin).count();

@@ -47,11 +47,12 @@ std::string TrainingJobTest::folder_;
 TEST_F(TrainingJobTest, OneClassifierOnOneSkinWithAModel) {
   TrainingRequest asked = request("knn:k=1");
   asked.save_model = folder_ + "/flux-model.json";
-  TrainingJob job(asked);
+  const std::unique_ptr<TrainingJob> started = start_training_job(asked);
+  TrainingJob& job = *started;
   job.wait();
-  ASSERT_EQ(job.status(), TrainingJob::Status::kDone) << job.error();
+  ASSERT_EQ(job.status(), JobStatus::kDone) << job.error();
   EXPECT_DOUBLE_EQ(job.progress(), 1.0);
-  const std::unique_ptr<TrainingOutcome> outcome = job.take();
+  const std::optional<TrainingOutcome> outcome = job.take();
   ASSERT_TRUE(outcome);
   EXPECT_FALSE(job.take());  // moved out once
   EXPECT_EQ(outcome->pipeline, "flux");
@@ -71,24 +72,25 @@ TEST_F(TrainingJobTest, OneClassifierOnOneSkinWithAModel) {
 }
 
 TEST_F(TrainingJobTest, CancelEndsTheRunAndFailuresAreReported) {
-  TrainingJob job(request("all"));
-  job.cancel();
-  job.wait();
-  EXPECT_EQ(job.status(), TrainingJob::Status::kCancelled);
-  EXPECT_FALSE(job.take());
+  // Cancelled while it runs (a cancel before the start would end it before any work).
+  JobProgress progress;
+  progress.cancel();
+  EXPECT_THROW(run_training(request("all"), progress), JobCancelled);
 
   TrainingRequest bad = request("knn");
   bad.protocol = "kfold:1000";  // more folds than segments
-  TrainingJob failing(bad);
+  const std::unique_ptr<TrainingJob> started = start_training_job(bad);
+  TrainingJob& failing = *started;
   failing.wait();
-  EXPECT_EQ(failing.status(), TrainingJob::Status::kFailed);
+  EXPECT_EQ(failing.status(), JobStatus::kFailed);
   EXPECT_NE(failing.error().find("--protocol"), std::string::npos) << failing.error();
 
   TrainingRequest nowhere = request("knn");
   nowhere.layout = "nao";  // no nao recordings in this store
-  TrainingJob empty(nowhere);
+  const std::unique_ptr<TrainingJob> none = start_training_job(nowhere);
+  TrainingJob& empty = *none;
   empty.wait();
-  EXPECT_EQ(empty.status(), TrainingJob::Status::kFailed);
+  EXPECT_EQ(empty.status(), JobStatus::kFailed);
   EXPECT_NE(empty.error().find("on nao recordings"), std::string::npos) << empty.error();
 }
 

@@ -71,8 +71,7 @@ void set_dataset(WorkbenchState& state, Dataset dataset) {
 
 bool start_training(WorkbenchState& state, const std::string& classifier) {
   AnalysisState& analysis = state.analysis;
-  if (analysis.job && analysis.job->status() == ml::TrainingJob::Status::kRunning)
-    return fail(state, "a training run is going on: wait or cancel it");
+  if (analysis.job) return fail(state, "a training run is going on: wait or cancel it");
   if (!state.document) return fail(state, "open a recording of the skin to train for");
   if (classifier != "all") {
     try {
@@ -105,7 +104,8 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
     return fail(state, error.what());
   }
   analysis.last_request = request;
-  analysis.job = std::make_unique<ml::TrainingJob>(request);
+  analysis.job = ml::start_training_job(request);
+  log_job_start(state, "training");
   state.error.clear();
   state.notice = "training " + classifier + " on " + request.layout + " recordings";
   return true;
@@ -113,43 +113,37 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
 
 void poll_training(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  if (!analysis.job) return;
-  switch (analysis.job->status()) {
-    case ml::TrainingJob::Status::kRunning:
-      return;
-    case ml::TrainingJob::Status::kFailed:
-      state.error = "training failed: " + analysis.job->error();
-      break;
-    case ml::TrainingJob::Status::kCancelled:
-      state.notice = "training cancelled";
-      break;
-    case ml::TrainingJob::Status::kDone: {
-      std::unique_ptr<ml::TrainingOutcome> outcome = analysis.job->take();
-      if (!outcome) break;
-      const ml::TrainingRequest& request = analysis.job->request();
-      analysis.results = std::move(outcome->results);
-      analysis.model_path = outcome->model_path;
-      // Every result is a file: the evaluation beside the model.
-      if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
-        try {
-          fs::path path(outcome->model_path);
-          path.replace_extension(".evaluation.json");
-          write_json_file(path.string(), ml::to_json(*analysis.results[0].result, true), "evaluation");
-        } catch (const Error& error) {
-          state.error = error.what();
-        }
-      }
-      analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
-                              std::to_string(outcome->dataset.rows()) + " segments";
-      set_dataset(state, std::move(outcome->dataset));
-      const int best = ml::best_outcome(analysis.results);
-      choose_result(state, best);
-      state.notice = best < 0 ? "no classifier fitted the data"
-                              : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
-      break;
+  if (!analysis.job || analysis.job->status() == JobStatus::kRunning) return;
+  const JobStatus status = analysis.job->status();
+  if (status == JobStatus::kFailed) {
+    state.error = "training failed: " + analysis.job->error();
+    log_job_end(state, "training", to_string(status));
+    analysis.job.reset();
+    return;
+  }
+  std::optional<ml::TrainingOutcome> outcome = finished_job(state, analysis.job);
+  if (status == JobStatus::kCancelled) state.notice = "training cancelled";
+  if (!outcome) return;
+  const ml::TrainingRequest& request = analysis.last_request;
+  analysis.results = std::move(outcome->results);
+  analysis.model_path = outcome->model_path;
+  // Every result is a file: the evaluation beside the model.
+  if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
+    try {
+      fs::path path(outcome->model_path);
+      path.replace_extension(".evaluation.json");
+      write_json_file(path.string(), ml::to_json(*analysis.results[0].result, true), "evaluation");
+    } catch (const Error& error) {
+      state.error = error.what();
     }
   }
-  analysis.job.reset();
+  analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
+                          std::to_string(outcome->dataset.rows()) + " segments";
+  set_dataset(state, std::move(outcome->dataset));
+  const int best = ml::best_outcome(analysis.results);
+  choose_result(state, best);
+  state.notice = best < 0 ? "no classifier fitted the data"
+                          : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
 }
 
 const ml::EvaluationResult* current_evaluation(const WorkbenchState& state) {

@@ -60,7 +60,7 @@ void draw_choices(WorkbenchState& state) {
 
 void draw_run_controls(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  const bool running = analysis.job && analysis.job->status() == ml::TrainingJob::Status::kRunning;
+  const bool running = analysis.job && analysis.job->status() == JobStatus::kRunning;
   ImGui::BeginDisabled(running || !state.document);
   if (ImGui::Button("Run")) start_training(state, analysis.classifier.data());
   remember_item(state, "button:Run");

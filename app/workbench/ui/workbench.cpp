@@ -674,7 +674,7 @@ nlohmann::json Workbench::analysis_json() const {
               {"predicted", class_name(analysis.landed->predicted)},
               {"segment_id", analysis.landed->segment_id}};
   std::string training = "idle";
-  if (analysis.job) training = analysis.job->status() == ml::TrainingJob::Status::kRunning ? "running" : "finished";
+  if (analysis.job) training = analysis.job->status() == JobStatus::kRunning ? "running" : "finished";
   nlohmann::json confusion = nullptr;
   if (current) {
     confusion = nlohmann::json::array();

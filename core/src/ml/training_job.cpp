@@ -1,11 +1,7 @@
-// TrainingJob: features, then evaluation, on one worker thread.
+// The training run: features, then evaluation, as a job on a worker thread.
 #include "tactile/ml/training_job.h"
 
-#if defined(__linux__)
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
+#include <algorithm>
 
 #include "tactile/error.h"
 #include "tactile/features/corpus.h"
@@ -17,119 +13,75 @@ namespace tactile::ml {
 
 namespace {
 constexpr double kFeatureShare = 0.3;  // of the progress bar
-[[maybe_unused]] constexpr int kWorkerNice = 19;
 }
 
-TrainingJob::TrainingJob(TrainingRequest request) : request_(std::move(request)) {
-  worker_ = std::thread([this] { run(); });
+std::unique_ptr<TrainingJob> start_training_job(TrainingRequest request) {
+  return std::make_unique<TrainingJob>("training", [request = std::move(request)](JobProgress& progress) {
+    return run_training(request, progress);
+  });
 }
 
-TrainingJob::~TrainingJob() {
-  cancel();
-  if (worker_.joinable()) worker_.join();
-}
-
-std::string TrainingJob::stage() const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return stage_;
-}
-
-std::string TrainingJob::error() const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return error_;
-}
-
-std::unique_ptr<TrainingOutcome> TrainingJob::take() {
-  if (status_.load() != Status::kDone) return nullptr;
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return std::move(outcome_);
-}
-
-void TrainingJob::wait() {
-  if (worker_.joinable()) worker_.join();
-}
-
-void TrainingJob::run() {
-#if defined(__linux__)
-  // Below the window's thread: the frames keep their time while training takes the rest
-  // of the machine (threads this one starts inherit the priority).
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNice);
-#endif
-  const auto set_stage = [this](std::string text) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    stage_ = std::move(text);
-  };
+TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progress) {
+  // The corpus and the evaluation stop at the cancel flag by throwing an error of their own.
   try {
-    auto outcome = std::make_unique<TrainingOutcome>();
-    set_stage("reading labels");
-    const std::vector<CorpusRecording> corpus = corpus_from_store(
-        {request_.database, request_.segments, request_.folder, request_.layout});
-    outcome->pipeline = request_.pipeline.empty()
-                            ? skin_pipeline(request_.layout.empty() ? "" : request_.layout)
-                            : request_.pipeline;
+    TrainingOutcome outcome;
+    progress.report(0.0, "reading labels");
+    const std::vector<CorpusRecording> corpus =
+        corpus_from_store({request.database, request.segments, request.folder, request.layout});
+    outcome.pipeline = request.pipeline.empty()
+                           ? skin_pipeline(request.layout.empty() ? "" : request.layout)
+                           : request.pipeline;
     const auto extractor = make_feature_extractor(
-        outcome->pipeline, Parameters::parse(request_.pipeline_params, "pipeline parameters"));
-    set_stage("features (" + outcome->pipeline + ")");
+        outcome.pipeline, Parameters::parse(request.pipeline_params, "pipeline parameters"));
+    progress.report(0.0, "features (" + outcome.pipeline + ")");
     CorpusOptions corpus_options;
-    corpus_options.threads = request_.threads;
-    corpus_options.cancel = &cancel_;
-    corpus_options.progress = [this](int64_t done, int64_t total) {
-      progress_.store(kFeatureShare * static_cast<double>(done) / static_cast<double>(total));
+    corpus_options.threads = request.threads;
+    corpus_options.cancel = progress.flag();
+    corpus_options.progress = [&progress](int64_t done, int64_t total) {
+      progress.report(kFeatureShare * static_cast<double>(done) / static_cast<double>(total));
     };
     CorpusDataset table = extract_corpus(*extractor, corpus, corpus_options);
     if (table.dataset.rows() == 0)
       throw Error("features", "no rows: all " + std::to_string(table.segments) +
                                   " segments were skipped");
-    outcome->dataset = std::move(table.dataset);
+    outcome.dataset = std::move(table.dataset);
 
-    const Protocol protocol = Protocol::parse(request_.protocol);
+    const Protocol protocol = Protocol::parse(request.protocol);
     EvaluationControl control;
-    control.threads = request_.threads;
-    control.cancel = &cancel_;
+    control.threads = request.threads;
+    control.cancel = progress.flag();
     control.scores = true;
-    control.progress = [this](int done, int total) {
-      progress_.store(kFeatureShare + (1.0 - kFeatureShare) * done / std::max(1, total));
+    control.progress = [&progress](int done, int total) {
+      progress.report(kFeatureShare + (1.0 - kFeatureShare) * done / std::max(1, total));
     };
-    if (request_.classifier == "all") {
-      outcome->results = evaluate_all(
-          outcome->dataset, protocol, request_.seed, control,
-          [&](const PresetOutcome& preset, int index, int total) {
-            set_stage("trained " + preset.classifier + " (" + std::to_string(index + 1) + "/" +
-                      std::to_string(total) + ")");
-          });
+    if (request.classifier == "all") {
+      outcome.results = evaluate_all(outcome.dataset, protocol, request.seed, control,
+                                     [&](const PresetOutcome& preset, int index, int total) {
+                                       progress.report(progress.fraction(),
+                                                       "trained " + preset.classifier + " (" +
+                                                           std::to_string(index + 1) + "/" +
+                                                           std::to_string(total) + ")");
+                                     });
     } else {
-      set_stage("evaluating " + request_.classifier);
+      progress.report(kFeatureShare, "evaluating " + request.classifier);
       PresetOutcome one;
-      one.classifier = request_.classifier;
-      one.result = evaluate(outcome->dataset, request_.classifier, protocol, request_.seed, control);
-      outcome->results.push_back(std::move(one));
-      if (!request_.save_model.empty()) {
-        set_stage("fitting the model on every row");
-        write_json_file(request_.save_model,
-                        fit_model_document(outcome->dataset, request_.classifier, request_.seed,
-                                           outcome->pipeline, request_.pipeline_params),
+      one.classifier = request.classifier;
+      one.result = evaluate(outcome.dataset, request.classifier, protocol, request.seed, control);
+      outcome.results.push_back(std::move(one));
+      if (!request.save_model.empty()) {
+        progress.report(progress.fraction(), "fitting the model on every row");
+        write_json_file(request.save_model,
+                        fit_model_document(outcome.dataset, request.classifier, request.seed,
+                                           outcome.pipeline, request.pipeline_params),
                         "model");
-        outcome->model_path = request_.save_model;
+        outcome.model_path = request.save_model;
       }
     }
-    progress_.store(1.0);
-    set_stage("done");
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      outcome_ = std::move(outcome);
-    }
-    status_.store(Status::kDone);
-  } catch (const std::exception& failure) {
-    if (cancel_.load()) {
-      set_stage("cancelled");
-      status_.store(Status::kCancelled);
-      return;
-    }
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      error_ = failure.what();
-    }
-    status_.store(Status::kFailed);
+    progress.report(1.0, "done");
+    return outcome;
+  } catch (const Error&) {
+    if (progress.cancelled()) throw JobCancelled{};
+    throw;
   }
 }
 
