@@ -221,7 +221,7 @@ int soak(const std::string& skin, double factor, double minutes, const std::stri
                 "\"dropped_at_handover\": %lld, \"frame_ms_median\": %.2f, \"error\": \"%s\"}\n",
                 when, elapsed_minutes(), source.duration() / 3600.0, resident_mb(),
                 static_cast<double>(source.memory_bytes()) / (1 << 20),
-                static_cast<long long>(state.live.recorder ? state.live.recorder->samples_taken() : 0),
+                static_cast<long long>(state.live.recorded_samples),
                 static_cast<long long>(counters.datagrams), static_cast<long long>(counters.lost),
                 static_cast<long long>(counters.overflow), percentile(frames.ms, 0.5), state.error.c_str());
     std::fflush(stdout);
@@ -238,7 +238,7 @@ int soak(const std::string& skin, double factor, double minutes, const std::stri
     }
   }
   report("end");
-  tactile::stop_recording(state);
+  tactile::stop_recording(state, workbench.services().live);
   const tactile::RecordingFile file(record);
   std::printf("{\"recorded_file_samples\": %lld, \"cut_off\": %s}\n",
               static_cast<long long>(file.stream("skin").sample_count), file.cut_off() ? "true" : "false");

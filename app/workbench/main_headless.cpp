@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
       renderer.prepare_frame(1.0f / 60.0f);
       // Live, frames come in real time (at most 60 a second), so data arrives between them
       // as it would on a screen; a recording is drawn as fast as it can be.
-      if (workbench.state().live.receiver) {
+      if (workbench.state().live.connected) {
         std::this_thread::sleep_until(last + std::chrono::microseconds(16667));
         last = Clock::now();
       }

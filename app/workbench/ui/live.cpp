@@ -50,37 +50,38 @@ void follow(WorkbenchState& state) {
 
 // The contact detector sees every sample once; a contact starts a recording, a quiet time
 // after the last one stops it.
-void auto_record(WorkbenchState& state) {
+void auto_record(WorkbenchState& state, LiveServices& services) {
   LiveState& live = state.live;
   LiveSampleSource& source = live_source(state);
   if (!live.auto_record) {
-    live.detector.reset();
+    services.detector.reset();
     return;
   }
-  if (!live.detector) {
+  if (!services.detector) {
     ContactDetectorOptions options;
     options.quiet_seconds = live.quiet_seconds;
-    live.detector = std::make_unique<ContactDetector>(source.channel_count(), source.rate_hz(), options);
+    services.detector = std::make_unique<ContactDetector>(source.channel_count(), source.rate_hz(), options);
     live.detected_until = source.sample_count();
   }
   const int64_t count = source.sample_count();
   live.detected_until = std::max(live.detected_until, source.first_kept());
   bool began = false;
   for (; live.detected_until < count; ++live.detected_until) {
-    live.detector->add(source.values_at(live.detected_until));
-    began = began || live.detector->contact_began();
+    services.detector->add(source.values_at(live.detected_until));
+    began = began || services.detector->contact_began();
   }
-  if (began && !live.recorder) start_recording(state, "");
-  if (live.recorder && live.recorder_automatic && live.detector->quiet_for_long()) stop_recording(state);
+  if (began && !services.recorder) start_recording(state, services, "");
+  if (services.recorder && live.recorder_automatic && services.detector->quiet_for_long())
+    stop_recording(state, services);
 }
 
 // Online decisions: each goes into the transient "online" lane (add_online_decision) and the
 // newest is written over the skin.
-void classify(WorkbenchState& state) {
+void classify(WorkbenchState& state, LiveServices& services) {
   LiveState& live = state.live;
-  if (!live.online) return;
-  live.online->update(live_source(state));
-  std::vector<OnlineDecision> decisions = live.online->take();
+  if (!services.online) return;
+  services.online->update(live_source(state));
+  std::vector<OnlineDecision> decisions = services.online->take();
   if (decisions.empty()) return;
   Document& document = *state.document;
   // The lane holds what the buffer holds.
@@ -93,18 +94,19 @@ void classify(WorkbenchState& state) {
   if (live.decisions.size() > 2000)
     live.decisions.erase(live.decisions.begin(), live.decisions.end() - 1000);
   document.reload_labels();
-  if (const std::string failure = live.online->error(); !failure.empty()) state.notice = "online model: " + failure;
+  if (const std::string failure = services.online->error(); !failure.empty())
+    state.notice = "online model: " + failure;
 }
 
 }  // namespace
 
-bool load_online_model(WorkbenchState& state, const std::string& path) {
+bool load_online_model(WorkbenchState& state, LiveServices& services, const std::string& path) {
   LiveState& live = state.live;
-  if (!live.receiver || !state.document) return false;
+  if (!services.receiver || !state.document) return false;
   try {
     SavedModel model = read_model_file(path);
     const SkinLayout& layout = state.document->layout;
-    live.online = std::make_unique<OnlineClassifier>(std::move(model), layout, state.document->source->info(),
+    services.online = std::make_unique<OnlineClassifier>(std::move(model), layout, state.document->source->info(),
                                                      default_online_options(layout.id));
     live.model_path = path;
     live.decisions.clear();
@@ -118,10 +120,11 @@ bool load_online_model(WorkbenchState& state, const std::string& path) {
   }
 }
 
-bool connect_live(WorkbenchState& state, const std::string& url, const std::string& skin_option) {
+bool connect_live(WorkbenchState& state, LiveServices& services, const std::string& url,
+                  const std::string& skin_option) {
   try {
     const LiveAddress address = parse_live_address(url, "--connect");
-    disconnect_live(state);  // its port or device may be the one asked for again
+    disconnect_live(state, services);  // its port or device may be the one asked for again
     std::unique_ptr<DatagramInput> input = open_live_input(address);
     std::string skin = skin_option.empty() ? input->skin() : skin_option;
     if (skin.empty())
@@ -141,7 +144,8 @@ bool connect_live(WorkbenchState& state, const std::string& url, const std::stri
     document->streams = {"skin"};
     document->reload_labels();
     state.document = std::move(document);
-    state.live.receiver = std::move(receiver);
+    services.receiver = std::move(receiver);
+    state.live.connected = true;
     state.live.url = url;
     state.live.follow = true;
     state.live.counters = {};
@@ -163,28 +167,42 @@ bool connect_live(WorkbenchState& state, const std::string& url, const std::stri
   }
 }
 
-void disconnect_live(WorkbenchState& state) {
-  LiveState& live = state.live;
-  if (!live.receiver) return;
-  if (live.recorder) stop_recording(state);
-  live.online.reset();
-  live.receiver->stop();
-  live.receiver.reset();
-  live.detector.reset();
+void disconnect_live(WorkbenchState& state, LiveServices& services) {
+  if (!services.receiver) return;
+  if (services.recorder) stop_recording(state, services);
+  services.online.reset();
+  services.receiver->stop();
+  services.receiver.reset();
+  services.detector.reset();
+  state.live.connected = false;
+  state.live.model_path.clear();
 }
 
-void poll_live(WorkbenchState& state) {
+void poll_live(WorkbenchState& state, LiveServices& services) {
   LiveState& live = state.live;
-  if (!live.receiver || !state.document) return;
+  if (!services.receiver || !state.document) return;
   if (std::exchange(live.resize_request, false)) {
     const std::string url = live.url, skin = state.document->layout.id, model = live.model_path;
-    if (!connect_live(state, url, skin)) return;
-    if (!model.empty()) load_online_model(state, model);
+    if (!connect_live(state, services, url, skin)) return;
+    if (!model.empty()) load_online_model(state, services, model);
+  }
+  // The requests of the last frame's live bar and keys.
+  if (std::exchange(live.record_request, false)) {
+    if (services.recorder)
+      stop_recording(state, services);
+    else
+      start_recording(state, services, "");
+  }
+  if (auto model = std::exchange(live.classify_request, std::nullopt))
+    load_online_model(state, services, *model);
+  if (std::exchange(live.clear_request, false)) {
+    live_source(state).clear();
+    live.detected_until = 0;
   }
   LiveSampleSource& source = live_source(state);
-  live.receiver->ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
-  live.counters = live.receiver->counters();
-  if (const std::string failure = live.receiver->failure(); !failure.empty() && live.failure != failure) {
+  services.receiver->ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  live.counters = services.receiver->counters();
+  if (const std::string failure = services.receiver->failure(); !failure.empty() && live.failure != failure) {
     live.failure = failure;
     state.error = "live source failed: " + failure;
   }
@@ -194,21 +212,22 @@ void poll_live(WorkbenchState& state) {
     plot_moving_channels(state);
     state.rest_scale_modality = -1;
   }
-  auto_record(state);
-  classify(state);
-  if (live.recorder) {
-    live.recorder->take(source);
-    if (const std::string failure = live.recorder->error(); !failure.empty()) {
+  auto_record(state, services);
+  classify(state, services);
+  if (services.recorder) {
+    services.recorder->take(source);
+    live.recorded_samples = services.recorder->samples_taken();
+    if (const std::string failure = services.recorder->error(); !failure.empty()) {
       state.error = "recording failed: " + failure;
-      stop_recording(state);
+      stop_recording(state, services);
     }
   }
   follow(state);
 }
 
-bool start_recording(WorkbenchState& state, const std::string& requested) {
+bool start_recording(WorkbenchState& state, LiveServices& services, const std::string& requested) {
   LiveState& live = state.live;
-  if (!live.receiver || live.recorder) return false;
+  if (!services.receiver || services.recorder) return false;
   std::string path = requested;
   if (path.empty()) {
     const fs::path folder = live.record_folder.empty() ? fs::path(state.workspace) : fs::path(live.record_folder);
@@ -219,17 +238,19 @@ bool start_recording(WorkbenchState& state, const std::string& requested) {
     LiveRecorderOptions options;
     options.pretrigger_seconds = live.pretrigger_seconds;
     options.metadata["source"] = live.url;
-    live.recorder = std::make_unique<LiveRecorder>(path, live_source(state), options);
+    services.recorder = std::make_unique<LiveRecorder>(path, live_source(state), options);
   } catch (const std::exception& failure) {
     state.error = std::string("cannot record: ") + failure.what();
     return false;
   }
-  live.recorder_automatic = live.auto_record && requested.empty() && live.detector &&
-                            live.detector->state() == ContactDetector::State::kContact;
+  live.recorder_automatic = live.auto_record && requested.empty() && services.detector &&
+                            services.detector->state() == ContactDetector::State::kContact;
+  live.recording = services.recorder->path();
+  live.recorded_samples = 0;
   // Labels made from now on belong to this recording, in the label database beside it.
   Document& document = *state.document;
   document.path = fs::absolute(path).lexically_normal().string();
-  document.live_recording_id = live.recorder->recording_id();
+  document.live_recording_id = services.recorder->recording_id();
   document.labels_refused.clear();
   document.store.reset();
   document.labels_path = (fs::path(document.path).parent_path() / "labels.db").string();
@@ -238,40 +259,36 @@ bool start_recording(WorkbenchState& state, const std::string& requested) {
   return true;
 }
 
-bool stop_recording(WorkbenchState& state) {
+bool stop_recording(WorkbenchState& state, LiveServices& services) {
   LiveState& live = state.live;
-  if (!live.recorder) return false;
-  const std::string path = live.recorder->path();
+  if (!services.recorder) return false;
+  const std::string path = services.recorder->path();
   try {
-    live.recorder->finish(live_source(state));
-    state.notice = "recorded " + path + " (" + std::to_string(live.recorder->samples_taken()) + " samples)";
+    services.recorder->finish(live_source(state));
+    state.notice = "recorded " + path + " (" + std::to_string(services.recorder->samples_taken()) + " samples)";
   } catch (const std::exception& failure) {
     state.error = std::string("recording ended with an error: ") + failure.what();
   }
   live.recorded.push_back(path);
-  live.recorder.reset();
+  services.recorder.reset();
+  live.recording.clear();
   // Labels stay possible for what was just recorded until the next recording starts: the
   // document keeps the path and recording id of the last one.
   return true;
 }
 
 void handle_live_keys(WorkbenchState& state) {
-  if (!state.live.receiver) return;
+  if (!state.live.connected) return;
   const ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput) return;
-  if (io.KeyCtrl && ImGui::IsKeyPressed('R', false)) {
-    if (state.live.recorder)
-      stop_recording(state);
-    else
-      start_recording(state, "");
-  }
+  if (io.KeyCtrl && ImGui::IsKeyPressed('R', false)) state.live.record_request = true;
   if (!io.KeyCtrl && !io.KeyAlt && ImGui::IsKeyPressed('F', false)) state.live.follow = !state.live.follow;
 }
 
 void draw_live_bar(WorkbenchState& state) {
   LiveState& live = state.live;
   const LiveCounters& counters = live.counters;
-  const bool recording = live.recorder != nullptr;
+  const bool recording = !live.recording.empty();
   ImGui::TextColored(live.failure.empty() ? ImVec4(0.3f, 0.9f, 0.4f, 1.0f) : ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
                      live.failure.empty() ? "LIVE" : "FAILED");
   ImGui::SameLine();
@@ -290,18 +307,10 @@ void draw_live_bar(WorkbenchState& state) {
   }
   remember_item(state, "input:buffer");
   ImGui::SameLine();
-  if (ImGui::Button("Clear")) {
-    live_source(state).clear();
-    live.detected_until = 0;
-  }
+  if (ImGui::Button("Clear")) live.clear_request = true;
   remember_item(state, "button:clear");
   ImGui::SameLine();
-  if (ImGui::Button(recording ? "Stop recording (Ctrl+R)" : "Record (Ctrl+R)")) {
-    if (recording)
-      stop_recording(state);
-    else
-      start_recording(state, "");
-  }
+  if (ImGui::Button(recording ? "Stop recording (Ctrl+R)" : "Record (Ctrl+R)")) live.record_request = true;
   remember_item(state, "button:record");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(50);
@@ -315,7 +324,7 @@ void draw_live_bar(WorkbenchState& state) {
   ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(), live.model_input.size());
   remember_item(state, "input:model");
   ImGui::SameLine();
-  if (ImGui::Button("Classify")) load_online_model(state, live.model_input.data());
+  if (ImGui::Button("Classify")) live.classify_request = std::string(live.model_input.data());
   remember_item(state, "button:classify");
   // Second line: what arrived and what did not.
   const SampleSource& source = *state.document->source;
@@ -333,14 +342,14 @@ void draw_live_bar(WorkbenchState& state) {
   if (recording) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %s %s",
-                       fs::path(live.recorder->path()).filename().c_str(),
-                       format_seconds(static_cast<double>(live.recorder->samples_taken()) / source.rate_hz()).c_str());
+                       fs::path(live.recording).filename().c_str(),
+                       format_seconds(static_cast<double>(live.recorded_samples) / source.rate_hz()).c_str());
   }
 }
 
 nlohmann::json live_json(const WorkbenchState& state) {
   const LiveState& live = state.live;
-  if (!live.receiver) return nullptr;
+  if (!live.connected) return nullptr;
   const LiveCounters& counters = live.counters;
   nlohmann::json json;
   json["source"] = live.url;
@@ -357,8 +366,8 @@ nlohmann::json live_json(const WorkbenchState& state) {
   json["newest"] = state.document && state.document->source->sample_count() > 0
                        ? nlohmann::json(state.document->source->time_of(state.document->source->sample_count() - 1))
                        : nlohmann::json(nullptr);
-  json["recording"] = live.recorder ? nlohmann::json(live.recorder->path()) : nlohmann::json(nullptr);
-  json["recorded_samples"] = live.recorder ? live.recorder->samples_taken() : 0;
+  json["recording"] = live.recording.empty() ? nlohmann::json(nullptr) : nlohmann::json(live.recording);
+  json["recorded_samples"] = live.recording.empty() ? 0 : live.recorded_samples;
   json["recorded"] = live.recorded;
   json["failure"] = live.failure;
   json["model"] = live.model_path;

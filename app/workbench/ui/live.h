@@ -7,6 +7,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
+#include "services.h"
 #include "workbench_state.h"
 
 namespace tactile {
@@ -14,18 +15,21 @@ namespace tactile {
 // Connects to a live source (udp://, serial://, sim://, replay://) as the open document.
 // `skin` is needed for sockets and ports; sim:// and replay:// know theirs. False (and the
 // reason in state.error) when the source cannot be opened.
-bool connect_live(WorkbenchState& state, const std::string& url, const std::string& skin);
-void disconnect_live(WorkbenchState& state);
-// Start of every frame: takes what arrived.
-void poll_live(WorkbenchState& state);
-// Ctrl+R, F.
+bool connect_live(WorkbenchState& state, LiveServices& services, const std::string& url,
+                  const std::string& skin);
+void disconnect_live(WorkbenchState& state, LiveServices& services);
+// Start of every frame: carries out the live bar's requests, takes what arrived, records,
+// classifies, and copies the services' news into the state.
+void poll_live(WorkbenchState& state, LiveServices& services);
+// Ctrl+R (a request), F.
 void handle_live_keys(WorkbenchState& state);
-// The live bar (instead of the replay transport): source, counters, buffer, follow, record.
+// The live bar (instead of the replay transport): source, counters, buffer, follow, record;
+// its buttons are requests in the state.
 void draw_live_bar(WorkbenchState& state);
 // Classifies the stream with a saved model (`evaluate --save-model`) from now on.
-bool load_online_model(WorkbenchState& state, const std::string& path);
-bool start_recording(WorkbenchState& state, const std::string& path);
-bool stop_recording(WorkbenchState& state);
+bool load_online_model(WorkbenchState& state, LiveServices& services, const std::string& path);
+bool start_recording(WorkbenchState& state, LiveServices& services, const std::string& path);
+bool stop_recording(WorkbenchState& state, LiveServices& services);
 nlohmann::json live_json(const WorkbenchState& state);
 
 }  // namespace tactile

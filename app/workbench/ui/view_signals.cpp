@@ -35,7 +35,7 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
                        class_colour(document, label.class_name), label.class_name});
     }
   // Live: where packets were lost, marked (the lines break there too).
-  if (state.live.receiver)
+  if (state.live.connected)
     for (const auto& [first, end] : static_cast<const LiveSampleSource&>(source).gaps()) {
       const double g0 = source.time_of(first), g1 = source.time_of(end);
       if (g1 >= t0 && g0 <= t1)
@@ -47,7 +47,7 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
                                         state.plot.view_t0, state.plot.view_t1};
   if (result.clicked_time) state.clock.seek(*result.clicked_time);
   // Live, a zoom or pan of the user's stops following the newest sample (F follows again).
-  if (result.view_changed && state.live.receiver && ImGui::IsWindowHovered()) state.live.follow = false;
+  if (result.view_changed && state.live.connected && ImGui::IsWindowHovered()) state.live.follow = false;
   ImGui::EndChild();
 }
 

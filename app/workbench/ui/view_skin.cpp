@@ -179,7 +179,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
                        wrong ? IM_COL32(120, 30, 25, 255) : IM_COL32(25, 90, 40, 255), 3.0f);
     draw.AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
   }
-  if (state.live.online && state.live.shown) {
+  if (!state.live.model_path.empty() && state.live.shown) {
     // Live: the newest decision, large, in its class's colour.
     const OnlineDecision& shown = *state.live.shown;
     char text[160];

@@ -324,7 +324,7 @@ void draw_label_table(WorkbenchState& state) {
 
 void draw_timeline_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("timeline_view", size, false);
-  if (state.live.receiver)
+  if (state.live.connected)
     draw_live_bar(state);
   else
     draw_transport(state);

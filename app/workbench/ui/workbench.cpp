@@ -72,8 +72,9 @@ Workbench::Workbench(const WorkbenchOptions& options) {
   if (!options.connect.empty()) {
     state_.live.buffer_seconds = static_cast<float>(options.buffer_seconds);
     state_.live.pretrigger_seconds = static_cast<float>(options.pretrigger_seconds);
-    if (connect_live(state_, options.connect, options.skin) && !options.record_path.empty())
-      start_recording(state_, options.record_path);
+    if (connect_live(state_, services_.live, options.connect, options.skin) &&
+        !options.record_path.empty())
+      start_recording(state_, services_.live, options.record_path);
   } else if (fs::is_directory(options.open_path, error)) {
     set_workspace(options.open_path);
     // The first recording that opens; the damaged ones before it are marked.
@@ -93,8 +94,8 @@ void Workbench::open_analysis_files() {
   if (!options.evaluation_path.empty()) open_evaluation_file(state_, options.evaluation_path);
   // Live, a model classifies the stream; otherwise a SOM model shows its map.
   if (!options.model_path.empty()) {
-    if (state_.live.receiver)
-      load_online_model(state_, options.model_path);
+    if (state_.live.connected)
+      load_online_model(state_, services_.live, options.model_path);
     else
       open_model_file(state_, options.model_path);
   }
@@ -122,10 +123,10 @@ DocumentOptions Workbench::document_options(const std::string& stream) const {
   return options;
 }
 
-Workbench::~Workbench() { disconnect_live(state_); }
+Workbench::~Workbench() { disconnect_live(state_, services_.live); }
 
 bool Workbench::open(const std::string& path) {
-  disconnect_live(state_);
+  disconnect_live(state_, services_.live);
   std::error_code ignored;
   const std::string absolute = fs::absolute(path, ignored).lexically_normal().string();
   try {
@@ -209,8 +210,8 @@ void Workbench::choose_default_view() {
 //---------------------------------------------------------------------------------------------
 void Workbench::frame(double seconds) {
   ++state_.frame;
-  poll_live(state_);
-  if (!state_.live.receiver) state_.clock.advance(seconds);
+  poll_live(state_, services_.live);
+  if (!state_.live.connected) state_.clock.advance(seconds);
   // A landed segment replays once, then the cursor rests in its middle.
   double& until = state_.analysis.replay_until;
   if (until >= 0.0 && (!state_.clock.playing() || state_.clock.time() >= until)) {
@@ -411,10 +412,10 @@ void Workbench::draw_menu_bar() {
         ImGui::InputTextWithHint("##skin", "skin (udp, serial): nao, tsa, fur, robovie, flux",
                                  connect_skin_.data(), connect_skin_.size());
         remember_item(state_, "input:connect-skin");
-        if (ImGui::MenuItem("Connect")) connect_live(state_, connect_url_.data(), connect_skin_.data());
+        if (ImGui::MenuItem("Connect")) connect_live(state_, services_.live, connect_url_.data(), connect_skin_.data());
         remember_item(state_, "menu:File/Connect/Connect");
-        if (ImGui::MenuItem("Disconnect", nullptr, false, state_.live.receiver != nullptr))
-          disconnect_live(state_);
+        if (ImGui::MenuItem("Disconnect", nullptr, false, state_.live.connected))
+          disconnect_live(state_, services_.live);
         remember_item(state_, "menu:File/Connect/Disconnect");
         ImGui::EndMenu();
       }

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "services.h"
 #include "tactile/widgets/image.h"
 #include "workbench_state.h"
 
@@ -36,6 +37,9 @@ class Workbench {
   const std::string& error() const { return state_.error; }
   WorkbenchState& state() { return state_; }
   const WorkbenchState& state() const { return state_; }
+  // The threads, sockets and files behind the state (services.h); for the program's loop and
+  // benchmarks, never for views.
+  WorkbenchServices& services() { return services_; }
 
   // Commands (scripts and menus go through these too).
   // False when the recording cannot be opened: it is marked damaged, with the reason.
@@ -71,6 +75,7 @@ class Workbench {
   std::string settings_path() const;
 
   WorkbenchState state_;
+  WorkbenchServices services_;  // after the state: destroyed first (a recording is finished)
   std::array<char, 256> connect_url_{"sim://nao"};
   std::array<char, 32> connect_skin_{};
   std::optional<ViewExport> export_;

@@ -22,8 +22,6 @@
 #include "tactile/labels/quality.h"
 #include "tactile/layout/somatosensory.h"
 #include "tactile/live/live_receiver.h"
-#include "tactile/live/live_recorder.h"
-#include "tactile/live/live_source.h"
 #include "tactile/live/online_classifier.h"
 #include "tactile/live/playback.h"
 #include "tactile/ml/evaluation.h"
@@ -181,9 +179,10 @@ struct AnalysisState {
   std::string tab_request;  // a view tab to bring to front next frame
 };
 
-// Live mode (live.h): the receiver, what it counted, the recorder.
+// Live mode (live.h), as data: what the services (services.h) report each frame, the user's
+// settings, and the requests of the live bar and its keys, carried out at the next frame's start.
 struct LiveState {
-  std::unique_ptr<LiveReceiver> receiver;  // null when not live
+  bool connected = false;  // a live source is the open document
   std::string url;
   LiveCounters counters;  // as of this frame
   std::string failure;    // the source's, when it failed
@@ -192,21 +191,24 @@ struct LiveState {
   float buffer_seconds = 600.0f;
   bool resize_request = false;   // the buffer's length changed: a new buffer next frame
   bool channels_chosen = false;  // the moving channels are picked once data has arrived
-  std::unique_ptr<LiveRecorder> recorder;
+  std::string recording;            // the file being recorded; "" when not recording
+  int64_t recorded_samples = 0;     // taken into it so far
   bool recorder_automatic = false;  // started by a contact: stops after a quiet time
   std::string record_folder;        // "" = the workspace
   float pretrigger_seconds = 5.0f;
   bool auto_record = false;
   double quiet_seconds = 3.0;
-  std::unique_ptr<ContactDetector> detector;
-  int64_t detected_until = 0;         // source index the detector has seen up to
+  int64_t detected_until = 0;         // source index the contact detector has seen up to
   std::vector<std::string> recorded;  // files recorded in this session
   // Online classification with a saved model: its decisions, newest last.
-  std::unique_ptr<OnlineClassifier> online;
-  std::string model_path;
+  std::string model_path;  // "" when not classifying
   std::array<char, 512> model_input{};
   std::vector<OnlineDecision> decisions;
   std::optional<OnlineDecision> shown;  // the one written large over the skin
+  // Requests (the live bar, Ctrl+R).
+  bool record_request = false;  // start recording, or stop when recording
+  bool clear_request = false;   // drop what the buffer holds
+  std::optional<std::string> classify_request;  // a model file
 };
 
 struct WorkbenchOptions {
