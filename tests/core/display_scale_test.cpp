@@ -48,3 +48,30 @@ TEST(RestScale, FlatRecordingKeepsAPositiveScale) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// A touch from 5 s to 6 s on one of two channels: the edges near 5.5 s are where it starts
+// and ends, to a column's width; a quiet stretch has none.
+TEST(ActivityEdges, AreWhereSomeChannelLeavesAndReentersItsNoiseBand) {
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 100.0;
+  stream.channels = {"a", "b"};
+  stream.samples = SampleMatrix::Zero(1000, 2);
+  for (int row = 500; row < 600; ++row) stream.samples(row, 1) = 10.0f;
+  const MemorySampleSource source(stream, "strip:2", "r");
+  RestScale scale;
+  scale.rest = {0.0f, 0.0f};
+  scale.noise_band = {1.0f, 1.0f};
+  const std::vector<double> edges = activity_edges(source, {0, 1}, scale, 5.5, 1.0);
+  ASSERT_EQ(edges.size(), 2u);
+  EXPECT_NEAR(edges[0], 5.0, 2.0 / 24);
+  EXPECT_NEAR(edges[1], 6.0, 2.0 / 24);
+  EXPECT_TRUE(activity_edges(source, {0, 1}, scale, 8.0, 1.0).empty());
+  EXPECT_TRUE(activity_edges(source, {0, -1}, scale, 5.5, 1.0).empty());  // the moving one absent
+}
+
+}  // namespace
+}  // namespace tactile

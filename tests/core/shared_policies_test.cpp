@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
+#include "tactile/features/dataset.h"
+#include "tactile/labels/predict.h"
 #include "tactile/live/online_classifier.h"
 #include "tactile/ml/train_all.h"
 
@@ -80,6 +82,37 @@ TEST(OnlineLane, AnAnswerThatGoesOnGrowsOneLabelAndTheFinalOneReplacesTheProvisi
   add_online_decision(lane, decision(10.0, 11.0, "pat"), "live", 5.0);
   ASSERT_EQ(lane.size(), 1u);
   EXPECT_DOUBLE_EQ(lane[0].t0, 10.0);
+}
+
+Label prediction(double t0, double t1, double margin) {
+  Label label;
+  label.recording = "r";
+  label.t0 = t0;
+  label.t1 = t1;
+  label.source = LabelSource::kModel;
+  label.note = "margin=" + std::to_string(margin) + " model=knn";
+  return label;
+}
+
+TEST(LeastSurePrediction, IsTheSmallestMarginNoOwnLabelCovers) {
+  const std::vector<Label> predictions = {prediction(0, 1, 0.5), prediction(2, 3, 0.1),
+                                          prediction(4, 5, 0.3)};
+  EXPECT_EQ(least_sure_prediction(predictions, {}), &predictions[1]);
+  std::vector<Label> own = {prediction(2.5, 2.8, 1.0)};
+  EXPECT_EQ(least_sure_prediction(predictions, own), &predictions[2]);
+  own.push_back(prediction(0, 10, 1.0));
+  EXPECT_EQ(least_sure_prediction(predictions, own), nullptr);
+}
+
+TEST(DatasetMetadata, IsSharedOnlyWhenEveryRowCarriesTheSameValue) {
+  Dataset table;
+  table.metadata = {{{"layout", "fur"}}, {{"layout", "fur"}}};
+  EXPECT_EQ(table.shared_metadata("layout"), "fur");
+  table.metadata.push_back({{"layout", "nao"}});
+  EXPECT_EQ(table.shared_metadata("layout"), "");
+  table.metadata = {{{"layout", "fur"}}, {}};
+  EXPECT_EQ(table.shared_metadata("layout"), "");
+  EXPECT_EQ(Dataset{}.shared_metadata("layout"), "");
 }
 
 }  // namespace

@@ -31,18 +31,6 @@ std::string label_database(const WorkbenchState& state) {
   return (fs::path(state.workspace) / "labels.db").string();
 }
 
-// The table's skin: the rows' layout metadata when all agree.
-std::string layout_of(const Dataset& dataset) {
-  std::string layout;
-  for (size_t row = 0; row < dataset.metadata.size(); ++row) {
-    const auto found = dataset.metadata[row].find("layout");
-    const std::string id = found == dataset.metadata[row].end() ? "" : found->second;
-    if (row == 0) layout = id;
-    if (id != layout) return "";
-  }
-  return layout;
-}
-
 void reset_views(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   analysis.cell_true = analysis.cell_predicted = -1;
@@ -58,7 +46,7 @@ void reset_views(WorkbenchState& state) {
 
 void set_dataset(WorkbenchState& state, Dataset dataset) {
   AnalysisState& analysis = state.analysis;
-  analysis.dataset_layout = layout_of(dataset);
+  analysis.dataset_layout = dataset.shared_metadata("layout");
   analysis.dataset = std::make_shared<const Dataset>(std::move(dataset));
   analysis.som.reset();
   retire_job(state, std::move(analysis.som_job));

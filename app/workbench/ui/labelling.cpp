@@ -126,23 +126,14 @@ bool next_uncertain_prediction(WorkbenchState& state) {
   const int lane_index = state.document->lanes.find({LabelSource::kModel, kModelAnnotator});
   if (lane_index < 0) return fail(state, "no predictions: run `tactile predict` or Model > Predict");
   const LaneIndex* own_lane = active_lane(state);
-  const Label* best = nullptr;
-  double best_margin = 0.0;
-  for (const Label& label :
-       state.document->lanes.lanes[static_cast<size_t>(lane_index)].labels()) {
-    // Already decided by the operator: one of their labels covers it.
-    bool decided = false;
-    if (own_lane)
-      for (const Label& mine : own_lane->labels())
-        if (mine.t0 < label.t1 && label.t0 < mine.t1) decided = true;
-    if (decided) continue;
-    const double margin = prediction_margin(label);
-    if (!best || margin < best_margin) best = &label, best_margin = margin;
-  }
+  const Label* best = least_sure_prediction(
+      state.document->lanes.lanes[static_cast<size_t>(lane_index)].labels(),
+      own_lane ? own_lane->labels() : std::span<const Label>{});
   if (!best) {
     state.notice = "every prediction is decided";
     return false;
   }
+  const double best_margin = prediction_margin(*best);
   state.selection.labels = {best->id};
   state.clock.seek(best->t0);
   const double span = std::max(1.0, 3.0 * (best->t1 - best->t0));
@@ -340,33 +331,12 @@ bool move_label_bounds(WorkbenchState& state, int64_t id, double t0, double t1) 
 
 namespace {
 
-// Where the skin's signal starts or stops moving near t: the edges between time
-// columns of [t - tolerance, t + tolerance] where "some taxel of the shown modality is
-// outside its noise band" flips (min/max per column from the source).
+// Where the skin's signal (the shown modality) starts or stops moving near t.
 std::vector<double> onsets_near(WorkbenchState& state, double t, double tolerance) {
-  constexpr int kColumns = 24;
   const Document& document = *state.document;
-  const SampleSource& source = document.samples();
   const std::vector<int> columns =
-      taxel_columns(document.layout, source.info().channels, state.modality);
-  const RestScale& scale = current_rest_scale(state, columns);
-  std::vector<uint8_t> active(kColumns, 0);
-  for (size_t k = 0; k < columns.size(); ++k) {
-    if (columns[k] < 0 || std::isnan(scale.rest[k])) continue;
-    const std::vector<MinMax> buckets =
-        source.minmax_over_time(columns[k], t - tolerance, t + tolerance, kColumns);
-    for (int c = 0; c < kColumns && c < static_cast<int>(buckets.size()); ++c)
-      if (!buckets[static_cast<size_t>(c)].empty() &&
-          (buckets[static_cast<size_t>(c)].max > scale.rest[k] + scale.noise_band[k] ||
-           buckets[static_cast<size_t>(c)].min < scale.rest[k] - scale.noise_band[k]))
-        active[static_cast<size_t>(c)] = 1;
-  }
-  std::vector<double> edges;
-  const double width = 2.0 * tolerance / kColumns;
-  for (int c = 1; c < kColumns; ++c)
-    if (active[static_cast<size_t>(c)] != active[static_cast<size_t>(c - 1)])
-      edges.push_back(t - tolerance + c * width);
-  return edges;
+      taxel_columns(document.layout, document.samples().info().channels, state.modality);
+  return activity_edges(document.samples(), columns, current_rest_scale(state, columns), t, tolerance);
 }
 
 }  // namespace

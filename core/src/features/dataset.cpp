@@ -56,6 +56,17 @@ void check_dataset(const std::string& path, const Dataset& dataset) {
 
 }  // namespace dataset_files
 
+std::string Dataset::shared_metadata(const std::string& key) const {
+  std::string shared;
+  for (size_t row = 0; row < metadata.size(); ++row) {
+    const auto found = metadata[row].find(key);
+    if (found == metadata[row].end()) return "";
+    if (row == 0) shared = found->second;
+    if (found->second != shared) return "";
+  }
+  return shared;
+}
+
 std::vector<std::string> Dataset::class_names() const {
   std::vector<std::string> names;
   std::set<std::string> seen;

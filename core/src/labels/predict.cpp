@@ -40,13 +40,7 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
   for (const FeatureColumn& column : dataset.columns) columns.push_back(column.name);
   document["features"] = columns;
   // The skin, when every row names the same one.
-  std::string layout;
-  for (const Metadata& metadata : dataset.metadata) {
-    const auto found = metadata.find("layout");
-    const std::string id = found == metadata.end() ? "" : found->second;
-    if (&metadata == &dataset.metadata.front()) layout = id;
-    if (id != layout) layout.clear();
-  }
+  const std::string layout = dataset.shared_metadata("layout");
   document["layout"] = layout;
   const std::string used = !pipeline.empty() ? pipeline
                            : layout.empty()  ? ""
@@ -245,6 +239,20 @@ double prediction_margin(const Label& label) {
   char* end = nullptr;
   const double margin = std::strtod(start, &end);
   return end != start && std::isfinite(margin) ? margin : label.confidence;
+}
+
+const Label* least_sure_prediction(std::span<const Label> predictions, std::span<const Label> decided) {
+  const Label* best = nullptr;
+  double best_margin = 0.0;
+  for (const Label& label : predictions) {
+    const bool covered = std::any_of(decided.begin(), decided.end(), [&](const Label& mine) {
+      return mine.t0 < label.t1 && label.t0 < mine.t1;
+    });
+    if (covered) continue;
+    const double margin = prediction_margin(label);
+    if (!best || margin < best_margin) best = &label, best_margin = margin;
+  }
+  return best;
 }
 
 }  // namespace tactile

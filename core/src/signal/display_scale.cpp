@@ -1,6 +1,7 @@
 #include "tactile/signal/display_scale.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
@@ -118,6 +119,26 @@ std::vector<float> change_from_rest(const std::vector<float>& values, const Rest
     changes[k] = std::isnan(change) ? change : std::max(0.0f, change - scale.noise_band[k]);
   }
   return changes;
+}
+
+std::vector<double> activity_edges(const SampleSource& source, const std::vector<int>& channels,
+                                   const RestScale& scale, double t, double tolerance, int columns) {
+  std::vector<uint8_t> active(static_cast<size_t>(columns), 0);
+  for (size_t k = 0; k < channels.size(); ++k) {
+    if (channels[k] < 0 || std::isnan(scale.rest[k])) continue;
+    const std::vector<MinMax> buckets =
+        source.minmax_over_time(channels[k], t - tolerance, t + tolerance, columns);
+    for (size_t c = 0; c < buckets.size() && c < active.size(); ++c)
+      if (!buckets[c].empty() && (buckets[c].max > scale.rest[k] + scale.noise_band[k] ||
+                                  buckets[c].min < scale.rest[k] - scale.noise_band[k]))
+        active[c] = 1;
+  }
+  std::vector<double> edges;
+  const double width = 2.0 * tolerance / columns;
+  for (int c = 1; c < columns; ++c)
+    if (active[static_cast<size_t>(c)] != active[static_cast<size_t>(c - 1)])
+      edges.push_back(t - tolerance + c * width);
+  return edges;
 }
 
 }  // namespace tactile

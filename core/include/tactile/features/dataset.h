@@ -25,6 +25,9 @@ struct Dataset {
   int64_t rows() const { return features.rows(); }
   // Distinct classes in first-seen order.
   std::vector<std::string> class_names() const;
+  // The value of metadata `key` that every row carries ("layout": the table's skin); "" when
+  // rows differ, lack it, or there are none.
+  std::string shared_metadata(const std::string& key) const;
 };
 
 // CSV: feature columns, then class, subject, recording, segment_id and one column per

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -79,5 +80,9 @@ LabelEdit prediction_edit(const LabelStore& store, const std::string& recording,
 // The margin a prediction label carries in its note ("margin=0.25 ..."); its confidence
 // when the note has none.
 double prediction_margin(const Label& label);
+
+// The prediction an operator should look at next: the one with the smallest margin that no
+// label of `decided` (the operator's own lane) overlaps yet. Null when every one is decided.
+const Label* least_sure_prediction(std::span<const Label> predictions, std::span<const Label> decided);
 
 }  // namespace tactile

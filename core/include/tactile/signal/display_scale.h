@@ -37,4 +37,12 @@ RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns
 // max(0, |value - rest| - noise band) per entry; NaN stays NaN.
 std::vector<float> change_from_rest(const std::vector<float>& values, const RestScale& scale);
 
+// Where the signal starts or stops moving near t (a dragged label edge snaps there): the
+// edges between `columns` equal time columns of [t - tolerance, t + tolerance] where "some
+// channel of `channels` (-1: absent) is outside its noise band of `scale`" flips, read as
+// min/max from the source.
+std::vector<double> activity_edges(const SampleSource& source, const std::vector<int>& channels,
+                                   const RestScale& scale, double t, double tolerance,
+                                   int columns = 24);
+
 }  // namespace tactile
