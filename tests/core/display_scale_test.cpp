@@ -73,5 +73,22 @@ TEST(ActivityEdges, AreWhereSomeChannelLeavesAndReentersItsNoiseBand) {
   EXPECT_TRUE(activity_edges(source, {0, -1}, scale, 5.5, 1.0).empty());  // the moving one absent
 }
 
+TEST(PeakChangeTime, IsWhereTheChannelsDifferMostFromRest) {
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 100.0;
+  stream.channels = {"a", "b"};
+  stream.samples = SampleMatrix::Zero(1000, 2);
+  stream.samples(520, 0) = 3.0f;
+  stream.samples(540, 1) = -5.0f;  // the larger change, on the other channel
+  const MemorySampleSource source(stream, "strip:2", "r");
+  RestScale scale;
+  scale.rest = {0.0f, 0.0f};
+  scale.noise_band = {1.0f, 1.0f};
+  EXPECT_DOUBLE_EQ(peak_change_time(source, {0, 1}, scale, 5.0, 6.0, 20000), 5.4);
+  EXPECT_DOUBLE_EQ(peak_change_time(source, {0, -1}, scale, 5.0, 6.0, 20000), 5.2);
+  EXPECT_DOUBLE_EQ(peak_change_time(source, {0, 1}, scale, 5.0, 6.0, 30), 5.2);  // read no further
+}
+
 }  // namespace
 }  // namespace tactile

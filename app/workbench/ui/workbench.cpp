@@ -181,27 +181,9 @@ void Workbench::choose_default_view() {
   if (document.labels.empty() || source.sample_count() == 0) return;
   // The instant of the first labelled touch where the skin changes most from rest.
   const Label& first = document.labels.front();
-  // The skin's own rest scale, kept for it (the same modality).
-  const RestScale& scale = current_rest_scale(state_, columns);
-  std::vector<int> present;
-  std::vector<float> rest;
-  for (size_t k = 0; k < columns.size(); ++k)
-    if (columns[k] >= 0) present.push_back(columns[k]), rest.push_back(scale.rest[k]);
-  if (present.empty()) return;
-  const int64_t start = source.index_at(first.t0);
-  const int64_t end = std::min(source.index_at(first.t1), start + kPeakSearchSamples);
   try {
-    const SampleMatrix samples = source.read(present, start, end - start + 1);
-    int64_t best = (start + end) / 2;
-    double best_change = -1.0;
-    for (int64_t row = 0; row < samples.rows(); ++row) {
-      double change = 0.0;
-      for (size_t k = 0; k < present.size(); ++k)
-        if (std::isfinite(rest[k]))
-          change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - rest[k]);
-      if (change > best_change) best_change = change, best = start + row;
-    }
-    state_.clock.seek(source.time_of(best));
+    state_.clock.seek(peak_change_time(source, columns, current_rest_scale(state_, columns), first.t0,
+                                       first.t1, kPeakSearchSamples));
   } catch (const Error& failure) {
     state_.error = failure.what();
   }

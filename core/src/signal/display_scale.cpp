@@ -141,4 +141,25 @@ std::vector<double> activity_edges(const SampleSource& source, const std::vector
   return edges;
 }
 
+double peak_change_time(const SampleSource& source, const std::vector<int>& channels,
+                        const RestScale& scale, double t0, double t1, int64_t max_samples) {
+  std::vector<int> present;
+  std::vector<float> rest;
+  for (size_t k = 0; k < channels.size(); ++k)
+    if (channels[k] >= 0) present.push_back(channels[k]), rest.push_back(scale.rest[k]);
+  const int64_t start = source.index_at(t0);
+  const int64_t end = std::min(source.index_at(t1), start + max_samples);
+  if (present.empty() || source.sample_count() == 0) return source.time_of((start + end) / 2);
+  const SampleMatrix samples = source.read(present, start, end - start + 1);
+  int64_t best = (start + end) / 2;
+  double best_change = -1.0;
+  for (int64_t row = 0; row < samples.rows(); ++row) {
+    double change = 0.0;
+    for (size_t k = 0; k < present.size(); ++k)
+      if (std::isfinite(rest[k])) change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - rest[k]);
+    if (change > best_change) best_change = change, best = start + row;
+  }
+  return source.time_of(best);
+}
+
 }  // namespace tactile

@@ -45,4 +45,10 @@ std::vector<double> activity_edges(const SampleSource& source, const std::vector
                                    const RestScale& scale, double t, double tolerance,
                                    int columns = 24);
 
+// The instant in [t0, t1) (at most `max_samples` read from t0) where the channels (-1:
+// absent) together differ most from their rest levels, as the sum of |value - rest|: where a
+// touch lights the skin most. The middle of the span when nothing is read.
+double peak_change_time(const SampleSource& source, const std::vector<int>& channels,
+                        const RestScale& scale, double t0, double t1, int64_t max_samples);
+
 }  // namespace tactile
