@@ -14,7 +14,7 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/labels/predict.h"
-#include "tactile/ml/pca.h"
+#include "tactile/ml/table_maps.h"
 #include "tactile/ml/train_all.h"
 #include "jobs.h"
 #include "views.h"
@@ -414,35 +414,17 @@ bool ensure_som(WorkbenchState& state) {
       // (18-20 s on a 454 x 1692 table), with its rows' winners.
       start_job<AnalysisState::SomFit>(
           state, analysis.som_job, "SOM map", [table = analysis.dataset](JobProgress& progress) {
-            const Dataset& dataset = *table;
-            AnalysisState::SomFit fit;
-            fit.classes = dataset.class_names();
-            std::vector<int> labels;
-            for (const std::string& name : dataset.classes)
-              labels.push_back(static_cast<int>(
-                  std::find(fit.classes.begin(), fit.classes.end(), name) - fit.classes.begin()));
-            fit.som = std::make_unique<ml::SomClassifier>(Parameters::parse("epochs=200", "som"));
-            fit.som->set_epoch_observer([&progress](int epoch, int epochs) {
-              progress.report(static_cast<double>(epoch) / epochs,
-                              "epoch " + std::to_string(epoch) + " of " + std::to_string(epochs));
+            ml::TableSom fit = ml::som_of(*table, [&progress](double fraction) {
+              progress.report(fraction, "epoch " + std::to_string(std::lround(200 * fraction)) + " of 200");
               progress.check();
             });
-            fit.som->fit(dataset.features, labels, static_cast<int>(fit.classes.size()), 1);
-            fit.som->set_epoch_observer(nullptr);
-            const ml::Matrix scaled = fit.som->scale(dataset.features);
-            for (Eigen::Index row = 0; row < scaled.rows(); ++row)
-              fit.winners.push_back(ml::som_winner(fit.som->map(), scaled.row(row).transpose()));
-            return fit;
+            return AnalysisState::SomFit{std::move(fit.som), std::move(fit.classes), std::move(fit.winners)};
           });
       return false;
     }
     // A loaded map: the winners of this table's rows (a pass over the rows, no fit).
-    analysis.som_winners.clear();
-    if (analysis.dataset && analysis.dataset->features.cols() == analysis.som->map().weights.cols()) {
-      const ml::Matrix scaled = analysis.som->scale(analysis.dataset->features);
-      for (Eigen::Index row = 0; row < scaled.rows(); ++row)
-        analysis.som_winners.push_back(ml::som_winner(analysis.som->map(), scaled.row(row).transpose()));
-    }
+    analysis.som_winners =
+        analysis.dataset ? ml::som_winners(*analysis.som, analysis.dataset->features) : std::vector<int>{};
     analysis.som_for = table;
   } catch (const std::exception& error) {
     analysis.som.reset();
@@ -463,21 +445,10 @@ bool ensure_scatter(WorkbenchState& state) {
   // The table on its first two principal components, on a worker (7.8 s at 454 x 1692).
   start_job<AnalysisState::ScatterFit>(
       state, analysis.scatter_job, "scatter", [table = analysis.dataset](JobProgress& progress) {
-        const Eigen::MatrixXd& features = table->features;
-        progress.report(0.0, "principal components of " + std::to_string(features.rows()) + " x " +
-                                 std::to_string(features.cols()));
-        ml::PcaOptions options;
-        options.components = std::min<int>(2, static_cast<int>(features.cols()));
-        const ml::Pca pca = ml::fit_pca(features, options);
-        progress.check();
-        AnalysisState::ScatterFit fit;
-        fit.scatter = pca.transform(features);
-        if (fit.scatter.cols() < 2) {
-          fit.scatter.conservativeResize(Eigen::NoChange, 2);
-          fit.scatter.col(1).setZero();
-        }
-        fit.explained = pca.cumulative_ratio()(std::min<Eigen::Index>(1, pca.kept - 1));
-        return fit;
+        ml::TableScatter scatter = ml::scatter_of(
+            table->features, progress.steps("principal components of " + std::to_string(table->rows()) +
+                                                " x " + std::to_string(table->features.cols())));
+        return AnalysisState::ScatterFit{std::move(scatter.points), scatter.explained};
       });
   return false;
 }
