@@ -54,17 +54,22 @@ namespace {
 
 // A touch from 5 s to 6 s on one of two channels: the edges near 5.5 s are where it starts
 // and ends, to a column's width; a quiet stretch has none.
-TEST(ActivityEdges, AreWhereSomeChannelLeavesAndReentersItsNoiseBand) {
+// Ten seconds of two channels at 100 Hz, at rest at 0 with a noise band of 1.
+Stream two_quiet_channels() {
   Stream stream;
   stream.name = "skin";
   stream.rate_hz = 100.0;
   stream.channels = {"a", "b"};
   stream.samples = SampleMatrix::Zero(1000, 2);
+  return stream;
+}
+const RestScale kQuiet{{0.0f, 0.0f}, {1.0f, 1.0f}};
+
+TEST(ActivityEdges, AreWhereSomeChannelLeavesAndReentersItsNoiseBand) {
+  Stream stream = two_quiet_channels();
   for (int row = 500; row < 600; ++row) stream.samples(row, 1) = 10.0f;
   const MemorySampleSource source(stream, "strip:2", "r");
-  RestScale scale;
-  scale.rest = {0.0f, 0.0f};
-  scale.noise_band = {1.0f, 1.0f};
+  const RestScale& scale = kQuiet;
   const std::vector<double> edges = activity_edges(source, {0, 1}, scale, 5.5, 1.0);
   ASSERT_EQ(edges.size(), 2u);
   EXPECT_NEAR(edges[0], 5.0, 2.0 / 24);
@@ -74,17 +79,11 @@ TEST(ActivityEdges, AreWhereSomeChannelLeavesAndReentersItsNoiseBand) {
 }
 
 TEST(PeakChangeTime, IsWhereTheChannelsDifferMostFromRest) {
-  Stream stream;
-  stream.name = "skin";
-  stream.rate_hz = 100.0;
-  stream.channels = {"a", "b"};
-  stream.samples = SampleMatrix::Zero(1000, 2);
+  Stream stream = two_quiet_channels();
   stream.samples(520, 0) = 3.0f;
   stream.samples(540, 1) = -5.0f;  // the larger change, on the other channel
   const MemorySampleSource source(stream, "strip:2", "r");
-  RestScale scale;
-  scale.rest = {0.0f, 0.0f};
-  scale.noise_band = {1.0f, 1.0f};
+  const RestScale& scale = kQuiet;
   EXPECT_DOUBLE_EQ(peak_change_time(source, {0, 1}, scale, 5.0, 6.0, 20000), 5.4);
   EXPECT_DOUBLE_EQ(peak_change_time(source, {0, -1}, scale, 5.0, 6.0, 20000), 5.2);
   EXPECT_DOUBLE_EQ(peak_change_time(source, {0, 1}, scale, 5.0, 6.0, 30), 5.2);  // read no further

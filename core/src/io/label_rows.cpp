@@ -587,6 +587,19 @@ std::vector<row_checksum::Field> rejection_fields(const Rejection& rejection) {
           {"annotator", rejection.annotator}, {"time", rejection.time}};
 }
 
+namespace {
+
+// Parameters 1-5 of a statement: what names a rejection (recording, method, span, annotator).
+sqlite::Statement& bind_rejection(sqlite::Statement& statement, const Rejection& rejection) {
+  return statement.bind(1, rejection.recording)
+      .bind(2, rejection.method)
+      .bind(3, rejection.t0)
+      .bind(4, rejection.t1)
+      .bind(5, rejection.annotator);
+}
+
+}  // namespace
+
 void remember_rejection(sqlite3* database, const std::string& path, const Label& suggestion,
                         const std::string& annotator) {
   const std::string where = where_label(path, suggestion.id);
@@ -596,12 +609,7 @@ void remember_rejection(sqlite3* database, const std::string& path, const Label&
     sqlite::Statement insert(database, where,
                              "INSERT INTO rejections (recording, method, t0, t1, annotator, time, "
                              "checksum) VALUES (?, ?, ?, ?, ?, ?, '')");
-    insert.bind(1, rejection.recording)
-        .bind(2, rejection.method)
-        .bind(3, rejection.t0)
-        .bind(4, rejection.t1)
-        .bind(5, rejection.annotator)
-        .bind(6, rejection.time);
+    bind_rejection(insert, rejection).bind(6, rejection.time);
     insert.run();
   }
   rejection.id = sqlite3_last_insert_rowid(database);
@@ -616,11 +624,8 @@ void forget_rejection(sqlite3* database, const std::string& path, const Label& s
   sqlite::Statement erase(database, where_label(path, suggestion.id),
                           "DELETE FROM rejections WHERE id = (SELECT MAX(id) FROM rejections WHERE "
                           "recording = ? AND method = ? AND t0 = ? AND t1 = ? AND annotator = ?)");
-  erase.bind(1, suggestion.recording)
-      .bind(2, suggestion.annotator)
-      .bind(3, suggestion.t0)
-      .bind(4, suggestion.t1)
-      .bind(5, annotator);
+  bind_rejection(erase, {0, suggestion.recording, suggestion.annotator, suggestion.t0, suggestion.t1,
+                         annotator, ""});
   erase.run();
 }
 
