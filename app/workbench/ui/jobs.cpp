@@ -25,7 +25,7 @@ std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
   for (AnyJob* job : std::initializer_list<AnyJob*>{
            state.labelling.segment_job.get(), state.analysis.predict_job.get(),
            state.analysis.som_job.get(), state.analysis.scatter_job.get(),
-           state.analysis.map_job.get(), state.export_job.get()})
+           state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get()})
     if (job) jobs.push_back(job);
   return jobs;
 }
