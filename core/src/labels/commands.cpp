@@ -22,6 +22,24 @@ LabelEdit adopt_edit(const Label& label, const std::string& class_name, const st
   return edit;
 }
 
+LabelEdit add_edit(Label label) {
+  LabelEdit edit;
+  edit.add = {std::move(label)};
+  return edit;
+}
+
+LabelEdit remove_edit(int64_t id) {
+  LabelEdit edit;
+  edit.remove = {id};
+  return edit;
+}
+
+LabelEdit reject_edit(int64_t id) {
+  LabelEdit edit;
+  edit.reject = {id};
+  return edit;
+}
+
 LabelEdit class_edit(Label label, const std::string& class_name) {
   label.class_name = class_name;
   LabelEdit edit;

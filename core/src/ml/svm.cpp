@@ -321,6 +321,15 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
             learner.support_vectors(vector, node->index - 1) = node->value;
         }
       }
+      // A linear learner is one direction, w = Σ coef_i sv_i: kept as its only support vector
+      // with coefficient 1, the decision z·w - rho is the same sum. A model of Robovie's 37401
+      // correlation features shrinks from every support vector (1.6 GB of JSON) to one row per
+      // learner, and predicts at one dot product per learner.
+      if (kernel_ == SvmKernel::kLinear && learner.support_vectors.rows() > 1) {
+        const Vector direction = learner.support_vectors.transpose() * learner.coefficients;
+        learner.support_vectors = direction.transpose();
+        learner.coefficients = Vector::Ones(1);
+      }
       learners_.push_back(std::move(learner));
     }
   }

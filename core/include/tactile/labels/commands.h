@@ -5,11 +5,11 @@
 // restart, and redo puts it back. The workbench's keys, menus and scripts and the command line
 // build their edits here (and in suggestions.h, predict.h), so each policy is written once.
 //
-//   commit a label      LabelEdit{.add = {label}}
-//   change its class    LabelEdit{.update = {label with the class}}   (also a dragged edge)
-//   delete              LabelEdit{.remove = {id}}
+//   commit a label      add_edit(label)
+//   change its class    class_edit(label, class)     a dragged edge: bounds_edit(label, t0, t1)
+//   delete              remove_edit(id)
 //   accept / confirm    adopt_edit(suggestion or prediction, class, annotator)
-//   reject              LabelEdit{.reject = {id}}
+//   reject              reject_edit(id)
 //   segmenter run       segmenter_run(...).edit          (suggestions.h)
 //   predict             prediction_edit(...)             (predict.h)
 //   import              ground_truth_import(...)
@@ -27,6 +27,11 @@ namespace tactile {
 // prediction's copy notes what the model said ("confirmed model: tap", "corrected model: tap").
 Label adopted_label(const Label& label, const std::string& class_name, const std::string& annotator);
 LabelEdit adopt_edit(const Label& label, const std::string& class_name, const std::string& annotator);
+
+// One label added, removed, or rejected (a suggestion: removed and its span remembered).
+LabelEdit add_edit(Label label);
+LabelEdit remove_edit(int64_t id);
+LabelEdit reject_edit(int64_t id);
 
 // A changed copy of `label` as an edit of it: its class, or its bounds (a dragged edge).
 LabelEdit class_edit(Label label, const std::string& class_name);

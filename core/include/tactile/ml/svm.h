@@ -55,7 +55,7 @@ struct PairwiseSvm {
   double scale = 1.0;
   double rho = 0.0;
   Vector coefficients;     // y_i alpha_i per support vector
-  Matrix support_vectors;  // rows, standardised
+  Matrix support_vectors;  // rows, standardised; a linear learner keeps one: w, coefficient 1
 };
 
 // MATLAB's 'auto' kernel scale for one binary learner: up to 100 points drawn per class
