@@ -111,3 +111,35 @@ TEST(Job, ASomFitStopsAtTheEpochAfterCancel) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// Deep code polls the cancel flag of the job its thread works for, with no flag passed down.
+TEST(JobCancelFlag, IsTheWorkersJobsAndScopesPassItOn) {
+  EXPECT_EQ(current_cancel_flag(), nullptr);
+  EXPECT_FALSE(cancel_requested());
+  std::atomic<bool> seen{false}, started{false};
+  Job<int> job("polls", [&](JobProgress& progress) {
+    EXPECT_EQ(current_cancel_flag(), progress.flag());
+    started = true;
+    while (!cancel_requested()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    seen = true;
+    progress.check();
+    return 0;
+  });
+  while (!started.load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  job.cancel();
+  job.wait();
+  EXPECT_TRUE(seen.load());
+  EXPECT_EQ(job.status(), JobStatus::kCancelled);
+  std::atomic<bool> flag{true};
+  {
+    const CancelScope scope(&flag);
+    EXPECT_TRUE(cancel_requested());
+  }
+  EXPECT_FALSE(cancel_requested());
+}
+
+}  // namespace
+}  // namespace tactile

@@ -7,6 +7,7 @@
 
 #include "ml_toy_sets.h"
 #include "tactile/error.h"
+#include "tactile/jobs/job.h"
 #include "tactile/ml/svm.h"
 
 namespace tactile::ml {
@@ -37,6 +38,20 @@ TEST(SupportVectorMachine, SeparatesTwoDistantBlobsWithALinearKernel) {
   const Vector direction = learner.support_vectors.transpose() * learner.coefficients;
   EXPECT_LT(direction(0), 0.0);
   EXPECT_GT(std::abs(direction(0)), 5.0 * std::abs(direction(1)));
+}
+
+// A fit for a cancelled job stops between learners; a linear one keeps one direction each.
+TEST(SupportVectorMachine, AFitForACancelledJobStopsAndALinearLearnerKeepsOneDirection) {
+  const toy::LabelledSet train = toy::blobs(three_centres(), 30, 1.0, 3);
+  SupportVectorMachine svm = make_svm("linear-svm");
+  svm.fit(train.x, train.y, 3, 11);
+  for (const PairwiseSvm& learner : svm.learners()) {
+    EXPECT_EQ(learner.support_vectors.rows(), 1);
+    EXPECT_EQ(learner.coefficients.size(), 1);
+  }
+  std::atomic<bool> cancelled{true};
+  const CancelScope scope(&cancelled);
+  EXPECT_THROW(svm.fit(train.x, train.y, 3, 11), Error);
 }
 
 TEST(SupportVectorMachine, EveryPresetClassifiesThreeBlobs) {

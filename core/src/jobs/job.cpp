@@ -12,7 +12,16 @@ namespace tactile {
 
 namespace {
 [[maybe_unused]] constexpr int kWorkerNice = 19;
+thread_local const std::atomic<bool>* thread_cancel_flag = nullptr;
 }
+
+const std::atomic<bool>* current_cancel_flag() { return thread_cancel_flag; }
+
+CancelScope::CancelScope(const std::atomic<bool>* flag) : previous_(thread_cancel_flag) {
+  thread_cancel_flag = flag;
+}
+
+CancelScope::~CancelScope() { thread_cancel_flag = previous_; }
 
 const char* to_string(JobStatus status) {
   switch (status) {
@@ -47,6 +56,7 @@ JobRunner::JobRunner(std::string name, std::function<void(JobProgress&)> work)
     // Below the window's thread, as the training job: frames keep their time.
     setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNice);
 #endif
+    const CancelScope scope(progress_.flag());
     try {
       progress_.check();
       work(progress_);

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "tactile/error.h"
+#include "tactile/jobs/job.h"
 #include "tactile/ml/grid_search.h"
 #include "tactile/ml/sampling.h"
 
@@ -184,6 +185,8 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
   int done = 0;
   const auto cancelled = [&] { return control.cancel && control.cancel->load(); };
   const auto work = [&] {
+    // The folds' threads work for the same job: a classifier's fit polls its flag.
+    const CancelScope scope(control.cancel ? control.cancel : current_cancel_flag());
     while (!failed.load() && !cancelled()) {
       const int fold = next_fold.fetch_add(1);
       if (fold >= fold_count) return;

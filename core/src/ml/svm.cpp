@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
+#include "tactile/jobs/job.h"
 #include "tactile/stats/statistics.h"
 #include "training_checks.h"
 
@@ -230,6 +231,9 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
   std::mt19937_64 engine(seed);
   for (size_t first = 0; first < present.size(); ++first) {
     for (size_t second = first + 1; second < present.size(); ++second) {
+      // A fit of many classes is many learners (105 for Robovie's 15): a cancelled job stops
+      // between two of them rather than after the last.
+      if (cancel_requested()) throw Error(preset_, "cancelled");
       PairwiseSvm learner;
       learner.positive_class = present[first];
       learner.negative_class = present[second];

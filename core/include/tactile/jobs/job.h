@@ -58,6 +58,28 @@ class JobProgress {
   std::string stage_;
 };
 
+// The cancel flag of the job the calling thread works for; null on a thread that works for
+// none. Long loops deep in core that take no flag of their own (a classifier's fit, one
+// learner after another) poll it, so a job stops there too. JobRunner sets it for its worker;
+// code that starts threads for a job (an evaluation's folds) passes it on with CancelScope.
+const std::atomic<bool>* current_cancel_flag();
+// True when the calling thread's job was cancelled.
+inline bool cancel_requested() {
+  const std::atomic<bool>* flag = current_cancel_flag();
+  return flag && flag->load();
+}
+// Sets the calling thread's cancel flag for a scope.
+class CancelScope {
+ public:
+  explicit CancelScope(const std::atomic<bool>* flag);
+  ~CancelScope();
+  CancelScope(const CancelScope&) = delete;
+  CancelScope& operator=(const CancelScope&) = delete;
+
+ private:
+  const std::atomic<bool>* previous_;
+};
+
 // The part of a job that does not depend on its result's type.
 class JobRunner {
  public:
