@@ -33,12 +33,17 @@ struct RecordingRows {
   std::exception_ptr error;
 };
 
-RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusRecording& job) {
+RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusRecording& job,
+                                const std::atomic<bool>* cancel) {
+  const auto stop_if_cancelled = [cancel] {
+    if (cancel != nullptr && cancel->load()) throw Error("features", "cancelled");
+  };
   RecordingRows rows;
-  const Recording raw = read_recording(job.path);
+  const Recording raw = read_recording(job.path, [&](double) { stop_if_cancelled(); });
   const SkinLayout layout = load_layout(raw.layout_id);
   rows.layout_id = layout.id;
   rows.columns = extractor.columns(layout);
+  stop_if_cancelled();
   const Recording recording = extractor.preprocess(raw, layout);
   const auto subject = recording.metadata.find("subject");
   Metadata shared = recording.metadata;
@@ -46,6 +51,7 @@ RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusR
   for (const char* key : {"subject", "class", "recording", "segment_id"}) shared.erase(key);
   shared["layout"] = layout.id;
   for (const Label& segment : job.segments) {
+    stop_if_cancelled();  // a long recording has many segments: a cancel stops between two
     const FeatureResult result = extractor.extract(SegmentInput{recording, layout, segment});
     std::string reason = result.skip_reason;
     if (reason.empty() && result.values.size() != rows.columns.size())
@@ -158,7 +164,7 @@ CorpusDataset extract_corpus(const FeatureExtractor& extractor,
       if (index >= total) return;
       RecordingRows& rows = results[static_cast<size_t>(index)];
       try {
-        rows = extract_recording(extractor, recordings[static_cast<size_t>(index)]);
+        rows = extract_recording(extractor, recordings[static_cast<size_t>(index)], options.cancel);
       } catch (...) {
         rows.error = std::current_exception();
       }

@@ -463,7 +463,8 @@ std::pair<SampleMatrix, SampleMatrix> RecordingFile::read_overview(
   return overview;
 }
 
-Recording RecordingFile::read_all() const {
+Recording RecordingFile::read_all(const std::function<void(double)>& step) const {
+  int64_t done = 0;  // values read, for step
   Recording recording;
   recording.id = recording_id_;
   recording.layout_id = layout_id_;
@@ -475,13 +476,29 @@ Recording RecordingFile::read_all() const {
     stream.start_time = info.start_time;
     stream.channels = info.channels;
     stream.units = info.units;
-    stream.samples = read(info.name, 0, info.sample_count);
+    if (!step) {
+      stream.samples = read(info.name, 0, info.sample_count);
+    } else {
+      int64_t total = 0;
+      for (const StreamInfo& each : streams_) total += each.sample_count * static_cast<int64_t>(each.channels.size());
+      stream.samples.resize(info.sample_count, static_cast<Eigen::Index>(info.channels.size()));
+      const int64_t block =
+          std::max<int64_t>(1, (int64_t{1} << 20) / std::max<int64_t>(1, static_cast<int64_t>(info.channels.size())));
+      for (int64_t first = 0; first < info.sample_count; first += block) {
+        const int64_t rows = std::min(block, info.sample_count - first);
+        stream.samples.middleRows(first, rows) = read(info.name, first, rows);
+        done += rows * static_cast<int64_t>(info.channels.size());
+        step(total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0);
+      }
+    }
     stream.timestamps = read_timestamps(info.name);
     recording.streams.push_back(std::move(stream));
   }
   return recording;
 }
 
-Recording read_recording(const std::string& path) { return RecordingFile(path).read_all(); }
+Recording read_recording(const std::string& path, const std::function<void(double)>& step) {
+  return RecordingFile(path).read_all(step);
+}
 
 }  // namespace tactile

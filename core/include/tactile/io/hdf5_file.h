@@ -5,6 +5,7 @@
 // of a time range on demand.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -28,8 +29,10 @@ inline constexpr int64_t kOverviewBlock = 256;
 // and leaves no temporary file behind.
 void write_recording(const std::string& path, const Recording& recording);
 
-// Reads everything. Throws tactile::Error naming the file and the dataset.
-Recording read_recording(const std::string& path);
+// Reads everything. Throws tactile::Error naming the file and the dataset. With `step`, each
+// stream is read in blocks of about a million values and step(share read) is called after
+// each (a job's progress and cancel: the callback throws).
+Recording read_recording(const std::string& path, const std::function<void(double)>& step = {});
 
 struct StreamInfo {
   std::string name;
@@ -90,7 +93,7 @@ class RecordingFile {
   // Per-block {min, max}: rows = blocks of overview_block() samples, cols = channels.
   std::pair<SampleMatrix, SampleMatrix> read_overview(const std::string& stream) const;
   int64_t overview_block() const { return overview_block_; }
-  Recording read_all() const;
+  Recording read_all(const std::function<void(double)>& step = {}) const;
 
  private:
   RecordingFile() = default;
