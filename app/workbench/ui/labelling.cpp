@@ -65,7 +65,6 @@ std::optional<std::vector<int64_t>> apply_command(WorkbenchState& state, const L
   }
 }
 
-
 const LaneIndex* active_lane(const WorkbenchState& state) {
   if (!state.document) return nullptr;
   const int lane = state.document->lanes.find({LabelSource::kManual, state.labelling.annotator});
