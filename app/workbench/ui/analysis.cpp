@@ -415,7 +415,7 @@ bool ensure_som(WorkbenchState& state) {
       start_job<AnalysisState::SomFit>(
           state, analysis.som_job, "SOM map", [table = analysis.dataset](JobProgress& progress) {
             ml::TableSom fit = ml::som_of(*table, [&progress](double fraction) {
-              progress.report(fraction, "epoch " + std::to_string(std::lround(200 * fraction)) + " of 200");
+              progress.report(fraction, "fitting the map");
               progress.check();
             });
             return AnalysisState::SomFit{std::move(fit.som), std::move(fit.classes), std::move(fit.winners)};

@@ -2,9 +2,26 @@
 
 #include <imgui.h>
 
+#include "tactile/signal/sample_source.h"
 #include "views.h"
 
 namespace tactile {
+
+std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
+                                                         double to) {
+  const SampleSource& source = document.samples();
+  if (dynamic_cast<const FileSampleSource*>(&source))
+    return [path = document.path, stream = source.info().stream, from, to](JobProgress& progress) {
+      FileSourceOptions options;
+      options.stream = stream;
+      options.cache_bytes = int64_t{8} << 20;
+      options.damaged_chunks_as_gaps = true;
+      return read_all(FileSampleSource(path, options), progress.steps("reading the recording", from, to));
+    };
+  // A live stream: what has arrived so far (a bounded buffer), copied now.
+  auto copy = std::make_shared<const Recording>(read_all(source));
+  return [copy](JobProgress&) { return *copy; };
+}
 
 void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job) {
   if (!job) return;
@@ -68,7 +85,7 @@ bool draw_job_status(WorkbenchState& state) {
   if (ImGui::SmallButton("Cancel")) job->cancel();
   remember_item(state, "button:Cancel job");
   ImGui::SameLine();
-  const std::string stage = job->name() + ": " + job->stage();
+  const std::string stage = job->stage().empty() ? job->name() : job->name() + ": " + job->stage();
   ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(320, 0), stage.c_str());
   ImGui::SameLine();
   ImGui::TextDisabled("the window stays live; the result is applied when it ends");

@@ -11,10 +11,17 @@
 #include <string>
 #include <vector>
 
+#include "tactile/io/recording.h"
 #include "tactile/jobs/job.h"
 #include "workbench_state.h"
 
 namespace tactile {
+
+// How a job reads the whole open recording: through a reader of its own on the file (the
+// window's source stays the window's), reporting progress from `from` to `to` of the job; for
+// a live stream, a copy of what has arrived, taken now.
+std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
+                                                         double to);
 
 // Cancels `job` and keeps it until its worker has ended.
 void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job);

@@ -227,22 +227,6 @@ bool select_next_suggestion(WorkbenchState& state, const std::string& method, do
 
 }  // namespace
 
-std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
-                                                         double to) {
-  const SampleSource& source = document.samples();
-  if (dynamic_cast<const FileSampleSource*>(&source))
-    return [path = document.path, stream = source.info().stream, from, to](JobProgress& progress) {
-      FileSourceOptions options;
-      options.stream = stream;
-      options.cache_bytes = int64_t{8} << 20;
-      options.damaged_chunks_as_gaps = true;
-      return read_all(FileSampleSource(path, options), progress.steps("reading the recording", from, to));
-    };
-  // A live stream: what has arrived so far (a bounded buffer), copied now.
-  auto copy = std::make_shared<const Recording>(read_all(source));
-  return [copy](JobProgress&) { return *copy; };
-}
-
 bool run_segmenter(WorkbenchState& state, const std::string& method) {
   if (!state.document) return false;
   Document& document = *state.document;

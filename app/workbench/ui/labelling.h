@@ -40,12 +40,6 @@ bool undo_edit(WorkbenchState& state, bool redo);
 // and moves the cursor to its start.
 bool walk_labels(WorkbenchState& state, int direction);
 
-// How a job reads the whole open recording: through a reader of its own on the file (the
-// window's source stays the window's), reporting progress from `from` to `to` of the job; for
-// a live stream, a copy of what has arrived, taken now.
-std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
-                                                         double to);
-
 // Runs a segmenter on the open recording (parameters from the Labels menu) as a job; when it
 // ends (apply_finished_segmenter, once a frame) its segments replace its earlier ones for
 // this recording, less the rejected ones, as one command, and the first is selected.
