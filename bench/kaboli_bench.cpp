@@ -11,6 +11,7 @@
 
 #include "tactile/features/kaboli.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 
 namespace {
 
@@ -34,7 +35,7 @@ const Corpus& corpus() {
     tactile::SimulationOptions options;
     double seconds = 0.0;
     for (int trial = 0; seconds < kCorpusSeconds; ++trial) {
-      tactile::SimulatedTrial simulated = tactile::trial_generator("nao")(
+      tactile::SimulatedTrial simulated = tactile::skin_record("nao").simulate(
           built.layout, options, trial % options.subjects, trial / options.subjects);
       const tactile::Stream& stream = simulated.recording.streams.front();
       seconds += stream.duration();

@@ -14,7 +14,7 @@
 
 #include "analysis.h"
 #include "bench_support.h"
-#include "tactile/sim/workspace.h"
+#include "tactile/skins/workspace.h"
 #include "workbench.h"
 
 namespace {
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   const size_t presets = state.analysis.results.size();
   // The same run with no window drawing: what the training costs on its own.
   const auto alone_start = Clock::now();
-  tactile::ml::start_training_job(state.analysis.last_request)->wait();
+  tactile::start_training_job(state.analysis.last_request)->wait();
   const double alone_seconds = std::chrono::duration<double>(Clock::now() - alone_start).count();
   const double rows = state.analysis.dataset ? static_cast<double>(state.analysis.dataset->rows()) : 0;
   std::printf("{\"rows\": %.0f, \"presets\": %zu, \"train_all_seconds\": %.2f, "

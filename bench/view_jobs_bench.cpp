@@ -30,6 +30,7 @@
 #include "tactile/layout/skin_layout.h"
 #include "tactile/layout/somatosensory.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 #include "workbench.h"
 
 namespace {
@@ -69,7 +70,8 @@ void write_long_robovie(const std::filesystem::path& folder) {
   std::vector<tactile::Label> labels;
   double offset = 0.0;
   for (int trial = 0; offset < 1800.0; ++trial) {
-    tactile::SimulatedTrial made = tactile::trial_generator("robovie")(layout, options, 0, trial);
+    tactile::SimulatedTrial made =
+        tactile::skin_record("robovie").simulate(layout, options, 0, trial);
     tactile::Stream& stream = made.recording.streams.front();
     if (trial == 0) {
       whole = made.recording;

@@ -15,10 +15,11 @@
 #include "progress.h"
 #include "tactile/error.h"
 #include "tactile/features/dataset.h"
-#include "tactile/ml/classifier.h"
 #include "tactile/labels/predict.h"
+#include "tactile/ml/classifier.h"
 #include "tactile/ml/evaluation.h"
 #include "tactile/ml/train_all.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile::cli {
 
@@ -193,11 +194,17 @@ void run_evaluate(const EvaluateArgs& args) {
   const ml::EvaluationResult result =
       ml::evaluate(dataset, args.classifier, protocol, args.seed, control);
   bar.finish();
-  if (!args.save_model.empty())
-    write_json_file(args.save_model,
-                    fit_model_document(dataset, args.classifier, args.seed, args.pipeline,
-                                       args.pipeline_params),
-                    "model");
+  if (!args.save_model.empty()) {
+    // The skin's own pipeline unless told, when every row is of one skin.
+    const std::string layout = dataset.shared_metadata("layout");
+    const std::string pipeline = !args.pipeline.empty() ? args.pipeline
+                                 : layout.empty()       ? ""
+                                                        : default_pipeline(layout);
+    write_json_file(
+        args.save_model,
+        fit_model_document(dataset, args.classifier, args.seed, pipeline, args.pipeline_params),
+        "model");
+  }
   if (!args.out.empty()) {
     nlohmann::json document = ml::to_json(result, true);
     document["features"] = args.features;

@@ -16,6 +16,7 @@
 #include "tactile/io/label_store.h"
 #include "tactile/labels/commands.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/text.h"
 
 namespace tactile::cli {
 
@@ -211,8 +212,7 @@ void register_import(CLI::App& app) {
       ->required();
   command
       ->add_option("--layout", options->layout,
-                   "Layout id: nao, tsa, fur, robovie, flux, "
-                   "grid:RxC, strip:N")
+                   "Layout id: " + joined(known_layout_ids()) + ", grid:RxC, strip:N")
       ->required();
   command
       ->add_option("--rate", options->rate_hz,

@@ -5,13 +5,13 @@
 // Every subcommand opens an existing database only: a mistyped path must not
 // leave a new empty database behind.
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
-#include <map>
-#include <nlohmann/json.hpp>
-#include <charconv>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -23,6 +23,7 @@
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/labels/quality.h"
+#include "tactile/skins/skin.h"
 #include "tactile/text.h"
 
 namespace tactile::cli {
@@ -231,7 +232,7 @@ void run_check(const LabelsOptions& options) {
   const std::vector<Label> labels = store.list(filter);
   QualityOptions quality;
   // The skin's vocabulary, or every vocabulary the store holds.
-  for (const char* skin : {"nao", "tsa", "fur", "robovie", "flux"})
+  for (const std::string& skin : skin_ids())
     if (options.skin.empty() || options.skin == skin)
       for (const std::string& name : store.classes(skin)) quality.vocabulary.insert(name);
   if (!options.skin.empty())
@@ -327,8 +328,7 @@ void register_labels(CLI::App& app) {
   CLI::App* classes_command =
       labels->add_subcommand("classes", "Print a skin's class vocabulary, one per line");
   classes_command->add_option("db", options->database, "Label database (SQLite)")->required();
-  classes_command->add_option("skin", options->skin, "Skin id: nao, tsa, fur, robovie, flux")
-      ->required();
+  classes_command->add_option("skin", options->skin, "Skin id: " + joined(skin_ids()))->required();
   classes_command->callback([options] { run_classes(*options); });
 }
 

@@ -6,7 +6,9 @@
 #include "commands.h"
 #include "progress.h"
 #include "tactile/error.h"
-#include "tactile/sim/workspace.h"
+#include "tactile/skins/skin.h"
+#include "tactile/skins/workspace.h"
+#include "tactile/text.h"
 
 namespace tactile::cli {
 
@@ -55,7 +57,7 @@ void register_simulate(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
   CLI::App* command =
       app.add_subcommand("simulate", "Write synthetic recordings with ground-truth labels");
-  command->add_option("--skin", args->skin, "Skin to simulate: nao, tsa, fur, robovie, flux");
+  command->add_option("--skin", args->skin, "Skin to simulate: " + joined(simulated_skin_ids()));
   command->add_option("--out", args->out, "Output folder (recordings as .h5, labels in labels.db)");
   command->add_option("--demo", args->demo,
                       "Write the small demo workspace of all five skins to this folder");

@@ -16,6 +16,8 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/live/packet_stream.h"
 #include "tactile/live/udp.h"
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 
 namespace tactile::cli {
 
@@ -107,7 +109,7 @@ void register_stream_listen(CLI::App& app) {
   auto options = std::make_shared<StreamListenOptions>();
   CLI::App* command = app.add_subcommand(
       "stream-listen", "Receive live UDP packets of a skin, report loss and rate, record them");
-  command->add_option("--skin", options->skin, "Skin: nao, tsa, fur, robovie, flux")->required();
+  command->add_option("--skin", options->skin, "Skin: " + joined(packet_skin_ids()))->required();
   command->add_option("--from", options->from, "Where to listen, udp://HOST:PORT")->required();
   command->add_option("--duration", options->duration, "Seconds to listen at most")->required();
   command->add_option("--idle", options->idle,

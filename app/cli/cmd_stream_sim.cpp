@@ -15,6 +15,8 @@
 #include "tactile/live/packet_stream.h"
 #include "tactile/live/udp.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 
 namespace tactile::cli {
 
@@ -52,7 +54,7 @@ void run_stream_sim(const StreamSimOptions& options) {
     throw Error("--duration", "must be a number of seconds, 0 or more (0: one trial)");
   const PacketFormatInfo format = packet_format_info(options.skin);
   const SkinLayout layout = load_layout(options.skin);
-  const TrialGenerator& generator = trial_generator(options.skin);
+  const TrialGenerator& generator = skin_record(options.skin, "--skin").simulate;
   SimulationOptions simulation;
   simulation.seed = options.seed;
   simulation.subjects = 1;
@@ -132,7 +134,7 @@ void register_stream_sim(CLI::App& app) {
   auto options = std::make_shared<StreamSimOptions>();
   CLI::App* command = app.add_subcommand(
       "stream-sim", "Send a simulated skin's signals as live UDP packets (docs/PACKETS.md)");
-  command->add_option("--skin", options->skin, "Skin: nao, tsa, fur, robovie, flux")->required();
+  command->add_option("--skin", options->skin, "Skin: " + joined(simulated_skin_ids()))->required();
   command->add_option("--to", options->to, "Destination, udp://HOST:PORT")->required();
   command->add_option("--rate-factor", options->rate_factor,
                       "Send at the device's rate times this (default 1)");

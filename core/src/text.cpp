@@ -25,4 +25,10 @@ std::string significant_text(double value, int digits) {
 
 std::string in_quotes(const std::string& text) { return "\"" + text + "\""; }
 
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : separator) + item;
+  return text;
+}
+
 }  // namespace tactile

@@ -13,13 +13,14 @@
 #include "tactile/features/silvera_tawil.h"
 #include "tactile/segment/proximity.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 namespace {
 
 struct Trial {
   SkinLayout layout = load_layout("nao");
-  SimulatedTrial simulated = trial_generator("nao")(layout, SimulationOptions{}, 0, 0);
+  SimulatedTrial simulated = skin_record("nao").simulate(layout, SimulationOptions{}, 0, 0);
 };
 
 const Trial& trial() {

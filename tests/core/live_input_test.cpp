@@ -1,14 +1,15 @@
 // Live inputs: addresses refused with their reason, a serial line through a pseudo-terminal
 // pair (whole, cut anywhere, with noise between packets), the simulator and a replayed file
 // through a LiveReceiver, and UDP loss counted.
+#include "tactile/live/live_input.h"
+
 #include <fcntl.h>
 #include <gtest/gtest.h>
-
-#include <cstring>
 #include <stdlib.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <thread>
 
@@ -16,12 +17,12 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/layout/skin_layout.h"
-#include "tactile/live/live_input.h"
 #include "tactile/live/live_receiver.h"
 #include "tactile/live/live_source.h"
 #include "tactile/live/packets.h"
 #include "tactile/live/udp.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 namespace {
@@ -69,7 +70,7 @@ Stream fur_stream() {
   const SkinLayout layout = load_layout("fur");
   SimulationOptions options;
   options.subjects = 1;
-  SimulatedTrial trial = trial_generator("fur")(layout, options, 0, 0);
+  SimulatedTrial trial = skin_record("fur").simulate(layout, options, 0, 0);
   return trial.recording.streams.front();
 }
 
@@ -201,7 +202,7 @@ TEST(LiveReceiver, AReplayedFileArrivesWholeAndEnds) {
   const SkinLayout layout = load_layout("fur");
   SimulationOptions options;
   options.subjects = 1;
-  SimulatedTrial trial = trial_generator("fur")(layout, options, 0, 0);
+  SimulatedTrial trial = skin_record("fur").simulate(layout, options, 0, 0);
   Stream& stream = trial.recording.streams.front();
   stream.samples.conservativeResize(60, Eigen::NoChange);  // 4 s at 15 Hz
   stream.samples.row(20).setConstant(NAN);                 // a datagram lost when it was recorded

@@ -1,6 +1,8 @@
 // Online classification of a simulated fur stream with a model fitted on other trials: the
 // stream between touches is "no touch", each touch gets one final decision after it ends,
 // and the final decisions mostly agree with the offline pipeline on the same recording.
+#include "tactile/live/online_classifier.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -13,8 +15,8 @@
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/labels/predict.h"
-#include "tactile/live/online_classifier.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 namespace {
@@ -27,7 +29,7 @@ class OnlineClassifierTest : public ::testing::Test {
     options.subjects = 3;
     std::vector<CorpusRecording> jobs;
     for (int subject = 0; subject < 3; ++subject) {
-      SimulatedTrial trial = trial_generator("fur")(layout_, options, subject, 0);
+      SimulatedTrial trial = skin_record("fur").simulate(layout_, options, subject, 0);
       CorpusRecording job;
       job.id = trial.recording.id;
       job.path = directory_.file(job.id + ".h5");
@@ -39,7 +41,7 @@ class OnlineClassifierTest : public ::testing::Test {
     const auto extractor = make_feature_extractor("fur", {});
     const CorpusDataset corpus = extract_corpus(*extractor, jobs);
     model_json_ = fit_model_document(corpus.dataset, "linear-svm", 1, "fur");
-    held_out_ = trial_generator("fur")(layout_, options, 1, 1);
+    held_out_ = skin_record("fur").simulate(layout_, options, 1, 1);
   }
 
   SavedModel model() const { return model_from_json(model_json_, "test model"); }

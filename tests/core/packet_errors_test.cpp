@@ -153,7 +153,7 @@ TEST(BrokenPacket, NaoCellIdsMustBeKnownAndAppearOnce) {
 }
 
 TEST(BrokenPacket, EveryTruncationOfEverySkinIsRefusedWithoutACrash) {
-  for (const std::string& skin : packet_skins()) {
+  for (const std::string& skin : packet_skin_ids()) {
     const SkinLayout layout = load_layout(skin);
     const std::vector<uint8_t> datagram =
         valid_datagram(layout, packet_format_info(skin).samples_per_datagram);
@@ -168,7 +168,7 @@ TEST(BrokenPacket, EveryTruncationOfEverySkinIsRefusedWithoutACrash) {
 
 TEST(BrokenPacket, RandomByteFlipsDecodeOrThrowButNeverCrash) {
   std::mt19937_64 engine(2024);
-  for (const std::string& skin : packet_skins()) {
+  for (const std::string& skin : packet_skin_ids()) {
     const SkinLayout layout = load_layout(skin);
     const std::vector<uint8_t> datagram = valid_datagram(layout);
     std::uniform_int_distribution<size_t> position(0, datagram.size() - 1);

@@ -10,6 +10,7 @@
 #include "tactile/error.h"
 #include "tactile/sim/flux_sensor.h"
 #include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 namespace {
@@ -20,7 +21,7 @@ SimulatedTrial generate(uint64_t seed, int subject, int trial, int repetitions =
   SimulationOptions options;
   options.seed = seed;
   options.repetitions = repetitions;
-  return trial_generator("flux")(load_layout("flux"), options, subject, trial);
+  return skin_record("flux").simulate(load_layout("flux"), options, subject, trial);
 }
 
 // The default trial of one subject, generated once for the whole suite.
@@ -354,7 +355,7 @@ TEST(SimFlux, SubjectsKeepTheirPressDurationAcrossTrials) {
 TEST(SimFlux, NegativeRepetitionsAreRefused) {
   SimulationOptions options;
   options.repetitions = -1;
-  EXPECT_THROW(trial_generator("flux")(load_layout("flux"), options, 0, 0), Error);
+  EXPECT_THROW(skin_record("flux").simulate(load_layout("flux"), options, 0, 0), Error);
 }
 
 TEST(SimFlux, LayoutWithoutLayersIsRefusedNamingIt) {

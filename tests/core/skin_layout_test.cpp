@@ -125,7 +125,7 @@ int channel_of(const SkinLayout& layout, int64_t taxel_id, const std::string& mo
 //---- The five skins -----------------------------------------------------------------------
 
 TEST(BuiltinLayouts, EveryBuiltinLoadsUnderItsOwnIdWithDisjointGroups) {
-  for (const std::string& id : builtin_layout_ids()) {
+  for (const std::string& id : known_layout_ids()) {
     const SkinLayout layout = load_layout(id);
     EXPECT_EQ(layout.id, id);
     EXPECT_GT(layout.sample_rate_hz, 0.0) << id;

@@ -1,17 +1,16 @@
 // TrainingJob: a workspace's labelled segments of one skin -> features -> evaluation on a
 // worker thread; the caller only polls. Cancel ends it; failures are reported, not thrown.
-#include "tactile/ml/training_job.h"
+#include "tactile/labels/training_job.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
 #include <thread>
 
-#include <unistd.h>
-
 #include "tactile/labels/predict.h"
-#include "tactile/sim/workspace.h"
+#include "tactile/skins/workspace.h"
 
 namespace tactile::ml {
 namespace {
@@ -35,6 +34,7 @@ class TrainingJobTest : public ::testing::Test {
     TrainingRequest request;
     request.database = folder_ + "/labels.db";
     request.layout = "flux";
+    request.pipeline = "flux";
     request.classifier = classifier;
     request.protocol = "kfold:3";
     request.threads = 1;

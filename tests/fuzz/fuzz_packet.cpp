@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   static const std::vector<SkinLayout> layouts = [] {
     std::vector<SkinLayout> all;
-    for (const std::string& skin : packet_skins()) all.push_back(load_layout(skin));
+    for (const std::string& skin : packet_skin_ids()) all.push_back(load_layout(skin));
     return all;
   }();
   const uint8_t mode = data[0];

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "jobs.h"
 #include "labelling.h"
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
@@ -16,7 +17,7 @@
 #include "tactile/labels/predict.h"
 #include "tactile/ml/table_maps.h"
 #include "tactile/ml/train_all.h"
-#include "jobs.h"
+#include "tactile/skins/skin.h"
 #include "views.h"
 
 namespace tactile {
@@ -68,12 +69,13 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
       return fail(state, error.what());
     }
   }
-  ml::TrainingRequest request;
+  TrainingRequest request;
   request.database = label_database(state);
   request.folder = fs::path(request.database).parent_path().string();
   request.layout = state.document->layout.id;
   request.segments = analysis.segments;
-  request.pipeline = analysis.pipeline;
+  request.pipeline =
+      analysis.pipeline.empty() ? default_pipeline(request.layout) : analysis.pipeline;
   request.classifier = classifier;
   request.protocol = analysis.protocol.data();
   // One classifier: also fitted on every row and saved, so it can predict (Predict).
@@ -92,7 +94,7 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
     return fail(state, error.what());
   }
   analysis.last_request = request;
-  analysis.job = ml::start_training_job(request);
+  analysis.job = start_training_job(request);
   log_job_start(state, "training");
   state.error.clear();
   state.notice = "training " + classifier + " on " + request.layout + " recordings";
@@ -109,10 +111,10 @@ void poll_training(WorkbenchState& state) {
     analysis.job.reset();
     return;
   }
-  std::optional<ml::TrainingOutcome> outcome = finished_job(state, analysis.job);
+  std::optional<TrainingOutcome> outcome = finished_job(state, analysis.job);
   if (status == JobStatus::kCancelled) state.notice = "training cancelled";
   if (!outcome) return;
-  const ml::TrainingRequest& request = analysis.last_request;
+  const TrainingRequest& request = analysis.last_request;
   analysis.results = std::move(outcome->results);
   analysis.model_path = outcome->model_path;
   // Every result is a file: the evaluation beside the model.

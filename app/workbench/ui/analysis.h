@@ -1,6 +1,6 @@
 #pragma once
 // The workbench's classifier side, shared by the model panel and the confusion, scatter,
-// SOM and somatosensory views: training in the background (ml::TrainingJob), results
+// SOM and somatosensory views: training in the background (TrainingJob), results
 // opened from files, the way from a confusion cell to a segment and back.
 
 #include <string>

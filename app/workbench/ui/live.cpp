@@ -11,6 +11,8 @@
 #include <utility>
 
 #include "tactile/error.h"
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 #include "views.h"
 
 namespace tactile {
@@ -128,7 +130,8 @@ bool connect_live(WorkbenchState& state, LiveServices& services, const std::stri
     std::unique_ptr<DatagramInput> input = open_live_input(address);
     std::string skin = skin_option.empty() ? input->skin() : skin_option;
     if (skin.empty())
-      throw Error("--skin", "is needed for " + address.scheme + " sources (nao, tsa, fur, robovie, flux)");
+      throw Error("--skin", "is needed for " + address.scheme + " sources (" +
+                                joined(packet_skin_ids()) + ")");
     if (!input->skin().empty() && input->skin() != skin)
       throw Error("--skin", skin + " does not match the source's skin " + input->skin());
     SkinLayout layout = load_layout(skin);

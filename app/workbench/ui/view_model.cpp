@@ -14,7 +14,7 @@ namespace {
 
 void draw_choices(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  const std::string own = state.document ? skin_pipeline(state.document->layout.id) : "generic";
+  const std::string own = state.document ? default_pipeline(state.document->layout.id) : "generic";
   const std::string shown = analysis.pipeline.empty() ? own + " (the skin's own)" : analysis.pipeline;
   ImGui::SetNextItemWidth(180);
   if (ImGui::BeginCombo("features", shown.c_str())) {

@@ -12,11 +12,13 @@
 #include "analysis.h"
 #include "jobs.h"
 #include "labelling.h"
+#include "live.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/layout/taxel_values.h"
 #include "tactile/segment/segmenter.h"
-#include "live.h"
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 #include "views.h"
 
 namespace tactile {
@@ -387,12 +389,14 @@ void Workbench::draw_menu_bar() {
       if (ImGui::BeginMenu("Connect")) {
         // udp://:PORT listens on loopback; name an interface (udp://0.0.0.0:PORT) to be reached.
         ImGui::SetNextItemWidth(260);
-        ImGui::InputTextWithHint("##url", "udp://:9000, serial:///dev/ttyUSB0, sim://nao",
-                                 connect_url_.data(), connect_url_.size());
+        ImGui::InputTextWithHint(
+            "##url", ("udp://:9000, serial:///dev/ttyUSB0, sim://" + skin_ids().front()).c_str(),
+            connect_url_.data(), connect_url_.size());
         remember_item(state_, "input:connect-url");
         ImGui::SetNextItemWidth(260);
-        ImGui::InputTextWithHint("##skin", "skin (udp, serial): nao, tsa, fur, robovie, flux",
-                                 connect_skin_.data(), connect_skin_.size());
+        const std::string skin_hint = "skin (udp, serial): " + joined(packet_skin_ids());
+        ImGui::InputTextWithHint("##skin", skin_hint.c_str(), connect_skin_.data(),
+                                 connect_skin_.size());
         remember_item(state_, "input:connect-skin");
         if (ImGui::MenuItem("Connect")) connect_live(state_, services_.live, connect_url_.data(), connect_skin_.data());
         remember_item(state_, "menu:File/Connect/Connect");

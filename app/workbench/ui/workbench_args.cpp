@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 #include "views.h"
 
 namespace tactile {
@@ -46,7 +48,8 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
   app.add_option("--connect", args.options.connect,
                  "Live source: udp://:PORT (loopback; udp://0.0.0.0:PORT for every interface), "
                  "serial:///dev/ttyUSB0?baud=921600, sim://SKIN?rate=X, replay:///FILE.h5?speed=X");
-  app.add_option("--skin", args.options.skin, "Skin of a udp:// or serial:// source: nao, tsa, fur, robovie, flux");
+  app.add_option("--skin", args.options.skin,
+                 "Skin of a udp:// or serial:// source: " + joined(packet_skin_ids()));
   app.add_option("--record", args.options.record_path, "Record the live source into this new file (.h5) from the start");
   app.add_option("--buffer", args.options.buffer_seconds, "Seconds the live buffer holds (default 600)")
       ->check(CLI::Range(1.0, 86400.0));

@@ -20,13 +20,13 @@
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/predict.h"
 #include "tactile/labels/quality.h"
+#include "tactile/labels/training_job.h"
 #include "tactile/layout/somatosensory.h"
 #include "tactile/live/live_receiver.h"
 #include "tactile/live/online_classifier.h"
 #include "tactile/live/playback.h"
 #include "tactile/ml/evaluation.h"
 #include "tactile/ml/som.h"
-#include "tactile/ml/training_job.h"
 #include "tactile/signal/display_scale.h"
 #include "tactile/widgets/signal_plot.h"
 #include "tactile/widgets/skin_view.h"
@@ -112,8 +112,8 @@ struct AnalysisState {
   std::array<char, 128> classifier{"linear-svm"};
   std::array<char, 64> protocol{"kfold:5"};
   LabelSource segments = LabelSource::kGroundTruth;
-  std::unique_ptr<ml::TrainingJob> job;
-  ml::TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
+  std::unique_ptr<TrainingJob> job;
+  TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
   // The results: one per classifier tried (one row of the train-all table each).
   std::vector<ml::PresetOutcome> results;
   std::string results_from;  // what they are of ("nao, kaboli features", a file)

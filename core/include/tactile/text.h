@@ -2,6 +2,7 @@
 // Numbers and names as the programs print them, written once for every report and message.
 
 #include <string>
+#include <vector>
 
 namespace tactile {
 
@@ -17,5 +18,8 @@ std::string significant_text(double value, int digits);
 
 // "text" in double quotes, for messages that name a field or an id.
 std::string in_quotes(const std::string& text);
+
+// The items with `separator` between them ("nao, tsa, fur"): lists in help and errors.
+std::string joined(const std::vector<std::string>& items, const std::string& separator = ", ");
 
 }  // namespace tactile

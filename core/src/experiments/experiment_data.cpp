@@ -12,7 +12,7 @@
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/segment/segmenter.h"
-#include "tactile/sim/workspace.h"
+#include "tactile/skins/workspace.h"
 
 namespace tactile::experiments {
 

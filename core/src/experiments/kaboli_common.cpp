@@ -14,7 +14,7 @@
 #include "tactile/ml/classifier.h"
 #include "tactile/ml/evaluation.h"
 #include "tactile/segment/segmenter.h"
-#include "tactile/sim/workspace.h"
+#include "tactile/skins/workspace.h"
 
 namespace tactile::experiments::kaboli {
 

@@ -1,7 +1,9 @@
-// The table of feature pipelines: one line per descriptor set, name -> factory. Adding a
-// pipeline is one #include and one line in pipeline_table(); nothing else in the app changes.
+// The table of feature pipelines: one line per descriptor set, name -> factory. A pipeline
+// of this library is one #include and one line in pipeline_table(); one brought by a program
+// or a test (a new skin's) is registered with register_feature_pipeline.
 #include <algorithm>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -16,66 +18,79 @@
 #include "tactile/features/robovie_xcorr.h"
 #include "tactile/features/silvera_tawil.h"
 #include "tactile/features/tsa_event.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
 namespace {
 
-using ExtractorFactory = std::unique_ptr<FeatureExtractor> (*)(const Parameters&);
-
 struct PipelineEntry {
-  const char* name;
+  std::string name;
   ExtractorFactory make;
 };
 
 // Listed order is the order `tactile features --list` prints.
-const std::vector<PipelineEntry>& pipeline_table() {
-  static const std::vector<PipelineEntry> table = {
-      // {"name", make_name_extractor},  (include "tactile/features/name.h")
-      {"kaboli", make_kaboli_extractor},
-      {"naya", make_naya_extractor},
-      {"silvera_tawil", make_silvera_tawil_extractor},
-      {"koo", make_koo_extractor},
-      {"tsa_event", make_tsa_event_extractor},
-      {"fur", make_fur_extractor},
-      {"robovie_xcorr", make_robovie_xcorr_extractor},
-      {"flux", make_flux_extractor},
-      {"generic", make_generic_extractor},
-  };
+struct PipelineTable {
+  std::mutex mutex;
+  std::vector<PipelineEntry> entries;
+};
+
+PipelineTable& pipeline_table() {
+  static PipelineTable table{
+      {},
+      {
+          // {"name", make_name_extractor},  (include "tactile/features/name.h")
+          {"kaboli", make_kaboli_extractor},
+          {"naya", make_naya_extractor},
+          {"silvera_tawil", make_silvera_tawil_extractor},
+          {"koo", make_koo_extractor},
+          {"tsa_event", make_tsa_event_extractor},
+          {"fur", make_fur_extractor},
+          {"robovie_xcorr", make_robovie_xcorr_extractor},
+          {"flux", make_flux_extractor},
+          {"generic", make_generic_extractor},
+      }};
   return table;
+}
+
+// The entry's factory, copied under the lock (a registration may grow the table meanwhile).
+ExtractorFactory find_factory(const std::string& name) {
+  PipelineTable& table = pipeline_table();
+  const std::lock_guard lock(table.mutex);
+  for (const PipelineEntry& entry : table.entries)
+    if (entry.name == name) return entry.make;
+  return nullptr;
 }
 
 }  // namespace
 
 std::vector<std::string> feature_pipelines() {
+  PipelineTable& table = pipeline_table();
+  const std::lock_guard lock(table.mutex);
   std::vector<std::string> names;
-  for (const PipelineEntry& entry : pipeline_table()) names.emplace_back(entry.name);
+  for (const PipelineEntry& entry : table.entries) names.push_back(entry.name);
   return names;
 }
 
-std::string skin_pipeline(const std::string& layout_id) {
-  // Each paper's own descriptor for the skin it built.
-  static const std::pair<const char*, const char*> kOwn[] = {
-      {"nao", "kaboli"}, {"tsa", "tsa_event"}, {"fur", "fur"},
-      {"robovie", "robovie_xcorr"}, {"flux", "flux"}};
-  for (const auto& [layout, pipeline] : kOwn)
-    if (layout_id == layout) return pipeline;
-  return "generic";
+void register_feature_pipeline(const std::string& name, ExtractorFactory make) {
+  if (name.empty() || !make) throw Error("pipeline " + name, "needs a name and a factory");
+  PipelineTable& table = pipeline_table();
+  const std::lock_guard lock(table.mutex);
+  for (PipelineEntry& entry : table.entries)
+    if (entry.name == name) {
+      entry.make = std::move(make);
+      return;
+    }
+  table.entries.push_back({name, std::move(make)});
 }
 
 std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
                                                          const Parameters& parameters) {
-  const auto& table = pipeline_table();
-  const auto found = std::find_if(table.begin(), table.end(),
-                                  [&](const PipelineEntry& entry) { return name == entry.name; });
-  if (found == table.end()) {
-    std::string known;
-    for (const PipelineEntry& entry : table)
-      known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  const ExtractorFactory make = find_factory(name);
+  if (!make)
     throw Error("pipeline " + name,
-                "unknown feature pipeline (known: " + (known.empty() ? "none" : known) + ")");
-  }
-  return found->make(parameters);
+                "unknown feature pipeline (known: " + joined(feature_pipelines()) + ")");
+  return make(parameters);
 }
 
 std::string effective_pipeline_parameters(const std::string& name, const std::string& parameters,

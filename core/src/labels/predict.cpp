@@ -42,9 +42,7 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
   // The skin, when every row names the same one.
   const std::string layout = dataset.shared_metadata("layout");
   document["layout"] = layout;
-  const std::string used = !pipeline.empty() ? pipeline
-                           : layout.empty()  ? ""
-                                             : skin_pipeline(layout);
+  const std::string& used = pipeline;
   document["pipeline"] = used;
   // Every setting of the pipeline, defaults included, so that predicting with this model
   // extracts as its training data was extracted even after a default changes.

@@ -8,7 +8,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <numbers>
+#include <set>
 
 #include "tactile/error.h"
 
@@ -137,9 +140,17 @@ std::vector<Point2> taxel_outline(const Taxel& taxel) {
 
 //---- Finding layouts --------------------------------------------------------------------------
 
-std::vector<std::string> builtin_layout_ids() { return {"nao", "tsa", "fur", "robovie", "flux"}; }
-
 namespace {
+
+struct AddedLayouts {
+  std::mutex mutex;
+  std::map<std::string, SkinLayout> layouts;
+};
+
+AddedLayouts& added_layouts() {
+  static AddedLayouts added;
+  return added;
+}
 
 SkinLayout build_generic_layout(const std::string& id);
 
@@ -154,6 +165,47 @@ bool is_plain_layout_name(const std::string& id) {
 
 }  // namespace
 
+void add_layout(SkinLayout layout) {
+  const std::string where = "layout " + layout.id;
+  if (!is_plain_layout_name(layout.id))
+    throw Error(where, "invalid layout id (letters, digits, '-' and '_' only)");
+  validate_layout(layout, where);
+  AddedLayouts& added = added_layouts();
+  const std::lock_guard lock(added.mutex);
+  added.layouts[layout.id] = std::move(layout);
+}
+
+// The folders a layout file is looked for in: TACTILE_LAYOUT_PATH's (':'-separated, first
+// match wins), then the assets' layouts/.
+std::vector<std::filesystem::path> layout_folders() {
+  std::vector<std::filesystem::path> folders;
+  if (const char* path = std::getenv("TACTILE_LAYOUT_PATH")) {
+    std::string list = path;
+    for (size_t start = 0; start <= list.size();) {
+      const size_t end = std::min(list.find(':', start), list.size());
+      if (end > start) folders.emplace_back(list.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  folders.push_back(std::filesystem::path(asset_dir()) / "layouts");
+  return folders;
+}
+
+std::vector<std::string> known_layout_ids() {
+  std::set<std::string> ids;
+  {
+    AddedLayouts& added = added_layouts();
+    const std::lock_guard lock(added.mutex);
+    for (const auto& entry : added.layouts) ids.insert(entry.first);
+  }
+  for (const std::filesystem::path& folder : layout_folders()) {
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(folder, error))
+      if (entry.path().extension() == ".json") ids.insert(entry.path().stem().string());
+  }
+  return {ids.begin(), ids.end()};
+}
+
 SkinLayout load_layout(const std::string& id) {
   const std::string where = "layout " + id;
   if (is_generic_layout_id(id)) return build_generic_layout(id);
@@ -161,14 +213,27 @@ SkinLayout load_layout(const std::string& id) {
     throw Error(where,
                 "invalid layout id (letters, digits, '-' and '_' only, or grid:RxC, strip:N)");
   }
-  const std::filesystem::path path =
-      std::filesystem::path(asset_dir()) / "layouts" / (id + ".json");
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
+  {
+    AddedLayouts& added = added_layouts();
+    const std::lock_guard lock(added.mutex);
+    const auto found = added.layouts.find(id);
+    if (found != added.layouts.end()) return found->second;
+  }
+  std::filesystem::path path;
+  std::string looked;
+  for (const std::filesystem::path& folder : layout_folders()) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(folder / (id + ".json"), error)) {
+      path = folder / (id + ".json");
+      break;
+    }
+    looked += (looked.empty() ? "" : ", ") + (folder / (id + ".json")).string();
+  }
+  if (path.empty()) {
     std::string known;
-    for (const std::string& builtin : builtin_layout_ids()) known += builtin + ", ";
-    throw Error(where, "unknown layout: no file " + path.string() + " (known: " + known +
-                           "grid:RxC, strip:N)");
+    for (const std::string& name : known_layout_ids()) known += name + ", ";
+    throw Error(where,
+                "unknown layout: no file " + looked + " (known: " + known + "grid:RxC, strip:N)");
   }
   SkinLayout layout = load_layout_file(path.string());
   if (layout.id != id) {

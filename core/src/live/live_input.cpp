@@ -17,14 +17,15 @@
 #include <optional>
 #include <thread>
 
+#include "system_error.h"
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/live/packets.h"
 #include "tactile/live/playback.h"
 #include "tactile/live/udp.h"
-#include "tactile/sim/simulator.h"
-#include "system_error.h"
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -221,8 +222,12 @@ class PacedInput : public DatagramInput {
 class SimulatorInput final : public PacedInput {
  public:
   SimulatorInput(const std::string& skin, uint64_t seed, double speed)
-      : PacedInput(speed), skin_(skin), layout_(load_layout(skin)), generator_(trial_generator(skin)) {
+      : PacedInput(speed),
+        skin_(skin),
+        layout_(load_layout(skin)),
+        generator_(skin_record(skin).simulate) {
     packet_format_info(skin);  // refuses a skin without a packet format now
+    if (!generator_) throw Error("sim://" + skin, "the skin has no simulator");
     options_.seed = seed;
     options_.subjects = 1;
     // The first trial now: its metadata (the device's calibration) is the stream's.
@@ -371,11 +376,13 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
   } else if (address.scheme == "sim") {
     const auto values = query_of(query, url, {"seed", "rate"}, option);
     address.skin = rest;
-    const std::vector<std::string> skins = packet_skins();
-    if (std::find(skins.begin(), skins.end(), rest) == skins.end()) {
-      std::string names;
-      for (const std::string& skin : skins) names += (names.empty() ? "" : ", ") + skin;
-      throw Error(option, "\"" + rest + "\" in \"" + url + "\" is not a simulated skin (" + names + ")");
+    const SkinRecord* record = find_skin(rest);
+    if (!record || !record->simulate || !record->packet) {
+      std::vector<std::string> names;
+      for (const std::string& skin : simulated_skin_ids())
+        if (find_skin(skin)->packet) names.push_back(skin);
+      throw Error(option, "\"" + rest + "\" in \"" + url + "\" is not a simulated skin (" +
+                              joined(names) + ")");
     }
     if (values.count("seed")) {
       const double seed = number_in(values.at("seed"), "seed", option);

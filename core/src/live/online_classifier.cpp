@@ -9,32 +9,6 @@
 
 namespace tactile {
 
-OnlineOptions default_online_options(const std::string& skin) {
-  OnlineOptions options;
-  if (skin == "nao") {
-    // Kaboli's window already reaches 0.1 s past the last proximity sample (spec §1.1): a
-    // segment ending before the newest sample has been quiet that long.
-    options.segmenter = "proximity";
-    options.hop_seconds = 0.05;
-    options.release_seconds = 0.0;
-    options.lookback_seconds = 4.0;
-  } else if (skin == "fur") {
-    options.segmenter = "threshold";
-    options.window_seconds = 3.0;
-  } else if (skin == "tsa") {
-    options.segmenter = "frame-edge";
-    options.window_seconds = 3.0;
-    options.hop_seconds = 0.25;
-    options.release_seconds = 0.25;
-    options.lookback_seconds = 12.0;  // the trigger's baseline needs its idle span
-  } else if (skin == "flux") {
-    options.segmenter = "excitation";
-    options.window_seconds = 5.0;
-    options.lookback_seconds = 10.0;
-  }
-  return options;
-}
-
 OnlineClassifier::OnlineClassifier(SavedModel model, SkinLayout layout, const SourceInfo& stream,
                                    OnlineOptions options)
     : model_(std::move(model)),

@@ -6,27 +6,11 @@
 
 #include "tactile/error.h"
 #include "tactile/live/packets.h"
+#include "tactile/text.h"
 
 namespace tactile::packet_detail {
 
-int32_t CountScale::to_count(double value, bool& saturated) const {
-  const double count = std::round((value - offset) / step);
-  if (count < min_count) {
-    saturated = true;
-    return min_count;
-  }
-  if (count > max_count) {
-    saturated = true;
-    return max_count;
-  }
-  return static_cast<int32_t>(count);
-}
-
-float CountScale::to_value(int32_t count) const {
-  return static_cast<float>(offset + static_cast<double>(count) * step);
-}
-
-//---- The five devices (ranges from the papers' hardware sections) ----------------------
+//---- NAO cells (the other skins' ranges are in their records) -------------------------------
 
 namespace {
 
@@ -43,32 +27,14 @@ const CountScale kNaoScales[kNaoSlots] = {
 
 const CountScale& nao_scale(int slot) { return kNaoScales[slot]; }
 
-const std::vector<SkinFormat>& skin_formats() {
-  // Layout units are counts for the four single-modality skins, so their step is 1.
-  static const std::vector<SkinFormat> formats = {
-      {"nao", 1, 250.0, 1, kNaoCells * kNaoSlots, WireWord::kNaoCells, {}},
-      // 21 FEE modules x 32 channels of 12 bits at 8 Hz (paper 001).
-      {"tsa", 2, 8.0, 1, 672, WireWord::kPacked12, {0.0, 1.0, 0, 4095}},
-      // ATMEGA32 10-bit ADC, 160 cells sent over USB at 15 Hz (paper 002).
-      {"fur", 3, 15.0, 1, 160, WireWord::kUint16, {0.0, 1.0, 0, 1023}},
-      // 274 piezo films on a 16-bit A/D at 100 Hz (paper 003).
-      {"robovie", 4, 100.0, 1, 274, WireWord::kInt16, {0.0, 1.0, -32768, 32767}},
-      // Arduino UNO, 8 channels of 10 bits at 1 kHz (paper 004); 10 samples a datagram.
-      {"flux", 5, 1000.0, 10, 8, WireWord::kUint16, {0.0, 1.0, 0, 1023}},
-  };
-  return formats;
-}
-
 const SkinFormat* find_format(const std::string& skin) {
-  for (const SkinFormat& format : skin_formats())
-    if (skin == format.skin) return &format;
-  return nullptr;
+  const SkinRecord* record = find_skin(skin);
+  return record && record->packet ? &*record->packet : nullptr;
 }
 
 const SkinFormat* find_format(uint8_t code) {
-  for (const SkinFormat& format : skin_formats())
-    if (code == format.code) return &format;
-  return nullptr;
+  const SkinRecord* record = find_skin_by_packet_code(code);
+  return record ? &*record->packet : nullptr;
 }
 
 int payload_bytes_per_sample(const SkinFormat& format) {
@@ -139,8 +105,8 @@ void plan_nao_cells(const SkinLayout& layout, WirePlan& plan) {
 const SkinFormat& require_format(const std::string& skin, const std::string& where) {
   const SkinFormat* format = find_format(skin);
   if (!format)
-    throw Error(where,
-                "no packet format for skin \"" + skin + "\" (have nao, tsa, fur, robovie, flux)");
+    throw Error(where, "no packet format for skin \"" + skin + "\" (have " +
+                           joined(packet_skin_ids()) + ")");
   return *format;
 }
 
@@ -191,13 +157,6 @@ uint8_t packet_skin_code(const std::string& skin) {
 std::string packet_skin_name(uint8_t code) {
   const packet_detail::SkinFormat* format = packet_detail::find_format(code);
   return format ? format->skin : "";
-}
-
-std::vector<std::string> packet_skins() {
-  std::vector<std::string> skins;
-  for (const packet_detail::SkinFormat& format : packet_detail::skin_formats())
-    skins.push_back(format.skin);
-  return skins;
 }
 
 }  // namespace tactile

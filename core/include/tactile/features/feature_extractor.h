@@ -3,6 +3,7 @@
 // once, then turns each labelled segment into one row of finite features (or says why
 // the segment has no row).
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,11 +47,11 @@ class FeatureExtractor {
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
-// robovie_xcorr, flux, generic.
+// robovie_xcorr, flux, generic, then those added by register_feature_pipeline.
 std::vector<std::string> feature_pipelines();
-// The skin's own pipeline (its paper's descriptor): nao kaboli, tsa tsa_event, fur fur,
-// robovie robovie_xcorr, flux flux; any other layout generic.
-std::string skin_pipeline(const std::string& layout_id);
+using ExtractorFactory = std::function<std::unique_ptr<FeatureExtractor>(const Parameters&)>;
+// Adds a pipeline (a new skin's), or replaces the one of the same name.
+void register_feature_pipeline(const std::string& name, ExtractorFactory make);
 // Throws tactile::Error naming the pipeline when unknown, or a parameter when bad.
 std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
                                                          const Parameters& parameters = {});

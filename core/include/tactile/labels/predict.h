@@ -35,9 +35,9 @@ struct SavedModel {
 
 // Fits `specification` on every row of `dataset` and returns the model document:
 // save_classifier's fields plus classes, features, layout (the rows' `layout` metadata
-// when all agree), pipeline (given, else the layout's own skin_pipeline) and pipeline_params:
-// every setting that pipeline reads, the given ones and the defaults of this build (see
-// effective_pipeline_parameters). Throws tactile::Error on a bad pipeline or parameter.
+// when all agree), pipeline (as given: a skin's own is default_pipeline, skins/skin.h) and
+// pipeline_params: every setting that pipeline reads, the given ones and the defaults of this build
+// (see effective_pipeline_parameters). Throws tactile::Error on a bad pipeline or parameter.
 nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
                                   uint64_t seed, const std::string& pipeline = "",
                                   const std::string& pipeline_params = "");

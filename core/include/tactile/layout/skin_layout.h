@@ -91,16 +91,20 @@ SkinLayout make_strip_layout(int64_t count, const std::string& id = {});
 // True for ids of the form "grid:..." or "strip:..." (valid or not).
 bool is_generic_layout_id(const std::string& id);
 
-// Loads assets/layouts/<id>.json, or builds a generic grid:RxC / strip:N layout.
-// Throws tactile::Error naming the file and the entry on any invalid content.
+// A layout added by add_layout, else assets/layouts/<id>.json, or a generic grid:RxC /
+// strip:N layout. Throws tactile::Error naming the file and the entry on any invalid content.
 SkinLayout load_layout(const std::string& id);
+// Makes a layout that has no file (a skin registered by a program or a test) known to
+// load_layout by its id, replacing an earlier one of the same id. Validates it first.
+void add_layout(SkinLayout layout);
 SkinLayout load_layout_file(const std::string& path);
 SkinLayout parse_layout_json(const std::string& text, const std::string& where);
 // Checks ids, channels, positions and disjoint groups; throws tactile::Error.
 void validate_layout(const SkinLayout& layout, const std::string& where);
 // The directory holding layouts/ (TACTILE_ASSETS env var, else the build-time default).
 std::string asset_dir();
-// Ids of the five built-in skins.
-std::vector<std::string> builtin_layout_ids();
+// The ids load_layout knows by name: the added layouts and the files in assets/layouts,
+// sorted (grid:RxC and strip:N aside).
+std::vector<std::string> known_layout_ids();
 
 }  // namespace tactile

@@ -23,24 +23,16 @@
 #include "tactile/layout/skin_layout.h"
 #include "tactile/live/live_source.h"
 #include "tactile/parameters.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 
 inline constexpr const char* kNoTouchClass = "no touch";
 
-struct OnlineOptions {
-  std::string segmenter = "adaptive";  // finds the touches in the recent stream
-  std::string segmenter_params;        // "key=value,..."
-  double window_seconds = 2.0;    // the longest stretch of an open touch a provisional decision sees
-  double hop_seconds = 0.1;       // a decision this often
-  double release_seconds = 0.1;   // a touch that ended this long ago is over
-  double lookback_seconds = 8.0;  // what the segmenter and the pipeline see each hop
-};
-// Defaults per skin: the segmenter of its paper's experiment (nao proximity, tsa frame-edge,
-// fur threshold, flux excitation; robovie's scenario needs a protocol's time stamps, so
-// adaptive), a window as long as its touches run (flux: the 5 s analysis window of spec
-// §5.5), a hop of 0.1 s (tsa: two frames at 8 Hz).
-OnlineOptions default_online_options(const std::string& skin);
+// OnlineOptions, and each skin's defaults (default_online_options), are in its record
+// (skins/skin.h): the segmenter of its paper's experiment (nao proximity, tsa frame-edge, fur
+// threshold, flux excitation; robovie's scenario needs a protocol's time stamps, so
+// adaptive), a window as long as its touches run, a hop of 0.1 s (tsa: two frames at 8 Hz).
 
 struct OnlineDecision {
   double t0 = 0.0, t1 = 0.0;  // device time the decision is about

@@ -12,6 +12,7 @@
 
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 
@@ -44,13 +45,11 @@ struct PacketHeader {
 // CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320, as zlib's crc32).
 uint32_t crc32(std::span<const uint8_t> bytes);
 
-// Skin code on the wire: nao 1, tsa 2, fur 3, robovie 4, flux 5. Throws tactile::Error
-// naming the skin when it has no packet format.
+// Skin code on the wire (its record's: nao 1, tsa 2, fur 3, robovie 4, flux 5). Throws
+// tactile::Error naming the skin when it has no packet format.
 uint8_t packet_skin_code(const std::string& skin);
 // "" for an unknown code.
 std::string packet_skin_name(uint8_t code);
-// Skins with a packet format, in code order.
-std::vector<std::string> packet_skins();
 
 //---- Device formats --------------------------------------------------------------------
 

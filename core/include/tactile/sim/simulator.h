@@ -38,10 +38,18 @@ struct SimulatedTrial {
 using TrialGenerator = std::function<SimulatedTrial(const SkinLayout& layout, const SimulationOptions& options,
                                                     int subject, int trial)>;
 
-// The skins that have a generator: nao, tsa, fur, robovie, flux.
-std::vector<std::string> simulated_skins();
-// Throws tactile::Error naming the skin when it has no generator.
-const TrialGenerator& trial_generator(const std::string& skin);
+// The generators of the papers' five skins, each in its skin's own file; the skin records
+// (skins/skin.h) hold them, and a skin's generator is read from its record.
+SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                  int subject, int trial);
+SimulatedTrial simulate_tsa_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                  int subject, int trial);
+SimulatedTrial simulate_fur_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                  int subject, int trial);
+SimulatedTrial simulate_robovie_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                      int subject, int trial);
+SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                   int subject, int trial);
 
 // A reproducible random engine for one purpose, derived from the seed and a path of
 // names and numbers (e.g. {"nao", "subject", 3}), so that adding a draw in one place

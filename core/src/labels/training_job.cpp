@@ -1,5 +1,5 @@
 // The training run: features, then evaluation, as a job on a worker thread.
-#include "tactile/ml/training_job.h"
+#include "tactile/labels/training_job.h"
 
 #include <algorithm>
 
@@ -9,16 +9,17 @@
 #include "tactile/labels/predict.h"
 #include "tactile/parameters.h"
 
-namespace tactile::ml {
+namespace tactile {
 
 namespace {
 constexpr double kFeatureShare = 0.3;  // of the progress bar
 }
 
 std::unique_ptr<TrainingJob> start_training_job(TrainingRequest request) {
-  return std::make_unique<TrainingJob>("training", [request = std::move(request)](JobProgress& progress) {
-    return run_training(request, progress);
-  });
+  return std::make_unique<TrainingJob>("training",
+                                       [request = std::move(request)](JobProgress& progress) {
+                                         return run_training(request, progress);
+                                       });
 }
 
 TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progress) {
@@ -28,9 +29,8 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
     progress.report(0.0, "reading labels");
     const std::vector<CorpusRecording> corpus =
         corpus_from_store({request.database, request.segments, request.folder, request.layout});
-    outcome.pipeline = request.pipeline.empty()
-                           ? skin_pipeline(request.layout.empty() ? "" : request.layout)
-                           : request.pipeline;
+    if (request.pipeline.empty()) throw Error("training", "names no feature pipeline");
+    outcome.pipeline = request.pipeline;
     const auto extractor = make_feature_extractor(
         outcome.pipeline, Parameters::parse(request.pipeline_params, "pipeline parameters"));
     progress.report(0.0, "features (" + outcome.pipeline + ")");
@@ -42,12 +42,12 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
     };
     CorpusDataset table = extract_corpus(*extractor, corpus, corpus_options);
     if (table.dataset.rows() == 0)
-      throw Error("features", "no rows: all " + std::to_string(table.segments) +
-                                  " segments were skipped");
+      throw Error("features",
+                  "no rows: all " + std::to_string(table.segments) + " segments were skipped");
     outcome.dataset = std::move(table.dataset);
 
-    const Protocol protocol = Protocol::parse(request.protocol);
-    EvaluationControl control;
+    const ml::Protocol protocol = ml::Protocol::parse(request.protocol);
+    ml::EvaluationControl control;
     control.threads = request.threads;
     control.cancel = progress.flag();
     control.scores = true;
@@ -55,18 +55,19 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
       progress.report(kFeatureShare + (1.0 - kFeatureShare) * done / std::max(1, total));
     };
     if (request.classifier == "all") {
-      outcome.results = evaluate_all(outcome.dataset, protocol, request.seed, control,
-                                     [&](const PresetOutcome& preset, int index, int total) {
-                                       progress.report(progress.fraction(),
-                                                       "trained " + preset.classifier + " (" +
-                                                           std::to_string(index + 1) + "/" +
-                                                           std::to_string(total) + ")");
-                                     });
+      outcome.results = ml::evaluate_all(
+          outcome.dataset, protocol, request.seed, control,
+          [&](const ml::PresetOutcome& preset, int index, int total) {
+            progress.report(progress.fraction(), "trained " + preset.classifier + " (" +
+                                                     std::to_string(index + 1) + "/" +
+                                                     std::to_string(total) + ")");
+          });
     } else {
       progress.report(kFeatureShare, "evaluating " + request.classifier);
-      PresetOutcome one;
+      ml::PresetOutcome one;
       one.classifier = request.classifier;
-      one.result = evaluate(outcome.dataset, request.classifier, protocol, request.seed, control);
+      one.result =
+          ml::evaluate(outcome.dataset, request.classifier, protocol, request.seed, control);
       outcome.results.push_back(std::move(one));
       if (!request.save_model.empty()) {
         progress.report(progress.fraction(), "fitting the model on every row");
@@ -85,4 +86,4 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
   }
 }
 
-}  // namespace tactile::ml
+}  // namespace tactile

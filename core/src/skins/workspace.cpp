@@ -1,4 +1,4 @@
-#include "tactile/sim/workspace.h"
+#include "tactile/skins/workspace.h"
 
 #include <algorithm>
 #include <atomic>
@@ -9,6 +9,8 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/skins/skin.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -32,11 +34,16 @@ void create_folder(const std::string& folder) {
 }  // namespace
 
 SimulationSummary write_simulation(const std::string& folder, const std::string& skin,
-                                   const SimulationOptions& options, const SimulationProgress& progress) {
+                                   const SimulationOptions& options,
+                                   const SimulationProgress& progress) {
   if (options.subjects < 1) throw Error("--subjects", "must be at least 1");
   if (options.trials < 1) throw Error("--trials", "must be at least 1");
   if (options.repetitions < 0) throw Error("--repetitions", "must not be negative");
-  const TrialGenerator& generate = trial_generator(skin);
+  const SkinRecord& record = skin_record(skin, "--skin " + skin);
+  if (!record.simulate)
+    throw Error("--skin " + skin,
+                "has no simulator (simulated skins: " + joined(simulated_skin_ids()) + ")");
+  const TrialGenerator& generate = record.simulate;
   const SkinLayout layout = load_layout(skin);
   create_folder(folder);
 
@@ -78,7 +85,8 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
       }
     }
   };
-  const unsigned threads = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), total));
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), total));
   std::vector<std::thread> workers;
   for (unsigned k = 0; k < threads; ++k) workers.emplace_back(work);
   for (std::thread& worker : workers) worker.join();
@@ -87,7 +95,7 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
   LabelStore store((fs::path(folder) / "labels.db").string());
   // Simulated ground truth carries no wall-clock time: the same seed writes the same bytes.
   store.use_fixed_time(kSimulatedLabelTime);
-  store.set_classes(skin, layout.classes);
+  store.set_classes(skin, skin_classes(skin));
   for (size_t index = 0; index < jobs.size(); ++index) {
     if (labels[index].empty()) continue;
     LabelFilter previous;
@@ -103,27 +111,27 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
 
 SimulationSummary write_demo_workspace(const std::string& folder, uint64_t seed,
                                        const SimulationProgress& progress) {
-  struct DemoPart {
-    const char* skin;
-    int subjects;
-    int repetitions;
-  };
-  // Enough of each skin to see every class, small enough to make in seconds.
-  const DemoPart parts[] = {{"nao", 2, 1}, {"tsa", 2, 2}, {"fur", 2, 2}, {"robovie", 1, 0}, {"flux", 1, 2}};
+  // Each skin's share (its record's), enough to see every class, small enough to make in
+  // seconds.
+  std::vector<const SkinRecord*> parts;
+  for (const std::string& id : skin_ids())
+    if (const SkinRecord* record = find_skin(id); record->simulate && record->demo_subjects > 0)
+      parts.push_back(record);
   SimulationSummary summary;
   int total = 0;
-  for (const DemoPart& part : parts) total += part.subjects;
+  for (const SkinRecord* part : parts) total += part->demo_subjects;
   int done = 0;
-  for (const DemoPart& part : parts) {
+  for (const SkinRecord* part : parts) {
     SimulationOptions options;
     options.seed = seed;
-    options.subjects = part.subjects;
+    options.subjects = part->demo_subjects;
     options.trials = 1;
-    options.repetitions = part.repetitions;
-    const SimulationSummary written = write_simulation(folder, part.skin, options, [&](int finished, int) {
-      if (progress) progress(done + finished, total);
-    });
-    done += part.subjects;
+    options.repetitions = part->demo_repetitions;
+    const SimulationSummary written =
+        write_simulation(folder, part->id, options, [&](int finished, int) {
+          if (progress) progress(done + finished, total);
+        });
+    done += part->demo_subjects;
     summary.files.insert(summary.files.end(), written.files.begin(), written.files.end());
     summary.labels += written.labels;
     summary.seconds_recorded += written.seconds_recorded;

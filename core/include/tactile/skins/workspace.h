@@ -19,15 +19,16 @@ struct SimulationSummary {
   double seconds_recorded = 0.0;
 };
 
-// Simulates options.subjects x options.trials recordings of one skin into `folder`
+// Simulates options.subjects x options.trials recordings of one registered skin into `folder`
 // (created if missing) as <recording id>.h5, replacing earlier ground-truth labels of the
 // same recordings in folder/labels.db. Trials run on worker threads; output is identical
 // whatever the thread count. Throws tactile::Error.
 SimulationSummary write_simulation(const std::string& folder, const std::string& skin,
-                                   const SimulationOptions& options, const SimulationProgress& progress = {});
+                                   const SimulationOptions& options,
+                                   const SimulationProgress& progress = {});
 
-// The demo workspace: a few short recordings of each of the five skins in one folder
-// (with labels.db), small enough to make in seconds.
+// The demo workspace: a few short recordings of every skin with a demo share in its record
+// (the papers' five) in one folder (with labels.db), small enough to make in seconds.
 SimulationSummary write_demo_workspace(const std::string& folder, uint64_t seed = 1,
                                        const SimulationProgress& progress = {});
 

@@ -15,14 +15,14 @@
 #include "tactile/jobs/job.h"
 #include "tactile/ml/evaluation.h"
 
-namespace tactile::ml {
+namespace tactile {
 
 struct TrainingRequest {
   std::string database;  // label store
   std::string folder;    // recordings folder ("" = the database's)
   std::string layout;    // only recordings of this skin ("" = all)
   LabelSource segments = LabelSource::kGroundTruth;
-  std::string pipeline;         // "" = the skin's own (skin_pipeline)
+  std::string pipeline;         // the feature pipeline (a skin's own: default_pipeline)
   std::string pipeline_params;  // key=value,...
   std::string classifier;       // a specification, or "all"
   std::string protocol = "kfold:5";
@@ -32,10 +32,10 @@ struct TrainingRequest {
 };
 
 struct TrainingOutcome {
-  Dataset dataset;                     // the feature table the results are about
-  std::vector<PresetOutcome> results;  // one per classifier tried, in the order run
-  std::string model_path;              // written model ("" when none asked for)
-  std::string pipeline;                // as used
+  Dataset dataset;                         // the feature table the results are about
+  std::vector<ml::PresetOutcome> results;  // one per classifier tried, in the order run
+  std::string model_path;                  // written model ("" when none asked for)
+  std::string pipeline;                    // as used
 };
 
 // The training run: reads the labelled segments, extracts the feature table, evaluates,
@@ -47,4 +47,4 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
 using TrainingJob = Job<TrainingOutcome>;
 std::unique_ptr<TrainingJob> start_training_job(TrainingRequest request);
 
-}  // namespace tactile::ml
+}  // namespace tactile
