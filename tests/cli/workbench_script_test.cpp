@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "cli_test_support.h"
 #include "png_test_support.h"
@@ -149,6 +151,66 @@ TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
   EXPECT_NE(result.err.find("script.txt:1: wait: 0.5 is not a whole number of frames"),
             std::string::npos)
       << result.err;
+}
+
+TEST_F(WorkbenchScript, ArgumentsThatFitNoFormOfTheCommandNameTheFormsItHas) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"wait 1\nclick taxel\n",
+       "script.txt:2: click taxel: wrong number of arguments, expected 'click taxel ID'"},
+      {"drag foo 1 2\n",
+       "script.txt:1: drag: expected 'drag time T0 T1 [in VIEW]' or 'drag taxel A B'"},
+      {"wait 1 2\n",
+       "script.txt:1: wait: wrong number of arguments, expected 'wait N', 'wait training' or "
+       "'wait jobs'"}};
+  for (const auto& [text, error] : cases) {
+    const auto result = run("--script " + script(text));
+    EXPECT_NE(result.exit_code, 0) << text;
+    EXPECT_NE(result.err.find(error), std::string::npos) << result.err;
+  }
+}
+
+// docs/SCRIPTING.md's table of commands: each row's usage and its description.
+std::map<std::string, std::string> documented_script_commands() {
+  std::ifstream in(test::test_data_dir() + "/../../docs/SCRIPTING.md");
+  std::map<std::string, std::string> commands;
+  bool in_section = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.starts_with("## ")) in_section = line == "## Commands";
+    const size_t end = line.find("` | ");
+    if (!in_section || !line.starts_with("| `") || end == std::string::npos) continue;
+    commands[line.substr(3, end - 3)] = line.substr(end + 4, line.rfind(" |") - end - 4);
+  }
+  return commands;
+}
+
+TEST_F(WorkbenchScript, AnUnknownCommandListsEveryDocumentedCommandAndNoOther) {
+  const auto result = run("--script " + script("wait 1\njump 3\n"));
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.err.find("script.txt:2: unknown command 'jump'"), std::string::npos)
+      << result.err;
+  // One line a command: "  USAGE   HELP", the usages in a column.
+  std::map<std::string, std::string> listed;
+  std::istringstream lines(result.err);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t gap = line.find("  ", 2);
+    if (!line.starts_with("  ") || gap == std::string::npos) continue;
+    listed[line.substr(2, gap - 2)] = line.substr(line.find_first_not_of(' ', gap));
+  }
+  const auto documented = documented_script_commands();
+  ASSERT_GE(documented.size(), 12u) << "no table of commands in docs/SCRIPTING.md";
+  for (const auto& [usage, help] : listed) {
+    const auto row = documented.find(usage);
+    if (row == documented.end()) {
+      ADD_FAILURE() << "'" << usage << "' is a command but not in docs/SCRIPTING.md";
+      continue;
+    }
+    EXPECT_TRUE(row->second.starts_with(help))
+        << usage << ": the help '" << help << "' does not begin the documentation's '"
+        << row->second << "'";
+  }
+  for (const auto& [usage, description] : documented)
+    EXPECT_TRUE(listed.contains(usage)) << "'" << usage << "' is documented but not a command:\n"
+                                        << result.err;
 }
 
 TEST_F(WorkbenchScript, ARelativePathListsItsFolderAsTheWorkspace) {

@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
+#include "script_commands.h"
 #include "tactile/error.h"
 
 namespace tactile {
@@ -92,9 +93,23 @@ void ScriptPlayer::fail(const ScriptStep& step, const std::string& message) {
   steps_.clear();
 }
 
+void ScriptPlayer::expand(const ScriptStep& step) {
+#define TACTILE_SCRIPT_EXPANDER(usage, help, fewest, most, check, expander) &ScriptPlayer::expander,
+  static constexpr void (ScriptPlayer::*kExpanders[])(const ScriptStep&) = {
+      TACTILE_SCRIPT_COMMANDS(TACTILE_SCRIPT_EXPANDER)};
+#undef TACTILE_SCRIPT_EXPANDER
+  (this->*kExpanders[step.form])(step);
+}
+
+void ScriptPlayer::once(std::function<void(Workbench&, ImGuiIO&)> work) {
+  actions_.push_back([work](Workbench& workbench, ImGuiIO& io) {
+    work(workbench, io);
+    return true;
+  });
+}
+
 // Moves the mouse onto the target, presses, releases, and lets one frame see the release.
-void ScriptPlayer::click_at(std::function<std::optional<ImVec2>(Workbench&, std::string&)> where,
-                            const ScriptStep& step) {
+void ScriptPlayer::click_at(Target where, const ScriptStep& step) {
   auto position = std::make_shared<ImVec2>();
   actions_.push_back([this, where, step, position](Workbench& workbench, ImGuiIO& io) {
     std::string problem;
@@ -108,284 +123,310 @@ void ScriptPlayer::click_at(std::function<std::optional<ImVec2>(Workbench&, std:
     io.MouseDown[0] = false;
     return true;
   });
-  actions_.push_back([position](Workbench&, ImGuiIO& io) {
-    io.MousePos = *position;
-    io.MouseDown[0] = true;
-    return true;
-  });
-  actions_.push_back([position](Workbench&, ImGuiIO& io) {
-    io.MousePos = *position;
-    io.MouseDown[0] = false;
-    return true;
-  });
-  actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
+  mouse_frame([position] { return *position; }, true);
+  mouse_frame([position] { return *position; }, false);
+  once([](Workbench&, ImGuiIO&) {});
 }
 
-void ScriptPlayer::expand(const ScriptStep& step) {
-  const std::string& command = step.command;
-  auto once = [this](std::function<void(Workbench&, ImGuiIO&)> work) {
-    actions_.push_back([work](Workbench& workbench, ImGuiIO& io) {
-      work(workbench, io);
-      return true;
-    });
-  };
-  if (command == "open") {
-    once([this, step](Workbench& workbench, ImGuiIO&) {
-      workbench.open(step.rest);
-      if (!workbench.error().empty()) fail(step, workbench.error());
-    });
-  } else if (command == "time") {
-    const double t = std::stod(step.words[0]);
-    once([t](Workbench& workbench, ImGuiIO&) { workbench.seek(t); });
-  } else if (command == "wait" && step.words[0] == "jobs") {
-    // Frames go on being drawn until no view's job (SOM, scatter) runs; ten minutes at most.
-    auto deadline = std::make_shared<std::optional<Clock::time_point>>();
-    actions_.push_back([this, step, deadline](Workbench& workbench, ImGuiIO&) {
-      const auto now = Clock::now();
-      if (!*deadline) *deadline = now + std::chrono::minutes(10);
-      if (!workbench.jobs_running()) return true;
-      if (now >= **deadline) {
-        fail(step, "a view's job still running after 10 minutes");
-        return true;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      return false;
-    });
-  } else if (command == "wait" && step.words[0] == "training") {
-    // Frames go on being drawn (the window stays responsive) until the run ends; ten
-    // minutes at most.
-    auto deadline = std::make_shared<std::optional<Clock::time_point>>();
-    actions_.push_back([this, step, deadline](Workbench& workbench, ImGuiIO&) {
-      const auto now = Clock::now();
-      if (!*deadline) *deadline = now + std::chrono::minutes(10);
-      const auto& job = workbench.state().analysis.job;
-      if (!job) {
-        if (!workbench.error().empty() && workbench.error().starts_with("training failed"))
-          fail(step, workbench.error());
-        return true;
-      }
-      if (now >= **deadline) {
-        fail(step, "training still running after 10 minutes");
-        return true;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      return false;
-    });
-  } else if (command == "wait") {
-    const int frames = static_cast<int>(std::stod(step.words[0]));
-    for (int k = 0; k < frames; ++k) once([](Workbench&, ImGuiIO&) {});
-  } else if (command == "key") {
-    for (const std::string& word : step.words) {
-      const KeyChord chord = parse_chord(word);
-      once([chord](Workbench&, ImGuiIO& io) {
-        io.KeyCtrl = chord.ctrl;
-        io.KeyShift = chord.shift;
-        io.KeyAlt = chord.alt;
-        io.KeySuper = chord.super;
-        io.KeysDown[chord.code] = true;
-        if (chord.character && !chord.ctrl && !chord.alt && !chord.super)
-          io.AddInputCharacter(chord.character);
-      });
-      once([chord](Workbench&, ImGuiIO& io) {
-        io.KeysDown[chord.code] = false;
-        io.KeyCtrl = io.KeyShift = io.KeyAlt = io.KeySuper = false;
-      });
-    }
-  } else if (command == "type") {
-    once([text = step.rest](Workbench&, ImGuiIO& io) { io.AddInputCharactersUTF8(text.c_str()); });
-    once([](Workbench&, ImGuiIO&) {});
-  } else if (command == "click" && step.words[0] == "taxel") {
-    const auto id = static_cast<int64_t>(std::stod(step.words[1]));
-    click_at(
-        [id](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
-          const UiTargets& targets = workbench.state().targets;
-          const auto found = targets.taxels.find(id);
-          if (found == targets.taxels.end()) {
-            problem = "no taxel " + std::to_string(id) + " in the skin view";
-            return std::nullopt;
-          }
-          const ImVec2 point(found->second.first, found->second.second);
-          if (!targets.skin_map.contains(point.x, point.y)) {
-            problem = "taxel " + std::to_string(id) + " is outside the visible skin view";
-            return std::nullopt;
-          }
-          return point;
-        },
-        step);
-  } else if (command == "click" && (step.words[0] == "recording" || step.words[0] == "item" ||
-                                    (step.words[0] == "cell" && step.words.size() == 3))) {
-    const std::string name = step.words[0] == "recording" ? "recording:" + step.words[1]
-                             : step.words[0] == "cell" ? "cell:" + step.words[1] + "/" + step.words[2]
-                                                       : step.rest.substr(step.rest.find_first_not_of(" \t", 4));
-    click_at(
-        [name](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
-          const auto& items = workbench.state().targets.items;
-          const auto found = items.find(name);
-          if (found == items.end()) {
-            problem = name.starts_with("recording:")
-                          ? "no " + name.substr(10) + " in the workspace list"
-                      : name.starts_with("cell:")
-                          ? "no confusion cell " + name.substr(5) +
-                                " on screen (open the Confusion tab; class names as on its axes)"
-                          : "no item '" + name + "' on screen";
-            return std::nullopt;
-          }
-          return centre_of(found->second);
-        },
-        step);
-  } else if (command == "click" && step.words[0] == "time") {
-    const double t = std::stod(step.words[1]);
-    const std::string view = time_view(step, 2);
-    click_at(
-        [t, view](Workbench& workbench, std::string& problem) {
-          return time_point(workbench, view, t, problem);
-        },
-        step);
-  } else if (command == "click") {
-    const std::string view = step.words[0];
-    const float fx = std::stof(step.words[1]), fy = std::stof(step.words[2]);
-    click_at(
-        [view, fx, fy](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
-          const auto& items = workbench.state().targets.items;
-          const auto found = items.find("view:" + view);
-          if (found == items.end()) {
-            problem = "no view '" + view + "' on screen";
-            return std::nullopt;
-          }
-          const ScreenRect& rect = found->second;
-          return ImVec2(rect.x0 + fx * rect.width(), rect.y0 + fy * rect.height());
-        },
-        step);
-  } else if (command == "drag") {
-    // From one point to another: times on a time axis, or the centres of two taxels
-    // (a rectangle over the skin).
-    const double a = std::stod(step.words[1]), b = std::stod(step.words[2]);
-    const bool taxels = step.words[0] == "taxel";
-    const std::string view = taxels ? "skin" : time_view(step, 3);
-    auto ends = std::make_shared<std::pair<ImVec2, ImVec2>>();
-    actions_.push_back([this, step, a, b, taxels, view, ends](Workbench& workbench, ImGuiIO& io) {
-      std::string problem;
-      auto point = [&](double value) -> std::optional<ImVec2> {
-        if (!taxels) return time_point(workbench, view, value, problem);
-        const auto& centres = workbench.state().targets.taxels;
-        const auto found = centres.find(static_cast<int64_t>(value));
-        if (found == centres.end()) {
-          problem = "no taxel " + std::to_string(static_cast<int64_t>(value)) + " in the skin view";
-          return std::nullopt;
-        }
-        return ImVec2(found->second.first, found->second.second);
-      };
-      const auto from = point(a);
-      const auto to = from ? point(b) : std::nullopt;
-      if (!from || !to) {
-        fail(step, problem);
-        return true;
-      }
-      *ends = {*from, *to};
-      if (taxels) {
-        // A rectangle that holds both centres: corners 3 pixels beyond them (ImGui
-        // floors mouse positions to whole pixels).
-        auto outward = [](float& a, float& b) {
-          const float sign = b >= a ? 1.0f : -1.0f;
-          a -= 3.0f * sign;
-          b += 3.0f * sign;
-        };
-        outward(ends->first.x, ends->second.x);
-        outward(ends->first.y, ends->second.y);
-      }
-      io.MousePos = ends->first;
-      io.MouseDown[0] = false;
-      return true;
-    });
-    actions_.push_back([ends](Workbench&, ImGuiIO& io) {
-      io.MousePos = ends->first;
-      io.MouseDown[0] = true;
-      return true;
-    });
-    constexpr int kDragSteps = 8;
-    for (int k = 1; k <= kDragSteps; ++k)
-      actions_.push_back([ends, k](Workbench&, ImGuiIO& io) {
-        const float f = static_cast<float>(k) / kDragSteps;
-        io.MousePos = ImVec2(ends->first.x + f * (ends->second.x - ends->first.x),
-                             ends->first.y + f * (ends->second.y - ends->first.y));
-        io.MouseDown[0] = true;
-        return true;
-      });
-    actions_.push_back([ends](Workbench&, ImGuiIO& io) {
-      io.MousePos = ends->second;
-      io.MouseDown[0] = false;
-      return true;
-    });
-    actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
-  } else if (command == "menu") {
-    // "File/Export view as PNG/Skin": click the bar entry, hover each submenu, click the item.
-    std::vector<std::string> parts;
-    std::stringstream path(step.rest);
-    for (std::string part; std::getline(path, part, '/');) parts.push_back(part);
-    std::string name = "menu:";
-    for (size_t k = 0; k < parts.size(); ++k) {
-      name += (k ? "/" : "") + parts[k];
-      const bool hover_only = k > 0 && k + 1 < parts.size();
-      auto resolve = [name](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+// One frame with the mouse at `position()` (known once an earlier frame found the target)
+// and its left button `down`.
+void ScriptPlayer::mouse_frame(std::function<ImVec2()> position, bool down) {
+  actions_.push_back([position, down](Workbench&, ImGuiIO& io) {
+    io.MousePos = position();
+    io.MouseDown[0] = down;
+    return true;
+  });
+}
+
+// Clicks the centre of an item as last drawn (UiTargets::items); `missing` when there is none.
+void ScriptPlayer::click_named(const std::string& name, const std::string& missing,
+                               const ScriptStep& step) {
+  click_at(
+      [name, missing](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
         const auto& items = workbench.state().targets.items;
         const auto found = items.find(name);
         if (found == items.end()) {
-          problem = "no menu item '" + name.substr(5) + "'";
+          problem = missing;
           return std::nullopt;
         }
         return centre_of(found->second);
-      };
-      if (hover_only) {
-        actions_.push_back([this, step, resolve](Workbench& workbench, ImGuiIO& io) {
-          std::string problem;
-          const auto point = resolve(workbench, problem);
-          if (!point) fail(step, problem);
-          else io.MousePos = *point;
-          return true;
-        });
-        actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
-      } else {
-        click_at(resolve, step);
+      },
+      step);
+}
+
+// From one point to another: times on a time axis, or the centres of two taxels (a rectangle
+// over the skin).
+void ScriptPlayer::drag(bool taxels, const ScriptStep& step) {
+  const double a = std::stod(step.words[1]), b = std::stod(step.words[2]);
+  const std::string view = taxels ? "skin" : time_view(step, 3);
+  auto ends = std::make_shared<std::pair<ImVec2, ImVec2>>();
+  actions_.push_back([this, step, a, b, taxels, view, ends](Workbench& workbench, ImGuiIO& io) {
+    std::string problem;
+    auto point = [&](double value) -> std::optional<ImVec2> {
+      if (!taxels) return time_point(workbench, view, value, problem);
+      const auto& centres = workbench.state().targets.taxels;
+      const auto found = centres.find(static_cast<int64_t>(value));
+      if (found == centres.end()) {
+        problem = "no taxel " + std::to_string(static_cast<int64_t>(value)) + " in the skin view";
+        return std::nullopt;
       }
+      return ImVec2(found->second.first, found->second.second);
+    };
+    const auto from = point(a);
+    const auto to = from ? point(b) : std::nullopt;
+    if (!from || !to) {
+      fail(step, problem);
+      return true;
     }
-  } else if (command == "play") {
-    const double seconds = std::stod(step.words[0]);
-    auto remaining = std::make_shared<double>(seconds);
-    auto started = std::make_shared<bool>(false);
-    actions_.push_back([remaining, started, this](Workbench& workbench, ImGuiIO&) {
-      PlaybackClock& clock = workbench.state().clock;
-      if (!*started) {
-        *started = true;
-        clock.play();
-      }
-      if (*remaining <= 1e-12 || !clock.playing()) {
-        clock.pause();
-        frame_seconds_ = 1.0 / 60.0;
-        return true;
-      }
-      const double recording_step = std::min(*remaining, clock.speed() / 30.0);
-      frame_seconds_ = recording_step / clock.speed();
-      *remaining -= recording_step;
-      return false;
+    *ends = {*from, *to};
+    if (taxels) {
+      // A rectangle that holds both centres: corners 3 pixels beyond them (ImGui
+      // floors mouse positions to whole pixels).
+      auto outward = [](float& a, float& b) {
+        const float sign = b >= a ? 1.0f : -1.0f;
+        a -= 3.0f * sign;
+        b += 3.0f * sign;
+      };
+      outward(ends->first.x, ends->second.x);
+      outward(ends->first.y, ends->second.y);
+    }
+    io.MousePos = ends->first;
+    io.MouseDown[0] = false;
+    return true;
+  });
+  mouse_frame([ends] { return ends->first; }, true);
+  constexpr int kDragSteps = 8;
+  for (int k = 1; k <= kDragSteps; ++k)
+    mouse_frame(
+        [ends, k] {
+          const float f = static_cast<float>(k) / kDragSteps;
+          return ImVec2(ends->first.x + f * (ends->second.x - ends->first.x),
+                        ends->first.y + f * (ends->second.y - ends->first.y));
+        },
+        true);
+  mouse_frame([ends] { return ends->second; }, false);
+  once([](Workbench&, ImGuiIO&) {});
+}
+
+// Frames go on being drawn (the window stays responsive) until `finished`; ten minutes at
+// most, then the step fails with `timeout`.
+void ScriptPlayer::draw_until(std::function<bool(Workbench&)> finished, const std::string& timeout,
+                              const ScriptStep& step) {
+  auto deadline = std::make_shared<std::optional<Clock::time_point>>();
+  actions_.push_back([this, finished, timeout, step, deadline](Workbench& workbench, ImGuiIO&) {
+    const auto now = Clock::now();
+    if (!*deadline) *deadline = now + std::chrono::minutes(10);
+    if (finished(workbench)) return true;
+    if (now >= **deadline) {
+      fail(step, timeout);
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return false;
+  });
+}
+
+//---- The commands (script_commands.h), in the order of docs/SCRIPTING.md
+
+void ScriptPlayer::open_path(const ScriptStep& step) {
+  once([this, step](Workbench& workbench, ImGuiIO&) {
+    workbench.open(step.rest);
+    if (!workbench.error().empty()) fail(step, workbench.error());
+  });
+}
+
+void ScriptPlayer::move_time(const ScriptStep& step) {
+  const double t = std::stod(step.words[0]);
+  once([t](Workbench& workbench, ImGuiIO&) { workbench.seek(t); });
+}
+
+void ScriptPlayer::press_keys(const ScriptStep& step) {
+  for (const std::string& word : step.words) {
+    const KeyChord chord = parse_chord(word);
+    once([chord](Workbench&, ImGuiIO& io) {
+      io.KeyCtrl = chord.ctrl;
+      io.KeyShift = chord.shift;
+      io.KeyAlt = chord.alt;
+      io.KeySuper = chord.super;
+      io.KeysDown[chord.code] = true;
+      if (chord.character && !chord.ctrl && !chord.alt && !chord.super)
+        io.AddInputCharacter(chord.character);
     });
-  } else if (command == "sleep") {
-    const double seconds = std::stod(step.words[0]);
-    auto deadline = std::make_shared<std::optional<Clock::time_point>>();
-    actions_.push_back([seconds, deadline](Workbench&, ImGuiIO&) {
-      const auto now = Clock::now();
-      if (!*deadline)
-        *deadline = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
-      if (now >= **deadline) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(15));
-      return false;
-    });
-  } else if (command == "screenshot" || command == "state") {
-    const bool screenshot = command == "screenshot";
-    once([this, path = step.rest, screenshot](Workbench&, ImGuiIO&) {
-      pending_outputs_.emplace_back(path, screenshot);
+    once([chord](Workbench&, ImGuiIO& io) {
+      io.KeysDown[chord.code] = false;
+      io.KeyCtrl = io.KeyShift = io.KeyAlt = io.KeySuper = false;
     });
   }
 }
+
+void ScriptPlayer::type_text(const ScriptStep& step) {
+  once([text = step.rest](Workbench&, ImGuiIO& io) { io.AddInputCharactersUTF8(text.c_str()); });
+  once([](Workbench&, ImGuiIO&) {});
+}
+
+void ScriptPlayer::click_taxel(const ScriptStep& step) {
+  const auto id = static_cast<int64_t>(std::stod(step.words[1]));
+  click_at(
+      [id](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+        const UiTargets& targets = workbench.state().targets;
+        const auto found = targets.taxels.find(id);
+        if (found == targets.taxels.end()) {
+          problem = "no taxel " + std::to_string(id) + " in the skin view";
+          return std::nullopt;
+        }
+        const ImVec2 point(found->second.first, found->second.second);
+        if (!targets.skin_map.contains(point.x, point.y)) {
+          problem = "taxel " + std::to_string(id) + " is outside the visible skin view";
+          return std::nullopt;
+        }
+        return point;
+      },
+      step);
+}
+
+void ScriptPlayer::click_time(const ScriptStep& step) {
+  const double t = std::stod(step.words[1]);
+  const std::string view = time_view(step, 2);
+  click_at([t, view](Workbench& workbench,
+                     std::string& problem) { return time_point(workbench, view, t, problem); },
+           step);
+}
+
+void ScriptPlayer::drag_time(const ScriptStep& step) { drag(false, step); }
+
+void ScriptPlayer::drag_taxels(const ScriptStep& step) { drag(true, step); }
+
+void ScriptPlayer::click_recording(const ScriptStep& step) {
+  click_named("recording:" + step.words[1], "no " + step.words[1] + " in the workspace list", step);
+}
+
+void ScriptPlayer::click_item(const ScriptStep& step) {
+  // The rest of the line after "item": names may hold spaces.
+  const std::string name = step.rest.substr(step.rest.find_first_not_of(" \t", 4));
+  click_named(name, "no item '" + name + "' on screen", step);
+}
+
+void ScriptPlayer::click_cell(const ScriptStep& step) {
+  const std::string cell = step.words[1] + "/" + step.words[2];
+  click_named("cell:" + cell,
+              "no confusion cell " + cell +
+                  " on screen (open the Confusion tab; class names as on its axes)",
+              step);
+}
+
+void ScriptPlayer::click_view(const ScriptStep& step) {
+  const std::string view = step.words[0];
+  const float fx = std::stof(step.words[1]), fy = std::stof(step.words[2]);
+  click_at(
+      [view, fx, fy](Workbench& workbench, std::string& problem) -> std::optional<ImVec2> {
+        const auto& items = workbench.state().targets.items;
+        const auto found = items.find("view:" + view);
+        if (found == items.end()) {
+          problem = "no view '" + view + "' on screen";
+          return std::nullopt;
+        }
+        const ScreenRect& rect = found->second;
+        return ImVec2(rect.x0 + fx * rect.width(), rect.y0 + fy * rect.height());
+      },
+      step);
+}
+
+// "File/Export view as PNG/Skin": click the bar entry, hover each submenu, click the item.
+void ScriptPlayer::choose_menu(const ScriptStep& step) {
+  std::vector<std::string> parts;
+  std::stringstream path(step.rest);
+  for (std::string part; std::getline(path, part, '/');) parts.push_back(part);
+  std::string name = "menu:";
+  for (size_t k = 0; k < parts.size(); ++k) {
+    name += (k ? "/" : "") + parts[k];
+    const std::string missing = "no menu item '" + name.substr(5) + "'";
+    if (k > 0 && k + 1 < parts.size()) {  // a submenu: hovered, not clicked
+      actions_.push_back([this, step, name, missing](Workbench& workbench, ImGuiIO& io) {
+        const auto& items = workbench.state().targets.items;
+        const auto found = items.find(name);
+        if (found == items.end())
+          fail(step, missing);
+        else
+          io.MousePos = centre_of(found->second);
+        return true;
+      });
+      actions_.push_back([](Workbench&, ImGuiIO&) { return true; });
+    } else {
+      click_named(name, missing, step);
+    }
+  }
+}
+
+void ScriptPlayer::wait_frames(const ScriptStep& step) {
+  const int frames = static_cast<int>(std::stod(step.words[0]));
+  for (int k = 0; k < frames; ++k) once([](Workbench&, ImGuiIO&) {});
+}
+
+void ScriptPlayer::wait_training(const ScriptStep& step) {
+  draw_until(
+      [this, step](Workbench& workbench) {
+        if (workbench.state().analysis.job) return false;
+        if (!workbench.error().empty() && workbench.error().starts_with("training failed"))
+          fail(step, workbench.error());
+        return true;
+      },
+      "training still running after 10 minutes", step);
+}
+
+void ScriptPlayer::wait_jobs(const ScriptStep& step) {
+  draw_until([](Workbench& workbench) { return !workbench.jobs_running(); },
+             "a view's job still running after 10 minutes", step);
+}
+
+void ScriptPlayer::play_recording(const ScriptStep& step) {
+  auto remaining = std::make_shared<double>(std::stod(step.words[0]));
+  auto started = std::make_shared<bool>(false);
+  actions_.push_back([remaining, started, this](Workbench& workbench, ImGuiIO&) {
+    PlaybackClock& clock = workbench.state().clock;
+    if (!*started) {
+      *started = true;
+      clock.play();
+    }
+    if (*remaining <= 1e-12 || !clock.playing()) {
+      clock.pause();
+      frame_seconds_ = 1.0 / 60.0;
+      return true;
+    }
+    const double recording_step = std::min(*remaining, clock.speed() / 30.0);
+    frame_seconds_ = recording_step / clock.speed();
+    *remaining -= recording_step;
+    return false;
+  });
+}
+
+void ScriptPlayer::sleep_wall_clock(const ScriptStep& step) {
+  const double seconds = std::stod(step.words[0]);
+  auto deadline = std::make_shared<std::optional<Clock::time_point>>();
+  actions_.push_back([seconds, deadline](Workbench&, ImGuiIO&) {
+    const auto now = Clock::now();
+    if (!*deadline)
+      *deadline =
+          now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    if (now >= **deadline) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    return false;
+  });
+}
+
+// Written after the frame is rendered (after_frame).
+void ScriptPlayer::write_screenshot(const ScriptStep& step) {
+  once([this, path = step.rest](Workbench&, ImGuiIO&) {
+    pending_outputs_.emplace_back(path, true);
+  });
+}
+
+void ScriptPlayer::write_state(const ScriptStep& step) {
+  once([this, path = step.rest](Workbench&, ImGuiIO&) {
+    pending_outputs_.emplace_back(path, false);
+  });
+}
+
+//---- Frames
 
 double ScriptPlayer::before_frame(Workbench& workbench) {
   ImGuiIO& io = ImGui::GetIO();

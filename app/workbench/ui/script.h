@@ -40,10 +40,39 @@ class ScriptPlayer {
 
  private:
   using Action = std::function<bool(Workbench&, ImGuiIO&)>;  // true: done, next one
+  using Target = std::function<std::optional<ImVec2>(Workbench&, std::string& problem)>;
+  // Adds the step's actions, by the expander its form names in script_commands.h.
   void expand(const ScriptStep& step);
   void fail(const ScriptStep& step, const std::string& message);
-  void click_at(std::function<std::optional<ImVec2>(Workbench&, std::string&)> where,
-                const ScriptStep& step);
+  void once(std::function<void(Workbench&, ImGuiIO&)> work);  // an action of one frame
+  void click_at(Target where, const ScriptStep& step);
+  void mouse_frame(std::function<ImVec2()> position, bool down);
+  void click_named(const std::string& name, const std::string& missing, const ScriptStep& step);
+  void drag(bool taxels, const ScriptStep& step);
+  void draw_until(std::function<bool(Workbench&)> finished, const std::string& timeout,
+                  const ScriptStep& step);
+
+  // The expanders, one per form of a command (the EXPAND column of script_commands.h).
+  void open_path(const ScriptStep& step);
+  void move_time(const ScriptStep& step);
+  void press_keys(const ScriptStep& step);
+  void type_text(const ScriptStep& step);
+  void click_taxel(const ScriptStep& step);
+  void click_time(const ScriptStep& step);
+  void drag_time(const ScriptStep& step);
+  void drag_taxels(const ScriptStep& step);
+  void click_recording(const ScriptStep& step);
+  void click_item(const ScriptStep& step);
+  void click_cell(const ScriptStep& step);
+  void click_view(const ScriptStep& step);
+  void choose_menu(const ScriptStep& step);
+  void wait_frames(const ScriptStep& step);
+  void wait_training(const ScriptStep& step);
+  void wait_jobs(const ScriptStep& step);
+  void play_recording(const ScriptStep& step);
+  void sleep_wall_clock(const ScriptStep& step);
+  void write_screenshot(const ScriptStep& step);
+  void write_state(const ScriptStep& step);
 
   std::deque<ScriptStep> steps_;
   std::deque<Action> actions_;

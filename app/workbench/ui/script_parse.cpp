@@ -7,7 +7,9 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
+#include "script_commands.h"
 #include "tactile/error.h"
 
 namespace tactile {
@@ -29,6 +31,11 @@ std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
+}
+
+// "FILE:LINE" of a step, where errors name it.
+std::string place_of(const ScriptStep& step, const std::string& where) {
+  return where + ":" + std::to_string(step.line);
 }
 
 }  // namespace
@@ -82,7 +89,7 @@ KeyChord parse_chord(const std::string& text) {
 
 double parse_number(const ScriptStep& step, size_t index, const std::string& where) {
   if (index >= step.words.size())
-    throw Error(where + ":" + std::to_string(step.line), step.command + ": a number is missing");
+    throw Error(place_of(step, where), step.command + ": a number is missing");
   const std::string& word = step.words[index];
   try {
     size_t used = 0;
@@ -90,19 +97,140 @@ double parse_number(const ScriptStep& step, size_t index, const std::string& whe
     if (used != word.size() || !std::isfinite(value)) throw std::invalid_argument(word);
     return value;
   } catch (const std::exception&) {
-    throw Error(where + ":" + std::to_string(step.line),
-                step.command + ": '" + word + "' is not a number");
+    throw Error(place_of(step, where), step.command + ": '" + word + "' is not a number");
   }
 }
 
+//---- Checks of the arguments (the CHECK column of script_commands.h)
+
+namespace {
+
+// The first argument, a number that is not negative.
+double not_negative_number(const ScriptStep& step, const std::string& where) {
+  const double value = parse_number(step, 0, where);
+  if (value < 0) throw Error(place_of(step, where), step.command + ": must not be negative");
+  return value;
+}
+
+void check_script_not_negative(const ScriptStep& step, const std::string& where) {
+  not_negative_number(step, where);
+}
+
+// `wait 0.5` would draw no frame at all: a script meaning seconds gets told so.
+void check_script_frame_count(const ScriptStep& step, const std::string& where) {
+  const double frames = not_negative_number(step, where);
+  if (frames != std::floor(frames) || frames > 1e6)
+    throw Error(place_of(step, where),
+                "wait: " + step.words[0] +
+                    " is not a whole number of frames (up to 1000000); for seconds use 'sleep' "
+                    "(wall clock) or 'play' (recording time)");
+}
+
+void check_script_key_chords(const ScriptStep& step, const std::string& where) {
+  for (const std::string& word : step.words) {
+    try {
+      parse_chord(word);
+    } catch (const std::invalid_argument& reason) {
+      throw Error(place_of(step, where), "key " + word + ": " + reason.what());
+    }
+  }
+}
+
+void check_script_taxel_id(const ScriptStep& step, const std::string& where) {
+  const double id = parse_number(step, 1, where);
+  if (id != std::floor(id))
+    throw Error(place_of(step, where), "click taxel: " + step.words[1] + " is not a taxel id");
+}
+
+void check_script_one_number(const ScriptStep& step, const std::string& where) {
+  parse_number(step, 1, where);
+}
+
+void check_script_two_numbers(const ScriptStep& step, const std::string& where) {
+  parse_number(step, 1, where), parse_number(step, 2, where);
+}
+
+//---- The table
+
+using ScriptCheck = void (*)(const ScriptStep&, const std::string& where);
+
+struct ScriptForm {
+  std::string_view usage, help;
+  size_t fewest, most;
+  ScriptCheck check;
+
+  std::string_view command() const { return usage.substr(0, usage.find(' ')); }
+  // The lower-case word after the command that picks this form; "" for none.
+  std::string_view keyword() const {
+    if (usage.find(' ') == std::string_view::npos) return {};
+    const size_t start = usage.find(' ') + 1;
+    const std::string_view word = usage.substr(start, usage.find(' ', start) - start);
+    return std::islower(static_cast<unsigned char>(word[0])) ? word : std::string_view();
+  }
+};
+
+#define TACTILE_SCRIPT_FORM(usage, help, fewest, most, check, expand) \
+  ScriptForm{usage, help, fewest, most, check},
+constexpr ScriptForm kScriptForms[] = {TACTILE_SCRIPT_COMMANDS(TACTILE_SCRIPT_FORM)};
+#undef TACTILE_SCRIPT_FORM
+
+// "'a', 'b' or 'c'": the usages of `command`'s forms, or only `form`'s when it has a keyword.
+std::string expected_usages(std::string_view command, const ScriptForm* form) {
+  std::vector<std::string_view> usages;
+  for (const ScriptForm& other : kScriptForms)
+    if (other.command() == command && (!form || form->keyword().empty() || &other == form))
+      usages.push_back(other.usage);
+  std::string text = "expected ";
+  for (size_t k = 0; k < usages.size(); ++k)
+    text += (k == 0 ? "'" : k + 1 < usages.size() ? ", '" : " or '") + std::string(usages[k]) + "'";
+  return text;
+}
+
+// Every form with its help, one a line, the usages in a column.
+std::string every_usage() {
+  size_t width = 0;
+  for (const ScriptForm& form : kScriptForms) width = std::max(width, form.usage.size());
+  std::string text;
+  for (const ScriptForm& form : kScriptForms)
+    text += "\n  " + std::string(form.usage) + std::string(width + 2 - form.usage.size(), ' ') +
+            std::string(form.help);
+  return text;
+}
+
+// The form of `step`: its command's form whose keyword is the first argument, else the one
+// without a keyword. Throws naming the line when the command is unknown, no form takes the
+// arguments or they are too few or too many.
+size_t form_of(const ScriptStep& step, const std::string& where) {
+  const std::string place = place_of(step, where);
+  bool known = false;
+  const ScriptForm* chosen = nullptr;
+  for (const ScriptForm& form : kScriptForms) {
+    if (form.command() != step.command) continue;
+    known = true;
+    const std::string_view keyword = form.keyword();
+    if (!keyword.empty() && !step.words.empty() && keyword == step.words[0])
+      chosen = &form;
+    else if (keyword.empty() && !chosen)
+      chosen = &form;
+  }
+  if (!known)
+    throw Error(place, "unknown command '" + step.command +
+                           "'; the commands are (docs/SCRIPTING.md):" + every_usage());
+  if (!chosen) throw Error(place, step.command + ": " + expected_usages(step.command, nullptr));
+  if (step.words.size() < chosen->fewest || step.words.size() > chosen->most) {
+    const std::string name =
+        step.command + (chosen->keyword().empty() ? "" : " ") + std::string(chosen->keyword());
+    throw Error(place,
+                name + ": wrong number of arguments, " + expected_usages(step.command, chosen));
+  }
+  return static_cast<size_t>(chosen - kScriptForms);
+}
+
+}  // namespace
 
 //---- Parsing
 
 std::vector<ScriptStep> parse_script(const std::string& text, const std::string& where) {
-  static const std::map<std::string, std::pair<size_t, size_t>> kArity = {
-      {"open", {1, 99}},  {"time", {1, 1}},  {"key", {1, 99}},   {"type", {1, 99}},
-      {"click", {2, 99}},  {"drag", {3, 5}},  {"menu", {1, 99}},  {"wait", {1, 1}},
-      {"play", {1, 1}},   {"sleep", {1, 1}}, {"screenshot", {1, 99}}, {"state", {1, 99}}};
   std::vector<ScriptStep> steps;
   std::istringstream lines(text);
   std::string line;
@@ -119,56 +247,9 @@ std::vector<ScriptStep> parse_script(const std::string& text, const std::string&
     while (!step.rest.empty() && (step.rest.back() == ' ' || step.rest.back() == '\t'))
       step.rest.pop_back();
     for (std::string word; words >> word;) step.words.push_back(word);
-    const std::string place = where + ":" + std::to_string(number);
-    const auto arity = kArity.find(step.command);
-    if (arity == kArity.end())
-      throw Error(place, "unknown command '" + step.command +
-                             "' (open, time, key, type, click, drag, menu, wait, play, sleep, "
-                             "screenshot, state)");
-    if (step.words.size() < arity->second.first || step.words.size() > arity->second.second)
-      throw Error(place, step.command + ": wrong number of arguments (docs/SCRIPTING.md)");
-    // Check what can be checked before anything runs.
-    if (step.command == "wait" && (step.words[0] == "training" || step.words[0] == "jobs")) {
-      // Draws frames until the model panel's run, or the views' jobs, end.
-    } else if (step.command == "time" || step.command == "wait" || step.command == "play" ||
-               step.command == "sleep") {
-      const double value = parse_number(step, 0, where);
-      if (value < 0) throw Error(place, step.command + ": must not be negative");
-      // `wait 0.5` would draw no frame at all: a script meaning seconds gets told so.
-      if (step.command == "wait" && (value != std::floor(value) || value > 1e6))
-        throw Error(place, "wait: " + step.words[0] +
-                               " is not a whole number of frames (up to 1000000); for seconds "
-                               "use 'sleep' (wall clock) or 'play' (recording time)");
-    } else if (step.command == "key") {
-      for (const std::string& word : step.words) {
-        try {
-          parse_chord(word);
-        } catch (const std::invalid_argument& reason) {
-          throw Error(place, "key " + word + ": " + reason.what());
-        }
-      }
-    } else if (step.command == "click") {
-      const std::string& what = step.words[0];
-      if (what == "taxel") {
-        const double id = parse_number(step, 1, where);
-        if (id != std::floor(id)) throw Error(place, "click taxel: " + step.words[1] + " is not a taxel id");
-      } else if (what == "time") {
-        parse_number(step, 1, where);
-      } else if (what == "recording" && step.words.size() == 2) {
-      } else if (what == "item") {  // the rest of the line: names may hold spaces
-      } else if (what == "cell" && step.words.size() == 3) {
-      } else if (step.words.size() == 3) {
-        parse_number(step, 1, where), parse_number(step, 2, where);
-      } else {
-        throw Error(place,
-                    "click: expected 'taxel ID', 'time T [in VIEW]', 'recording NAME', 'item NAME', "
-                    "'cell TRUE PREDICTED' or 'VIEW X Y'");
-      }
-    } else if (step.command == "drag") {
-      if (step.words[0] != "time" && step.words[0] != "taxel")
-        throw Error(place, "drag: expected 'time T0 T1 [in VIEW]' or 'taxel A B'");
-      parse_number(step, 1, where), parse_number(step, 2, where);
-    }
+    step.form = form_of(step, where);
+    const ScriptCheck check = kScriptForms[step.form].check;
+    if (check) check(step, where);
     steps.push_back(std::move(step));
   }
   return steps;

@@ -13,10 +13,11 @@ struct ScriptStep {
   std::string command;  // "click", "key", ...
   std::vector<std::string> words;  // the arguments, split at spaces
   std::string rest;                // everything after the command, as written
+  size_t form = 0;  // which line of TACTILE_SCRIPT_COMMANDS (script_commands.h) it matched
 };
 
-// Parses a script; throws tactile::Error naming "FILE:LINE" for an unknown command or
-// a wrong argument.
+// Parses a script; throws tactile::Error naming "FILE:LINE" for an unknown command (listing
+// every command with its help) or a wrong argument.
 std::vector<ScriptStep> parse_script(const std::string& text, const std::string& where);
 std::vector<ScriptStep> read_script(const std::string& path);
 
