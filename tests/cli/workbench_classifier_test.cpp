@@ -47,6 +47,61 @@ class WorkbenchClassifiers : public ::testing::Test {
 const char* kTrainAll =
     "wait 2\nclick item tab:model\nwait 2\nclick item button:Train all\nwait training\nwait 3\n";
 
+// The RGB a view's legend shows for a class, read off its screenshot at the swatch's centre.
+uint32_t legend_colour(const Png& png, const nlohmann::json& state, const std::string& view,
+                       const std::string& name) {
+  const nlohmann::json& swatch = state["legends"][view][name];
+  if (swatch.is_null()) return 0;
+  const unsigned char* p =
+      png.at(static_cast<int>(swatch["x"].get<double>() + swatch["width"].get<double>() / 2),
+             static_cast<int>(swatch["y"].get<double>() + swatch["height"].get<double>() / 2));
+  return 0xFF000000u | p[0] << 16 | p[1] << 8 | p[2];
+}
+
+TEST_F(WorkbenchClassifiers, EachClassHasOneColourInTheLanesTheScatterTheSomAndTheConfusion) {
+  ASSERT_EQ(
+      test::run_program(
+          "tactile", "simulate --skin fur --subjects 2 --repetitions 2 --out " + folder.file("fur"),
+          folder)
+          .exit_code,
+      0);
+  const std::string table = folder.file("fur/features.csv");
+  ASSERT_EQ(test::run_program("tactile",
+                              "features --pipeline fur --labels " + folder.file("fur/labels.db") +
+                                  " --out " + table,
+                              folder)
+                .exit_code,
+            0);
+  const auto run = workbench(
+      folder.file("fur/fur-s01-t01.h5") + " --features " + table,
+      std::string(kTrainAll) +
+          "click item tab:confusion\nwait 2\nscreenshot @confusion.png\nstate @confusion.json\n"
+          "click item tab:scatter\nwait jobs\nwait 1\nscreenshot @scatter.png\nstate "
+          "@scatter.json\n"
+          "click item tab:som\nwait jobs\nwait 1\nscreenshot @som.png\nstate @som.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::set<uint32_t> class_colours;
+  for (const std::string name : {"slap", "pat", "fondle", "stroke", "tickle", "push"}) {
+    const uint32_t lanes =
+        legend_colour(read_png(folder.file("scatter.png")), state("scatter.json"), "lanes", name);
+    ASSERT_NE(lanes, 0u) << name << ": no lanes legend " << state("scatter.json")["legends"];
+    EXPECT_EQ(
+        legend_colour(read_png(folder.file("scatter.png")), state("scatter.json"), "scatter", name),
+        lanes)
+        << name;
+    EXPECT_EQ(legend_colour(read_png(folder.file("som.png")), state("som.json"), "som", name),
+              lanes)
+        << name;
+    EXPECT_EQ(legend_colour(read_png(folder.file("confusion.png")), state("confusion.json"),
+                            "confusion", name),
+              lanes)
+        << name;
+    class_colours.insert(lanes);
+  }
+  EXPECT_EQ(class_colours.size(), 6u);             // no two classes share one
+  EXPECT_FALSE(class_colours.count(0xFF969696u));  // nor the neutral grey of "unknown"
+}
+
 TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
   // First run: which cells are wrong (training is seeded: the second run gets the same).
   const std::string recording = demo("fur-s01-t01.h5");

@@ -48,6 +48,9 @@ void reset_views(WorkbenchState& state) {
 void set_dataset(WorkbenchState& state, Dataset dataset) {
   AnalysisState& analysis = state.analysis;
   analysis.dataset_layout = dataset.shared_metadata("layout");
+  // A table's classes take its skin's colours when no recording of that skin is open.
+  if (!state.document || state.document->layout.id != analysis.dataset_layout)
+    state.class_colours.set_vocabulary(skin_classes(analysis.dataset_layout));
   analysis.dataset = std::make_shared<const Dataset>(std::move(dataset));
   analysis.som.reset();
   retire_job(state, std::move(analysis.som_job));

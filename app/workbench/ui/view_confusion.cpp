@@ -31,7 +31,7 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
   float name_width = 0.0f;
   for (const std::string& name : result.classes)
     name_width = std::max(name_width, ImGui::CalcTextSize(name.c_str()).x);
-  name_width += 12.0f;
+  name_width += 26.0f;  // a swatch of the class's colour, its name, a gap
   const float header = ImGui::GetTextLineHeight() * 2.4f;
   const float legend = 110.0f;
   const float cell = std::clamp(std::min((size.x - name_width - legend) / std::max(1, columns),
@@ -50,8 +50,11 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
   }
   for (int row = 0; row < classes; ++row) {
     const std::string& name = result.classes[static_cast<size_t>(row)];
-    draw.AddText(ImVec2(origin.x, grid.y + row * cell + (cell - ImGui::GetTextLineHeight()) / 2),
-                 IM_COL32(220, 220, 220, 255), name.c_str());
+    const ImVec2 label(origin.x, grid.y + row * cell + (cell - ImGui::GetTextLineHeight()) / 2);
+    const ImVec2 swatch(label.x, label.y + 3);
+    draw.AddRectFilled(swatch, ImVec2(swatch.x + 10, swatch.y + 10), class_colour(state, name));
+    remember_legend(state, "confusion", name, swatch, 10.0f);
+    draw.AddText(ImVec2(label.x + 14, label.y), IM_COL32(220, 220, 220, 255), name.c_str());
     const double total = std::max(1, result.confusion.row(row).sum());
     for (int column = 0; column < columns; ++column) {
       const int count = result.confusion(row, column);

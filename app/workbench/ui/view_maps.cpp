@@ -15,19 +15,15 @@ namespace tactile {
 
 namespace {
 
-ImU32 colour_of_class(const std::vector<std::string>& classes, const std::string& name, int alpha) {
-  const auto found = std::find(classes.begin(), classes.end(), name);
-  const int index = found == classes.end() ? 9 : static_cast<int>(found - classes.begin());
-  return (plot_colour(index % 10) & 0x00FFFFFFu) | (static_cast<uint32_t>(alpha) << 24);
-}
-
-void draw_legend(const std::vector<std::string>& classes, ImVec2 at) {
+void draw_legend(WorkbenchState& state, const char* view, const std::vector<std::string>& classes,
+                 ImVec2 at) {
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   const float line = ImGui::GetTextLineHeightWithSpacing();
   for (size_t k = 0; k < classes.size(); ++k) {
     const ImVec2 row(at.x, at.y + line * static_cast<float>(k));
     draw.AddRectFilled(ImVec2(row.x, row.y + 3), ImVec2(row.x + 10, row.y + 13),
-                       colour_of_class(classes, classes[k], 255));
+                       class_colour(state, classes[k]));
+    remember_legend(state, view, classes[k], ImVec2(row.x, row.y + 3), 10.0f);
     draw.AddText(ImVec2(row.x + 14, row.y), IM_COL32(220, 220, 220, 255), classes[k].c_str());
   }
 }
@@ -90,7 +86,8 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   float nearest_distance = 10.0f * 10.0f;
   for (Eigen::Index row = 0; row < xy.rows(); ++row) {
     const ImVec2 point = to_screen(row);
-    draw.AddCircleFilled(point, 3.5f, colour_of_class(classes, dataset.classes[static_cast<size_t>(row)], 220));
+    draw.AddCircleFilled(point, 3.5f,
+                         class_colour(state, dataset.classes[static_cast<size_t>(row)], 220));
     const RowOutcome& outcome = outcomes[static_cast<size_t>(row)];
     if (outcome.tested && outcome.truth != outcome.predicted)
       draw.AddCircle(point, 7.0f, IM_COL32(255, 80, 60, 255), 0, 1.8f);
@@ -113,7 +110,7 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
     if (clicked)
       if (auto prediction = prediction_of(state, nearest)) land_on(state, *prediction);
   }
-  draw_legend(classes, ImVec2(origin.x + plot.x + 10, origin.y));
+  draw_legend(state, "scatter", classes, ImVec2(origin.x + plot.x + 10, origin.y));
   ImGui::EndChild();
 }
 
@@ -158,8 +155,6 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
       spread_max = std::max(spread_max, spread[static_cast<size_t>(k)]);
     }
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
-  const std::vector<std::string> table_classes =
-      analysis.dataset ? analysis.dataset->class_names() : std::vector<std::string>{};
   for (int y = 0; y < map.rows; ++y)
     for (int x = 0; x < map.columns; ++x) {
       const int k = y * map.columns + x;
@@ -167,7 +162,7 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
       const ImVec2 high(low.x + cell - 2, low.y + cell - 2);
       const int owner = map.neuron_class[static_cast<size_t>(k)];
       ImU32 fill = owner >= 0 && owner < static_cast<int>(classes.size())
-                       ? colour_of_class(classes, classes[static_cast<size_t>(owner)], 200)
+                       ? class_colour(state, classes[static_cast<size_t>(owner)], 200)
                        : IM_COL32(60, 60, 60, 255);
       draw.AddRectFilled(low, high, fill, 3.0f);
       if (analysis.u_matrix) {  // dark where the map folds: the borders between regions
@@ -195,12 +190,12 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
     const float radius = std::min(cell * 0.38f, 3.6f * std::sqrt(static_cast<float>(n)));
     const ImVec2 centre(origin.x + (k % map.columns + 0.5f) * cell - 1 + radius * std::cos(angle),
                         origin.y + (k / map.columns + 0.5f) * cell - 1 + radius * std::sin(angle));
-    draw.AddCircleFilled(centre, 3.8f, colour_of_class(table_classes, analysis.dataset->classes[row], 255));
+    draw.AddCircleFilled(centre, 3.8f, class_colour(state, analysis.dataset->classes[row]));
     draw.AddCircle(centre, 3.8f, IM_COL32(255, 255, 255, 220));
     if (row < outcomes.size() && outcomes[row].tested && outcomes[row].truth != outcomes[row].predicted)
       draw.AddCircle(centre, 6.5f, IM_COL32(255, 60, 40, 255), 0, 2.0f);
   }
-  draw_legend(classes, ImVec2(origin.x + map.columns * cell + 10, origin.y));
+  draw_legend(state, "som", classes, ImVec2(origin.x + map.columns * cell + 10, origin.y));
   ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + map.rows * cell + 4));
   if (analysis.som_neuron >= 0 && analysis.dataset) {
     ImGui::Text("neuron %d wins:", analysis.som_neuron);

@@ -41,17 +41,25 @@ std::string view_names() {
   return names;
 }
 
-uint32_t class_colour(const Document& document, const std::string& class_name) {
+uint32_t class_colour(WorkbenchState& state, const std::string& class_name, int alpha) {
   // Live decisions between touches: grey, and faint, so they do not read as a class.
   if (class_name == kNoTouchClass) return IM_COL32(128, 128, 128, 25);
-  // A class of the skin's vocabulary takes the colour of its place in it, so the
-  // classes of one skin never share a colour; others are hashed.
-  const auto found = std::find(document.classes.begin(), document.classes.end(), class_name);
-  const size_t index = found != document.classes.end()
-                           ? static_cast<size_t>(found - document.classes.begin())
-                           : std::hash<std::string>{}(class_name);
-  const uint32_t base = plot_colour(static_cast<int>(index % 10));
-  return (base & 0x00FFFFFFu) | (70u << 24);  // translucent, so signals show through
+  // The open recording's vocabulary comes first, in its order.
+  ClassColours& colours = state.class_colours;
+  if (state.document) {
+    const std::vector<std::string>& vocabulary = state.document->classes;
+    const std::vector<std::string>& order = colours.order();
+    if (order.size() < vocabulary.size() ||
+        !std::equal(vocabulary.begin(), vocabulary.end(), order.begin()))
+      colours.set_vocabulary(vocabulary);
+  }
+  return colours.colour(class_name, alpha);
+}
+
+void remember_legend(WorkbenchState& state, const std::string& view, const std::string& class_name,
+                     ImVec2 at, float size) {
+  state.targets.items["legend:" + view + ":" + class_name] =
+      to_rect(at, ImVec2(at.x + size, at.y + size));
 }
 
 std::string format_seconds(double seconds) {

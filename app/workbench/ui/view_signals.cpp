@@ -32,7 +32,7 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
     for (const LaneSpan& span : lane_spans(*lane, t0, t1, columns)) {
       const Label& label = lane->labels()[span.label];
       spans.push_back({std::max(label.t0, t0), std::min(label.t1, t1),
-                       class_colour(document, label.class_name), label.class_name});
+                       class_colour(state, label.class_name, 70), label.class_name});
     }
   // Live: where packets were lost, marked (the lines break there too).
   if (state.live.connected)

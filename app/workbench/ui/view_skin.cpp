@@ -196,7 +196,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     const ImVec2 at(origin.x + (available.x - extent.x) * 0.5f, origin.y + available.y - extent.y - 10.0f);
     const uint32_t colour = shown.class_name == kNoTouchClass
                                 ? IM_COL32(90, 90, 90, 230)
-                                : (class_colour(*state.document, shown.class_name) & 0x00FFFFFFu) | 0xE6000000u;
+                                : class_colour(state, shown.class_name, 230);
     // (an unfinished touch is marked "...": its final answer comes when it ends)
     draw.AddRectFilled(ImVec2(at.x - 10, at.y - 4), ImVec2(at.x + extent.x + 10, at.y + extent.y + 4), colour, 6.0f);
     draw.AddText(font, size, at, IM_COL32(255, 255, 255, 255), text);

@@ -106,7 +106,8 @@ void draw_legend(WorkbenchState& state) {
     if (k > 0) ImGui::SameLine(0, 10);
     const ImVec2 at = ImGui::GetCursorScreenPos();
     const float size = ImGui::GetTextLineHeight();
-    const uint32_t colour = (class_colour(document, document.classes[k]) & 0x00FFFFFFu) | (200u << 24);
+    const uint32_t colour = class_colour(state, document.classes[k]);
+    remember_legend(state, "lanes", document.classes[k], at, size);
     draw.AddRectFilled(at, ImVec2(at.x + size, at.y + size), colour, 2.0f);
     ImGui::Dummy(ImVec2(size, size));
     ImGui::SameLine(0, 4);
@@ -216,8 +217,7 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
     const float x1 = left + static_cast<float>(span.last);
     const bool selected = std::find(state.selection.labels.begin(), state.selection.labels.end(),
                                     label.id) != state.selection.labels.end();
-    const uint32_t colour =
-        (class_colour(*state.document, label.class_name) & 0x00FFFFFFu) | (200u << 24);
+    const uint32_t colour = class_colour(state, label.class_name, 200);
     draw.AddRectFilled(ImVec2(x0, lane_min.y + 2), ImVec2(x1, lane_max.y - 2), colour, 2.0f);
     if (selected)
       draw.AddRect(ImVec2(x0, lane_min.y + 1), ImVec2(x1, lane_max.y - 1),

@@ -44,7 +44,13 @@ std::string view_names();
 std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const WorkbenchState& state);
 const LaneIndex* top_lane(const WorkbenchState& state);
 // The colour of a class: its place in the document's vocabulary, else a hash.
-uint32_t class_colour(const Document& document, const std::string& class_name);
+// The class's colour in every view (state.class_colours): the open recording's vocabulary
+// (else the table's skin's) in its order; "no touch" faint grey, "unknown" neutral grey.
+uint32_t class_colour(WorkbenchState& state, const std::string& class_name, int alpha = 255);
+// A legend's swatch of a class, as item "legend:VIEW:CLASS" (the state JSON's items), so a
+// test can read each view's colour of one class off the screenshot.
+void remember_legend(WorkbenchState& state, const std::string& view, const std::string& class_name,
+                     ImVec2 at, float size);
 std::string format_seconds(double seconds);
 // Remembers the last ImGui item's rectangle under `name` for scripts.
 void remember_item(WorkbenchState& state, const std::string& name);

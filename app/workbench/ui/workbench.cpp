@@ -590,6 +590,15 @@ nlohmann::json Workbench::state_json() const {
     if (name.starts_with("view:"))
       views[name.substr(5)] = {{"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
   json["views"] = views;
+  // Each legend's swatch of each class as drawn this frame, by view: "lanes", "scatter", ...
+  nlohmann::json legends = nlohmann::json::object();
+  for (const auto& [name, rect] : state_.targets.items)
+    if (name.starts_with("legend:")) {
+      const size_t colon = name.find(':', 7);
+      legends[name.substr(7, colon - 7)][name.substr(colon + 1)] = {
+          {"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+    }
+  json["legends"] = legends;
   json["panels"] = {{"sidebar_width", state_.sizes.sidebar_width},
                     {"skin_fraction", state_.sizes.skin_fraction},
                     {"timeline_height", state_.sizes.timeline_height}};

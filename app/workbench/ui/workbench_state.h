@@ -28,6 +28,7 @@
 #include "tactile/ml/evaluation.h"
 #include "tactile/ml/som.h"
 #include "tactile/signal/display_scale.h"
+#include "tactile/widgets/class_colours.h"
 #include "tactile/widgets/signal_plot.h"
 #include "tactile/widgets/skin_view.h"
 
@@ -232,6 +233,8 @@ struct WorkbenchOptions {
 
 struct WorkbenchState {
   WorkbenchOptions options;
+  // One colour per class in every view (class_colour, views.h); unknown is neutral grey.
+  ClassColours class_colours{{kUnknownClass}};
   std::unique_ptr<Document> document;
   std::string workspace;                     // absolute folder
   std::vector<std::string> workspace_files;  // absolute paths of its recordings
