@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "tactile/signal/minmax_pyramid.h"
+#include "tactile/io/minmax_pyramid.h"
 
 namespace {
 

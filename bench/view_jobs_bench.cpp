@@ -28,7 +28,7 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
-#include "tactile/layout/somatosensory.h"
+#include "tactile/ml/somatosensory.h"
 #include "tactile/sim/simulator.h"
 #include "tactile/skins/skin.h"
 #include "workbench.h"

@@ -11,7 +11,7 @@
 #include "tactile/dsp/zero_mean.h"
 #include "tactile/error.h"
 #include "tactile/features/kaboli.h"
-#include "tactile/features/nao_window.h"
+#include "tactile/segment/nao_window.h"
 
 namespace tactile {
 namespace {

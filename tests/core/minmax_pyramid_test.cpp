@@ -1,4 +1,4 @@
-#include "tactile/signal/minmax_pyramid.h"
+#include "tactile/io/minmax_pyramid.h"
 
 #include <gtest/gtest.h>
 

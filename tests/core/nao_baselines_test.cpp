@@ -8,9 +8,9 @@
 #include "tactile/dsp/rest_offset.h"
 #include "tactile/error.h"
 #include "tactile/features/koo.h"
-#include "tactile/features/nao_window.h"
 #include "tactile/features/naya.h"
 #include "tactile/features/silvera_tawil.h"
+#include "tactile/segment/nao_window.h"
 
 namespace tactile {
 namespace {

@@ -1,15 +1,14 @@
 // The somatosensory map (spec §4.8): taxels touched together land together; pooled
 // correlations equal one pass over all samples; the cache beside a recording is used
 // while the recording is unchanged.
-#include "tactile/layout/somatosensory.h"
+#include "tactile/ml/somatosensory.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <random>
-
-#include <unistd.h>
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"

@@ -1,8 +1,8 @@
+#include "tactile/signal/taxel_values.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "tactile/layout/taxel_values.h"
 
 namespace tactile {
 namespace {

@@ -8,14 +8,14 @@
 #include <memory>
 #include <utility>
 
+#include "jobs.h"
 #include "tactile/error.h"
 #include "tactile/labels/commands.h"
 #include "tactile/labels/predict.h"
 #include "tactile/labels/region.h"
 #include "tactile/labels/suggestions.h"
-#include "tactile/layout/taxel_values.h"
 #include "tactile/segment/segmenter.h"
-#include "jobs.h"
+#include "tactile/signal/taxel_values.h"
 #include "views.h"
 
 namespace tactile {

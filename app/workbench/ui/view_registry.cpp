@@ -4,7 +4,7 @@
 #include <functional>
 #include <limits>
 
-#include "tactile/layout/taxel_values.h"
+#include "tactile/signal/taxel_values.h"
 #include "views.h"
 
 namespace tactile {

@@ -6,7 +6,7 @@
 #include "tactile/dsp/butterworth.h"
 #include "tactile/dsp/zero_mean.h"
 #include "tactile/error.h"
-#include "tactile/features/nao_window.h"
+#include "tactile/segment/nao_window.h"
 #include "tactile/stats/statistics.h"
 
 namespace tactile {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tactile/features/feature_extractor.h"
-#include "tactile/features/nao_window.h"
+#include "tactile/segment/nao_window.h"
 
 namespace tactile {
 

@@ -10,7 +10,7 @@
 #include <span>
 
 #include "hdf5_object.h"
-#include "tactile/signal/minmax_pyramid.h"
+#include "tactile/io/minmax_pyramid.h"
 
 namespace tactile {
 

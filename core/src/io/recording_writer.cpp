@@ -8,7 +8,7 @@
 
 #include "hdf5_object.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/signal/minmax_pyramid.h"
+#include "tactile/io/minmax_pyramid.h"
 
 namespace tactile {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "tactile/error.h"
-#include "tactile/features/nao_window.h"
+#include "tactile/segment/nao_window.h"
 
 namespace tactile {
 

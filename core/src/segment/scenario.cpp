@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include "tactile/error.h"
-#include "tactile/features/feature_extractor.h"
 #include "tactile/text.h"
 
 namespace tactile {

@@ -5,7 +5,7 @@
 
 #include "tactile/dsp/fur_preprocess.h"
 #include "tactile/error.h"
-#include "tactile/layout/taxel_values.h"
+#include "tactile/signal/taxel_values.h"
 
 namespace tactile {
 

@@ -62,7 +62,4 @@ std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name
 std::string effective_pipeline_parameters(const std::string& name, const std::string& parameters,
                                           const std::string& where);
 
-// Sample index range [first, last) of a stream covered by [t0, t1), clamped to the stream.
-std::pair<int64_t, int64_t> sample_range(const Stream& stream, double t0, double t1);
-
 }  // namespace tactile

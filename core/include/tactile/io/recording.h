@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tactile {
@@ -33,6 +34,9 @@ struct Stream {
 // Well-known metadata keys: subject, session, side, condition, trial; any other
 // free key/value pairs may be stored too.
 using Metadata = std::map<std::string, std::string>;
+
+// Sample index range [first, last) of a stream covered by [t0, t1), clamped to the stream.
+std::pair<int64_t, int64_t> sample_range(const Stream& stream, double t0, double t1);
 
 struct Recording {
   std::string id;         // recording id used by labels (usually the file stem)

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "tactile/io/minmax_pyramid.h"
 #include "tactile/io/recording.h"
-#include "tactile/signal/minmax_pyramid.h"
 
 namespace tactile {
 

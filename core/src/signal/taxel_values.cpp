@@ -1,4 +1,4 @@
-#include "tactile/layout/taxel_values.h"
+#include "tactile/signal/taxel_values.h"
 
 #include <limits>
 #include <string>

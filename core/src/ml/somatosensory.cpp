@@ -1,5 +1,5 @@
 // Somatosensory map: pooled Pearson correlations -> -ln|R| -> classical MDS (spec §4.8).
-#include "tactile/layout/somatosensory.h"
+#include "tactile/ml/somatosensory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
-#include "tactile/layout/taxel_values.h"
 #include "tactile/ml/mds.h"
+#include "tactile/signal/taxel_values.h"
 
 namespace tactile {
 
@@ -29,7 +29,8 @@ void CorrelationSums::add(const SampleSource& source, const std::vector<int>& co
   std::vector<int> present;
   std::vector<Eigen::Index> slot;
   for (size_t k = 0; k < columns.size(); ++k)
-    if (columns[k] >= 0) present.push_back(columns[k]), slot.push_back(static_cast<Eigen::Index>(k));
+    if (columns[k] >= 0)
+      present.push_back(columns[k]), slot.push_back(static_cast<Eigen::Index>(k));
   if (present.empty()) return;
   const int64_t total = source.sample_count();
   for (int64_t first = 0; first < total; first += block) {
@@ -47,7 +48,8 @@ void CorrelationSums::add(const SampleSource& source, const std::vector<int>& co
     for (size_t i = 0; i < slot.size(); ++i) {
       sum_(slot[i]) += sums(static_cast<Eigen::Index>(i));
       for (size_t j = 0; j < slot.size(); ++j)
-        products_(slot[i], slot[j]) += products(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        products_(slot[i], slot[j]) +=
+            products(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
     }
     count_ += kept;
   }
@@ -79,8 +81,8 @@ SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
                                    const std::vector<int64_t>& taxels,
                                    const Eigen::MatrixXd& correlation) {
   if (taxels.size() < 3)
-    throw Error("somatosensory map", "needs at least 3 taxels with a channel, has " +
-                                         std::to_string(taxels.size()));
+    throw Error("somatosensory map",
+                "needs at least 3 taxels with a channel, has " + std::to_string(taxels.size()));
   const ml::MdsResult mds = ml::classical_mds(ml::correlation_dissimilarity(correlation), 2);
   SomatosensoryMap map;
   map.layout = layout.id;
@@ -99,7 +101,8 @@ SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
   const double u0 = xy.col(0).minCoeff(), u1 = xy.col(0).maxCoeff();
   const double v0 = xy.col(1).minCoeff(), v1 = xy.col(1).maxCoeff();
   const double width = std::max(x1 - x0, 1.0), height = std::max(y1 - y0, 1.0);
-  const double scale = std::min(width / std::max(u1 - u0, 1e-12), height / std::max(v1 - v0, 1e-12));
+  const double scale =
+      std::min(width / std::max(u1 - u0, 1e-12), height / std::max(v1 - v0, 1e-12));
   for (Eigen::Index i = 0; i < xy.rows(); ++i)
     map.positions.push_back({x0 + width / 2 + (xy(i, 0) - (u0 + u1) / 2) * scale,
                              y0 + height / 2 + (xy(i, 1) - (v0 + v1) / 2) * scale});
@@ -124,9 +127,12 @@ SomatosensoryMap somatosensory_map(const SampleSource& source, const SkinLayout&
 nlohmann::json to_json(const SomatosensoryMap& map) {
   nlohmann::json positions = nlohmann::json::array();
   for (const Point2& point : map.positions) positions.push_back({point.x, point.y});
-  return {{"layout", map.layout},       {"modality", map.modality},
-          {"taxels", map.taxels},       {"positions", positions},
-          {"samples", map.samples},     {"source", map.source},
+  return {{"layout", map.layout},
+          {"modality", map.modality},
+          {"taxels", map.taxels},
+          {"positions", positions},
+          {"samples", map.samples},
+          {"source", map.source},
           {"negative_eigenvalue_ratio", map.negative_eigenvalue_ratio}};
 }
 
@@ -167,7 +173,8 @@ std::string file_stamp(const std::string& path) {
 
 }  // namespace
 
-std::string somatosensory_cache_path(const std::string& recording_path, const std::string& modality) {
+std::string somatosensory_cache_path(const std::string& recording_path,
+                                     const std::string& modality) {
   fs::path path(recording_path);
   path.replace_extension();
   return path.string() + ".somatosensory-" + modality + ".json";
@@ -220,8 +227,8 @@ std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& reco
 }
 
 bool write_somatosensory_cache(const std::string& recording_path, const SomatosensoryMap& map) {
-  return write_cache(somatosensory_cache_path(recording_path, map.modality), file_stamp(recording_path),
-                     map);
+  return write_cache(somatosensory_cache_path(recording_path, map.modality),
+                     file_stamp(recording_path), map);
 }
 
 SomatosensoryMap somatosensory_corpus_map(const std::vector<std::string>& recordings,
@@ -281,7 +288,8 @@ SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map) 
   // A dot's size: a fraction of the map, so 274 films do not cover each other.
   double x0 = 1e300, x1 = -1e300;
   for (const Point2& point : map.positions) x0 = std::min(x0, point.x), x1 = std::max(x1, point.x);
-  const double dot = std::max(1.0, (x1 - x0) / std::max(8.0, std::sqrt(map.positions.size()) * 3.0));
+  const double dot =
+      std::max(1.0, (x1 - x0) / std::max(8.0, std::sqrt(map.positions.size()) * 3.0));
   for (size_t k = 0; k < map.taxels.size(); ++k)
     for (Taxel& taxel : moved.taxels)
       if (taxel.id == map.taxels[k]) {

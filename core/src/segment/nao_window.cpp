@@ -1,4 +1,4 @@
-#include "tactile/features/nao_window.h"
+#include "tactile/segment/nao_window.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,6 @@
 
 #include "tactile/dsp/rest_offset.h"
 #include "tactile/error.h"
-#include "tactile/features/feature_extractor.h"
 
 namespace tactile {
 
