@@ -3,9 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 
 #include "tactile/error.h"
@@ -30,9 +28,9 @@ void write_file_atomically(const std::string& path, const std::string& text, con
     throw Error(path, "cannot write the " + what);
   }
   if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
+    const std::string message = system_error("cannot replace the " + what);
     std::remove(temporary.c_str());
-    throw Error(path, "cannot replace the " + what + ": " + reason);
+    throw Error(path, message);
   }
 }
 

@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
-#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
@@ -68,9 +67,7 @@ class AtomicFile {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error(path_, what + ": " + std::strerror(errno));
-  }
+  [[noreturn]] void fail(const std::string& what) const { throw Error(path_, system_error(what)); }
 
   std::string path_, temporary_;
   std::FILE* file_ = nullptr;

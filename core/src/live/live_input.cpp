@@ -24,7 +24,6 @@
 #include "tactile/live/playback.h"
 #include "tactile/live/udp.h"
 #include "tactile/sim/simulator.h"
-#include "system_error.h"
 
 namespace tactile {
 
