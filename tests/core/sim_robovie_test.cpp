@@ -8,7 +8,7 @@
 
 #include "tactile/error.h"
 #include "tactile/sim/robovie_sim.h"
-#include "test_statistics.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 namespace {
@@ -324,9 +324,9 @@ TEST(SimRobovie, TheRobotPlaysEachStagesOwnMovementInEveryTrial) {
     }
   }
   for (const char* stage : {"Whee!", "Let's play!"}) {
-    const double typical = test::median(arms[stage]);
+    const double typical = stats::median(arms[stage]);
     for (const double value : arms[stage]) EXPECT_NEAR(value, typical, 0.25 * typical) << stage;
-    EXPECT_GT(typical, 2.0 * test::median(arms["talking"])) << stage;
+    EXPECT_GT(typical, 2.0 * stats::median(arms["talking"])) << stage;
   }
 }
 

@@ -8,8 +8,9 @@
 #include <map>
 
 #include "csv_text.h"
-#include "tactile/io/array_import.h"
 #include "tactile/error.h"
+#include "tactile/io/array_import.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -76,9 +77,7 @@ void check_cell_count(size_t count, size_t expected, const std::string& path, in
 // 1 / median time step, snapped to 10 significant digits when that is within 1e-9:
 // time columns printed in decimal make 250 Hz read as 249.99999999999997.
 double rate_from_steps(std::vector<double> steps) {
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  const double rate = 1.0 / *middle;
+  const double rate = 1.0 / stats::median(std::move(steps));
   const double scale = std::pow(10.0, 9.0 - std::floor(std::log10(rate)));
   const double snapped = std::round(rate * scale) / scale;
   return std::abs(snapped - rate) <= 1e-9 * rate ? snapped : rate;
