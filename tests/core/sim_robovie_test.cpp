@@ -199,7 +199,7 @@ TEST(SimRobovie, ConstantPressDecaysToZeroWithinASecond) {
   press.center = sim::robovie::body_area(films, "head", sim::robovie::View::kBack).center();
   sim::robovie::add_contact_load(films, press, 100.0, load);
   const Eigen::MatrixXf still = Eigen::MatrixXf::Zero(samples, sim::robovie::kJointCount);
-  sim::Random noise(derive_engine(3, "test-noise"));
+  Random noise(derive_engine(3, "test-noise"));
   sim::robovie::piezo_output(robot, still, 100.0, noise, load);
 
   // The film that answered most, measured on the output.

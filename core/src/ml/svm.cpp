@@ -4,15 +4,16 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
+#include "tactile/random.h"
 #include "tactile/stats/statistics.h"
 #include "training_checks.h"
 
@@ -101,8 +102,8 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   std::vector<int64_t> order(static_cast<size_t>(count));
   for (int64_t row = 0; row < count; ++row) order[static_cast<size_t>(row)] = row;
   for (int64_t slot = 0; slot < limit; ++slot) {
-    const auto pick = slot + static_cast<int64_t>(training_checks::uniform_index(
-                                 engine, static_cast<uint64_t>(count - slot)));
+    const auto pick =
+        slot + static_cast<int64_t>(uniform_index(engine, static_cast<uint64_t>(count - slot)));
     std::swap(order[static_cast<size_t>(slot)], order[static_cast<size_t>(pick)]);
   }
   order.resize(static_cast<size_t>(limit));

@@ -4,7 +4,6 @@
 // NaN reaches libsvm or a split search.
 
 #include <cstdint>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -20,8 +19,5 @@ std::vector<int64_t> check_training(const std::string& classifier, const Matrix&
 // whether fit() or load() ran.
 void check_prediction(const std::string& classifier, const Matrix& x, Eigen::Index feature_count,
                       bool fitted);
-// An index uniform in [0, count) from the engine's 64 bits (Lemire's multiply-shift with
-// rejection), so draws are the same on every standard library.
-uint64_t uniform_index(std::mt19937_64& engine, uint64_t count);
 
 }  // namespace tactile::ml::training_checks
