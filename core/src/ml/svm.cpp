@@ -13,9 +13,9 @@
 
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
+#include "tactile/ml/checks.h"
 #include "tactile/random.h"
 #include "tactile/stats/statistics.h"
-#include "training_checks.h"
 
 namespace tactile::ml {
 
@@ -207,7 +207,7 @@ int64_t svm_iteration_limit_warnings() { return iteration_limit_warnings.load();
 
 void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                uint64_t seed) {
-  const std::vector<int64_t> counts = training_checks::check_training(preset_, x, y, class_count);
+  const std::vector<int64_t> counts = check_training_set(x, y, class_count, preset_);
   silence_libsvm();
   fitted_ = false;
   learners_.clear();
@@ -371,7 +371,8 @@ Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const Matrix& suppor
 }
 
 Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
-  training_checks::check_prediction(preset_, x, standardizer_.mean.size(), fitted_);
+  check_fitted(fitted_, preset_);
+  check_query(x, standardizer_.mean.size(), preset_);
   const Matrix z = standardizer_.transform(x);
   Matrix decision(x.rows(), static_cast<Eigen::Index>(learners_.size()));
   for (size_t index = 0; index < learners_.size(); ++index) {
