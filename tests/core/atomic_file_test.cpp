@@ -96,6 +96,9 @@ TEST(AtomicFile, AMissingFolderIsAnErrorNamingThePath) {
     EXPECT_EQ(error.message(), "cannot write the log: No such file or directory");
   }
   EXPECT_TRUE(names_in(directory).empty());
+  // A file where a folder should be: an error too, not a search for a free name.
+  write_text(directory.file("plain"), "x");
+  EXPECT_THROW(write_file_atomically(directory.file("plain/file.txt"), "text", "log"), Error);
 }
 
 }  // namespace

@@ -15,15 +15,17 @@ namespace tactile {
 
 namespace {
 
-// A name beside `path` that no other call of this process uses and no file has now. The
-// process id keeps two programs writing one path apart.
+// A name beside `path` that no other call of this process uses and no file has now (one left
+// by a crashed process of the same id is passed over). The process id keeps two programs
+// writing one path apart. A folder that cannot be read (missing, no permission) gives the
+// first name: the writer then fails with the reason.
 std::string temporary_beside(const std::string& path) {
   static std::atomic<uint64_t> counter{0};
   while (true) {
     std::string temporary =
         path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
     struct stat status;
-    if (lstat(temporary.c_str(), &status) != 0 && errno == ENOENT) return temporary;
+    if (lstat(temporary.c_str(), &status) != 0) return temporary;
   }
 }
 
