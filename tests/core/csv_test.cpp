@@ -187,6 +187,47 @@ TEST(CsvLong, BlankLineInsideTheDataIsAnError) {
             path + ":3: blank line inside the data");
 }
 
+//---- long with class and grouping columns
+
+TEST(CsvTable, WithoutClassOrGroupColumnsItIsTheLongImport) {
+  TemporaryDirectory directory;
+  const std::string path = directory.file("plain.csv");
+  write_text(path, "time,a,b\n0,1,2\n0.02,3,4\n0.05,5,6\n");
+  const std::vector<ImportedRecording> table = import_csv_table(path, strip_layout(2), {});
+  ASSERT_EQ(table.size(), 1u);
+  EXPECT_TRUE(table[0].labels.empty());
+  const Recording long_shape = import_csv_long(path, strip_layout(2), {});
+  EXPECT_EQ(table[0].recording.id, long_shape.id);
+  EXPECT_EQ(table[0].recording.metadata, long_shape.metadata);
+  const Stream& stream = table[0].recording.streams[0];
+  EXPECT_EQ(stream.timestamps, (std::vector<double>{0, 0.02, 0.05}));
+  EXPECT_EQ(stream.rate_hz, long_shape.streams[0].rate_hz);
+  EXPECT_TRUE(testing::bit_equal(stream.samples, long_shape.streams[0].samples));
+}
+
+TEST(CsvTable, GroupsSplitRowsAndNameTheirErrorsPrecisely) {
+  TemporaryDirectory directory;
+  const std::string path = directory.file("groups.csv");
+  write_text(path, "subject,t,a,gesture\ns1,0,1,pat\ns2,0,2,\ns1,0.1,3,pat\ns2,0.1,4,poke\n");
+  CsvTableOptions options;
+  options.class_column = "gesture";
+  options.group_columns = {"subject"};
+  const std::vector<ImportedRecording> groups = import_csv_table(path, strip_layout(1), options);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[1].recording.id, "groups-s2");
+  EXPECT_EQ(groups[1].recording.streams[0].samples(1, 0), 4.0f);
+  ASSERT_EQ(groups[1].labels.size(), 1u);
+  EXPECT_EQ(groups[1].labels[0].class_name, "poke");
+
+  write_text(path, "subject,t,a,gesture\ns1,0,1,pat\ns2,0,2,\ns1,0,3,pat\n");
+  EXPECT_EQ(error_of([&] { import_csv_table(path, strip_layout(1), options); }),
+            path + ":4 column 2: time 0 does not increase on the group's previous row");
+  write_text(path, "subject,t,a,b,gesture\ns1,0,1,2,pat\n");
+  EXPECT_EQ(
+      error_of([&] { import_csv_table(path, strip_layout(1), options); }),
+      path + ":1: 3 sample columns, but layout 'strip:1' has 1 channels (plus the time column)");
+}
+
 //---- wide
 
 class CsvWide : public ::testing::Test {

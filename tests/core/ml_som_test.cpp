@@ -8,7 +8,7 @@
 
 #include "tactile/error.h"
 #include "tactile/ml/som.h"
-#include "tactile/sim/sim_util.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 namespace {
@@ -74,7 +74,7 @@ TEST(SomSchedule, DefaultSchedulesMatchVectorX4) {
 //---- Training and labelling
 
 Matrix two_blobs(int per_class, uint64_t seed, std::vector<int>& labels) {
-  sim::Random random{std::mt19937_64(seed)};
+  Random random{std::mt19937_64(seed)};
   Matrix x(2 * per_class, 2);
   labels.clear();
   for (int row = 0; row < 2 * per_class; ++row) {

@@ -11,7 +11,7 @@
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/sim/simulator.h"
-#include "test_statistics.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -276,8 +276,8 @@ TEST(FurSimulator, StrokeContactTravelsWhilePushStaysPut) {
       ASSERT_FALSE(centres.empty());
       travel[label.class_name].push_back(longest_travel(centres));
     }
-  EXPECT_GT(test::median(travel["stroke"]), 60.0);
-  EXPECT_GT(test::median(travel["stroke"]), 3.0 * test::median(travel["push"]));
+  EXPECT_GT(stats::median(travel["stroke"]), 60.0);
+  EXPECT_GT(stats::median(travel["stroke"]), 3.0 * stats::median(travel["push"]));
 }
 
 TEST(FurSimulator, FondleIsDoneInSeveralWaysMostOftenByKneadingInPlace) {
@@ -335,7 +335,7 @@ TEST(FurSimulator, FrontAndBackApproachesTouchDifferentPartsOfTheHead) {
       for (const Point2& centre : contact_centres(trial, label))
         heights[trial.recording.metadata.at("approach")].push_back(centre.y);
   // From the front the hand lands on the crown (small y), from behind lower down.
-  EXPECT_LT(test::median(heights["front"]) + 60.0, test::median(heights["back"]));
+  EXPECT_LT(stats::median(heights["front"]) + 60.0, stats::median(heights["back"]));
 }
 
 TEST(FurSimulator, QuiescentOffsetShiftsAfterAContactButTheHighPassRemovesIt) {

@@ -13,7 +13,7 @@
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/sim/simulator.h"
-#include "test_statistics.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -331,8 +331,8 @@ TEST(SimNao, SlapsAreShorterThanPushes) {
                  [&](const Stream& s, const Label& l) { slaps.push_back(contact_time(s, l)); });
   for_each_label("push",
                  [&](const Stream& s, const Label& l) { pushes.push_back(contact_time(s, l)); });
-  EXPECT_LT(test::median(slaps), 0.2);
-  EXPECT_GT(test::median(pushes), 1.0);
+  EXPECT_LT(stats::median(slaps), 0.2);
+  EXPECT_GT(stats::median(pushes), 1.0);
   EXPECT_LT(*std::max_element(slaps.begin(), slaps.end()),
             *std::min_element(pushes.begin(), pushes.end()));
 }
@@ -388,7 +388,7 @@ TEST(SimNao, ScratchShakesAboveFiftyHertzMoreThanPush) {
                  [&](const Stream& s, const Label& l) { scratches.push_back(high_energy(s, l)); });
   for_each_label("push",
                  [&](const Stream& s, const Label& l) { pushes.push_back(high_energy(s, l)); });
-  EXPECT_GT(test::median(scratches), 5.0 * test::median(pushes));
+  EXPECT_GT(stats::median(scratches), 5.0 * stats::median(pushes));
 }
 
 // Variance of each accelerometer axis after a 0.5 s moving average (what is left below ~2 Hz).
@@ -586,7 +586,7 @@ TEST(SimNao, HandWarmsTouchedCellsByLessThanOneDegree) {
     }
   });
   ASSERT_FALSE(rises.empty());
-  EXPECT_GT(test::median(rises), 0.05);
+  EXPECT_GT(stats::median(rises), 0.05);
 }
 
 }  // namespace

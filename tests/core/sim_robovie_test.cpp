@@ -8,7 +8,7 @@
 
 #include "tactile/error.h"
 #include "tactile/sim/robovie_sim.h"
-#include "test_statistics.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 namespace {
@@ -199,7 +199,7 @@ TEST(SimRobovie, ConstantPressDecaysToZeroWithinASecond) {
   press.center = sim::robovie::body_area(films, "head", sim::robovie::View::kBack).center();
   sim::robovie::add_contact_load(films, press, 100.0, load);
   const Eigen::MatrixXf still = Eigen::MatrixXf::Zero(samples, sim::robovie::kJointCount);
-  sim::Random noise(derive_engine(3, "test-noise"));
+  Random noise(derive_engine(3, "test-noise"));
   sim::robovie::piezo_output(robot, still, 100.0, noise, load);
 
   // The film that answered most, measured on the output.
@@ -324,9 +324,9 @@ TEST(SimRobovie, TheRobotPlaysEachStagesOwnMovementInEveryTrial) {
     }
   }
   for (const char* stage : {"Whee!", "Let's play!"}) {
-    const double typical = test::median(arms[stage]);
+    const double typical = stats::median(arms[stage]);
     for (const double value : arms[stage]) EXPECT_NEAR(value, typical, 0.25 * typical) << stage;
-    EXPECT_GT(typical, 2.0 * test::median(arms["talking"])) << stage;
+    EXPECT_GT(typical, 2.0 * stats::median(arms["talking"])) << stage;
   }
 }
 

@@ -9,7 +9,7 @@
 
 #include "tactile/error.h"
 #include "tactile/sim/tsa_sim.h"
-#include "test_statistics.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 namespace {
@@ -330,7 +330,7 @@ TEST(SimTsaSignature, PalmClassesCoverMorePadsThanFingerClasses) {
   std::sort(finger.begin(), finger.end());
   // Nine in ten palm events cover more pads than nine in ten finger events.
   EXPECT_GT(palm[palm.size() / 10], finger[finger.size() * 9 / 10]);
-  EXPECT_GE(test::median(palm), 3.0 * test::median(finger));
+  EXPECT_GE(stats::median(palm), 3.0 * stats::median(finger));
 }
 
 TEST(SimTsaSignature, SlidingCentroidsTravelWhileMomentaryOnesStayWithinOnePitch) {
@@ -356,13 +356,13 @@ TEST(SimTsaSignature, SlidingCentroidsTravelWhileMomentaryOnesStayWithinOnePitch
 TEST(SimTsaSignature, MomentaryEventsLastFewerFramesThanSlidingOnes) {
   auto frames = [](const Measured& m) { return static_cast<double>(m.event.frames); };
   for (const char* momentary : {"T1", "T5"}) {
-    const double taps = test::median(values_of(momentary, frames));
+    const double taps = stats::median(values_of(momentary, frames));
     EXPECT_LE(taps, 3.0) << momentary;
     for (const char* sliding : {"T2", "T3", "T6"})
-      EXPECT_LT(taps, test::median(values_of(sliding, frames))) << momentary << " vs " << sliding;
+      EXPECT_LT(taps, stats::median(values_of(sliding, frames))) << momentary << " vs " << sliding;
   }
   // Slow slides last longest.
-  EXPECT_GT(test::median(values_of("T2", frames)), 2.0 * test::median(values_of("T3", frames)));
+  EXPECT_GT(stats::median(values_of("T2", frames)), 2.0 * stats::median(values_of("T3", frames)));
 }
 
 TEST(SimTsaSignature, SlidingDirectionsFromTheCentroidPathMatchTheChosenOnes) {

@@ -63,5 +63,22 @@ TEST(DescriptiveStatistics, FollowSpecConventions) {
   EXPECT_FALSE(is_zero_variance(0.25, Vector{1, 2}));
 }
 
+TEST(Median, IsTheMiddleValueOrTheMeanOfTheTwoMiddleValues) {
+  EXPECT_EQ(median(Vector{}), 0.0);
+  EXPECT_EQ(median(Vector{7, 1, 4}), 4.0);
+  EXPECT_EQ(median(Vector{8, 1, 2, 4}), 3.0);
+  EXPECT_EQ(median(std::vector<float>{0.5f, -1.0f, 3.0f, 2.0f}), 1.25f);
+  EXPECT_EQ(median(std::vector<float>{}), 0.0f);
+}
+
+TEST(NthSmallest, GivesTheValueSortingPutsAtTheIndex) {
+  Vector values{5, 3, 9, 1, 7};
+  EXPECT_EQ(nth_smallest(values, 0), 1.0);
+  EXPECT_EQ(nth_smallest(values, 4), 9.0);
+  EXPECT_EQ(nth_smallest(values, 1), 3.0);
+  std::vector<float> floats{2.5f, -1.0f, 0.0f};
+  EXPECT_EQ(nth_smallest(floats, 2), 2.5f);
+}
+
 }  // namespace
 }  // namespace tactile::stats

@@ -3,10 +3,9 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
 
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 
 namespace tactile {
 
@@ -38,19 +37,14 @@ Image Image::crop(int x, int y, int crop_width, int crop_height) const {
 
 void write_png(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0) throw Error(path, "cannot write an empty image");
-  // Write beside the target and rename, so a failed write leaves no half PNG behind.
-  const std::string temporary = path + ".part";
-  if (!stbi_write_png(temporary.c_str(), image.width, image.height, 4, image.rgba.data(),
-                      image.width * 4)) {
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot write PNG (is the directory there and writable?)");
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::remove(temporary.c_str());
-    throw Error(path, "cannot write PNG: " + error.message());
-  }
+  write_file_atomically(
+      path,
+      [&](const std::string& temporary) {
+        if (!stbi_write_png(temporary.c_str(), image.width, image.height, 4, image.rgba.data(),
+                            image.width * 4))
+          throw Error(path, "cannot write PNG (is the directory there and writable?)");
+      },
+      "PNG");
 }
 
 }  // namespace tactile

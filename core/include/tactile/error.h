@@ -24,4 +24,8 @@ class Error : public std::runtime_error {
   std::string message_;
 };
 
+// "WHAT: REASON", with the reason errno names now ("cannot bind: Address already in use"):
+// the message of an Error about a failed system call.
+std::string system_error(const std::string& what);
+
 }  // namespace tactile

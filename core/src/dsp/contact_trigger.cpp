@@ -6,20 +6,11 @@
 #include <string>
 
 #include "tactile/error.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile::dsp {
 
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + middle);
-  return 0.5 * (lower + upper);
-}
 
 struct ChannelState {
   double baseline = 0.0;
@@ -75,10 +66,10 @@ ContactTrigger contact_trigger(const SampleMatrix& smoothed,
     for (Eigen::Index frame = 0; frame < warm_up; ++frame)
       if (std::isfinite(smoothed(frame, column))) idle.push_back(smoothed(frame, column));
     if (idle.empty()) continue;
-    const double centre = median(idle);
+    const double centre = stats::median(idle);
     std::vector<double> deviations;
     for (double value : idle) deviations.push_back(std::abs(value - centre));
-    const double sigma = 1.4826 * median(deviations);
+    const double sigma = 1.4826 * stats::median(deviations);
     states[column] = {centre, true};
     result.thresholds[column] = std::max(options.minimum_threshold, options.noise_sigmas * sigma);
   }

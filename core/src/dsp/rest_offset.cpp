@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include "tactile/stats/statistics.h"
+
 namespace tactile {
 
 float rest_offset(const Eigen::Ref<const Eigen::VectorXf>& force,
@@ -20,12 +22,7 @@ float rest_offset(const Eigen::Ref<const Eigen::VectorXf>& force,
   }
   if (resting.empty()) return std::isfinite(smallest) ? smallest : 0.0f;
   // The median resists the odd spike a hand hovering just beyond contact_mm may cause.
-  const auto middle = resting.begin() + static_cast<std::ptrdiff_t>(resting.size() / 2);
-  std::nth_element(resting.begin(), middle, resting.end());
-  if (resting.size() % 2 == 1) return *middle;
-  const float upper = *middle;
-  const float lower = *std::max_element(resting.begin(), middle);
-  return 0.5f * (lower + upper);
+  return stats::median(std::move(resting));
 }
 
 }  // namespace tactile

@@ -9,10 +9,10 @@
 #include <limits>
 #include <map>
 #include <set>
-
 #include <unsupported/Eigen/FFT>
 
 #include "tactile/error.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -54,9 +54,7 @@ double quiet_level(std::span<const double> values, bool reversed) {
   const double position = (reversed ? 1.0 - kQuietPercentile : kQuietPercentile) *
                           static_cast<double>(finite.size() - 1);
   const auto index = static_cast<size_t>(reversed ? std::ceil(position) : std::floor(position));
-  std::nth_element(finite.begin(), finite.begin() + static_cast<std::ptrdiff_t>(index),
-                   finite.end());
-  return finite[index];
+  return stats::nth_smallest(finite, index);
 }
 
 ContactMotion contact_motion(const Eigen::MatrixXd& values, const Eigen::RowVectorXd& rest,
@@ -120,9 +118,9 @@ namespace {
 
 double quantile(std::vector<double> values, double fraction) {
   if (values.empty()) return 0.0;
-  const auto at = static_cast<std::ptrdiff_t>(std::llround(fraction * static_cast<double>(values.size() - 1)));
-  std::nth_element(values.begin(), values.begin() + at, values.end());
-  return values[static_cast<size_t>(at)];
+  const auto at =
+      static_cast<size_t>(std::llround(fraction * static_cast<double>(values.size() - 1)));
+  return stats::nth_smallest(values, at);
 }
 
 }  // namespace
@@ -132,7 +130,7 @@ ChannelShape channel_shape(std::span<const double> values, double rate_hz, doubl
   const auto n = static_cast<int64_t>(values.size());
   if (n == 0) return shape;
   const std::vector<double> all(values.begin(), values.end());
-  shape.median = quantile(all, 0.5);
+  shape.median = stats::median(all);
   shape.q10 = quantile(all, 0.1);
   shape.q90 = quantile(all, 0.9);
   if (!std::isfinite(rest)) rest = reversed ? shape.q90 : shape.q10;

@@ -8,8 +8,9 @@
 #include <map>
 
 #include "csv_text.h"
-#include "tactile/io/array_import.h"
 #include "tactile/error.h"
+#include "tactile/io/array_import.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -21,6 +22,12 @@ std::string stem_of(const std::string& path) { return std::filesystem::path(path
 
 std::string file_name_of(const std::string& path) {
   return std::filesystem::path(path).filename().string();
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
 }
 
 bool is_time_name(std::string name) {
@@ -76,9 +83,7 @@ void check_cell_count(size_t count, size_t expected, const std::string& path, in
 // 1 / median time step, snapped to 10 significant digits when that is within 1e-9:
 // time columns printed in decimal make 250 Hz read as 249.99999999999997.
 double rate_from_steps(std::vector<double> steps) {
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), middle, steps.end());
-  const double rate = 1.0 / *middle;
+  const double rate = 1.0 / stats::median(std::move(steps));
   const double scale = std::pow(10.0, 9.0 - std::floor(std::log10(rate)));
   const double snapped = std::round(rate * scale) / scale;
   return std::abs(snapped - rate) <= 1e-9 * rate ? snapped : rate;
@@ -86,197 +91,167 @@ double rate_from_steps(std::vector<double> steps) {
 
 }  // namespace
 
-//---- long
+//---- long: one table, or several split by grouping columns, with a class column or not
 
-Recording import_csv_long(const std::string& path, const SkinLayout& layout,
-                          const CsvLongOptions& options) {
-  if (options.rate_hz) check_rate(*options.rate_hz, "rate_hz");
-  const int64_t content_lines = csv::count_content_lines(path);
-  if (content_lines == 0) throw Error(path, "empty file");
-  const size_t channel_count = layout.channels.size();
+namespace {
 
-  csv::LineReader reader(path);
+// The header row: where it is, its names, and which columns hold what.
+struct TableHeader {
+  int64_t line = 0;
+  std::vector<std::string> names;
+  std::optional<size_t> class_column;
+  std::vector<size_t> group_columns;
+  std::vector<size_t> sample_columns;  // the time column first when there is one
+  bool has_time = false;
+};
+
+TableHeader read_header(csv::LineReader& reader, const SkinLayout& layout,
+                        const CsvTableOptions& options) {
+  const std::string& path = reader.path();
   while (reader.next() && csv::is_blank(reader.line())) {
   }
-  const int64_t header_line = reader.number();
-  std::vector<std::string_view> header;
-  if (!csv::split_cells(reader.line(), header))
-    throw Error(location(path, header_line), "unterminated quote in the header");
-  if (std::all_of(header.begin(), header.end(), csv::looks_numeric))
-    throw Error(location(path, header_line), "expected a header row, found numbers");
+  TableHeader header;
+  header.line = reader.number();
+  std::vector<std::string_view> cells;
+  if (!csv::split_cells(reader.line(), cells))
+    throw Error(location(path, header.line), "unterminated quote in the header");
+  if (std::all_of(cells.begin(), cells.end(), csv::looks_numeric))
+    throw Error(location(path, header.line), "expected a header row, found numbers");
+  for (std::string_view cell : cells) header.names.push_back(csv::unquote(cell));
+  const auto column_of = [&](const std::string& name, const char* option) {
+    const auto found = std::find(header.names.begin(), header.names.end(), name);
+    if (found == header.names.end())
+      throw Error(std::string(option), "no column '" + name + "' in " + path +
+                                           " (columns: " + joined(header.names) + ")");
+    return static_cast<size_t>(found - header.names.begin());
+  };
+  if (!options.class_column.empty())
+    header.class_column = column_of(options.class_column, "--class-column");
+  for (const std::string& name : options.group_columns)
+    header.group_columns.push_back(column_of(name, "--group-columns"));
+  // The sample columns: the rest, in order; a time column first when named so or when
+  // there is one more than the layout's channels.
+  for (size_t column = 0; column < header.names.size(); ++column)
+    if (column != header.class_column &&
+        std::find(header.group_columns.begin(), header.group_columns.end(), column) ==
+            header.group_columns.end())
+      header.sample_columns.push_back(column);
+  const std::vector<size_t>& data = header.sample_columns;
+  const size_t channel_count = layout.channels.size();
+  header.has_time =
+      options.has_time_column.value_or(!data.empty() && (data.size() == channel_count + 1 ||
+                                                         is_time_name(header.names[data.front()])));
+  const bool only_samples = data.size() == header.names.size();
+  if (data.size() != channel_count + (header.has_time ? 1 : 0))
+    throw Error(location(path, header.line),
+                std::to_string(data.size()) + (only_samples ? " columns" : " sample columns") +
+                    ", but layout '" + layout.id + "' has " + std::to_string(channel_count) +
+                    " channels" + (header.has_time ? " (plus the time column)" : ""));
+  if (!header.has_time && !options.rate_hz)
+    throw Error(location(path, header.line), "no time column and no rate given");
+  return header;
+}
 
-  const bool first_is_time_name = is_time_name(csv::unquote(header.front()));
-  // One more column than channels, or a first column named as time: a time column.
-  const bool has_time =
-      options.has_time_column.value_or(header.size() == channel_count + 1 || first_is_time_name);
-  const size_t columns = channel_count + (has_time ? 1 : 0);
-  if (header.size() != columns)
-    throw Error(location(path, header_line), std::to_string(header.size()) +
-                                                 " columns, but layout '" + layout.id + "' has " +
-                                                 std::to_string(channel_count) + " channels" +
-                                                 (has_time ? " (plus the time column)" : ""));
-  if (!has_time && !options.rate_hz)
-    throw Error(location(path, header_line), "no time column and no rate given");
-
-  const int64_t rows = content_lines - 1;
-  if (rows == 0) throw Error(path, "a header but no data rows");
-  Stream stream = empty_stream(options.stream_name, layout);
-  stream.samples.resize(rows, static_cast<Eigen::Index>(channel_count));
+// The rows of one group (of the whole table when there are no grouping columns).
+struct TableGroup {
+  std::vector<std::string> values;
   std::vector<double> times;
-  if (has_time) times.reserve(static_cast<size_t>(rows));
-  const int64_t first_channel_cell = has_time ? 1 : 0;
+  SampleMatrix samples;  // grown by doubling; rows past `rows` are unused
+  int64_t rows = 0;
+  std::vector<std::string> classes;
+  int64_t first_line = 0;
+};
 
-  int64_t row = 0;
-  for_each_row(reader, [&](const std::vector<std::string_view>& cells, int64_t line) {
-    check_cell_count(cells.size(), columns, path, line, "header has");
-    if (row == rows) throw Error(path, "file grew while it was read");
-    if (has_time) {
-      const double time = csv::parse_double(cells[0], path, line, 1);
-      if (!times.empty() && !(time > times.back()))
-        throw Error(location(path, line, 1),
-                    "time " + std::string(cells[0]) + " does not increase on the previous row");
-      times.push_back(time);
-    }
-    for (size_t channel = 0; channel < channel_count; ++channel) {
-      const int64_t column = first_channel_cell + static_cast<int64_t>(channel);
-      stream.samples(row, static_cast<Eigen::Index>(channel)) =
-          csv::parse_float(cells[size_t(column)], path, line, column + 1);
-    }
-    ++row;
-  });
-  if (row != rows) throw Error(path, "file shrank while it was read");
-
+// Rate, start and (when irregular) time stamps of a stream from its rows' times; the rate
+// is the one given when there is one.
+void set_time_base(Stream& stream, std::vector<double> times, int64_t rows, bool grouped,
+                   const CsvTableOptions& options, const std::string& where) {
   if (options.rate_hz) {
     stream.rate_hz = *options.rate_hz;
   } else if (rows < 2) {
-    throw Error(path, "one sample gives no time step: give the rate");
+    throw Error(where, std::string(grouped ? "a group of one sample" : "one sample") +
+                           " gives no time step: give the rate");
   }
-  if (has_time) {
-    std::vector<double> steps(times.size() - 1);
-    for (size_t index = 1; index < times.size(); ++index)
-      steps[index - 1] = times[index] - times[index - 1];
-    if (!options.rate_hz) stream.rate_hz = rate_from_steps(steps);
-    stream.start_time = times.front();
-    const double step = 1.0 / stream.rate_hz;
-    const bool irregular = std::any_of(steps.begin(), steps.end(), [&](double value) {
-      return std::abs(value - step) > kIrregularStepTolerance * step;
-    });
-    if (irregular) stream.timestamps = std::move(times);
-  }
-
-  Recording recording;
-  recording.id = stem_of(path);
-  recording.layout_id = layout.id;
-  recording.metadata["imported_from"] = file_name_of(path);
-  recording.streams.push_back(std::move(stream));
-  return recording;
+  if (times.empty()) return;
+  std::vector<double> steps(times.size() - 1);
+  for (size_t k = 1; k < times.size(); ++k) steps[k - 1] = times[k] - times[k - 1];
+  if (!options.rate_hz) stream.rate_hz = rate_from_steps(steps);
+  stream.start_time = times.front();
+  const double step = 1.0 / stream.rate_hz;
+  if (std::any_of(steps.begin(), steps.end(), [&](double value) {
+        return std::abs(value - step) > kIrregularStepTolerance * step;
+      }))
+    stream.timestamps = std::move(times);
 }
 
-
-//---- long, with a class column and grouping columns
+}  // namespace
 
 std::vector<ImportedRecording> import_csv_table(const std::string& path, const SkinLayout& layout,
                                                 const CsvTableOptions& options) {
   if (options.rate_hz) check_rate(*options.rate_hz, "rate_hz");
   const int64_t content_lines = csv::count_content_lines(path);
   if (content_lines == 0) throw Error(path, "empty file");
-  const size_t channel_count = layout.channels.size();
+  const auto channel_count = static_cast<Eigen::Index>(layout.channels.size());
   csv::LineReader reader(path);
-  while (reader.next() && csv::is_blank(reader.line())) {
-  }
-  const int64_t header_line = reader.number();
-  std::vector<std::string_view> cells;
-  if (!csv::split_cells(reader.line(), cells))
-    throw Error(location(path, header_line), "unterminated quote in the header");
-  std::vector<std::string> header;
-  for (std::string_view cell : cells) header.push_back(csv::unquote(cell));
-  const auto column_of = [&](const std::string& name, const char* option) {
-    const auto found = std::find(header.begin(), header.end(), name);
-    if (found == header.end()) {
-      std::string names;
-      for (const std::string& column : header) names += (names.empty() ? "" : ", ") + column;
-      throw Error(std::string(option), "no column '" + name + "' in " + path + " (columns: " + names + ")");
-    }
-    return static_cast<size_t>(found - header.begin());
-  };
-  const std::optional<size_t> class_column =
-      options.class_column.empty() ? std::nullopt : std::optional<size_t>(column_of(options.class_column, "--class-column"));
-  std::vector<size_t> group_columns;
-  for (const std::string& name : options.group_columns) group_columns.push_back(column_of(name, "--group-columns"));
-  // The sample columns: the rest, in order; a time column first when named so or when
-  // there is one more than the layout's channels.
-  std::vector<size_t> data;
-  for (size_t column = 0; column < header.size(); ++column)
-    if (column != class_column && std::find(group_columns.begin(), group_columns.end(), column) == group_columns.end())
-      data.push_back(column);
-  const bool has_time = !data.empty() && (data.size() == channel_count + 1 || is_time_name(header[data.front()]));
-  if (data.size() != channel_count + (has_time ? 1 : 0))
-    throw Error(location(path, header_line),
-                std::to_string(data.size()) + " sample columns, but layout '" + layout.id + "' has " +
-                    std::to_string(channel_count) + " channels" + (has_time ? " (plus the time column)" : ""));
-  if (!has_time && !options.rate_hz) throw Error(location(path, header_line), "no time column and no rate given");
+  const TableHeader header = read_header(reader, layout, options);
+  const int64_t rows = content_lines - 1;
+  if (rows == 0) throw Error(path, "a header but no data rows");
+  const bool grouped = !header.group_columns.empty();
 
-  struct Group {
-    std::vector<std::string> values;
-    std::vector<double> times;
-    std::vector<float> samples;  // row after row
-    std::vector<std::string> classes;
-    int64_t first_line = 0;
-  };
-  std::vector<Group> groups;
+  std::vector<TableGroup> groups;
   std::map<std::string, size_t> index;
+  int64_t row_count = 0;
   for_each_row(reader, [&](const std::vector<std::string_view>& row, int64_t line) {
-    check_cell_count(row.size(), header.size(), path, line, "header has");
+    check_cell_count(row.size(), header.names.size(), path, line, "header has");
+    if (row_count++ == rows) throw Error(path, "file grew while it was read");
     std::string key;
     std::vector<std::string> values;
-    for (size_t column : group_columns) {
+    for (size_t column : header.group_columns) {
       values.push_back(csv::unquote(row[column]));
       key += values.back() + '\x1f';
     }
     auto [found, added] = index.emplace(key, groups.size());
     if (added) {
       groups.emplace_back();
-      groups.back().values = values;
+      groups.back().values = std::move(values);
       groups.back().first_line = line;
     }
-    Group& group = groups[found->second];
+    TableGroup& group = groups[found->second];
     size_t at = 0;
-    if (has_time) {
-      const auto time_column = static_cast<int64_t>(data[at++]);
-      const double time = csv::parse_double(row[static_cast<size_t>(time_column)], path, line, time_column + 1);
+    if (header.has_time) {
+      const size_t time_column = header.sample_columns[at++];
+      const auto column_number = static_cast<int64_t>(time_column) + 1;
+      const double time = csv::parse_double(row[time_column], path, line, column_number);
       if (!group.times.empty() && !(time > group.times.back()))
-        throw Error(location(path, line, time_column + 1),
-                    "time " + std::string(row[static_cast<size_t>(time_column)]) + " does not increase on the group's previous row");
+        throw Error(location(path, line, column_number),
+                    "time " + std::string(row[time_column]) + " does not increase on the " +
+                        (grouped ? "group's " : "") + "previous row");
       group.times.push_back(time);
     }
-    for (; at < data.size(); ++at)
-      group.samples.push_back(csv::parse_float(row[data[at]], path, line, static_cast<int64_t>(data[at]) + 1));
-    if (class_column) group.classes.push_back(csv::unquote(row[*class_column]));
+    // One table fills a matrix of its counted rows; a group grows its own by doubling.
+    if (group.rows == group.samples.rows())
+      group.samples.conservativeResize(
+          grouped ? std::min<int64_t>(rows, std::max<int64_t>(1024, 2 * group.rows)) : rows,
+          channel_count);
+    for (Eigen::Index channel = 0; at < header.sample_columns.size(); ++at, ++channel) {
+      const size_t column = header.sample_columns[at];
+      group.samples(group.rows, channel) =
+          csv::parse_float(row[column], path, line, static_cast<int64_t>(column) + 1);
+    }
+    ++group.rows;
+    if (header.class_column) group.classes.push_back(csv::unquote(row[*header.class_column]));
   });
-  if (groups.empty()) throw Error(path, "a header but no data rows");
+  if (row_count != rows) throw Error(path, "file shrank while it was read");
 
   std::vector<ImportedRecording> recordings;
-  for (Group& group : groups) {
-    const auto rows = static_cast<int64_t>(group.samples.size() / channel_count);
+  for (TableGroup& group : groups) {
     Stream stream = empty_stream(options.stream_name, layout);
-    stream.samples.resize(rows, static_cast<Eigen::Index>(channel_count));
-    for (int64_t row = 0; row < rows; ++row)
-      for (size_t channel = 0; channel < channel_count; ++channel)
-        stream.samples(row, static_cast<Eigen::Index>(channel)) = group.samples[static_cast<size_t>(row) * channel_count + channel];
-    if (options.rate_hz) {
-      stream.rate_hz = *options.rate_hz;
-    } else if (rows < 2) {
-      throw Error(location(path, group.first_line), "a group of one sample gives no time step: give the rate");
-    }
-    if (has_time) {
-      std::vector<double> steps(group.times.size() - 1);
-      for (size_t k = 1; k < group.times.size(); ++k) steps[k - 1] = group.times[k] - group.times[k - 1];
-      if (!options.rate_hz) stream.rate_hz = rate_from_steps(steps);
-      stream.start_time = group.times.front();
-      const double step = 1.0 / stream.rate_hz;
-      if (std::any_of(steps.begin(), steps.end(), [&](double value) { return std::abs(value - step) > kIrregularStepTolerance * step; }))
-        stream.timestamps = group.times;
-    }
+    if (group.samples.rows() != group.rows)
+      group.samples.conservativeResize(group.rows, channel_count);
+    stream.samples = std::move(group.samples);
+    // The class runs below still need the times; without classes the stream takes them.
+    set_time_base(stream, header.class_column ? group.times : std::move(group.times), group.rows,
+                  grouped, options, grouped ? location(path, group.first_line) : path);
     ImportedRecording imported;
     Recording& recording = imported.recording;
     recording.id = stem_of(path);
@@ -286,14 +261,16 @@ std::vector<ImportedRecording> import_csv_table(const std::string& path, const S
     }
     recording.layout_id = layout.id;
     recording.metadata["imported_from"] = file_name_of(path);
-    if (class_column) {
+    if (header.class_column) {
       // Each run of one class: from its first sample's time to one step past its last.
       const double step = 1.0 / stream.rate_hz;
       std::vector<double> times = group.times;
       if (times.empty())
-        for (int64_t row = 0; row < rows; ++row) times.push_back(static_cast<double>(row) * step);
+        for (int64_t row = 0; row < group.rows; ++row)
+          times.push_back(static_cast<double>(row) * step);
       for (Label& label : labels_from_frame_classes(group.classes, 0.0, 1.0)) {
-        const auto first = static_cast<size_t>(std::llround(label.t0)), last = static_cast<size_t>(std::llround(label.t1)) - 1;
+        const auto first = static_cast<size_t>(std::llround(label.t0));
+        const auto last = static_cast<size_t>(std::llround(label.t1)) - 1;
         label.t0 = times[first];
         label.t1 = times[last] + step;
         label.recording = recording.id;
@@ -304,6 +281,13 @@ std::vector<ImportedRecording> import_csv_table(const std::string& path, const S
     recordings.push_back(std::move(imported));
   }
   return recordings;
+}
+
+Recording import_csv_long(const std::string& path, const SkinLayout& layout,
+                          const CsvLongOptions& options) {
+  CsvTableOptions table;
+  static_cast<CsvLongOptions&>(table) = options;
+  return std::move(import_csv_table(path, layout, table).front().recording);
 }
 
 //---- wide
@@ -320,12 +304,6 @@ std::string resolve_class(const std::string& token, const std::vector<std::strin
       index < static_cast<int64_t>(vocabulary.size()))
     return vocabulary[size_t(index)];
   return {};
-}
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-  return text;
 }
 
 std::vector<std::string> read_label_classes(const std::string& path,

@@ -1,13 +1,10 @@
 // CSV export in the long shape, written so that import gives back the same bits.
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <charconv>
-#include <filesystem>
 #include <fstream>
 
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/io/csv.h"
 
 namespace tactile {
@@ -47,50 +44,42 @@ size_t find_stream_index(const std::vector<std::string>& names, const std::strin
   throw Error(where, "no stream '" + wanted + "' (streams: " + known + ")");
 }
 
-// Writes to a temporary file beside `path`, renamed over it once complete.
-// `read_block(first, count)` gives samples [first, first + count) as a SampleMatrix;
-// `time_of(index)` the time of a sample.
+// Written atomically (io/atomic_file.h). `read_block(first, count)` gives samples
+// [first, first + count) as a SampleMatrix; `time_of(index)` the time of a sample.
 template <typename ReadBlock, typename TimeOf>
 void write_long_csv(const std::string& path, const std::vector<std::string>& channels,
                     int64_t sample_count, ReadBlock read_block, TimeOf time_of) {
-  static std::atomic<int> counter{0};
-  const std::string temporary =
-      path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-  try {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path, "cannot create file");
-    std::string line = "time_s";
-    for (const std::string& channel : channels) {
-      line += ',';
-      line += header_cell(channel);
-    }
-    line += '\n';
-    out << line;
-    for (int64_t first = 0; first < sample_count; first += kExportBlock) {
-      const int64_t count = std::min(kExportBlock, sample_count - first);
-      const SampleMatrix block = read_block(first, count);
-      for (int64_t row = 0; row < count; ++row) {
-        line.clear();
-        append_number(line, time_of(first + row));
-        for (Eigen::Index channel = 0; channel < block.cols(); ++channel) {
+  write_file_atomically(
+      path,
+      [&](const std::string& temporary) {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path, "cannot create file");
+        std::string line = "time_s";
+        for (const std::string& channel : channels) {
           line += ',';
-          append_number(line, block(row, channel));
+          line += header_cell(channel);
         }
         line += '\n';
-        out.write(line.data(), static_cast<std::streamsize>(line.size()));
-      }
-      if (!out) throw Error(path, "write failed");
-    }
-    out.close();
-    if (!out) throw Error(path, "write failed");
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) throw Error(path, "cannot replace file: " + error.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw;
-  }
+        out << line;
+        for (int64_t first = 0; first < sample_count; first += kExportBlock) {
+          const int64_t count = std::min(kExportBlock, sample_count - first);
+          const SampleMatrix block = read_block(first, count);
+          for (int64_t row = 0; row < count; ++row) {
+            line.clear();
+            append_number(line, time_of(first + row));
+            for (Eigen::Index channel = 0; channel < block.cols(); ++channel) {
+              line += ',';
+              append_number(line, block(row, channel));
+            }
+            line += '\n';
+            out.write(line.data(), static_cast<std::streamsize>(line.size()));
+          }
+          if (!out) throw Error(path, "write failed");
+        }
+        out.close();
+        if (!out) throw Error(path, "write failed");
+      },
+      "CSV file");
 }
 
 void check_time_base(double rate_hz, bool has_timestamps, const std::string& where) {

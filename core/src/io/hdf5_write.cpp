@@ -1,13 +1,10 @@
 // Writing the native HDF5 file; the layout is documented in docs/FILE_FORMAT.md.
-#include <unistd.h>
-
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <filesystem>
 #include <set>
 
 #include "hdf5_object.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/io/hdf5_file.h"
 
 namespace tactile {
@@ -132,11 +129,6 @@ void write_contents(hid_t file, const std::string& path, const Recording& record
   for (const Stream& stream : recording.streams) write_stream(streams.id(), stream, path);
 }
 
-std::string temporary_path(const std::string& path) {
-  static std::atomic<int> counter{0};
-  return path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-}
-
 }  // namespace
 
 namespace hdf5 {
@@ -184,20 +176,14 @@ void write_recording_attributes(hid_t file, const std::string& path, const std::
 void write_recording(const std::string& path, const Recording& recording) {
   hdf5::silence_errors();
   check_recording(path, recording);
-  // Same directory as the target, so the rename below is atomic on one file system.
-  const std::string temporary = temporary_path(path);
-  try {
-    Object file = hdf5::create_recording_file(temporary, path);
-    write_contents(file.id(), path, recording);
-    file.close(path);
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) throw Error(path, "cannot replace file: " + error.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw;
-  }
+  write_file_atomically(
+      path,
+      [&](const std::string& temporary) {
+        Object file = hdf5::create_recording_file(temporary, path);
+        write_contents(file.id(), path, recording);
+        file.close(path);
+      },
+      "recording");
 }
 
 }  // namespace tactile

@@ -2,7 +2,6 @@
 #include "tactile/io/verify.h"
 
 #include <sqlite3.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +12,7 @@
 
 #include "hdf5_object.h"
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 
@@ -364,23 +364,19 @@ UpgradeResult upgrade_file(const std::string& path) {
     if (!result.rewritten()) return result;
     recording = file.read_all();
   }
-  const std::string upgraded = path + ".upgrade-" + std::to_string(getpid()) + ".h5";
-  try {
-    write_recording(upgraded, recording);
-    const std::vector<FileProblem> problems = verify_recording(upgraded);
-    if (!problems.empty())
-      throw Error(path, "the rewritten file failed verification (" + problems.front().message +
-                            "); the original is unchanged");
-    if (!same_recording(read_recording(upgraded), recording))
-      throw Error(path, "the rewritten file reads back different; the original is unchanged");
-    std::error_code error;
-    std::filesystem::rename(upgraded, path, error);
-    if (error) throw Error(path, "cannot replace the original: " + error.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(upgraded, ignored);
-    throw;
-  }
+  // The original stays until the rewritten file has been verified and read back the same.
+  write_file_atomically(
+      path,
+      [&](const std::string& upgraded) {
+        write_recording(upgraded, recording);
+        const std::vector<FileProblem> problems = verify_recording(upgraded);
+        if (!problems.empty())
+          throw Error(path, "the rewritten file failed verification (" + problems.front().message +
+                                "); the original is unchanged");
+        if (!same_recording(read_recording(upgraded), recording))
+          throw Error(path, "the rewritten file reads back different; the original is unchanged");
+      },
+      "original");
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "tactile/labels/lanes.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -15,12 +16,6 @@ std::string seconds(double t) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.3f s", t);
   return text;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t middle = values.size() / 2;
-  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
 }
 
 }  // namespace
@@ -56,7 +51,7 @@ std::vector<LabelIssue> check_labels(const std::vector<Label>& labels, const Qua
   for (const auto& [name, durations] : all) {
     const auto found = truth.find(name);
     const std::vector<double>& basis = found != truth.end() && found->second.size() >= 3 ? found->second : durations;
-    if (basis.size() >= 3) typical[name] = median(basis);
+    if (basis.size() >= 3) typical[name] = stats::median(basis);
   }
   for (const Label& label : labels) {
     const auto found = typical.find(label.class_name);

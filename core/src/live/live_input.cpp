@@ -17,7 +17,6 @@
 #include <optional>
 #include <thread>
 
-#include "system_error.h"
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/layout/skin_layout.h"

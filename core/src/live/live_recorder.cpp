@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "tactile/error.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -138,12 +139,11 @@ ContactDetector::State ContactDetector::add(std::span<const float> values) {
     for (int channel = 0; channel < channels_; ++channel) {
       std::vector<float>& seen = learning_[static_cast<size_t>(channel)];
       if (seen.empty()) seen.push_back(0.0f);
-      std::nth_element(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(seen.size() / 2), seen.end());
-      const float median = seen[seen.size() / 2];
+      const float median = stats::median(seen);
       for (float& value : seen) value = std::fabs(value - median);
-      std::nth_element(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(seen.size() / 2), seen.end());
       // 1.4826 MAD estimates a normal deviation; a channel that never moved still needs a band.
-      const float sigma = std::max(1.4826f * seen[seen.size() / 2], 1e-6f + 1e-3f * std::fabs(median));
+      const float sigma =
+          std::max(1.4826f * stats::median(std::move(seen)), 1e-6f + 1e-3f * std::fabs(median));
       rest_[static_cast<size_t>(channel)] = median;
       band_[static_cast<size_t>(channel)] = static_cast<float>(options_.noise_sigmas) * sigma;
     }

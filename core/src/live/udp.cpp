@@ -13,7 +13,6 @@
 #include <utility>
 
 #include "tactile/error.h"
-#include "system_error.h"
 
 namespace tactile {
 

@@ -19,8 +19,8 @@ void check_finite(const Matrix& x, const std::string& where) {
 
 }  // namespace
 
-void check_training_set(const Matrix& x, const std::vector<int>& y, int class_count,
-                        const std::string& where) {
+std::vector<int64_t> check_training_set(const Matrix& x, const std::vector<int>& y, int class_count,
+                                        const std::string& where) {
   if (x.rows() == 0) throw Error(where, "no training samples");
   if (x.cols() == 0) throw Error(where, "no features");
   if (class_count < 1) throw Error(where, "no classes");
@@ -32,6 +32,9 @@ void check_training_set(const Matrix& x, const std::vector<int>& y, int class_co
       throw Error(where, "row " + std::to_string(row) + " has class " + std::to_string(y[row]) +
                              ", outside 0.." + std::to_string(class_count - 1));
   check_finite(x, where);
+  std::vector<int64_t> counts(static_cast<size_t>(class_count), 0);
+  for (int label : y) ++counts[static_cast<size_t>(label)];
+  return counts;
 }
 
 void check_query(const Matrix& x, Eigen::Index features, const std::string& where) {

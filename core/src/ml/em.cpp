@@ -8,6 +8,7 @@
 
 #include "probabilistic_support.h"
 #include "tactile/error.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 
@@ -30,16 +31,16 @@ Vector squared_distances(const Matrix& x, const Vector& centre) {
 // uniform draw per centre, so the random stream does not depend on the data's duplicates.
 Matrix seed_centres(const Matrix& x, int count, std::mt19937_64& random) {
   const Eigen::Index rows = x.rows();
-  auto uniform_index = [rows](double draw) {
+  auto index_of_draw = [rows](double draw) {
     return std::min(static_cast<Eigen::Index>(draw * static_cast<double>(rows)), rows - 1);
   };
   Matrix centres(count, x.cols());
-  centres.row(0) = x.row(uniform_index(support::uniform01(random)));
+  centres.row(0) = x.row(index_of_draw(uniform01(random)));
   Vector nearest = squared_distances(x, centres.row(0).transpose());
   for (int centre = 1; centre < count; ++centre) {
-    const double draw = support::uniform01(random);
+    const double draw = uniform01(random);
     const double total = nearest.sum();
-    Eigen::Index chosen = uniform_index(draw);
+    Eigen::Index chosen = index_of_draw(draw);
     if (total > 0.0) {
       const double target = draw * total;
       double cumulative = 0.0;

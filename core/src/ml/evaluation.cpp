@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <limits>
 #include <map>
@@ -16,7 +16,7 @@
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
 #include "tactile/ml/grid_search.h"
-#include "tactile/ml/sampling.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 

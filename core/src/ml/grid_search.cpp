@@ -5,7 +5,7 @@
 
 #include "tactile/error.h"
 #include "tactile/ml/checks.h"
-#include "tactile/ml/sampling.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 

@@ -1,14 +1,14 @@
 #include "tactile/ml/knn.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numeric>
 
 #include "tactile/error.h"
 #include "tactile/ml/checks.h"
-#include "tactile/ml/sampling.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 

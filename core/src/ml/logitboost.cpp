@@ -7,8 +7,8 @@
 #include <numeric>
 
 #include "tactile/error.h"
+#include "tactile/ml/checks.h"
 #include "thresholds.h"
-#include "training_checks.h"
 
 namespace tactile::ml {
 
@@ -108,7 +108,7 @@ Parameters LogitBoost::parameters() const {
 }
 
 void LogitBoost::fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t) {
-  training_checks::check_training("logitboost", x, y, class_count);
+  check_training_set(x, y, class_count, "logitboost");
   fitted_ = false;
   class_count_ = class_count;
   feature_count_ = x.cols();
@@ -144,7 +144,8 @@ void LogitBoost::fit(const Matrix& x, const std::vector<int>& y, int class_count
 }
 
 Matrix LogitBoost::scores(const Matrix& x) const {
-  training_checks::check_prediction("logitboost", x, feature_count_, fitted_);
+  check_fitted(fitted_, "logitboost");
+  check_query(x, feature_count_, "logitboost");
   Matrix f = Matrix::Zero(x.rows(), class_count_);
   Matrix stump_values(x.rows(), class_count_);
   for (const auto& stumps : stumps_) {

@@ -38,12 +38,6 @@ Matrix normalise_log_rows(const Matrix& log_values);
 Vector class_priors(const std::vector<std::vector<Eigen::Index>>& members, const std::string& mode,
                     const std::string& where);
 
-// Uniform draw in [0, 1) from the top 53 bits, so results do not depend on the standard
-// library's distribution implementation.
-inline double uniform01(std::mt19937_64& random) {
-  return static_cast<double>(random() >> 11) * 0x1.0p-53;
-}
-
 // Shortest text that reads back as the same double (for parameters()).
 std::string format_number(double value);
 // A parameter that must be > 0 (or >= 0 when `allow_zero`); Error naming the key otherwise.

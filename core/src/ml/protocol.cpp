@@ -9,7 +9,7 @@
 
 #include "tactile/error.h"
 #include "tactile/ml/evaluation.h"
-#include "tactile/ml/sampling.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 

@@ -9,7 +9,7 @@
 #include "model_json.h"
 #include "tactile/error.h"
 #include "tactile/ml/checks.h"
-#include "tactile/sim/sim_util.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 
@@ -153,7 +153,7 @@ void SomClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_co
   const Matrix scaled = scale(x);
 
   const int neurons = map_.rows * map_.columns;
-  sim::Random random{std::mt19937_64(seed)};
+  Random random{std::mt19937_64(seed)};
   map_.weights.resize(neurons, x.cols());
   for (int neuron = 0; neuron < neurons; ++neuron)
     for (Eigen::Index feature = 0; feature < x.cols(); ++feature)
@@ -165,11 +165,7 @@ void SomClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_co
   training_errors_.assign(static_cast<size_t>(schedule_.epochs), {});
   Vector sample(x.cols());
   for (int epoch = 0; epoch < schedule_.epochs; ++epoch) {
-    // Fisher-Yates with the map's own integer draws, so the order does not depend on the
-    // standard library.
-    for (size_t index = order.size(); index-- > 1;)
-      std::swap(order[index],
-                order[static_cast<size_t>(random.integer(0, static_cast<int64_t>(index)))]);
+    shuffle(order, random.engine());
     const Matrix table = neighbourhood_table(map_, schedule_.radius(epoch));
     const double rate = schedule_.rate(epoch);
     SomEpochError& error = training_errors_[static_cast<size_t>(epoch)];

@@ -4,17 +4,18 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
+#include "tactile/ml/checks.h"
+#include "tactile/random.h"
 #include "tactile/stats/statistics.h"
-#include "training_checks.h"
 
 namespace tactile::ml {
 
@@ -101,8 +102,8 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   std::vector<int64_t> order(static_cast<size_t>(count));
   for (int64_t row = 0; row < count; ++row) order[static_cast<size_t>(row)] = row;
   for (int64_t slot = 0; slot < limit; ++slot) {
-    const auto pick = slot + static_cast<int64_t>(training_checks::uniform_index(
-                                 engine, static_cast<uint64_t>(count - slot)));
+    const auto pick =
+        slot + static_cast<int64_t>(uniform_index(engine, static_cast<uint64_t>(count - slot)));
     std::swap(order[static_cast<size_t>(slot)], order[static_cast<size_t>(pick)]);
   }
   order.resize(static_cast<size_t>(limit));
@@ -206,7 +207,7 @@ int64_t svm_iteration_limit_warnings() { return iteration_limit_warnings.load();
 
 void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                uint64_t seed) {
-  const std::vector<int64_t> counts = training_checks::check_training(preset_, x, y, class_count);
+  const std::vector<int64_t> counts = check_training_set(x, y, class_count, preset_);
   silence_libsvm();
   fitted_ = false;
   learners_.clear();
@@ -370,7 +371,8 @@ Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const Matrix& suppor
 }
 
 Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
-  training_checks::check_prediction(preset_, x, standardizer_.mean.size(), fitted_);
+  check_fitted(fitted_, preset_);
+  check_query(x, standardizer_.mean.size(), preset_);
   const Matrix z = standardizer_.transform(x);
   Matrix decision(x.rows(), static_cast<Eigen::Index>(learners_.size()));
   for (size_t index = 0; index < learners_.size(); ++index) {

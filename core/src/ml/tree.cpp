@@ -6,8 +6,8 @@
 #include <numeric>
 
 #include "tactile/error.h"
+#include "tactile/ml/checks.h"
 #include "thresholds.h"
-#include "training_checks.h"
 
 namespace tactile::ml {
 
@@ -124,7 +124,7 @@ int DecisionTree::split_count() const {
 }
 
 void DecisionTree::fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t) {
-  training_checks::check_training(preset_, x, y, class_count);
+  check_training_set(x, y, class_count, preset_);
   class_count_ = class_count;
   feature_count_ = x.cols();
   nodes_.clear();
@@ -189,7 +189,8 @@ void DecisionTree::fit(const Matrix& x, const std::vector<int>& y, int class_cou
 }
 
 Matrix DecisionTree::scores(const Matrix& x) const {
-  training_checks::check_prediction(preset_, x, feature_count_, !nodes_.empty());
+  check_fitted(!nodes_.empty(), preset_);
+  check_query(x, feature_count_, preset_);
   Matrix scores(x.rows(), class_count_);
   for (Eigen::Index row = 0; row < x.rows(); ++row) {
     const TreeNode* node = &nodes_[0];

@@ -1,28 +1,21 @@
 #include "tactile/signal/display_scale.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
 namespace {
 
-// The median of `values`, reordering them.
-float median_of(std::vector<float>& values) {
-  auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // Top of the scale: the 99th percentile of the changes beyond the noise band.
 double top_of_changes(std::vector<float>& excess) {
   if (excess.empty()) return 1.0;
-  auto top =
-      excess.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(excess.size() - 1));
-  std::nth_element(excess.begin(), top, excess.end());
-  return std::max(1e-6f, *top);
+  const auto top = static_cast<size_t>(0.99 * static_cast<double>(excess.size() - 1));
+  return std::max(1e-6f, stats::nth_smallest(excess, top));
 }
 
 }  // namespace
@@ -63,8 +56,8 @@ RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns
       halves.push_back(0.5f * (bucket.max - bucket.min));
     }
     if (centres.empty()) continue;
-    const float rest = median_of(centres);
-    const float band = median_of(halves);
+    const float rest = stats::median(centres);
+    const float band = stats::median(halves);
     scale.rest[k] = rest;
     scale.noise_band[k] = band;
     for (const MinMax& bucket : buckets) {
@@ -97,10 +90,10 @@ RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int 
       if (std::isfinite(value)) column_values.push_back(value);
     }
     if (column_values.empty()) continue;
-    deviations = column_values;
-    const float rest = median_of(deviations);
-    for (float& value : deviations) value = std::abs(value - rest);
-    const float band = 3.0f * 1.4826f * median_of(deviations);
+    const float rest = stats::median(column_values);
+    deviations.clear();
+    for (float value : column_values) deviations.push_back(std::abs(value - rest));
+    const float band = 3.0f * 1.4826f * stats::median(deviations);
     scale.rest[k] = rest;
     scale.noise_band[k] = band;
     for (float value : column_values) {

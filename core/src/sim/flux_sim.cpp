@@ -21,7 +21,6 @@ namespace {
 
 using sim::FingerContact;
 using sim::FluxGeometry;
-using sim::Random;
 
 constexpr int kFluxRepetitions = 10;
 // The paper's relaxation, "almost 7 seconds" (§5.2).

@@ -19,7 +19,6 @@ namespace tactile {
 
 namespace {
 
-using sim::Random;
 using sim::fur::Approach;
 using sim::fur::ContactPart;
 using sim::fur::Episode;

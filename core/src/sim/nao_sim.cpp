@@ -83,9 +83,9 @@ SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOpti
   const int repetitions = options.repetitions > 0 ? options.repetitions : kNaoRepetitions;
   const std::vector<SideArea> sides = find_sides(layout);
 
-  sim::Random habit_random(derive_engine(options.seed, "nao-subject", subject));
+  Random habit_random(derive_engine(options.seed, "nao-subject", subject));
   const sim::nao::SubjectHabits habits = sim::nao::draw_habits(habit_random);
-  sim::Random random(derive_engine(options.seed, "nao-trial", subject, trial));
+  Random random(derive_engine(options.seed, "nao-trial", subject, trial));
 
   // Gestures one after another, separated by rests the subject chooses whatever the class.
   std::vector<Gesture> gestures;
@@ -144,7 +144,7 @@ SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOpti
     else
       motion = random.chance(0.5) ? "walking" : "sit-stand";
   }
-  sim::Random motion_random(derive_engine(options.seed, "nao-motion", subject, trial));
+  Random motion_random(derive_engine(options.seed, "nao-motion", subject, trial));
   const sim::nao::BodyMotion body =
       sim::nao::simulate_body_motion(motion, samples, rate_hz, motion_random);
 
@@ -162,8 +162,8 @@ SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOpti
   recording.metadata["repetitions"] = std::to_string(repetitions);
   recording.streams.push_back(sim::make_stream(layout, "skin", rate_hz, samples));
   // The skin's cells are the same hardware in every trial: their properties depend on the seed.
-  sim::Random hardware(derive_engine(options.seed, "nao-hardware"));
-  sim::Random noise(derive_engine(options.seed, "nao-noise", subject, trial));
+  Random hardware(derive_engine(options.seed, "nao-hardware"));
+  Random noise(derive_engine(options.seed, "nao-noise", subject, trial));
   sim::nao::render_skin(layout, sides, gestures, body, rate_hz, hardware, noise,
                         recording.streams.back().samples);
 

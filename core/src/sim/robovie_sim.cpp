@@ -84,7 +84,7 @@ SimulatedTrial simulate_robovie_trial(const SkinLayout& layout, const Simulation
   const Robot robot = make_robot(films, options.seed);
   const Eigen::MatrixXf angles = joint_angles(session.moves, rate, samples);
   add_joint_load(robot, angles, skin.samples);
-  sim::Random noise(derive_engine(options.seed, "robovie-noise", subject, trial));
+  Random noise(derive_engine(options.seed, "robovie-noise", subject, trial));
   piezo_output(robot, angles, rate, noise, skin.samples);
   recording.streams.push_back(std::move(skin));
 

@@ -36,62 +36,6 @@ std::string simulated_recording_id(const std::string& skin, int subject, int tri
 
 namespace sim {
 
-double Random::uniform() {
-  // 53 random mantissa bits -> exactly representable doubles in [0, 1).
-  return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-}
-
-double Random::uniform(double low, double high) { return low + (high - low) * uniform(); }
-
-int Random::weighted(const std::vector<double>& weights) {
-  double total = 0.0;
-  for (const double weight : weights) total += std::max(0.0, weight);
-  double draw = uniform() * total;
-  for (size_t k = 0; k < weights.size(); ++k) {
-    draw -= std::max(0.0, weights[k]);
-    if (draw < 0.0) return static_cast<int>(k);
-  }
-  return weights.empty() ? 0 : static_cast<int>(weights.size()) - 1;
-}
-
-int64_t Random::integer(int64_t low, int64_t high) {
-  if (high <= low) return low;
-  const uint64_t span = static_cast<uint64_t>(high - low) + 1;
-  // Rejection keeps every value equally likely.
-  const uint64_t limit = UINT64_MAX - UINT64_MAX % span;
-  uint64_t draw = engine_();
-  while (draw >= limit) draw = engine_();
-  return low + static_cast<int64_t>(draw % span);
-}
-
-double Random::normal(double mean, double stddev) {
-  // Marsaglia polar method; keeps the second value for the next call.
-  if (has_spare_) {
-    has_spare_ = false;
-    return mean + stddev * spare_;
-  }
-  double u = 0.0, v = 0.0, s = 0.0;
-  do {
-    u = uniform(-1.0, 1.0);
-    v = uniform(-1.0, 1.0);
-    s = u * u + v * v;
-  } while (s >= 1.0 || s == 0.0);
-  const double factor = std::sqrt(-2.0 * std::log(s) / s);
-  spare_ = v * factor;
-  has_spare_ = true;
-  return mean + stddev * u * factor;
-}
-
-double Random::truncated_normal(double mean, double stddev, double limit) {
-  for (int attempt = 0; attempt < 64; ++attempt) {
-    const double z = normal();
-    if (std::abs(z) <= limit) return mean + stddev * z;
-  }
-  return mean;
-}
-
-bool Random::chance(double probability) { return uniform() < probability; }
-
 float quantize(double value, double low, double high, int bits) {
   const double levels = std::ldexp(1.0, bits) - 1.0;
   const double clamped = std::clamp(value, low, high);
@@ -119,9 +63,7 @@ std::vector<int> shuffled_classes(int count, int repetitions, Random& random) {
   std::vector<int> order;
   for (int repetition = 0; repetition < repetitions; ++repetition)
     for (int k = 0; k < count; ++k) order.push_back(k);
-  // Fisher-Yates with our own integer draws (std::shuffle's algorithm is unspecified).
-  for (int64_t k = static_cast<int64_t>(order.size()) - 1; k > 0; --k)
-    std::swap(order[k], order[random.integer(0, k)]);
+  shuffle(order, random.engine());
   // Break up repeats by swapping with a later different class where one exists.
   for (size_t k = 1; k < order.size(); ++k) {
     if (order[k] != order[k - 1]) continue;

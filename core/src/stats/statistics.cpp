@@ -11,17 +11,36 @@ double mean(std::span<const double> x) {
   return std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle),
-                   values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower =
-      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
-  return 0.5 * (lower + upper);
+namespace {
+
+template <typename Value>
+Value nth_smallest_of(std::span<Value> values, size_t index) {
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(index);
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
 }
+
+template <typename Value>
+Value median_of(std::vector<Value> values) {
+  if (values.empty()) return Value(0);
+  const size_t middle = values.size() / 2;
+  const Value upper = nth_smallest_of(std::span<Value>(values), middle);
+  if (values.size() % 2 == 1) return upper;
+  // nth_element leaves the smaller half before the middle: its largest is the lower middle.
+  const Value lower =
+      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
+  return Value(0.5) * (lower + upper);
+}
+
+}  // namespace
+
+double median(std::vector<double> values) { return median_of(std::move(values)); }
+float median(std::vector<float> values) { return median_of(std::move(values)); }
+
+double nth_smallest(std::span<double> values, size_t index) {
+  return nth_smallest_of(values, index);
+}
+float nth_smallest(std::span<float> values, size_t index) { return nth_smallest_of(values, index); }
 
 double variance(std::span<const double> x) {
   if (x.empty()) return 0.0;

@@ -37,18 +37,12 @@ struct CsvLongOptions {
 // its time stamps are kept.
 inline constexpr double kIrregularStepTolerance = 0.01;
 
-// Recording id = the file's stem, layout id = layout.id, one stream with the layout's
-// channel names and units. Throws tactile::Error naming file, line and column.
-Recording import_csv_long(const std::string& path, const SkinLayout& layout,
-                          const CsvLongOptions& options);
-
 // A long CSV that holds more than samples: a class per row (`class_column`; "" or
 // "none" is no touch, consecutive rows of one class become one ground-truth label) and
 // grouping columns (`group_columns`, e.g. subject and capture) that split one table into
-// recordings, each with its group's values as metadata and id "STEM-VALUE-VALUE".
-struct CsvTableOptions {
-  std::optional<double> rate_hz;
-  std::string stream_name = "skin";
+// recordings, each with its group's values as metadata and id "STEM-VALUE-VALUE". The
+// columns other than these are the long shape's (time, then the layout's channels).
+struct CsvTableOptions : CsvLongOptions {
   std::string class_column;
   std::vector<std::string> group_columns;
 };
@@ -57,6 +51,12 @@ struct ImportedRecording;
 // tactile::Error naming file, line and column (or the option naming a missing column).
 std::vector<ImportedRecording> import_csv_table(const std::string& path, const SkinLayout& layout,
                                                 const CsvTableOptions& options);
+
+// The table without class and grouping columns: its one recording. Recording id = the
+// file's stem, layout id = layout.id, one stream with the layout's channel names and units.
+// Throws tactile::Error naming file, line and column.
+Recording import_csv_long(const std::string& path, const SkinLayout& layout,
+                          const CsvLongOptions& options);
 
 struct CsvWideOptions {
   int64_t samples_per_capture = 0;

@@ -14,6 +14,11 @@ double mean(std::span<const double> x);
 double variance(std::span<const double> x);
 // The middle value, the mean of the two middle values for an even count; 0 for no values.
 double median(std::vector<double> values);
+float median(std::vector<float> values);
+// The value sorting would put at `index` (0-based, below values.size()), found in linear time
+// (std::nth_element); reorders `values`. A quantile picks its index by its own rounding.
+double nth_smallest(std::span<double> values, size_t index);
+float nth_smallest(std::span<float> values, size_t index);
 // Sample standard deviation with 1/(T-1); 0 for T <= 1.
 double sample_std(std::span<const double> x);
 // x[t+1] - x[t], length T-1 (empty for T < 2).
