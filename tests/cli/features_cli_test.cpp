@@ -254,6 +254,23 @@ TEST_F(FeaturesCommand, SegmentRefusesUnknownMethodsAndMissingFiles) {
       << run.err;
 }
 
+// Without --method each recording gets its skin's own segmenter (its record's): fur's is
+// threshold, flux's excitation; a grid layout, no skin, gets adaptive.
+TEST_F(FeaturesCommand, SegmentWithoutAMethodRunsEachSkinsOwn) {
+  for (const char* skin : {"fur", "flux"})
+    ASSERT_EQ(tactile(std::string("simulate --skin ") + skin +
+                      " --subjects 1 --repetitions 1 --out " + quoted("skins"))
+                  .exit_code,
+              0);
+  const CommandResult run = tactile("segment " + quoted("skins") + " --labels " + quoted("own.db"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("fur-s01-t01: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(" segments (threshold)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find(" segments (excitation)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("(segmenter:excitation, segmenter:threshold)"), std::string::npos)
+      << run.out;
+}
+
 // The whole chain on the fur pipeline's threshold segmenter, which reads grid recordings
 // as rising pressure with a calibration peak of 1.
 TEST_F(FeaturesCommand, SegmentThenFeaturesOnAFolder) {

@@ -278,18 +278,18 @@ TEST_F(WorkbenchLabelling, ADraggedEdgeUndoesAsOneCommand) {
 
 TEST_F(WorkbenchLabelling, AnAcceptedSuggestionUndoesAsOneCommand) {
   ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\n").exit_code, 0);
-  const double t = first_suggestion("adaptive");
+  const double t = first_suggestion("threshold");
   expect_one_undo("wait 2\nclick time " + std::to_string(t) +
-                  " in lane:segmenter:segmenter:adaptive\nkey 2\nkey A\nwait 1\n");
+                  " in lane:segmenter:segmenter:threshold\nkey 2\nkey A\nwait 1\n");
   EXPECT_EQ(manual_labels().size(), 1u);
 }
 
 // A reject's undo also forgets the rejection: a rerun of the segmenter suggests it again.
 TEST_F(WorkbenchLabelling, ARejectedSuggestionUndoesAsOneCommandAndComesBackInARerun) {
   ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\nstate @first.json\n").exit_code, 0);
-  const double t = first_suggestion("adaptive");
+  const double t = first_suggestion("threshold");
   expect_one_undo("wait 2\nclick time " + std::to_string(t) +
-                  " in lane:segmenter:segmenter:adaptive\nkey R\nwait 1\n");
+                  " in lane:segmenter:segmenter:threshold\nkey R\nwait 1\n");
   // Redone: rejected again. Undone once more, then a rerun: nothing left out.
   ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nkey G\nwait jobs\nstate @rerun.json\n").exit_code, 0);
   EXPECT_EQ(state("rerun.json")["notice"].get<std::string>().find("rejected before"),
@@ -302,7 +302,7 @@ TEST_F(WorkbenchLabelling, ARejectedSuggestionUndoesAsOneCommandAndComesBackInAR
 TEST_F(WorkbenchLabelling, ASegmenterRunUndoesAsOneCommand) {
   expect_one_undo("wait 2\nkey G\nwait jobs\n");
   const nlohmann::json job = state("done.json")["jobs"].back();
-  EXPECT_EQ(job["name"], "segmenter adaptive");
+  EXPECT_EQ(job["name"], "segmenter threshold");
   EXPECT_EQ(job["status"], "done");
   EXPECT_GT(job["finished_frame"].get<int>(), job["started_frame"].get<int>());
 }

@@ -74,6 +74,28 @@ Stream fur_stream() {
   return trial.recording.streams.front();
 }
 
+TEST(SimulatorInput, WithATrialCountSendsThatManyWholeTrialsThenEnds) {
+  EXPECT_EQ(parse_live_address("sim://fur?trials=2", "--connect").trials, 2);
+  EXPECT_EQ(parse_live_address("sim://fur", "--connect").trials, 0);  // endless
+  EXPECT_NE(refusal("sim://fur?trials=0").find("trials 0 is not a whole number"),
+            std::string::npos);
+  EXPECT_NE(refusal("sim://fur?trials=1.5").find("trials 1.5"), std::string::npos);
+  // What `tactile stream-sim` sends: every sample of trial 0, in device time from 0, then the end.
+  const std::unique_ptr<DatagramInput> input =
+      open_live_input(parse_live_address("sim://fur?rate=1000&trials=1", "--connect"));
+  int64_t samples = 0;
+  double first_time = -1.0;
+  std::vector<uint8_t> datagram;
+  while (!input->ended())
+    if (input->next(datagram, 1.0)) {
+      const PacketHeader header = decode_packet_header(datagram);
+      if (first_time < 0.0) first_time = header.time;
+      samples += header.sample_count;
+    }
+  EXPECT_EQ(samples, fur_stream().sample_count());
+  EXPECT_EQ(first_time, 0.0);
+}
+
 std::vector<std::vector<uint8_t>> fur_datagrams(int64_t count) {
   const SkinLayout layout = load_layout("fur");
   const Stream stream = fur_stream();

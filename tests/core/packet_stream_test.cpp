@@ -121,49 +121,5 @@ TEST(UdpUrl, AcceptsHostAndPortAndNamesTheOptionOnEveryMistake) {
   }
 }
 
-TEST(PacedSender, SendsARecordingOverLoopbackAtTheDeviceRateWithoutLoss) {
-  const SkinLayout layout = load_layout("flux");
-  const Stream stream = test::grid_stream(layout, 300, 8);  // 0.3 s: 30 datagrams
-  UdpSocket receiver = UdpSocket::bind_to({"127.0.0.1", 0});
-  UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", receiver.local_port()});
-
-  PacketCollector collector(layout, true);
-  std::atomic<bool> sending{true};
-  std::thread listener([&] {
-    std::vector<uint8_t> buffer(65536);
-    while (sending || collector.datagrams() < 30) {
-      const auto size = receiver.receive(buffer, 0.5);
-      if (!size) break;
-      collector.add(std::span<const uint8_t>(buffer.data(), *size));
-    }
-  });
-  PacedSender paced([&](std::span<const uint8_t> datagram) { return sender.send(datagram); }, 1.0);
-  const PacketEncoder encoder(layout, stream);
-  uint32_t sequence = 0;
-  paced.send(encoder, stream, 0, 300, sequence);
-  sending = false;
-  listener.join();
-
-  EXPECT_EQ(paced.totals().datagrams, 30);
-  EXPECT_EQ(paced.totals().samples, 300);
-  // The 30th datagram is due 0.29 s after the first: paced, not bursted.
-  EXPECT_GT(paced.elapsed_seconds(), 0.27);
-  EXPECT_LT(paced.elapsed_seconds(), 0.6);
-  EXPECT_EQ(collector.datagrams(), 30);
-  EXPECT_EQ(collector.sequence().lost(), 0);
-  const Recording recording = collector.recording("loop");
-  const Stream& received = recording.streams[0];
-  for (size_t k = 0; k < received.channels.size(); ++k)
-    EXPECT_EQ(received.samples.col(static_cast<Eigen::Index>(k)),
-              stream.samples.col(layout.channel_index(received.channels[k])))
-        << received.channels[k];
-}
-
-TEST(PacedSender, RefusesARateFactorThatIsNotPositive) {
-  const auto transmit = [](std::span<const uint8_t>) { return true; };
-  EXPECT_THROW(PacedSender(transmit, 0.0), Error);
-  EXPECT_THROW(PacedSender(transmit, -1.0), Error);
-}
-
 }  // namespace
 }  // namespace tactile

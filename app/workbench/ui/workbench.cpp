@@ -173,6 +173,16 @@ void Workbench::choose_default_view() {
   state_.modality = std::max(0, document.layout.modality_index(document.layout.display_modality));
   state_.rest_scale_modality = -1;
   state_.skin_zoom = SkinViewZoom{};
+  // On a skin's first recording, G runs the skin's own segmenter; one chosen since (Labels > Run
+  // segmenter) stays while recordings of the same skin are opened.
+  if (state_.labelling.segmenter_skin != document.layout.id) {
+    const auto [method, parameters] = default_segmenter(document.layout.id);
+    state_.labelling.segmenter_skin = document.layout.id;
+    state_.labelling.last_segmenter = method;
+    state_.labelling.segmenter_params.fill('\0');
+    parameters.copy(state_.labelling.segmenter_params.data(),
+                    state_.labelling.segmenter_params.size() - 1);
+  }
   plot_moving_channels(state_);
   const std::vector<int> columns = taxel_columns(document.layout, source.info().channels, state_.modality);
   state_.plot = SignalPlotState{};

@@ -79,7 +79,8 @@ struct LabellingState {
   std::set<std::string> hidden, collapsed;
   std::array<char, 256> segmenter_params{};  // typed in the Labels menu
   bool snap = true;
-  std::string last_segmenter = "adaptive";  // G runs it again
+  std::string last_segmenter = "adaptive";   // G runs it again; on opening, the skin's own
+  std::string segmenter_skin;                // the skin last_segmenter was chosen for
   bool picker_open = false;                  // the type-ahead class picker (key C)
   std::array<char, 64> picker_text{};  // dragged times snap to segmenter and other lanes' boundaries (key S)
   // A drag in the operator's lane: over empty space it sets the marks; from an edge of

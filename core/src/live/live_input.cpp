@@ -220,11 +220,12 @@ class PacedInput : public DatagramInput {
 // simulated while this one is sent.
 class SimulatorInput final : public PacedInput {
  public:
-  SimulatorInput(const std::string& skin, uint64_t seed, double speed)
+  SimulatorInput(const std::string& skin, uint64_t seed, double speed, int trials)
       : PacedInput(speed),
         skin_(skin),
         layout_(load_layout(skin)),
-        generator_(skin_record(skin).simulate) {
+        generator_(skin_record(skin).simulate),
+        limit_(trials) {
     packet_format_info(skin);  // refuses a skin without a packet format now
     if (!generator_) throw Error("sim://" + skin, "the skin has no simulator");
     options_.seed = seed;
@@ -232,7 +233,7 @@ class SimulatorInput final : public PacedInput {
     // The first trial now: its metadata (the device's calibration) is the stream's.
     first_ = generator_(layout_, options_, 0, 0);
     metadata_ = first_->recording.metadata;
-    next_ = simulate(1);
+    if (limit_ != 1) next_ = simulate(1);
   }
   std::string skin() const override { return skin_; }
   Metadata metadata() const override { return metadata_; }
@@ -240,20 +241,28 @@ class SimulatorInput final : public PacedInput {
 
  protected:
   void refill() override {
+    if (limit_ > 0 && trials_ >= limit_) {
+      ended_ = true;
+      return;
+    }
     SimulatedTrial trial;
     if (first_) {
       trial = std::move(*first_);
       first_.reset();
-      ++trials_;
     } else {
       trial = next_.get();
-      next_ = simulate(++trials_);
     }
+    ++trials_;
+    if (limit_ == 0 || trials_ < limit_) next_ = simulate(trials_);
+    // The device sends the stream named "skin", or a recording's only stream.
     std::vector<Stream>& streams = trial.recording.streams;
     auto skin = std::find_if(streams.begin(), streams.end(),
                              [](const Stream& stream) { return stream.name == "skin"; });
-    if (skin == streams.end()) skin = streams.begin();
-    if (skin == streams.end() || skin->sample_count() == 0)
+    if (skin == streams.end() && streams.size() == 1) skin = streams.begin();
+    if (skin == streams.end())
+      throw Error("sim://" + skin_,
+                  "trial " + std::to_string(trials_) + " has no stream named \"skin\"");
+    if (skin->sample_count() == 0)
       throw Error("sim://" + skin_, "trial " + std::to_string(trials_) + " has no samples");
     Stream stream = std::move(*skin);
     stream.timestamps.clear();
@@ -268,7 +277,8 @@ class SimulatorInput final : public PacedInput {
   }
   std::string skin_;
   SkinLayout layout_;
-  const TrialGenerator& generator_;
+  TrialGenerator generator_;
+  int limit_ = 0;  // trials before the input ends; 0: endless
   SimulationOptions options_;
   std::optional<SimulatedTrial> first_;
   Metadata metadata_;
@@ -373,7 +383,7 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
       baud_constant(address.baud, option);
     }
   } else if (address.scheme == "sim") {
-    const auto values = query_of(query, url, {"seed", "rate"}, option);
+    const auto values = query_of(query, url, {"seed", "rate", "trials"}, option);
     address.skin = rest;
     const SkinRecord* record = find_skin(rest);
     if (!record || !record->simulate || !record->packet) {
@@ -392,6 +402,13 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
       address.speed = number_in(values.at("rate"), "rate", option);
       if (!(address.speed > 0.0) || address.speed > 1000.0)
         throw Error(option, "rate " + values.at("rate") + " is not in (0, 1000]");
+    }
+    if (values.count("trials")) {
+      const double trials = number_in(values.at("trials"), "trials", option);
+      if (trials < 1 || trials > 1e6 || trials != std::floor(trials))
+        throw Error(option, "trials " + values.at("trials") +
+                                " is not a whole number of trials, 1 or more");
+      address.trials = static_cast<int>(trials);
     }
   } else if (address.scheme == "replay") {
     const auto values = query_of(query, url, {"speed", "seconds"}, option);
@@ -417,7 +434,8 @@ std::unique_ptr<DatagramInput> open_live_input(const LiveAddress& address) {
   if (address.scheme == "udp") return std::make_unique<UdpInput>(UdpEndpoint{address.host, address.port});
   if (address.scheme == "serial") return std::make_unique<SerialInput>(address.path, address.baud);
   if (address.scheme == "sim")
-    return std::make_unique<SimulatorInput>(address.skin, address.seed, address.speed);
+    return std::make_unique<SimulatorInput>(address.skin, address.seed, address.speed,
+                                            address.trials);
   if (address.scheme == "replay")
     return std::make_unique<ReplayInput>(address.path, address.speed, address.seconds);
   throw Error(address.url, "not a live source kind (udp, serial, sim, replay)");

@@ -8,45 +8,6 @@
 
 namespace tactile {
 
-//---- Sending ---------------------------------------------------------------------------
-
-PacedSender::PacedSender(Transmit transmit, double rate_factor)
-    : transmit_(std::move(transmit)), rate_factor_(rate_factor) {
-  if (!(rate_factor > 0.0) || !std::isfinite(rate_factor))
-    throw Error("--rate-factor", "must be a number above 0, not " + std::to_string(rate_factor));
-}
-
-void PacedSender::send(const PacketEncoder& encoder, const Stream& stream, int64_t first,
-                       int64_t count, uint32_t& sequence) {
-  using Clock = std::chrono::steady_clock;
-  const int64_t per_datagram = encoder.format().samples_per_datagram;
-  for (int64_t start = first; start < first + count; start += per_datagram) {
-    const int64_t rows = std::min(per_datagram, first + count - start);
-    const std::vector<std::vector<uint8_t>> datagrams = encoder.encode(start, rows, sequence);
-    const double device_time = stream.time_of(start);
-    if (!started_) {
-      started_ = true;
-      start_clock_ = Clock::now();
-      start_device_time_ = device_time;
-    }
-    const auto due =
-        start_clock_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-                           (device_time - start_device_time_) / rate_factor_));
-    std::this_thread::sleep_until(due);
-    for (const std::vector<uint8_t>& datagram : datagrams) {
-      if (!transmit_(datagram)) ++totals_.refused;
-      ++totals_.datagrams;
-      totals_.bytes += static_cast<int64_t>(datagram.size());
-    }
-    totals_.samples += rows;
-    last_clock_ = Clock::now();
-  }
-}
-
-double PacedSender::elapsed_seconds() const {
-  return started_ ? std::chrono::duration<double>(last_clock_ - start_clock_).count() : 0.0;
-}
-
 //---- Receiving -------------------------------------------------------------------------
 
 PacketCollector::PacketCollector(SkinLayout layout, bool keep_samples)

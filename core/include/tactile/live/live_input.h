@@ -17,7 +17,8 @@ namespace tactile {
 // A parsed live source address:
 //   udp://HOST:PORT        HOST a dotted IPv4 address; udp://:PORT listens on loopback only
 //   serial:///dev/ttyUSB0?baud=921600
-//   sim://SKIN?seed=1&rate=1          the skin's simulator, `rate` times the device's speed
+//   sim://SKIN?seed=1&rate=1&trials=N the skin's simulator, `rate` times the device's speed,
+//                                     trial after trial (N trials, then it ends; default endless)
 //   replay:///path/file.h5?speed=1&seconds=60   a recording (its first 60 s), 0.25-4 times
 //                                               its speed, once
 struct LiveAddress {
@@ -30,6 +31,7 @@ struct LiveAddress {
   uint64_t seed = 1;   // sim
   double speed = 1.0;  // sim (rate factor) and replay
   double seconds = 0.0;  // replay: only this much of the recording (0: all)
+  int trials = 0;        // sim: trials before the input ends (0: endless)
   std::string url;     // as given
 };
 

@@ -1,7 +1,7 @@
 #pragma once
-// Both ends of a live packet stream, without sockets: PacedSender hands a Stream's datagrams
-// to a transmit function at the device's rate (times a factor) on a steady clock;
-// PacketCollector decodes what arrives, tracks sequence numbers and rebuilds a Recording.
+// The receiving end of a live packet stream, without sockets: PacketCollector decodes what
+// arrives, tracks sequence numbers and rebuilds a Recording. (Datagrams are made and paced by
+// the inputs of live_input.h: `sim://`, `replay://`.)
 
 #include <chrono>
 #include <cstdint>
@@ -15,46 +15,6 @@
 #include "tactile/live/packets.h"
 
 namespace tactile {
-
-//---- Sending ---------------------------------------------------------------------------
-
-struct SendTotals {
-  int64_t datagrams = 0;
-  int64_t bytes = 0;
-  int64_t samples = 0;
-  int64_t refused = 0;  // datagrams the transmit function reported as not delivered
-};
-
-class PacedSender {
- public:
-  // Returns false when the datagram could not be delivered (counted, not an error).
-  using Transmit = std::function<bool(std::span<const uint8_t>)>;
-
-  // rate_factor > 0: 2 sends twice as fast as the device would. Throws tactile::Error at
-  // "--rate-factor" otherwise.
-  PacedSender(Transmit transmit, double rate_factor);
-
-  // Sends samples [first, first + count) of the encoder's stream, one datagram at a time. The
-  // datagram holding device time t goes out at start + (t - t0) / rate_factor on the steady
-  // clock, where (start, t0) is the first datagram ever sent by this sender: due times are
-  // absolute, so a late wake-up never accumulates into drift. Consecutive calls continue the
-  // same schedule (streams of later trials carry later device times).
-  void send(const PacketEncoder& encoder, const Stream& stream, int64_t first, int64_t count,
-            uint32_t& sequence);
-
-  const SendTotals& totals() const { return totals_; }
-  // Wall time from the first datagram to the last one sent.
-  double elapsed_seconds() const;
-
- private:
-  Transmit transmit_;
-  double rate_factor_;
-  bool started_ = false;
-  std::chrono::steady_clock::time_point start_clock_;
-  std::chrono::steady_clock::time_point last_clock_;
-  double start_device_time_ = 0.0;
-  SendTotals totals_;
-};
 
 //---- Receiving -------------------------------------------------------------------------
 
