@@ -83,7 +83,8 @@ struct SkinRecord {
 };
 
 // Adds a skin, or replaces the record of the same id. Throws tactile::Error when the id is
-// empty or not a plain layout name, or when its packet code is taken by another skin.
+// empty or not a plain layout name, or when its packet code is taken by another skin. Register
+// at start-up, before other threads read the records: a replaced record changes in place.
 void register_skin(SkinRecord record);
 
 // Every registered skin, the papers' five first, then in registration order; for help texts
