@@ -15,8 +15,16 @@ namespace tactile {
 
 namespace {
 
-void draw_legend(WorkbenchState& state, const char* view, const std::vector<std::string>& classes,
+// The table's classes in the display order of the skin's vocabulary, as the lanes list them.
+void draw_legend(WorkbenchState& state, const char* view, std::vector<std::string> classes,
                  ImVec2 at) {
+  for (const std::string& name : classes) class_colour(state, name);  // places every class
+  const std::vector<std::string>& order = state.class_colours.order();
+  const auto place = [&order](const std::string& name) {
+    return std::find(order.begin(), order.end(), name);
+  };
+  std::stable_sort(classes.begin(), classes.end(),
+                   [&](const std::string& a, const std::string& b) { return place(a) < place(b); });
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   const float line = ImGui::GetTextLineHeightWithSpacing();
   for (size_t k = 0; k < classes.size(); ++k) {
