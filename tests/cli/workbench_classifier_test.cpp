@@ -35,6 +35,24 @@ class WorkbenchClassifiers : public ::testing::Test {
     }
     return test::run_program("tactile-workbench-headless", all, folder);
   }
+  // SKIN simulated into folder/SKIN and described by its own pipeline: the table's path, or
+  // "" (with the failure added) when a step failed.
+  std::string simulated_table(const std::string& skin, int subjects, int repetitions) {
+    const test::CommandResult simulated = test::run_program(
+        "tactile",
+        "simulate --skin " + skin + " --subjects " + std::to_string(subjects) + " --repetitions " +
+            std::to_string(repetitions) + " --out " + folder.file(skin),
+        folder);
+    if (simulated.exit_code != 0) ADD_FAILURE() << simulated.err;
+    const std::string table = folder.file(skin + "/features.csv");
+    const test::CommandResult described =
+        test::run_program("tactile",
+                          "features --pipeline " + skin + " --labels " +
+                              folder.file(skin + "/labels.db") + " --out " + table,
+                          folder);
+    if (described.exit_code != 0) ADD_FAILURE() << described.err;
+    return simulated.exit_code == 0 && described.exit_code == 0 ? table : "";
+  }
   nlohmann::json state(const std::string& name) {
     std::ifstream in(folder.file(name));
     return nlohmann::json::parse(in);
@@ -59,19 +77,8 @@ uint32_t legend_colour(const Png& png, const nlohmann::json& state, const std::s
 }
 
 TEST_F(WorkbenchClassifiers, EachClassHasOneColourInTheLanesTheScatterTheSomAndTheConfusion) {
-  ASSERT_EQ(
-      test::run_program(
-          "tactile", "simulate --skin fur --subjects 2 --repetitions 2 --out " + folder.file("fur"),
-          folder)
-          .exit_code,
-      0);
-  const std::string table = folder.file("fur/features.csv");
-  ASSERT_EQ(test::run_program("tactile",
-                              "features --pipeline fur --labels " + folder.file("fur/labels.db") +
-                                  " --out " + table,
-                              folder)
-                .exit_code,
-            0);
+  const std::string table = simulated_table("fur", 2, 2);
+  ASSERT_FALSE(table.empty());
   const auto run = workbench(
       folder.file("fur/fur-s01-t01.h5") + " --features " + table,
       std::string(kTrainAll) +
@@ -176,19 +183,8 @@ TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
 // each result is applied frames after its job started (it was fitted inside one frame,
 // 18-20 s at 454 x 1692); a screenshot waits for the view's job.
 TEST_F(WorkbenchClassifiers, TheSomMapAndTheScatterAreComputedWhileFramesGoOn) {
-  ASSERT_EQ(
-      test::run_program(
-          "tactile",
-          "simulate --skin flux --subjects 2 --repetitions 3 --out " + folder.file("flux"), folder)
-          .exit_code,
-      0);
-  const std::string table = folder.file("flux/features.csv");
-  ASSERT_EQ(test::run_program("tactile",
-                              "features --pipeline flux --labels " + folder.file("flux/labels.db") +
-                                  " --out " + table,
-                              folder)
-                .exit_code,
-            0);
+  const std::string table = simulated_table("flux", 2, 3);
+  ASSERT_FALSE(table.empty());
   const auto run = workbench("--features " + table,
                              "wait 2\nclick item tab:som\nwait jobs\nwait 1\nstate @som.json\n"
                              "click item tab:scatter\nwait jobs\nwait 1\nstate @scatter.json\n");
