@@ -2,15 +2,18 @@
 // the same numbers in every format, classes per frame and per capture as labels, and every
 // malformed or truncated file refused with its place, never read as other numbers, never
 // a crash, never an allocation larger than the file.
+#include "tactile/io/array_import.h"
+
 #include <gtest/gtest.h>
+#include <hdf5/serial/hdf5.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "io_test_files.h"
 #include "tactile/error.h"
-#include "tactile/io/array_import.h"
 #include "tactile/io/csv.h"
 #include "test_paths.h"
 
@@ -195,6 +198,34 @@ TEST(ArrayImport, JsonThatIsNotRegularFramesIsRefusedWithItsIndex) {
   EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,2e342]]"), ""); }).find("f.json"),
             std::string::npos);
   EXPECT_EQ(read_json_array(write("{\"a\": {\"b\": [[1,2],[3,4]]}}"), "a.b").shape, (std::vector<int64_t>{2, 2}));
+}
+
+// Another program's small float32 dataset (h5py's default for np.float32), stored without
+// compression: the file holds 4 bytes a value, which the size check must count, not the 8 of
+// the doubles it is read into.
+TEST(ArrayImport, ASmallFloat32DatasetOfAnotherProgramIsRead) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "tactile-float32-grid.h5").string();
+  const hsize_t shape[3] = {300, 4, 5};
+  std::vector<float> values(300 * 4 * 5);
+  for (size_t k = 0; k < values.size(); ++k) values[k] = static_cast<float>(k % 97) * 0.25f;
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t group = H5Gcreate2(file, "/sensors", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t space = H5Screate_simple(3, shape, nullptr);
+  const hid_t dataset =
+      H5Dcreate2(group, "grid", H5T_IEEE_F32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(H5Dwrite(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+  H5Dclose(dataset);
+  H5Sclose(space);
+  H5Gclose(group);
+  H5Fclose(file);
+  ASSERT_LT(std::filesystem::file_size(path), 8 * values.size());  // the old check's premise
+
+  const ImportedArray array = read_hdf5_dataset(path, "/sensors/grid");
+  EXPECT_EQ(array.shape, (std::vector<int64_t>{300, 4, 5}));
+  ASSERT_EQ(array.values.size(), values.size());
+  for (size_t k = 0; k < values.size(); k += 37) EXPECT_EQ(array.values[k], values[k]) << k;
+  std::filesystem::remove(path);
 }
 
 TEST(ArrayImport, HdfDatasetsNameWhatIsMissing) {

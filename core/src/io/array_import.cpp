@@ -463,7 +463,14 @@ ImportedArray read_hdf5_dataset(const std::string& path, const std::string& name
     return array;
   }
   if (type != H5T_FLOAT && type != H5T_INTEGER) throw Error(where, "neither numbers nor strings");
-  hdf5::check_declared_size(dataset.id(), 8.0 * static_cast<double>(count), where);
+  // The bytes the file stores (a float32 dataset holds 4 per value), not those of the doubles
+  // it is read into.
+  const hdf5::Object stored_type =
+      hdf5::checked(H5Dget_type(dataset.id()), H5Tclose, where, "cannot read type");
+  const size_t stored_bytes = H5Tget_size(stored_type.id());
+  if (stored_bytes == 0) throw Error(where, "values of 0 bytes");
+  hdf5::check_declared_size(dataset.id(),
+                            static_cast<double>(stored_bytes) * static_cast<double>(count), where);
   array.values.resize(static_cast<size_t>(count));
   if (count > 0 && H5Dread(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, array.values.data()) < 0)
     hdf5::fail(where, "cannot read");
