@@ -1,6 +1,8 @@
-// `tactile info FILE [--labels DB] [--json]`: what a recording holds, read from its
+// `tactile info FILE [--labels DB] [--json]`: what a recording holds (its labels: in DB, else in
+// labels.db beside it), read from its
 // attributes and shapes only (no samples are loaded).
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -22,7 +24,8 @@ struct InfoOptions {
   bool json = false;
 };
 
-nlohmann::json info_json(const RecordingFile& file, std::optional<int64_t> label_count) {
+nlohmann::json info_json(const RecordingFile& file, std::optional<int64_t> label_count,
+                         const std::string& labels_database) {
   nlohmann::json streams = nlohmann::json::array();
   for (const StreamInfo& stream : file.streams())
     streams.push_back({{"name", stream.name},
@@ -30,11 +33,13 @@ nlohmann::json info_json(const RecordingFile& file, std::optional<int64_t> label
                        {"channels", stream.channels},
                        {"samples", stream.sample_count},
                        {"duration_s", stream.duration()}});
-  return {{"layout", file.layout_id()},
-          {"recording", file.recording_id()},
-          {"metadata", file.metadata()},
-          {"streams", streams},
-          {"labels", label_count ? nlohmann::json(*label_count) : nlohmann::json(nullptr)}};
+  return {
+      {"layout", file.layout_id()},
+      {"recording", file.recording_id()},
+      {"metadata", file.metadata()},
+      {"streams", streams},
+      {"labels", label_count ? nlohmann::json(*label_count) : nlohmann::json(nullptr)},
+      {"labels_database", label_count ? nlohmann::json(labels_database) : nlohmann::json(nullptr)}};
 }
 
 void print_text(const RecordingFile& file, std::optional<int64_t> label_count,
@@ -57,20 +62,27 @@ void print_text(const RecordingFile& file, std::optional<int64_t> label_count,
   if (label_count)
     out << *label_count << " in " << labels_database << "\n";
   else
-    out << "(no database given)\n";
+    out << "(no database given, and no labels.db beside the recording)\n";
   std::cout << out.str();
 }
 
 void run_info(const InfoOptions& options) {
   const RecordingFile file(options.file);
+  // The database given, else the one beside the recording, as the workbench finds it.
+  std::string database = options.labels;
+  if (database.empty()) {
+    const std::filesystem::path beside =
+        std::filesystem::path(options.file).parent_path() / "labels.db";
+    std::error_code error;
+    if (std::filesystem::is_regular_file(beside, error)) database = beside.string();
+  }
   std::optional<int64_t> label_count;
-  if (!options.labels.empty())
-    label_count =
-        LabelStore(options.labels, LabelStore::OpenMode::kExisting).count(file.recording_id());
+  if (!database.empty())
+    label_count = LabelStore(database, LabelStore::OpenMode::kExisting).count(file.recording_id());
   if (options.json)
-    std::cout << info_json(file, label_count).dump(2) << "\n";
+    std::cout << info_json(file, label_count, database).dump(2) << "\n";
   else
-    print_text(file, label_count, options.labels);
+    print_text(file, label_count, database);
 }
 
 }  // namespace
@@ -80,7 +92,9 @@ void register_info(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("info", "Show a recording's layout, metadata, streams and label count");
   command->add_option("FILE", options->file, "Recording file (.h5)")->required();
-  command->add_option("--labels", options->labels, "Label database (SQLite) to count labels in");
+  command->add_option(
+      "--labels", options->labels,
+      "Label database (SQLite) to count labels in (default: labels.db beside the file)");
   command->add_flag("--json", options->json, "Print JSON instead of text");
   command->callback([options] { run_info(*options); });
 }

@@ -66,7 +66,23 @@ TEST_F(IoCommand, ImportedRecordingIsDescribedByInfoJson) {
 
   const CommandResult text = tactile("info '" + h5 + "'");
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  EXPECT_NE(text.out.find("labels:    (no database given)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("labels:    (no database given, and no labels.db beside the recording)"),
+            std::string::npos)
+      << text.out;
+}
+
+TEST_F(IoCommand, InfoCountsTheLabelsInTheDatabaseBesideTheRecording) {
+  ASSERT_EQ(tactile("simulate --skin flux --subjects 1 --repetitions 1 --out '" + file("sim") + "'")
+                .exit_code,
+            0);
+  const CommandResult text = tactile("info '" + file("sim/flux-s01-t01.h5") + "'");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("labels:    6 in " + file("sim/labels.db")), std::string::npos)
+      << text.out;
+  const nlohmann::json json =
+      nlohmann::json::parse(tactile("info '" + file("sim/flux-s01-t01.h5") + "' --json").out);
+  EXPECT_EQ(json.at("labels"), 6);
+  EXPECT_EQ(json.at("labels_database"), file("sim/labels.db"));
 }
 
 TEST_F(IoCommand, ExportWritesTheSamplesBack) {
