@@ -70,9 +70,10 @@ void print_table(const std::vector<Label>& labels, std::ostream& out) {
   std::vector<std::vector<std::string>> rows = {{"id", "recording", "t0", "t1", "region", "class",
                                                  "annotator", "source", "confidence", "note"}};
   for (const Label& label : labels)
-    rows.push_back({std::to_string(label.id), label.recording, shortest_text(label.t0),
-                    shortest_text(label.t1), label.region, label.class_name, label.annotator,
-                    to_string(label.source), shortest_text(label.confidence), one_line(label.note)});
+    rows.push_back({std::to_string(label.id), label.recording, seconds_text(label.t0),
+                    seconds_text(label.t1), label.region, label.class_name, label.annotator,
+                    to_string(label.source), shortest_text(label.confidence),
+                    one_line(label.note)});
   std::vector<size_t> widths(rows.front().size(), 0);
   for (const auto& row : rows)
     for (size_t column = 0; column < row.size(); ++column)

@@ -1,6 +1,7 @@
 #include "tactile/text.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 namespace tactile {
@@ -21,6 +22,12 @@ std::string significant_text(double value, int digits) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.*g", digits, value);
   return text;
+}
+
+std::string seconds_text(double seconds) {
+  if (!std::isfinite(seconds)) return shortest_text(seconds);
+  const double microseconds = std::round(seconds * 1e6);
+  return shortest_text(microseconds == 0.0 ? 0.0 : microseconds / 1e6);
 }
 
 std::string in_quotes(const std::string& text) { return "\"" + text + "\""; }

@@ -10,6 +10,10 @@ namespace tactile {
 // error messages that quote a value.
 std::string shortest_text(double value);
 
+// A time in seconds to the microsecond, the finest a recording's clock resolves, in its
+// shortest form: 4.4639999999999995 -> "4.464", 1.5 -> "1.5", 0.0000004 -> "0".
+std::string seconds_text(double seconds);
+
 // `value` with `decimals` digits after the point ("81.80"): for report tables.
 std::string fixed_text(double value, int decimals);
 
