@@ -140,9 +140,8 @@ std::vector<Label> lane_labels(const LabelStore& store, const LabelsOptions& opt
                                const std::string& lane, const char* option) {
   std::string id = lane;
   if (lane != "ground-truth" && lane.find(':') == std::string::npos) id = "manual:" + lane;
-  // A segmenter's annotator is "segmenter:METHOD": its lane id repeats the source.
-  if (lane.starts_with("segmenter:") && !lane.starts_with("segmenter:segmenter:"))
-    id = "segmenter:" + lane;
+  // The form lane ids had before they followed the documentation.
+  if (lane.starts_with("segmenter:segmenter:")) id = lane.substr(10);
   LabelFilter filter;
   if (!options.recording.empty()) filter.recording = options.recording;
   std::vector<Label> labels;

@@ -195,7 +195,7 @@ TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRe
       if (lane["id"] == id) return lane["labels"].get<int>();
     return 0;
   };
-  const std::string lane = "segmenter:segmenter:threshold";
+  const std::string lane = "segmenter:threshold";
   const nlohmann::json suggested = state("suggested.json");
   const int suggestions = lane_size(suggested, lane);
   ASSERT_GE(suggestions, 3) << suggested.dump(2);
@@ -280,7 +280,7 @@ TEST_F(WorkbenchLabelling, AnAcceptedSuggestionUndoesAsOneCommand) {
   ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\n").exit_code, 0);
   const double t = first_suggestion("threshold");
   expect_one_undo("wait 2\nclick time " + std::to_string(t) +
-                  " in lane:segmenter:segmenter:threshold\nkey 2\nkey A\nwait 1\n");
+                  " in lane:segmenter:threshold\nkey 2\nkey A\nwait 1\n");
   EXPECT_EQ(manual_labels().size(), 1u);
 }
 
@@ -289,7 +289,7 @@ TEST_F(WorkbenchLabelling, ARejectedSuggestionUndoesAsOneCommandAndComesBackInAR
   ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\nstate @first.json\n").exit_code, 0);
   const double t = first_suggestion("threshold");
   expect_one_undo("wait 2\nclick time " + std::to_string(t) +
-                  " in lane:segmenter:segmenter:threshold\nkey R\nwait 1\n");
+                  " in lane:segmenter:threshold\nkey R\nwait 1\n");
   // Redone: rejected again. Undone once more, then a rerun: nothing left out.
   ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nkey G\nwait jobs\nstate @rerun.json\n").exit_code, 0);
   EXPECT_EQ(state("rerun.json")["notice"].get<std::string>().find("rejected before"),

@@ -8,6 +8,8 @@ namespace tactile {
 
 std::string LaneKey::id() const {
   if (source == LabelSource::kGroundTruth) return "ground-truth";
+  // A segmenter's annotator already says so ("segmenter:METHOD").
+  if (source == LabelSource::kSegmenter && annotator.starts_with("segmenter:")) return annotator;
   return std::string(to_string(source)) + ":" + annotator;
 }
 

@@ -19,7 +19,7 @@ struct LaneKey {
   LabelSource source = LabelSource::kManual;
   std::string annotator;  // "" for ground truth
   bool operator==(const LaneKey&) const = default;
-  // "ground-truth", "manual:ana", "segmenter:segmenter:threshold", ... (settings keys)
+  // "ground-truth", "manual:ana", "segmenter:threshold", "model:svm", ... (settings keys)
   std::string id() const;
   // What a lane header shows: "ground truth", "ana", "threshold", "model svm".
   std::string title() const;
