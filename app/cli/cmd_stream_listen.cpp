@@ -37,7 +37,8 @@ void run_stream_listen(const StreamListenOptions& options) {
     throw Error("--duration", "must be a number of seconds above 0");
   if (!(options.idle >= 0.0) || !std::isfinite(options.idle))
     throw Error("--idle", "must be a number of seconds, 0 or more (0: never)");
-  packet_format_info(options.skin);  // refuses a skin without a packet format
+  skin_record(options.skin, "--skin " + options.skin);  // an unknown skin is named at its option
+  packet_format_info(options.skin);                     // refuses a skin without a packet format
   PacketCollector collector(load_layout(options.skin), !options.out.empty());
   UdpSocket socket = UdpSocket::bind_to(local);
 

@@ -40,6 +40,7 @@ void run_stream_sim(const StreamSimOptions& options) {
     throw Error("--duration", "must be a number of seconds, 0 or more (0: one trial)");
   if (!(options.loss >= 0.0 && options.loss < 1.0))
     throw Error("--loss", "must be a fraction in [0, 1)");
+  skin_record(options.skin, "--skin " + options.skin);  // an unknown skin is named at its option
   const PacketFormatInfo format = packet_format_info(options.skin);
   if (options.duration > 0.0 && std::llround(options.duration * format.sample_rate_hz) == 0)
     throw Error("--duration", "is shorter than one sample of the " + options.skin + " device (" +

@@ -17,22 +17,21 @@ std::vector<SkinRecord> builtin_skins();
 namespace {
 
 // Records never move once registered (a deque grows at its end), so a pointer handed out
-// stays valid while another thread registers a skin.
+// stays valid while another thread registers a skin. The papers' five are there from the start.
 struct SkinTable {
+  SkinTable() {
+    for (SkinRecord& record : builtin_skins()) {
+      if (record.packet) record.packet->skin = record.id;
+      records.push_back(std::move(record));
+    }
+  }
   std::mutex mutex;
   std::deque<SkinRecord> records;
 };
 
 SkinTable& table() {
-  static SkinTable* skins = [] {
-    auto* made = new SkinTable;
-    for (SkinRecord& record : builtin_skins()) {
-      if (record.packet) record.packet->skin = record.id;
-      made->records.push_back(std::move(record));
-    }
-    return made;
-  }();
-  return *skins;
+  static SkinTable skins;
+  return skins;
 }
 
 template <typename Keep>
