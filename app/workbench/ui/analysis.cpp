@@ -537,25 +537,4 @@ bool ensure_somatosensory(WorkbenchState& state) {
   return false;
 }
 
-//---- Keys -----------------------------------------------------------------------------------
-
-void handle_analysis_keys(WorkbenchState& state) {
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput || io.KeyCtrl || io.KeyAlt) return;
-  AnalysisState& analysis = state.analysis;
-  if (ImGui::IsKeyPressed('N', false)) walk_misclassified(state, io.KeyShift ? -1 : +1);
-  if (!analysis.list_active || analysis.cell_rows.empty()) return;
-  const ml::EvaluationResult* result = current_evaluation(state);
-  if (!result) return;
-  const int last = static_cast<int>(analysis.cell_rows.size()) - 1;
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_DownArrow)))
-    analysis.cell_selected = std::min(last, analysis.cell_selected + 1);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_UpArrow)))
-    analysis.cell_selected = std::max(0, analysis.cell_selected - 1);
-  if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false) ||
-      ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_KeyPadEnter), false)) {
-    land_on(state, result->rows[analysis.cell_rows[static_cast<size_t>(analysis.cell_selected)]]);
-  }
-}
-
 }  // namespace tactile

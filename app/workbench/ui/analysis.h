@@ -65,8 +65,4 @@ bool ensure_scatter(WorkbenchState& state);
 // its cache or computed on a worker; false until it is there (the view shows the job).
 bool ensure_somatosensory(WorkbenchState& state);
 
-// Keys of the classifier views: N / Shift+N walk the misclassified segments, Enter
-// picks the selected segment of a clicked cell, Up / Down move in its list.
-void handle_analysis_keys(WorkbenchState& state);
-
 }  // namespace tactile

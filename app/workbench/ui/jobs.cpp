@@ -42,7 +42,8 @@ std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
   for (AnyJob* job : std::initializer_list<AnyJob*>{
            state.labelling.segment_job.get(), state.analysis.predict_job.get(),
            state.analysis.som_job.get(), state.analysis.scatter_job.get(),
-           state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get()})
+           state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get(),
+           state.demo_job.get()})
     if (job) jobs.push_back(job);
   return jobs;
 }
@@ -79,9 +80,15 @@ bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) 
 }
 
 bool draw_job_status(WorkbenchState& state) {
-  AnyJob* job = state.labelling.segment_job ? static_cast<AnyJob*>(state.labelling.segment_job.get())
-                                            : state.analysis.predict_job.get();
-  if (!job || job->status() != JobStatus::kRunning) return false;
+  AnyJob* job = nullptr;
+  for (AnyJob* candidate :
+       std::initializer_list<AnyJob*>{state.labelling.segment_job.get(),
+                                      state.analysis.predict_job.get(), state.demo_job.get()})
+    if (candidate && candidate->status() == JobStatus::kRunning) {
+      job = candidate;
+      break;
+    }
+  if (!job) return false;
   if (ImGui::SmallButton("Cancel")) job->cancel();
   remember_item(state, "button:Cancel job");
   ImGui::SameLine();

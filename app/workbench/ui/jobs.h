@@ -1,9 +1,10 @@
 #pragma once
 // The workbench's jobs (tactile/jobs/job.h): a segmenter run, a prediction, training, the SOM
-// map, the scatter's PCA, a somatosensory map, a view's PNG export. Each is a handle in the state, started by a key, a menu
-// or a view; once a frame the window's thread takes a finished job's result and applies it in
-// one step. A second request replaces the running job: the old one is retired (cancelled,
-// ending on its worker while frames go on, dropped once ended), so the window never waits.
+// map, the scatter's PCA, a somatosensory map, a view's PNG export, the demo workspace. Each is a
+// handle in the state, started by a key, a menu or a view; once a frame the window's thread takes a
+// finished job's result and applies it in one step. A second request replaces the running job: the
+// old one is retired (cancelled, ending on its worker while frames go on, dropped once ended), so
+// the window never waits.
 
 #include <functional>
 #include <memory>

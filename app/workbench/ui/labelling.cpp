@@ -22,9 +22,6 @@ namespace tactile {
 
 namespace {
 
-bool pressed(int key) { return ImGui::IsKeyPressed(key, false); }
-bool pressed_named(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), true); }
-
 // A mark at the cursor; while playing, where the operator meant it: the reaction
 // time earlier.
 double mark_time(const WorkbenchState& state) {
@@ -388,47 +385,10 @@ void draw_class_picker(WorkbenchState& state) {
   ImGui::EndPopup();
 }
 
-void handle_labelling_keys(WorkbenchState& state) {
-  const ImGuiIO& io = ImGui::GetIO();
+void apply_dragged_bounds(WorkbenchState& state) {
   if (!state.document) return;
   if (auto move = std::exchange(state.labelling.move_request, std::nullopt))
     move_label_bounds(state, std::get<0>(*move), std::get<1>(*move), std::get<2>(*move));
-  if (io.WantTextInput) return;
-  const bool plain = !io.KeyCtrl && !io.KeyAlt && !io.KeySuper;
-  if (plain && pressed('[')) mark_start(state);
-  if (plain && pressed(']')) mark_end(state);
-  for (int key = 1; key <= 9; ++key)
-    if (plain && !io.KeyShift && pressed('0' + key)) choose_class(state, key);
-  // Enter belongs to a confusion cell's segment list while one is open and nothing is marked.
-  const bool enter_for_list = state.analysis.list_active && !state.labelling.mark_start &&
-                              !state.labelling.mark_end && state.labelling.pending_class.empty();
-  if (!enter_for_list && (pressed_named(ImGuiKey_Enter) || pressed_named(ImGuiKey_KeyPadEnter)))
-    commit_label(state);
-  if (pressed_named(ImGuiKey_Escape)) {
-    state.labelling.mark_start.reset();
-    state.labelling.mark_end.reset();
-    state.labelling.pending_class.clear();
-  }
-  if (pressed_named(ImGuiKey_Tab)) walk_labels(state, io.KeyShift ? -1 : +1);
-  if (pressed_named(ImGuiKey_Delete)) remove_selected_label(state);
-  const double rate = state.document->samples().info().rate_hz;
-  const double step = io.KeyShift ? 1.0 : (rate > 0 ? 1.0 / rate : 0.01);
-  if (pressed_named(ImGuiKey_LeftArrow)) state.clock.seek(state.clock.time() - step);
-  if (pressed_named(ImGuiKey_RightArrow)) state.clock.seek(state.clock.time() + step);
-  if (io.KeyCtrl && pressed('Z')) undo_edit(state, io.KeyShift);
-  if (plain && !io.KeyShift && pressed('A')) accept_suggestion(state);
-  if (plain && !io.KeyShift && pressed('R')) reject_suggestion(state);
-  if (plain && !io.KeyShift && pressed('G')) run_segmenter(state, state.labelling.last_segmenter);
-  if (plain && !io.KeyShift && pressed('C')) {
-    state.labelling.picker_open = true;
-    state.labelling.picker_text.fill('\0');
-  }
-  if (plain && !io.KeyShift && pressed('Y')) confirm_prediction(state, "");
-  if (plain && !io.KeyShift && pressed('U')) next_uncertain_prediction(state);
-  if (plain && !io.KeyShift && pressed('S')) {
-    state.labelling.snap = !state.labelling.snap;
-    state.notice = state.labelling.snap ? "snapping on" : "snapping off";
-  }
 }
 
 }  // namespace tactile

@@ -1,12 +1,14 @@
 #pragma once
 // Labelling from the keyboard, ELAN's habits: `[` and `]` mark start and end at the
 // time cursor (moved back by the reaction time while playing), 1-9 choose the class
-// from the skin's vocabulary (C: a type-ahead picker for any class), Enter commits;
+// from the skin's vocabulary (0 the tenth, Shift+digits the 11th-20th; C: a type-ahead picker
+// for any class), Enter commits;
 // G runs the last segmenter again (adaptive at first), A / R accept / reject a
-// suggestion, Y confirms a prediction (a digit corrects it), U goes to the least sure one, S toggles snapping; Tab / Shift+Tab walk the labels of the
-// operator's lane, arrows step by a sample (Shift: a second), Delete removes,
-// Ctrl+Z / Ctrl+Shift+Z undo and redo through the store's journal, Escape drops the
-// marks. Each edit is one transaction in the label store the moment it is made.
+// suggestion, Y confirms a prediction (a digit corrects it), U goes to the least sure one, S
+// toggles snapping; Tab / Shift+Tab walk the labels of the operator's lane, arrows step by a sample
+// (Shift: a second), Delete removes, Ctrl+Z / Ctrl+Shift+Z undo and redo through the store's
+// journal, Escape drops the marks. Each edit is one transaction in the label store the moment it is
+// made.
 
 #include <functional>
 #include <optional>
@@ -16,10 +18,10 @@
 
 namespace tactile {
 
-// Reads this frame's key presses (ImGui's input path) and carries out the edits.
-// Does nothing while a text field has the keyboard.
-void handle_labelling_keys(WorkbenchState& state);
-// The type-ahead class picker (key C; for vocabularies beyond the nine digit keys):
+// Moves the bounds of an own label dragged in the timeline (released last frame). The keys
+// that call the edits below are in keys.h's table.
+void apply_dragged_bounds(WorkbenchState& state);
+// The type-ahead class picker (key C; for vocabularies beyond the twenty class keys):
 // type part of a name, Enter takes the first match as the class. Drawn every frame.
 void draw_class_picker(WorkbenchState& state);
 

@@ -280,14 +280,6 @@ bool stop_recording(WorkbenchState& state, LiveServices& services) {
   return true;
 }
 
-void handle_live_keys(WorkbenchState& state) {
-  if (!state.live.connected) return;
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput) return;
-  if (io.KeyCtrl && ImGui::IsKeyPressed('R', false)) state.live.record_request = true;
-  if (!io.KeyCtrl && !io.KeyAlt && ImGui::IsKeyPressed('F', false)) state.live.follow = !state.live.follow;
-}
-
 void draw_live_bar(WorkbenchState& state) {
   LiveState& live = state.live;
   const LiveCounters& counters = live.counters;

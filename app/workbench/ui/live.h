@@ -21,8 +21,6 @@ void disconnect_live(WorkbenchState& state, LiveServices& services);
 // Start of every frame: carries out the live bar's requests, takes what arrived, records,
 // classifies, and copies the services' news into the state.
 void poll_live(WorkbenchState& state, LiveServices& services);
-// Ctrl+R (a request), F.
-void handle_live_keys(WorkbenchState& state);
 // The live bar (instead of the replay transport): source, counters, buffer, follow, record;
 // its buttons are requests in the state.
 void draw_live_bar(WorkbenchState& state);

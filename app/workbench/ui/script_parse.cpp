@@ -18,12 +18,15 @@ namespace {
 
 const std::map<std::string, int>& named_keys() {
   static const std::map<std::string, int> keys = {
-      {"tab", kKeyTab},         {"left", kKeyLeft},         {"right", kKeyRight},
-      {"up", kKeyUp},           {"down", kKeyDown},         {"pageup", kKeyPageUp},
-      {"pagedown", kKeyPageDown}, {"home", kKeyHome},       {"end", kKeyEnd},
-      {"insert", kKeyInsert},   {"delete", kKeyDelete},     {"backspace", kKeyBackspace},
-      {"space", kKeySpace},     {"enter", kKeyEnter},       {"return", kKeyEnter},
-      {"escape", kKeyEscape},   {"esc", kKeyEscape}};
+      {"tab", kKeyTab},           {"left", kKeyLeft},
+      {"right", kKeyRight},       {"up", kKeyUp},
+      {"down", kKeyDown},         {"pageup", kKeyPageUp},
+      {"pagedown", kKeyPageDown}, {"home", kKeyHome},
+      {"end", kKeyEnd},           {"insert", kKeyInsert},
+      {"delete", kKeyDelete},     {"backspace", kKeyBackspace},
+      {"space", kKeySpace},       {"enter", kKeyEnter},
+      {"return", kKeyEnter},      {"escape", kKeyEscape},
+      {"esc", kKeyEscape},        {"keypadenter", kKeyPadEnter}};
   return keys;
 }
 

@@ -75,6 +75,16 @@ void remember_item(WorkbenchState& state, const std::string& name) {
   state.targets.items[name] = to_rect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
 }
 
+void remember_item(WorkbenchState& state, const std::string& name, const char* tip) {
+  remember_item(state, name);
+  state.targets.tips[name] = tip;
+  tooltip(tip);
+}
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+}
+
 const RestScale& current_rest_scale(WorkbenchState& state, const std::vector<int>& columns) {
   if (state.rest_scale_modality != state.modality) {
     state.rest_scale = rest_scale(state.document->samples(), columns);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "keys.h"
 #include "labelling.h"
 #include "live.h"
 #include "views.h"
@@ -102,22 +103,27 @@ void draw_legend(WorkbenchState& state) {
   const Document& document = *state.document;
   const LabellingState& labelling = state.labelling;
   ImDrawList& draw = *ImGui::GetWindowDrawList();
-  for (size_t k = 0; k < document.classes.size() && k < 9; ++k) {
-    if (k > 0) ImGui::SameLine(0, 10);
+  // Every class with its key (keys.h: 1-9, 0, Shift+digits; beyond 20 the C picker), wrapped
+  // onto as many lines as the panel needs.
+  const float right = ImGui::GetWindowContentRegionMax().x + ImGui::GetWindowPos().x;
+  const float size = ImGui::GetTextLineHeight();
+  for (size_t k = 0; k < document.classes.size(); ++k) {
+    const std::string& name = document.classes[k];
+    const std::string key = class_key(static_cast<int>(k) + 1);
+    const std::string text = key.empty() ? name : key + " " + name;
+    const float width = size + 4 + ImGui::CalcTextSize(text.c_str()).x;
+    if (k > 0) {
+      ImGui::SameLine(0, 10);
+      if (ImGui::GetCursorScreenPos().x + width > right) ImGui::NewLine();
+    }
     const ImVec2 at = ImGui::GetCursorScreenPos();
-    const float size = ImGui::GetTextLineHeight();
-    const uint32_t colour = class_colour(state, document.classes[k]);
-    remember_legend(state, "lanes", document.classes[k], at, size);
-    draw.AddRectFilled(at, ImVec2(at.x + size, at.y + size), colour, 2.0f);
+    remember_legend(state, "lanes", name, at, size);
+    draw.AddRectFilled(at, ImVec2(at.x + size, at.y + size), class_colour(state, name), 2.0f);
     ImGui::Dummy(ImVec2(size, size));
     ImGui::SameLine(0, 4);
-    const bool chosen = labelling.pending_class == document.classes[k];
-    ImGui::TextColored(chosen ? ImVec4(1, 1, 1, 1) : ImVec4(0.7f, 0.7f, 0.7f, 1), "%zu %s", k + 1,
-                       document.classes[k].c_str());
-  }
-  if (document.classes.size() > 9) {
-    ImGui::SameLine(0, 10);
-    ImGui::TextDisabled("(+%zu)", document.classes.size() - 9);
+    const bool chosen = labelling.pending_class == name;
+    ImGui::TextColored(chosen ? ImVec4(1, 1, 1, 1) : ImVec4(0.7f, 0.7f, 0.7f, 1), "%s",
+                       text.c_str());
   }
   ImGui::SameLine(0, 20);
   auto mark = [](const std::optional<double>& t) { return t ? format_seconds(*t) : std::string("-"); };

@@ -54,6 +54,11 @@ void remember_legend(WorkbenchState& state, const std::string& view, const std::
 std::string format_seconds(double seconds);
 // Remembers the last ImGui item's rectangle under `name` for scripts.
 void remember_item(WorkbenchState& state, const std::string& name);
+// The same, for a control, with the tooltip it shows while hovered (kept in the state JSON's
+// `tips`, so a test can hold every control to having one).
+void remember_item(WorkbenchState& state, const std::string& name, const char* tip);
+// A tooltip for the last item while it is hovered.
+void tooltip(const char* text);
 ScreenRect to_rect(ImVec2 min, ImVec2 max);
 // The rest scale of the current modality (`columns`: its taxel columns), computed once
 // per recording and modality.

@@ -11,6 +11,7 @@
 
 #include "analysis.h"
 #include "jobs.h"
+#include "keys.h"
 #include "labelling.h"
 #include "live.h"
 #include "tactile/error.h"
@@ -18,6 +19,7 @@
 #include "tactile/segment/segmenter.h"
 #include "tactile/signal/taxel_values.h"
 #include "tactile/skins/skin.h"
+#include "tactile/skins/workspace.h"
 #include "tactile/text.h"
 #include "views.h"
 
@@ -217,12 +219,9 @@ void Workbench::frame(double seconds) {
   }
   poll_training(state_);
   poll_jobs(state_);
-  ImGuiIO& io = ImGui::GetIO();
-  if (!io.WantTextInput && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Space), false))
-    state_.clock.toggle();
-  handle_labelling_keys(state_);
-  handle_analysis_keys(state_);
-  handle_live_keys(state_);
+  poll_demo();
+  apply_dragged_bounds(state_);
+  handle_keys(state_);
   state_.targets = UiTargets{};
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
@@ -246,6 +245,8 @@ void Workbench::frame(double seconds) {
   ImGui::End();
   if (auto chosen = state_.file_browser.draw()) state_.open_request = *chosen;
   draw_class_picker(state_);
+  draw_key_sheet(state_);
+  draw_getting_started();
   carry_out_requests();
   note_damage();
 }
@@ -340,11 +341,7 @@ void Workbench::draw_arrangement(ImVec2 area) {
     draw_tabs({"confusion", "scatter", "som"});
     ImGui::EndChild();
   } else if (!state_.document) {
-    ImGui::BeginChild("welcome", ImVec2(right_width, area.y), true);
-    ImGui::TextUnformatted("No recording open.");
-    ImGui::TextUnformatted("File > Open... (Ctrl+O), or pick one from the workspace on the left.");
-    ImGui::TextUnformatted("Make one with: tactile simulate --demo DIR");
-    ImGui::EndChild();
+    draw_welcome(ImVec2(right_width, area.y));
   } else {
     sizes.timeline_height =
         std::clamp(sizes.timeline_height, kMinimumPanel, std::max(kMinimumPanel, area.y - 2 * kMinimumPanel));
@@ -372,6 +369,106 @@ void Workbench::draw_arrangement(ImVec2 area) {
   if (released) save_settings();
 }
 
+namespace {
+
+// The demo's folder when the user has not chosen one: beside the workspace, else at home.
+std::string default_demo_folder(const WorkbenchState& state) {
+  if (!state.workspace.empty()) return (fs::path(state.workspace) / "tactile-demo").string();
+  const char* home = std::getenv("HOME");
+  return (fs::path(home && *home ? home : ".") / "tactile-demo").string();
+}
+
+}  // namespace
+
+void Workbench::draw_welcome(ImVec2 size) {
+  ImGui::BeginChild("welcome", size, true);
+  ImGui::TextUnformatted("No recording open. To begin:");
+  ImGui::Spacing();
+  if (ImGui::Button("Open a recording..."))
+    state_.file_browser.open(state_.workspace.empty() ? "." : state_.workspace, {".h5"});
+  remember_item(
+      state_, "button:Open a recording",
+      "A recording of this workbench (.h5); Ctrl+O. A folder of them opens as a workspace.");
+  ImGui::SameLine();
+  ImGui::TextDisabled("Ctrl+O, or pick one from the workspace on the left");
+  ImGui::Spacing();
+  ImGui::TextUnformatted(
+      "No recordings yet? Make the demo workspace: a few touches of each of the five skins.");
+  if (demo_folder_[0] == '\0') {
+    const std::string folder = default_demo_folder(state_);
+    folder.copy(demo_folder_.data(), demo_folder_.size() - 1);
+  }
+  ImGui::SetNextItemWidth(std::min(420.0f, size.x - 200.0f));
+  ImGui::InputText("##demo-folder", demo_folder_.data(), demo_folder_.size());
+  remember_item(state_, "input:demo-folder",
+                "The folder the demo is written to (created if missing).");
+  ImGui::SameLine();
+  const bool making = state_.demo_job && state_.demo_job->status() == JobStatus::kRunning;
+  ImGui::BeginDisabled(making);
+  if (ImGui::Button("Make the demo workspace")) start_demo(demo_folder_.data());
+  ImGui::EndDisabled();
+  remember_item(
+      state_, "button:Make the demo workspace",
+      "Simulates short recordings of every skin with their ground-truth labels (labels.db) "
+      "and opens the folder; the same as `tactile simulate --demo DIR`.");
+  ImGui::Spacing();
+  ImGui::TextUnformatted(
+      "Data of another program (CSV, NumPy, JSON, HDF5): `tactile import` (docs/IMPORT.md).");
+  ImGui::TextUnformatted("Every key: Help > Keys, or F1. The first hour: Help > Getting started.");
+  ImGui::EndChild();
+}
+
+void Workbench::start_demo(const std::string& folder) {
+  start_job<std::string>(
+      state_, state_.demo_job, "demo workspace", [folder](JobProgress& progress) {
+        progress.report(0.0, "simulating");
+        write_demo_workspace(folder, 1, [&progress](int done, int total) {
+          progress.report(static_cast<double>(done) / std::max(1, total), "simulating");
+        });
+        return folder;
+      });
+}
+
+void Workbench::poll_demo() {
+  if (std::optional<std::string> folder = finished_job(state_, state_.demo_job)) {
+    set_workspace(*folder);
+    for (const std::string& file : state_.workspace_files)
+      if (open(file)) break;
+    state_.notice = "made the demo workspace in " + *folder;
+  }
+}
+
+void Workbench::draw_getting_started() {
+  if (!state_.help.about_open) return;
+  ImGui::SetNextWindowSize(ImVec2(640, 420), ImGuiCond_Appearing);
+  if (!ImGui::Begin("Getting started", &state_.help.about_open, ImGuiWindowFlags_NoCollapse)) {
+    ImGui::End();
+    return;
+  }
+  remember_item(state_, "window:getting-started");
+  if (ImGui::IsWindowFocused() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    state_.help.about_open = false;
+  const char* steps[] = {
+      "1. Open a recording (File > Open, Ctrl+O) or a folder of them: the skin lights up where it "
+      "is "
+      "touched, the plot shows the channels that move most, the lanes below show the labels.",
+      "2. Label: move the cursor (click the plot, arrows), [ and ] mark start and end, a digit "
+      "chooses the class (the legend above the lanes shows each class's key), Enter commits. Every "
+      "label is saved the moment it is made; Ctrl+Z undoes.",
+      "3. Let a segmenter suggest touches: G (or Labels > Run segmenter); A accepts one with the "
+      "chosen class, R rejects it.",
+      "4. Train: the Model tab's Train all compares every classifier over the workspace's labels; "
+      "the confusion matrix's cells lead to the segments behind them (click a cell, Enter).",
+      "5. Predict labels the open recording with the best model; U goes to the least sure "
+      "prediction, Y confirms it, a digit corrects it.",
+      "Every key: F1. The command line does the same headless: tactile --help."};
+  for (const char* step : steps) {
+    ImGui::TextWrapped("%s", step);
+    ImGui::Spacing();
+  }
+  ImGui::End();
+}
+
 void Workbench::draw_tabs(std::initializer_list<const char*> names) {
   if (!ImGui::BeginTabBar("view_tabs")) return;
   const std::string request = std::exchange(state_.analysis.tab_request, std::string());
@@ -388,10 +485,7 @@ void Workbench::draw_tabs(std::initializer_list<const char*> names) {
 }
 
 void Workbench::draw_menu_bar() {
-  const ImGuiIO& io = ImGui::GetIO();
   const std::string start = state_.workspace.empty() ? "." : state_.workspace;
-  // ImGui 1.86 indexes keys by the backend's native codes; GLFW's letter keys are their ASCII.
-  const bool open_shortcut = io.KeyCtrl && ImGui::IsKeyPressed('O', false);
   if (ImGui::BeginMenuBar()) {
     if (ImGui::BeginMenu("File")) {
       if (ImGui::MenuItem("Open...", "Ctrl+O")) state_.file_browser.open(start, {".h5"});
@@ -462,10 +556,18 @@ void Workbench::draw_menu_bar() {
       ImGui::EndMenu();
     }
     remember_item(state_, "menu:Labels");
+    if (ImGui::BeginMenu("Help")) {
+      if (ImGui::MenuItem("Keys", "F1", state_.help.keys_open))
+        state_.help.keys_open = !state_.help.keys_open;
+      remember_item(state_, "menu:Help/Keys");
+      if (ImGui::MenuItem("Getting started", nullptr, state_.help.about_open))
+        state_.help.about_open = !state_.help.about_open;
+      remember_item(state_, "menu:Help/Getting started");
+      ImGui::EndMenu();
+    }
+    remember_item(state_, "menu:Help");
     ImGui::EndMenuBar();
   }
-  if (open_shortcut) state_.file_browser.open(start, {".h5"});
-  if (io.KeyCtrl && ImGui::IsKeyPressed('Q', false)) state_.quit = true;
 }
 
 void Workbench::draw_status_bar() {
@@ -609,6 +711,11 @@ nlohmann::json Workbench::state_json() const {
           {"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
     }
   json["legends"] = legends;
+  json["tips"] = state_.targets.tips;
+  json["help"] = {{"keys", state_.help.keys_open}, {"getting_started", state_.help.about_open}};
+  nlohmann::json items = nlohmann::json::array();
+  for (const auto& [name, rect] : state_.targets.items) items.push_back(name);
+  json["items"] = items;
   json["panels"] = {{"sidebar_width", state_.sizes.sidebar_width},
                     {"skin_fraction", state_.sizes.skin_fraction},
                     {"timeline_height", state_.sizes.timeline_height}};

@@ -67,6 +67,13 @@ class Workbench {
   void draw_arrangement(ImVec2 area);
   void draw_view(const char* name, ImVec2 size);
   void draw_status_bar();
+  // An empty window says what to do first: open, import, or make the demo workspace.
+  void draw_welcome(ImVec2 size);
+  // Help > Getting started: the first hour in a few lines.
+  void draw_getting_started();
+  // Makes the demo workspace in `folder` as a job; when it ends the folder opens.
+  void start_demo(const std::string& folder);
+  void poll_demo();
   void carry_out_requests();
   // Marks the open recording damaged when its source read a damaged chunk as a gap.
   void note_damage();
@@ -78,6 +85,7 @@ class Workbench {
   WorkbenchServices services_;  // after the state: destroyed first (a recording is finished)
   std::array<char, 256> connect_url_{"sim://nao"};
   std::array<char, 32> connect_skin_{};
+  std::array<char, 1024> demo_folder_{};
   std::optional<ViewExport> export_;
 };
 

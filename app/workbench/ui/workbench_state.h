@@ -53,6 +53,7 @@ struct UiTargets {
   std::map<std::string, TimeAxis> time_axes;  // view name -> axis
   std::map<int64_t, std::pair<float, float>> taxels;  // taxel id -> centre on screen
   ScreenRect skin_map;                                // the skin view's drawing area
+  std::map<std::string, std::string> tips;            // a control's tooltip, by its item name
 };
 
 // Sizes of the arrangement, kept per user between runs (settings file).
@@ -281,8 +282,14 @@ struct WorkbenchState {
   std::optional<std::string> stream_request;
   std::optional<std::string> export_request;  // view name to export as PNG
   std::unique_ptr<Job<std::string>> export_job;  // writing an exported view's PNG: its path
+  // Writing the demo workspace (the welcome panel's button): the folder it made.
+  std::unique_ptr<Job<std::string>> demo_job;
   bool quit = false;
   FileBrowser file_browser;
+  struct HelpState {
+    bool keys_open = false;   // the sheet of keys (F1, Help > Keys)
+    bool about_open = false;  // Help > Getting started
+  } help;
 };
 
 // Puts `message` on the status bar's error line; false, so that a step can `return fail(...)`.

@@ -1,0 +1,133 @@
+// The first hour of a new user, driven through ImGui's real input path headless (scripts,
+// docs/SCRIPTING.md) on the demo workspace: the empty window says what to do and makes the
+// demo, F1 shows the sheet of keys, every class of a 15-class skin is reached by its key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "cli_test_support.h"
+#include "test_paths.h"
+
+namespace tactile {
+namespace {
+
+class FirstHour : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto made =
+        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+  }
+  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
+  // Runs the headless workbench on `open` (a file, a folder, or nothing) with a script whose
+  // `@` stand for this test's folder.
+  test::CommandResult workbench(const std::string& open, std::string text,
+                                const std::string& size = "1280x720") {
+    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
+      text.replace(at, 1, folder.path().string() + "/");
+    const std::string path = folder.file("script-" + std::to_string(++scripts_) + ".txt");
+    std::ofstream(path) << text;
+    return test::run_program("tactile-workbench-headless",
+                             open + " --annotator ana --size " + size + " --settings " +
+                                 folder.file("settings.json") + " --script " + path,
+                             folder);
+  }
+  nlohmann::json state(const std::string& name) const {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+  static bool has_item(const nlohmann::json& state, const std::string& name) {
+    for (const nlohmann::json& item : state["items"])
+      if (item == name) return true;
+    return false;
+  }
+
+  test::TempFolder folder{"tactile-first-hour"};
+
+ private:
+  int scripts_ = 0;
+};
+
+TEST_F(FirstHour, AnEmptyWindowSaysWhatToDoAndMakesTheDemoWorkspace) {
+  const auto result =
+      workbench("",
+                "wait 2\nstate @empty.json\nclick item input:demo-folder\n"
+                "key Ctrl+A\ntype @made-here\nclick item button:Make the demo workspace\n"
+                "wait jobs\nwait 2\nstate @made.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json empty = state("empty.json");
+  EXPECT_TRUE(empty["recording"].is_null());
+  for (const char* item :
+       {"button:Open a recording", "button:Make the demo workspace", "menu:Help"})
+    EXPECT_TRUE(has_item(empty, item)) << item;
+  const nlohmann::json made = state("made.json");
+  EXPECT_EQ(made["error"], "");
+  EXPECT_EQ(made["workspace"], folder.file("made-here"));
+  EXPECT_GE(made["workspace_files"].size(), 5u);
+  EXPECT_FALSE(made["recording"].is_null());
+  EXPECT_TRUE(std::filesystem::exists(folder.file("made-here/labels.db")));
+}
+
+TEST_F(FirstHour, F1AndTheHelpMenuShowTheSheetOfKeysAndEscapeClosesIt) {
+  const auto result =
+      workbench(demo("fur-s01-t01.h5"),
+                "wait 2\nkey F1\nwait 1\nstate @f1.json\nscreenshot @keys.png\n"
+                "key Escape\nwait 1\nstate @closed.json\n"
+                "click item menu:Help\nclick item menu:Help/Keys\nwait 1\nstate @menu.json\n"
+                "key F1\nwait 1\nclick item menu:Help\nclick item menu:Help/Getting started\n"
+                "wait 1\nstate @started.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json f1 = state("f1.json");
+  EXPECT_TRUE(f1["help"]["keys"].get<bool>());
+  EXPECT_TRUE(has_item(f1, "window:keys"));
+  EXPECT_FALSE(state("closed.json")["help"]["keys"].get<bool>());
+  EXPECT_FALSE(has_item(state("closed.json"), "window:keys"));
+  EXPECT_TRUE(state("menu.json")["help"]["keys"].get<bool>());
+  const nlohmann::json started = state("started.json");
+  EXPECT_FALSE(started["help"]["keys"].get<bool>());
+  EXPECT_TRUE(started["help"]["getting_started"].get<bool>());
+  EXPECT_TRUE(has_item(started, "window:getting-started"));
+}
+
+TEST_F(FirstHour, EachOfFifteenClassesIsLabelledByItsOwnKey) {
+  // Robovie's vocabulary has 15 classes: 1-9, 0, then Shift+1 ... Shift+5.
+  const auto listed =
+      test::run_program("tactile", "labels classes " + demo("labels.db") + " robovie", folder);
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  std::vector<std::string> vocabulary;
+  std::istringstream lines(listed.out);
+  for (std::string line; std::getline(lines, line);) vocabulary.push_back(line);
+  ASSERT_EQ(vocabulary.size(), 15u);
+  std::string script = "wait 2\n";
+  for (int k = 1; k <= 15; ++k) {
+    const std::string key = k <= 10 ? std::to_string(k % 10) : "Shift+" + std::to_string(k - 10);
+    script += "time " + std::to_string(2 * k) + "\nkey [\ntime " + std::to_string(2 * k + 1) +
+              "\nkey ]\nkey " + key + "\nkey Enter\nwait 1\n";
+  }
+  script += "state @labelled.json\n";
+  const auto result = workbench(demo("robovie-s01-t01.h5"), script);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(state("labelled.json")["error"], "");
+  // Every class's swatch is in the legend, none cut off.
+  const nlohmann::json legend = state("labelled.json")["legends"]["lanes"];
+  EXPECT_EQ(legend.size(), 15u);
+  const auto manual = test::run_program(
+      "tactile", "labels list " + demo("labels.db") + " --source manual --json", folder);
+  ASSERT_EQ(manual.exit_code, 0) << manual.err;
+  const nlohmann::json labels = nlohmann::json::parse(manual.out)["labels"];
+  ASSERT_EQ(labels.size(), 15u);
+  for (const nlohmann::json& label : labels) {
+    const int k = static_cast<int>(std::lround(label["t0"].get<double>() / 2.0));
+    ASSERT_GE(k, 1);
+    ASSERT_LE(k, 15);
+    EXPECT_EQ(label["class"], vocabulary[static_cast<size_t>(k - 1)]) << "key of class " << k;
+  }
+}
+
+}  // namespace
+}  // namespace tactile
