@@ -129,5 +129,46 @@ TEST_F(FirstHour, EachOfFifteenClassesIsLabelledByItsOwnKey) {
   }
 }
 
+TEST_F(FirstHour, TrainAllThenPredictUsesTheRowShownAndUGoesToTheSmallestMargin) {
+  const auto result = workbench(
+      demo("fur-s01-t01.h5"),
+      "wait 2\nclick item tab:model\nwait 2\nclick item button:Train all\nwait training\nwait 3\n"
+      "state @trained.json\nclick item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n"
+      "wait 2\nstate @predicted.json\nkey U\nwait 2\nstate @least-sure.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json trained = state("trained.json")["analysis"];
+  ASSERT_TRUE(trained["current"].is_string());
+  // The classifier box names the row the table and the confusion show.
+  EXPECT_EQ(trained["classifier_box"], trained["current"]);
+  const nlohmann::json predicted = state("predicted.json");
+  EXPECT_EQ(predicted["error"], "");
+  EXPECT_NE(predicted["notice"].get<std::string>().find("predictions by"), std::string::npos)
+      << predicted["notice"];
+  EXPECT_NE(
+      predicted["analysis"]["model"].get<std::string>().find(trained["current"].get<std::string>()),
+      std::string::npos);
+  const auto listed = test::run_program(
+      "tactile", "labels list " + demo("labels.db") + " --source model --json", folder);
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  const nlohmann::json predictions = nlohmann::json::parse(listed.out)["labels"];
+  ASSERT_FALSE(predictions.empty());
+  // U selects the prediction of the smallest margin (the note's "margin=M").
+  const auto margin_of = [](const nlohmann::json& label) {
+    const std::string note = label["note"];
+    return std::stod(note.substr(note.find("margin=") + 7));
+  };
+  double smallest = 2.0;
+  for (const nlohmann::json& label : predictions) smallest = std::min(smallest, margin_of(label));
+  const nlohmann::json selected = state("least-sure.json")["selection"]["labels"];
+  ASSERT_EQ(selected.size(), 1u);
+  bool found = false;
+  for (const nlohmann::json& label : predictions)
+    if (label["id"] == selected[0]) {
+      found = true;
+      EXPECT_DOUBLE_EQ(margin_of(label), smallest);
+    }
+  EXPECT_TRUE(found);
+}
+
 }  // namespace
 }  // namespace tactile

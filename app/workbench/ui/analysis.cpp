@@ -119,7 +119,10 @@ void poll_training(WorkbenchState& state) {
   if (!outcome) return;
   const TrainingRequest& request = analysis.last_request;
   analysis.results = std::move(outcome->results);
-  analysis.model_path = outcome->model_path;
+  if (!outcome->model_path.empty()) {
+    analysis.model_path = outcome->model_path;
+    analysis.model_classifier = request.classifier;
+  }
   // Every result is a file: the evaluation beside the model.
   if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
     try {
@@ -157,27 +160,81 @@ void choose_result(WorkbenchState& state, int index) {
   analysis.cell_selected = 0;
   analysis.list_active = false;
   if (current_evaluation(state)) analysis.tab_request = "confusion";
+  // The classifier box names the row shown, so Run and Predict act on what the views show.
+  if (index >= 0 && index < static_cast<int>(analysis.results.size())) {
+    const std::string& name = analysis.results[static_cast<size_t>(index)].classifier;
+    analysis.classifier.fill('\0');
+    name.copy(analysis.classifier.data(), analysis.classifier.size() - 1);
+  }
+}
+
+namespace {
+
+// The classifier Predict uses: the results row the views show, else the classifier box.
+std::string classifier_to_predict(const WorkbenchState& state) {
+  const AnalysisState& analysis = state.analysis;
+  if (analysis.current >= 0 && analysis.current < static_cast<int>(analysis.results.size()) &&
+      analysis.results[static_cast<size_t>(analysis.current)].result)
+    return analysis.results[static_cast<size_t>(analysis.current)].classifier;
+  return analysis.classifier.data();
+}
+
+// Where a model of `classifier` for the training run's skin is saved: the models/ folder of the
+// label store's workspace, as a single run saves it.
+std::string model_file_for(const TrainingRequest& request, const std::string& classifier) {
+  const fs::path models = fs::path(request.folder) / "models";
+  std::error_code error;
+  fs::create_directories(models, error);
+  if (error) throw Error(models.string(), "cannot make the models folder: " + error.message());
+  return (models / (request.layout + "-" + classifier.substr(0, classifier.find(':')) + ".json"))
+      .string();
+}
+
+}  // namespace
+
+bool can_predict(const WorkbenchState& state) {
+  const AnalysisState& analysis = state.analysis;
+  if (!state.document) return false;
+  const std::string classifier = classifier_to_predict(state);
+  return (!analysis.model_path.empty() && analysis.model_classifier == classifier) ||
+         (analysis.dataset && !classifier.empty() && classifier != "all" &&
+          analysis.last_request.layout == state.document->layout.id);
 }
 
 bool predict_open_recording(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!state.document) return fail(state, "open a recording to predict");
-  if (analysis.model_path.empty()) return fail(state, "Run one classifier first: its model predicts");
+  if (!can_predict(state))
+    return fail(state, "Run one classifier or Train all first: a model predicts");
   Document& document = *state.document;
   // The recording's segmenter suggestions, else its ground truth, as `tactile predict`.
   std::vector<Label> segments = segments_to_predict(document.labels);
   if (segments.empty()) return fail(state, "no segments to predict: run a segmenter (Labels menu)");
   const size_t count = segments.size();
+  const std::string classifier = classifier_to_predict(state);
   try {
+    // The row shown has no saved model yet (a Train all row): the job fits it on every row of
+    // the table first, as a single run would have, and saves it beside the others.
+    const bool fit = analysis.model_path.empty() || analysis.model_classifier != classifier;
+    const std::string model_path =
+        fit ? model_file_for(analysis.last_request, classifier) : analysis.model_path;
+    std::shared_ptr<const Dataset> table = fit ? analysis.dataset : nullptr;
     const std::string database = document.label_store().path();
     // On a worker, from reading the model to storing the answers (2.6-3.3 s for 40 minutes of
     // a 64-taxel strip when it ran in one frame). A second Predict replaces a run still going.
     start_job<AnalysisState::PredictionsMade>(
         state, analysis.predict_job, "predict",
-        [read = recording_for_job(document, 0.2, 0.4), layout = document.layout, path = document.path,
-         model_path = analysis.model_path, segments = std::move(segments), database,
-         recording = document.recording_id(),
+        [read = recording_for_job(document, 0.2, 0.4), layout = document.layout,
+         path = document.path, model_path, table, classifier, request = analysis.last_request,
+         segments = std::move(segments), database, recording = document.recording_id(),
          annotator = state.labelling.annotator](JobProgress& progress) {
+          if (table) {
+            progress.report(0.0, "fitting " + classifier + " on every row");
+            write_json_file(model_path,
+                            fit_model_document(*table, classifier, request.seed, request.pipeline,
+                                               request.pipeline_params),
+                            "model");
+          }
           const SavedModel model = read_model_file(model_path, progress.steps("reading the model", 0.0, 0.2));
           const Recording whole = read(progress);
           const Predictions predictions = predict_segments(
@@ -189,7 +246,7 @@ bool predict_open_recording(WorkbenchState& state) {
           // The model's lane replaced as one command of the operator's: Ctrl+Z takes it back.
           store.apply(edit, annotator);
           return AnalysisState::PredictionsMade{path, fs::path(model_path).stem().string(),
-                                                predictions.labels.size()};
+                                                predictions.labels.size(), model_path, classifier};
         });
   } catch (const std::exception& error) {
     return fail(state, std::string("predict: ") + error.what());
@@ -203,7 +260,10 @@ namespace {
 
 void apply_finished_prediction(WorkbenchState& state) {
   std::optional<AnalysisState::PredictionsMade> made = finished_job(state, state.analysis.predict_job);
-  if (!made || !state.document || state.document->path != made->document) return;
+  if (!made) return;
+  state.analysis.model_path = made->model_path;
+  state.analysis.model_classifier = made->classifier;
+  if (!state.document || state.document->path != made->document) return;
   state.document->reload_labels();
   state.error.clear();
   state.notice =

@@ -18,7 +18,11 @@ void poll_training(WorkbenchState& state);
 // Applies the last model trained here (one classifier: fitted on every row and saved in
 // the workspace's models/ folder) to the open recording's segments, as a job; when it ends
 // its answers replace the recording's prediction lane as one command (poll_jobs).
+// The model is that of the results row the views show (after Train all: fitted on every row
+// of the table by the job, then saved in models/ too), else of the classifier box.
 bool predict_open_recording(WorkbenchState& state);
+// Whether Predict has a model to use or to fit (the button's state).
+bool can_predict(const WorkbenchState& state);
 
 // The evaluation the views show (the current row of the results), or null.
 const ml::EvaluationResult* current_evaluation(const WorkbenchState& state);

@@ -69,16 +69,16 @@ void draw_run_controls(WorkbenchState& state) {
   remember_item(state, "button:Train all");
   ImGui::EndDisabled();
   ImGui::SameLine();
-  ImGui::BeginDisabled(running || analysis.model_path.empty() || !state.document);
+  ImGui::BeginDisabled(running || !can_predict(state));
   if (ImGui::Button("Predict")) predict_open_recording(state);
-  remember_item(state, "button:Predict");
   ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("%s", analysis.model_path.empty()
-                                ? "Run one classifier first: its model predicts this recording"
-                                : ("Predict this recording's segments with " + analysis.model_path +
-                                   "\n(the prediction lane; U: the least sure, Y confirms, a digit corrects)")
-                                      .c_str());
+  remember_item(
+      state, "button:Predict",
+      can_predict(state)
+          ? "Predict this recording's segments with the classifier of the row shown (fitted "
+            "on every row first when it has no model yet): the prediction lane; U goes to "
+            "the least sure, Y confirms, a digit corrects"
+          : "Run one classifier or Train all first: a model predicts this recording");
   if (running) {
     ImGui::SameLine();
     if (ImGui::Button("Cancel")) analysis.job->cancel();

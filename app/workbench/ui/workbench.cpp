@@ -798,23 +798,29 @@ nlohmann::json Workbench::analysis_json() const {
       confusion.push_back(counts);
     }
   }
-  return {{"training", training},
-          {"results", results},
-          {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
-          {"confusion", confusion},
-          {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
-          {"cell", {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
-                    {"predicted", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
-                    {"segments", analysis.cell_rows.size()},
-                    {"selected", analysis.cell_selected}}},
-          {"landed", landed},
-          {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
-          {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},
-                                                 {"columns", analysis.som->map().columns},
-                                                 {"neuron", analysis.som_neuron}})
-                               : nlohmann::json(nullptr)},
-          {"somatosensory", analysis.somatosensory},
-          {"somatosensory_taxels", analysis.map ? analysis.map->taxels.size() : 0}};
+  return {
+      {"training", training},
+      {"results", results},
+      {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
+      {"confusion", confusion},
+      {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
+      {"classifier_box", std::string(analysis.classifier.data())},
+      {"model",
+       analysis.model_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(analysis.model_path)},
+      {"cell",
+       {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
+        {"predicted",
+         analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
+        {"segments", analysis.cell_rows.size()},
+        {"selected", analysis.cell_selected}}},
+      {"landed", landed},
+      {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
+      {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},
+                                             {"columns", analysis.som->map().columns},
+                                             {"neuron", analysis.som_neuron}})
+                           : nlohmann::json(nullptr)},
+      {"somatosensory", analysis.somatosensory},
+      {"somatosensory_taxels", analysis.map ? analysis.map->taxels.size() : 0}};
 }
 
 }  // namespace tactile

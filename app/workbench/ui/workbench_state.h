@@ -122,11 +122,14 @@ struct AnalysisState {
   std::string results_from;  // what they are of ("nao, kaboli features", a file)
   int current = -1;          // the row whose views are shown
   std::string model_path;    // the last single classifier trained, fitted on every row
+  std::string model_classifier;  // the classifier of model_path
   // Predict on a worker, which also stores the answers (one command of the operator's).
   struct PredictionsMade {
     std::string document;  // the recording's path
     std::string model;     // the model file's name
     size_t predicted = 0;
+    std::string model_path;  // the model file, written by the job when it fitted one
+    std::string classifier;  // its classifier
   };
   std::unique_ptr<Job<PredictionsMade>> predict_job;
   // The feature table the results are about; shared (never changed) with the views' jobs,
