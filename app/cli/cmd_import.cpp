@@ -35,6 +35,8 @@ struct ImportOptions {
   std::string recording_id;
   std::string dataset;       // .npz array, HDF5 dataset
   std::string key;           // JSON key
+  std::string value_key;     // JSON frames as objects: the member holding each frame
+  std::string class_key;     // ... and the member holding its class
   std::string class_array;   // classes per frame or capture: .npz array, HDF5 dataset, JSON key
   std::string class_column;  // long CSV
   std::vector<std::string> group_columns;
@@ -67,10 +69,10 @@ std::string extension_of(const std::string& path) {
 
 // The array a file holds: `name` picks a .npz array or an HDF5 dataset, `key` a JSON key.
 ImportedArray array_in(const std::string& path, const std::string& name, const std::string& key,
-                       const char* name_option) {
+                       const char* name_option, const std::string& member = "") {
   const std::string extension = extension_of(path);
   if (extension == ".npy") return read_npy(path);
-  if (extension == ".json") return read_json_array(path, key);
+  if (extension == ".json") return read_json_array(path, key, member);
   if (extension == ".npz") {
     if (!name.empty()) return read_npz(path, name);
     const std::vector<std::string> names = npz_names(path);
@@ -114,18 +116,32 @@ std::vector<ImportedRecording> read_input(const ImportOptions& options, const Sk
     imported.recording = import_csv_long(options.file, layout, long_options);
     return {std::move(imported)};
   }
-  if (options.wide || !options.class_column.empty() || !options.group_columns.empty())
-    throw Error("--wide/--class-column/--group-columns", "are for CSV files");
+  const bool json = extension == ".json";
+  if (!options.class_column.empty())
+    throw Error("--class-column",
+                std::string("is for CSV tables; the classes of an array file are named by ") +
+                    (json ? "--class-key (a member of each frame object) or --class-array (a key)"
+                          : "--class-array (an array or dataset of the same file)"));
+  if (options.wide || !options.group_columns.empty())
+    throw Error("--wide/--group-columns", "are for CSV files");
+  if (!json && (!options.value_key.empty() || !options.class_key.empty()))
+    throw Error("--value-key/--class-key", "are for JSON frames given as objects");
+  if (!options.class_key.empty() && !options.class_array.empty())
+    throw Error("--class-key", "or --class-array, not both");
   if (!options.rate_hz) throw Error("--rate", "is needed for an array (it carries no time)");
-  const ImportedArray array = array_in(options.file, options.dataset, options.key, "--dataset");
+  const ImportedArray array =
+      array_in(options.file, options.dataset, options.key, "--dataset", options.value_key);
   ArrayRecordingOptions array_options;
   array_options.rate_hz = *options.rate_hz;
   array_options.captures = options.captures;
-  if (!options.class_array.empty()) {
-    // The classes live in the same file: another array, dataset or key.
-    const bool json = extension == ".json";
+  if (!options.class_array.empty() || !options.class_key.empty()) {
+    // The classes live in the same file: another array, dataset or key, or a member of each
+    // frame object.
     const ImportedArray classes =
-        array_in(options.file, json ? "" : options.class_array, json ? options.class_array : "", "--class-array");
+        !options.class_key.empty()
+            ? array_in(options.file, "", options.key, "--class-key", options.class_key)
+            : array_in(options.file, json ? "" : options.class_array,
+                       json ? options.class_array : "", "--class-array");
     if (classes.text) {
       array_options.classes = classes.strings;
     } else {
@@ -141,6 +157,7 @@ std::vector<ImportedRecording> read_input(const ImportOptions& options, const Sk
   std::string where = options.file;
   if (!options.dataset.empty()) where += ":" + options.dataset;
   if (!options.key.empty()) where += " key " + options.key;
+  if (!options.value_key.empty()) where += " member " + options.value_key;
   ImportedRecording imported = recording_from_array(array, layout, array_options, where);
   imported.recording.id = std::filesystem::path(options.file).stem().string();
   imported.recording.metadata["imported_from"] = std::filesystem::path(options.file).filename().string();
@@ -236,6 +253,13 @@ void register_import(CLI::App& app) {
   command->add_option("--dataset", options->dataset,
                       "The array to read: a .npz array's name, an HDF5 file's dataset path");
   command->add_option("--key", options->key, "The JSON key holding the frames (a.b for nested; default: the top level)");
+  command->add_option(
+      "--value-key", options->value_key,
+      "JSON frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
+      "frame (e.g. data)");
+  command->add_option(
+      "--class-key", options->class_key,
+      "JSON frames given as objects: the member holding each frame's class (e.g. label)");
   command->add_flag("--captures", options->captures,
                     "The array is [captures][channels][samples]: captures laid end to end");
   command->add_option("--class-array", options->class_array,

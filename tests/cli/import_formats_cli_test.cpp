@@ -32,9 +32,13 @@ class ImportFormats : public ::testing::Test {
 };
 
 TEST_F(ImportFormats, EachFormatWritesTheSameRecording) {
-  const std::vector<std::string> inputs = {
-      "frames.npy", "fortran.npy", "plain.npz --dataset pressure", "frames.npz --dataset pressure",
-      "frames.json --key data.frames", "foreign.h5 --dataset /sensors/pressure"};
+  const std::vector<std::string> inputs = {"frames.npy",
+                                           "fortran.npy",
+                                           "plain.npz --dataset pressure",
+                                           "frames.npz --dataset pressure",
+                                           "frames.json --key data.frames",
+                                           "objects.json --key frames --value-key data",
+                                           "foreign.h5 --dataset /sensors/pressure"};
   std::optional<Recording> first;
   for (size_t k = 0; k < inputs.size(); ++k) {
     const std::string out = folder.file("r" + std::to_string(k) + ".h5");
@@ -51,9 +55,11 @@ TEST_F(ImportFormats, EachFormatWritesTheSameRecording) {
 }
 
 TEST_F(ImportFormats, ClassesPerFrameBecomeGroundTruthLabels) {
-  for (const std::string input : {"frames.npz --dataset pressure --class-array gesture",
-                                  "frames.json --key data.frames --class-array data.gesture",
-                                  "foreign.h5 --dataset /sensors/pressure --class-array /sensors/gesture"}) {
+  for (const std::string input :
+       {"frames.npz --dataset pressure --class-array gesture",
+        "frames.json --key data.frames --class-array data.gesture",
+        "objects.json --key frames --value-key data --class-key label",
+        "foreign.h5 --dataset /sensors/pressure --class-array /sensors/gesture"}) {
     const auto result = import(kData + input + " --layout grid:4x4 --rate 100 --out " + folder.file("g.h5") +
                                " --labels " + folder.file("labels.db"));
     ASSERT_EQ(result.exit_code, 0) << input << ": " << result.err;
@@ -93,13 +99,23 @@ TEST_F(ImportFormats, BadInputIsRefusedWithItsPlaceAndWritesNothing) {
   const std::vector<Case> cases = {
       {kData + "frames.npy --layout grid:4x5 --rate 10", "does not fit grid:4x5"},
       {kData + "frames.npy --layout grid:4x4", "--rate"},
-      {kData + "frames.npz --layout grid:4x4 --rate 10", "holds 2 arrays (pressure, gesture): name one"},
+      {kData + "frames.npz --layout grid:4x4 --rate 10",
+       "holds 2 arrays (pressure, gesture): name one"},
       {kData + "frames.npz --layout grid:4x4 --rate 10 --dataset force", "no array 'force'"},
-      {kData + "frames.json --layout grid:4x4 --rate 10 --key data.nothing", "no key 'data.nothing'"},
+      {kData + "frames.json --layout grid:4x4 --rate 10 --key data.nothing",
+       "no key 'data.nothing'"},
       {kData + "foreign.h5 --layout grid:4x4 --rate 10", "--dataset"},
-      {kData + "frames.npz --layout grid:4x4 --rate 10 --dataset pressure --class-array pressure", "800 classes for 50 frames"},
+      {kData + "frames.npz --layout grid:4x4 --rate 10 --dataset pressure --class-array pressure",
+       "800 classes for 50 frames"},
       {kData + "table.csv --layout strip:4 --class-column kind", "no column 'kind'"},
-      {kData + "frames.npy --layout grid:4x4 --rate 10 --class-column x", "are for CSV files"},
+      {kData + "frames.npy --layout grid:4x4 --rate 10 --class-column x", "--class-array"},
+      {kData + "frames.npz --layout grid:4x4 --rate 10 --dataset pressure --class-column gesture",
+       "--class-column: is for CSV tables; the classes of an array file are named by "
+       "--class-array"},
+      {kData + "objects.json --layout grid:4x4 --rate 10 --key frames",
+       "holds objects, not arrays: name the member of each that holds its frame (--value-key)"},
+      {kData + "objects.json --layout grid:4x4 --rate 10 --key frames --value-key pressure",
+       "[0]: no member 'pressure'"},
   };
   for (const Case& bad : cases) {
     const auto result = import(bad.arguments + " --out " + out);

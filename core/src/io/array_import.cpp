@@ -406,7 +406,8 @@ ImportedArray read_npz(const std::string& path, const std::string& name) {
   throw Error(path, "no array '" + name + "' (it holds: " + (names.empty() ? "none" : names) + ")");
 }
 
-ImportedArray read_json_array(const std::string& path, const std::string& key) {
+ImportedArray read_json_array(const std::string& path, const std::string& key,
+                              const std::string& member) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open");
   nlohmann::json document;
@@ -430,6 +431,30 @@ ImportedArray read_json_array(const std::string& path, const std::string& key) {
   }
   const std::string where = path + (key.empty() ? "" : " key " + key);
   if (!value->is_array()) throw Error(where, "not an array");
+  // Frames given as objects ({"label": ..., "data": [...]}): each one's `member`.
+  nlohmann::json members;
+  if (!value->empty() && value->front().is_object()) {
+    if (member.empty()) {
+      std::string names;
+      for (const auto& [name, ignored] : value->front().items())
+        names += (names.empty() ? "" : ", ") + name;
+      throw Error(where,
+                  "holds objects, not arrays: name the member of each that holds its frame "
+                  "(--value-key) or its class (--class-key); the first has " +
+                      names);
+    }
+    members = nlohmann::json::array();
+    for (size_t k = 0; k < value->size(); ++k) {
+      const nlohmann::json& entry = (*value)[k];
+      if (!entry.is_object() || !entry.contains(member))
+        throw Error(where + " [" + std::to_string(k) + "]", "no member '" + member + "'");
+      members.push_back(entry[member]);
+    }
+    value = &members;
+  } else if (!member.empty()) {
+    throw Error(where, "holds no objects, so no member '" + member +
+                           "' (leave out --value-key/--class-key)");
+  }
   ImportedArray array;
   shape_of(*value, array.shape);
   element_count(array.shape, where);

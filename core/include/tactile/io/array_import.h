@@ -42,8 +42,12 @@ ImportedArray read_npy(const std::string& path);
 std::vector<std::string> npz_names(const std::string& path);
 ImportedArray read_npz(const std::string& path, const std::string& name);
 // JSON: the top-level array, or the array under `key` ("a.b" for nested objects), of
-// numbers nested to any regular depth, or of strings.
-ImportedArray read_json_array(const std::string& path, const std::string& key);
+// numbers nested to any regular depth, or of strings. An array of objects (frames given as
+// {"label": "Punch", "data": [[...]]}) is read through `member`: each object's member of that
+// name (the frame, or its class); an array of objects without `member` is refused naming the
+// members of the first.
+ImportedArray read_json_array(const std::string& path, const std::string& key,
+                              const std::string& member = "");
 // One dataset of an HDF5 file written by any program (numbers, or fixed or variable-length
 // strings).
 ImportedArray read_hdf5_dataset(const std::string& path, const std::string& dataset);
