@@ -113,6 +113,27 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   EXPECT_GT(labels.front().t1, labels.front().t0);
 }
 
+// While following, the plot moves to the channels being touched (a simulated NAO touches one
+// side, then another), and before a recording exists the timeline says where labels will go.
+TEST_F(WorkbenchLive, ThePlotFollowsTheActiveChannels) {
+  const CommandResult shown = run_program(
+      "tactile-workbench-headless",
+      "--connect sim://nao?seed=3 --annotator ana --size 1280x720 --settings " +
+          folder.file("settings.json") + " --script " +
+          script("sleep 2.5\nstate @a.json\nsleep 2\nstate @b.json\nsleep 2\nstate @c.json\n"
+                 "sleep 2\nstate @d.json\n"),
+      folder);
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  std::set<std::string> seen;
+  for (const char* name : {"a.json", "b.json", "c.json", "d.json"}) {
+    const nlohmann::json at = state(name);
+    EXPECT_FALSE(at["plotted"].empty()) << name;
+    EXPECT_LE(at["plotted"].size(), 8u) << name;
+    seen.insert(at["plotted"].dump());
+  }
+  EXPECT_GE(seen.size(), 2u) << "the plotted channels never changed while the skin was touched";
+}
+
 TEST_F(WorkbenchLive, RefusesABadSourceWithTheReason) {
   const CommandResult refused = run_program(
       "tactile-workbench-headless", "--connect tcp://x:1 --screenshot " + folder.file("x.png") + " --settings " +

@@ -3,6 +3,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -11,6 +12,8 @@
 #include <utility>
 
 #include "tactile/error.h"
+#include "tactile/signal/display_scale.h"
+#include "tactile/signal/taxel_values.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
 #include "views.h"
@@ -48,6 +51,63 @@ void follow(WorkbenchState& state) {
   state.plot.view_t1 = end;
   state.plot.view_t0 = end - state.live.window_seconds;
   state.plot.fitted = true;
+}
+
+// While following, the plot shows the channels that are active now: those of the selected
+// taxels when some are selected, else (twice a second) the eight that changed most beyond their
+// noise band over the last second; when none did, the plot stays as it is.
+void plot_active_channels(WorkbenchState& state) {
+  constexpr int kMostChannels = 8;
+  constexpr double kEverySeconds = 0.5;
+  LiveState& live = state.live;
+  const SampleSource& source = *state.document->source;
+  const Document& document = *state.document;
+  if (!live.follow || !live.channels_chosen || source.sample_count() == 0) return;
+  const double newest = source.end_time();
+  if (newest < live.active_checked_at + kEverySeconds && newest >= live.active_checked_at) return;
+  live.active_checked_at = newest;
+  const std::vector<int> columns =
+      taxel_columns(document.layout, source.info().channels, state.modality);
+  std::vector<char> plotted(static_cast<size_t>(source.channel_count()), 0);
+  bool any = false;
+  if (!state.selection.taxels.empty()) {
+    for (size_t k = 0; k < document.layout.taxels.size() && k < columns.size(); ++k) {
+      const int64_t id = document.layout.taxels[k].id;
+      if (columns[k] < 0 || std::find(state.selection.taxels.begin(), state.selection.taxels.end(),
+                                      id) == state.selection.taxels.end())
+        continue;
+      plotted[static_cast<size_t>(columns[k])] = 1;
+      any = true;
+    }
+  } else {
+    const int64_t count =
+        std::min<int64_t>(source.sample_count(), std::llround(std::max(1.0, source.rate_hz())));
+    std::vector<int> present;
+    for (int column : columns)
+      if (column >= 0) present.push_back(column);
+    if (present.empty()) return;
+    const SampleMatrix window = source.read(present, source.sample_count() - count, count);
+    const RestScale& scale = current_rest_scale(state, columns);
+    std::vector<std::pair<float, int>> change;
+    for (size_t k = 0, p = 0; k < columns.size(); ++k) {
+      if (columns[k] < 0) continue;
+      const Eigen::Index column = static_cast<Eigen::Index>(p++);
+      const float rest = scale.rest[k], band = scale.noise_band[k];
+      if (!std::isfinite(rest)) continue;
+      float most = 0.0f;
+      for (Eigen::Index row = 0; row < window.rows(); ++row)
+        if (std::isfinite(window(row, column)))
+          most = std::max(most, std::abs(window(row, column) - rest) - band);
+      if (most > 0.0f) change.emplace_back(most, columns[k]);
+    }
+    std::stable_sort(change.begin(), change.end(),
+                     [](auto& a, auto& b) { return a.first > b.first; });
+    for (size_t k = 0; k < change.size() && k < static_cast<size_t>(kMostChannels); ++k) {
+      plotted[static_cast<size_t>(change[k].second)] = 1;
+      any = true;
+    }
+  }
+  if (any) state.plotted = std::move(plotted);
 }
 
 // The contact detector sees every sample once; a contact starts a recording, a quiet time
@@ -215,6 +275,7 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
     plot_moving_channels(state);
     state.rest_scale_modality = -1;
   }
+  plot_active_channels(state);
   auto_record(state, services);
   classify(state, services);
   if (services.recorder) {

@@ -280,6 +280,15 @@ void draw_lanes(WorkbenchState& state, float width) {
 void draw_label_table(WorkbenchState& state) {
   const Document& document = *state.document;
   const auto& labels = document.labels;
+  if (document.labels_path.empty() && state.live.connected) {
+    // Before the recording exists, say where its labels will go.
+    const std::string folder =
+        state.live.record_folder.empty() ? state.workspace : state.live.record_folder;
+    ImGui::TextDisabled(
+        "Live, not recording: Ctrl+R records into %s; labels then go to %s/labels.db.",
+        folder.c_str(), folder.c_str());
+    return;
+  }
   if (document.labels_path.empty()) {
     ImGui::TextDisabled("No label database beside this recording.");
     return;

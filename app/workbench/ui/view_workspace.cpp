@@ -10,11 +10,20 @@ namespace fs = std::filesystem;
 
 void draw_workspace_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("workspace_view", size, false);
+  const LiveState& live = state.live;
+  if (live.connected) {
+    // Live: the stream is what is open; the files it has been recorded into are listed below.
+    ImGui::TextColored(ImVec4(0.3f, 0.9f, 0.4f, 1.0f), "live: %s", live.url.c_str());
+    if (!live.recording.empty())
+      ImGui::TextWrapped("recording into %s", live.recording.c_str());
+    else
+      ImGui::TextWrapped("not recording: Ctrl+R records into the folder below");
+  }
   if (state.workspace.empty()) {
     ImGui::TextDisabled("(no workspace)");
   } else {
     ImGui::TextDisabled("%s", state.workspace.c_str());
-    if (state.workspace_files.empty()) ImGui::TextDisabled("(no recordings)");
+    if (state.workspace_files.empty() && !live.connected) ImGui::TextDisabled("(no recordings)");
   }
   ImGuiListClipper clipper;  // thousands of recordings stay cheap to list
   clipper.Begin(static_cast<int>(state.workspace_files.size()));

@@ -196,6 +196,7 @@ struct LiveState {
   double window_seconds = 10.0;  // shown while following
   float buffer_seconds = 600.0f;
   bool resize_request = false;   // the buffer's length changed: a new buffer next frame
+  double active_checked_at = -1.0;  // stream time the plot last followed the active channels
   bool channels_chosen = false;  // the moving channels are picked once data has arrived
   std::string recording;            // the file being recorded; "" when not recording
   int64_t recorded_samples = 0;     // taken into it so far
