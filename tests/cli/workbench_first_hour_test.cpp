@@ -94,6 +94,37 @@ TEST_F(FirstHour, F1AndTheHelpMenuShowTheSheetOfKeysAndEscapeClosesIt) {
   EXPECT_TRUE(has_item(started, "window:getting-started"));
 }
 
+TEST_F(FirstHour, AScriptsFirstClickOnAMenuWaitsForTheFirstFrame) {
+  const auto result =
+      workbench(demo("fur-s01-t01.h5"), "click item menu:File\nwait 1\nstate @menu.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(has_item(state("menu.json"), "menu:File/Open..."));
+}
+
+TEST_F(FirstHour, TheLabelTableShowsManyRowsAndFollowsTheSelection) {
+  // In a short window only part of Robovie's 15 labels fit; selecting the last one in its lane
+  // scrolls its row into view.
+  const auto result =
+      workbench(demo("robovie-s01-t01.h5"),
+                "wait 2\nstate @before.json\nclick time 135 in lane:ground-truth\nwait 2\n"
+                "state @after.json\n",
+                "1280x480");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto rows = [](const nlohmann::json& at) {
+    std::set<std::string> shown;
+    for (const nlohmann::json& item : at["items"])
+      if (item.get<std::string>().starts_with("label-row:")) shown.insert(item.get<std::string>());
+    return shown;
+  };
+  const nlohmann::json after = state("after.json");
+  ASSERT_EQ(after["selection"]["labels"].size(), 1u);
+  const std::string selected = "label-row:" + after["selection"]["labels"][0].dump();
+  EXPECT_FALSE(rows(state("before.json")).count(selected))
+      << "the last label was in view from the start";
+  EXPECT_TRUE(rows(after).count(selected)) << "the selected label's row was not scrolled into view";
+  EXPECT_GE(rows(after).size(), 5u);
+}
+
 TEST_F(FirstHour, EachOfFifteenClassesIsLabelledByItsOwnKey) {
   // Robovie's vocabulary has 15 classes: 1-9, 0, then Shift+1 ... Shift+5.
   const auto listed =

@@ -237,21 +237,41 @@ void draw_legend(ImDrawList& draw, std::span<const PlotChannel> channels,
   }
 }
 
+// A span's class name may run on past its end, over the gap to the next span on its row: the
+// tags take two rows, alternating, so a short touch between two others keeps a legible name.
+// What still does not fit is shortened with a trailing "." (at least three letters) or left out.
 void draw_spans(ImDrawList& draw, std::span<const PlotSpan> spans, const ImVec2& area_min,
                 const ImVec2& area_max, double t0, double t1) {
   const float width = area_max.x - area_min.x;
-  for (const PlotSpan& span : spans) {
-    if (!(span.t1 > t0 && span.t0 < t1)) continue;
-    const float x0 =
-        area_min.x + static_cast<float>((std::max(span.t0, t0) - t0) / (t1 - t0)) * width;
-    const float x1 =
-        area_min.x + static_cast<float>((std::min(span.t1, t1) - t0) / (t1 - t0)) * width;
-    draw.AddRectFilled(ImVec2(x0, area_min.y), ImVec2(x1, area_max.y), span.colour);
-    if (!span.text.empty() && x1 - x0 > 12.0f) {
-      const ImVec4 clip(x0, area_min.y, x1, area_max.y);
-      draw.AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(x0 + 3.0f, area_min.y + 2.0f),
-                   IM_COL32(235, 235, 235, 255), span.text.c_str(), nullptr, 0.0f, &clip);
+  auto x_of = [&](double t) {
+    return area_min.x + static_cast<float>((std::clamp(t, t0, t1) - t0) / (t1 - t0)) * width;
+  };
+  std::vector<size_t> shown;
+  for (size_t k = 0; k < spans.size(); ++k)
+    if (spans[k].t1 > t0 && spans[k].t0 < t1) shown.push_back(k);
+  std::stable_sort(shown.begin(), shown.end(),
+                   [&](size_t a, size_t b) { return spans[a].t0 < spans[b].t0; });
+  for (size_t k : shown) {
+    const PlotSpan& span = spans[k];
+    draw.AddRectFilled(ImVec2(x_of(span.t0), area_min.y), ImVec2(x_of(span.t1), area_max.y),
+                       span.colour);
+  }
+  const float line = ImGui::GetFontSize() + 2.0f;
+  for (size_t n = 0; n < shown.size(); ++n) {
+    const PlotSpan& span = spans[shown[n]];
+    if (span.text.empty()) continue;
+    const float x0 = x_of(span.t0);
+    const float limit = n + 2 < shown.size() ? x_of(spans[shown[n + 2]].t0) : area_max.x;
+    const float room = limit - x0 - 6.0f;
+    std::string text = span.text;
+    while (text.size() > 4 && ImGui::CalcTextSize(text.c_str()).x > room) {
+      text.resize(text.size() - 2);
+      while (!text.empty() && text.back() == ' ') text.pop_back();
+      text += ".";
     }
+    if (ImGui::CalcTextSize(text.c_str()).x > room) continue;
+    const float y = area_min.y + 2.0f + static_cast<float>(n % 2) * line;
+    draw.AddText(ImVec2(x0 + 3.0f, y), IM_COL32(235, 235, 235, 255), text.c_str());
   }
 }
 

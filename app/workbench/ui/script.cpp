@@ -114,6 +114,8 @@ void ScriptPlayer::click_at(Target where, const ScriptStep& step) {
   actions_.push_back([this, where, step, position](Workbench& workbench, ImGuiIO& io) {
     std::string problem;
     const std::optional<ImVec2> point = where(workbench, problem);
+    // Before the first frame nothing has been drawn, so nothing can be found yet: wait for it.
+    if (!point && workbench.state().frame < 1) return false;
     if (!point) {
       fail(step, problem);
       return true;

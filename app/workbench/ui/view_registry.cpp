@@ -17,6 +17,7 @@ constexpr ViewSpec kViews[] = {
     {"skin", "Skin", true, draw_skin_panel_view},
     {"signals", "Signals", true, draw_signals_view},
     {"timeline", "Timeline", true, draw_timeline_view},
+    {"labels", "Labels", true, draw_labels_view},
     {"quality", "Quality", true, draw_quality_view},
     {"model", "Model", true, draw_model_view},
     {"confusion", "Confusion", false, draw_confusion_view},

@@ -1,7 +1,7 @@
 // Timeline view: transport (play, speed, loop, time), the classes with their keys and
 // the marks being made, one lane per tier of labels over the plot's time range (a
 // click moves the cursor and selects; right-click a lane's name to hide, collapse or
-// move it), and the table of labels.
+// move it). The table of labels is a view of its own (view_labels.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -277,64 +277,6 @@ void draw_lanes(WorkbenchState& state, float width) {
   }
 }
 
-void draw_label_table(WorkbenchState& state) {
-  const Document& document = *state.document;
-  const auto& labels = document.labels;
-  if (document.labels_path.empty() && state.live.connected) {
-    // Before the recording exists, say where its labels will go.
-    const std::string folder =
-        state.live.record_folder.empty() ? state.workspace : state.live.record_folder;
-    ImGui::TextDisabled(
-        "Live, not recording: Ctrl+R records into %s; labels then go to %s/labels.db.",
-        folder.c_str(), folder.c_str());
-    return;
-  }
-  if (document.labels_path.empty()) {
-    ImGui::TextDisabled("No label database beside this recording.");
-    return;
-  }
-  if (labels.empty()) {
-    ImGui::TextDisabled("No labels for this recording in %s.", document.labels_path.c_str());
-    return;
-  }
-  if (!ImGui::BeginTable("label_table", 6,
-                         ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
-                             ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable))
-    return;
-  ImGui::TableSetupScrollFreeze(0, 1);
-  for (const char* header : {"class", "region", "t0", "t1", "source", "annotator"})
-    ImGui::TableSetupColumn(header);
-  ImGui::TableHeadersRow();
-  ImGuiListClipper clipper;
-  clipper.Begin(static_cast<int>(labels.size()));
-  while (clipper.Step())
-    for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
-      const Label& label = labels[static_cast<size_t>(row)];
-      const bool selected = std::find(state.selection.labels.begin(), state.selection.labels.end(),
-                                      label.id) != state.selection.labels.end();
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::PushID(row);
-      if (ImGui::Selectable(label.class_name.c_str(), selected,
-                            ImGuiSelectableFlags_SpanAllColumns)) {
-        state.clock.seek(label.t0);
-        state.selection.labels = {label.id};
-      }
-      ImGui::PopID();
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(label.region.c_str());
-      ImGui::TableNextColumn();
-      ImGui::Text("%.3f", label.t0);
-      ImGui::TableNextColumn();
-      ImGui::Text("%.3f", label.t1);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(to_string(label.source));
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(label.annotator.c_str());
-    }
-  ImGui::EndTable();
-}
-
 }  // namespace
 
 void draw_timeline_view(WorkbenchState& state, ImVec2 size) {
@@ -344,7 +286,6 @@ void draw_timeline_view(WorkbenchState& state, ImVec2 size) {
   else
     draw_transport(state);
   draw_lanes(state, ImGui::GetContentRegionAvail().x);
-  draw_label_table(state);
   ImGui::EndChild();
 }
 

@@ -25,6 +25,7 @@ void draw_info_view(WorkbenchState& state, ImVec2 size);
 void draw_skin_panel_view(WorkbenchState& state, ImVec2 size);
 void draw_signals_view(WorkbenchState& state, ImVec2 size);
 void draw_timeline_view(WorkbenchState& state, ImVec2 size);
+void draw_labels_view(WorkbenchState& state, ImVec2 size);
 void draw_quality_view(WorkbenchState& state, ImVec2 size);
 void draw_model_view(WorkbenchState& state, ImVec2 size);
 void draw_confusion_view(WorkbenchState& state, ImVec2 size);

@@ -316,6 +316,10 @@ void Workbench::draw_arrangement(ImVec2 area) {
   bool released = false;
   // Left: workspace and recording, as tabs.
   ImGui::BeginChild("left", ImVec2(sizes.sidebar_width, area.y), true);
+  // The recording's labels take the lower part of the sidebar, where a table has its height.
+  const float tabs_height =
+      state_.document ? std::floor(0.4f * area.y) : ImGui::GetContentRegionAvail().y;
+  ImGui::BeginChild("left_tabs_frame", ImVec2(0, tabs_height), false);
   if (ImGui::BeginTabBar("left_tabs")) {
     for (const char* name : {"workspace", "info", "quality"}) {
       if (ImGui::BeginTabItem(view_title(name).c_str())) {
@@ -325,6 +329,12 @@ void Workbench::draw_arrangement(ImVec2 area) {
       remember_item(state_, std::string("tab:") + name);
     }
     ImGui::EndTabBar();
+  }
+  ImGui::EndChild();
+  if (state_.document) {
+    ImGui::Separator();
+    ImGui::TextDisabled("Labels of this recording");
+    draw_view("labels", ImGui::GetContentRegionAvail());
   }
   ImGui::EndChild();
   ImGui::SameLine(0.0f, 0.0f);

@@ -237,6 +237,12 @@ struct WorkbenchOptions {
   double pretrigger_seconds = 5.0;  // --pretrigger
 };
 
+// What the labels view last scrolled to, so it follows changes only.
+struct LabelsViewState {
+  int64_t followed_selection = -1;
+  int64_t followed_cursor = -1;
+};
+
 struct WorkbenchState {
   WorkbenchOptions options;
   // One colour per class in every view (class_colour, views.h); unknown is neutral grey.
@@ -290,6 +296,7 @@ struct WorkbenchState {
   std::unique_ptr<Job<std::string>> demo_job;
   bool quit = false;
   FileBrowser file_browser;
+  LabelsViewState labels_view;
   struct HelpState {
     bool keys_open = false;   // the sheet of keys (F1, Help > Keys)
     bool about_open = false;  // Help > Getting started
