@@ -94,6 +94,33 @@ TEST_F(FirstHour, F1AndTheHelpMenuShowTheSheetOfKeysAndEscapeClosesIt) {
   EXPECT_TRUE(has_item(started, "window:getting-started"));
 }
 
+// Every control drawn (buttons, fields, check boxes, combos, sliders) shows a tooltip: held to
+// it on the welcome panel, the main window, the Model tab and an open menu.
+TEST_F(FirstHour, EveryControlHasATooltip) {
+  ASSERT_EQ(workbench("", "wait 2\nstate @welcome.json\n").exit_code, 0);
+  const auto result =
+      workbench(demo("fur-s01-t01.h5"),
+                "wait 2\nstate @main.json\nclick item tab:model\nwait 2\nstate @model.json\n"
+                "click item menu:Labels\nclick item menu:Labels/Run segmenter\nwait 1\n"
+                "state @menu.json\nkey Escape\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  size_t controls = 0;
+  for (const char* name : {"welcome.json", "main.json", "model.json", "menu.json"}) {
+    const nlohmann::json at = state(name);
+    for (const nlohmann::json& item : at["items"]) {
+      const std::string id = item.get<std::string>();
+      const bool control = id.starts_with("button:") || id.starts_with("input:") ||
+                           id.starts_with("checkbox:") || id.starts_with("combo:") ||
+                           id.starts_with("slider:");
+      if (!control) continue;
+      ++controls;
+      EXPECT_TRUE(at["tips"].contains(id) && !at["tips"][id].get<std::string>().empty())
+          << id << " in " << name << " has no tooltip";
+    }
+  }
+  EXPECT_GE(controls, 15u);
+}
+
 TEST_F(FirstHour, AScriptsFirstClickOnAMenuWaitsForTheFirstFrame) {
   const auto result =
       workbench(demo("fur-s01-t01.h5"), "click item menu:File\nwait 1\nstate @menu.json\n");

@@ -66,13 +66,13 @@ bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) 
   if (held && *held) {
     ImGui::Text("%s: cancelled", what);
     if (ImGui::Button("Compute")) *held = false;
-    remember_item(state, "button:Compute");
+    remember_item(state, "button:Compute", "Start the cancelled computation again");
     return true;
   }
   if (!job || job->status() != JobStatus::kRunning) return false;
   ImGui::Text("%s: computing on a worker, the window stays live", job->name().c_str());
   if (ImGui::Button("Cancel")) job->cancel();
-  remember_item(state, "button:Cancel");
+  remember_item(state, "button:Cancel", "Stop this computation; the view keeps what it showed");
   ImGui::SameLine();
   const std::string stage = job->stage();
   ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(-1, 0), stage.c_str());
@@ -90,7 +90,8 @@ bool draw_job_status(WorkbenchState& state) {
     }
   if (!job) return false;
   if (ImGui::SmallButton("Cancel")) job->cancel();
-  remember_item(state, "button:Cancel job");
+  remember_item(state, "button:Cancel job",
+                "Stop this job; nothing it would have changed is changed");
   ImGui::SameLine();
   const std::string stage = job->stage().empty() ? job->name() : job->name() + ": " + job->stage();
   ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(320, 0), stage.c_str());

@@ -368,7 +368,8 @@ void draw_class_picker(WorkbenchState& state) {
   const bool entered = ImGui::InputTextWithHint("##class", "class...", labelling.picker_text.data(),
                                                 labelling.picker_text.size(),
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
-  remember_item(state, "picker:text");
+  remember_item(state, "picker:text",
+                "Type part of a class name; Enter takes the first match, Escape closes");
   const std::string typed = labelling.picker_text.data();
   std::vector<std::string> matches;
   for (const std::string& name : state.document->classes)

@@ -351,10 +351,13 @@ void draw_live_bar(WorkbenchState& state) {
   ImGui::TextUnformatted(live.url.c_str());
   ImGui::SameLine();
   if (ImGui::Checkbox("follow (F)", &live.follow) && live.follow) state.plot.fitted = true;
-  remember_item(state, "checkbox:follow");
+  remember_item(state, "checkbox:follow",
+                "Keep the newest sample in view (F); off: stay where the view is");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputFloat("buffer s", &live.buffer_seconds, 0, 0, "%.0f");
+  remember_item(state, "input:buffer",
+                "Seconds of the stream kept in memory to scroll back through");
   if (ImGui::IsItemDeactivatedAfterEdit()) {
     live.buffer_seconds = std::clamp(live.buffer_seconds, 1.0f, 86400.0f);
     // A new length is a new buffer: at the next frame's start the source is connected again
@@ -364,24 +367,31 @@ void draw_live_bar(WorkbenchState& state) {
   remember_item(state, "input:buffer");
   ImGui::SameLine();
   if (ImGui::Button("Clear")) live.clear_request = true;
-  remember_item(state, "button:clear");
+  remember_item(state, "button:clear", "Forget what the buffer holds (a recording keeps its file)");
   ImGui::SameLine();
   if (ImGui::Button(recording ? "Stop recording (Ctrl+R)" : "Record (Ctrl+R)")) live.record_request = true;
-  remember_item(state, "button:record");
+  remember_item(state, "button:record",
+                "Record the stream into a new file in the workspace, with the pre-trigger's "
+                "seconds (Ctrl+R)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(50);
   ImGui::InputFloat("pre s", &live.pretrigger_seconds, 0, 0, "%.0f");
+  remember_item(state, "input:pretrigger",
+                "Seconds before the press of Record that the file starts with");
   live.pretrigger_seconds = std::clamp(live.pretrigger_seconds, 0.0f, 600.0f);
   ImGui::SameLine();
   ImGui::Checkbox("start on contact", &live.auto_record);
-  remember_item(state, "checkbox:auto-record");
+  remember_item(state, "checkbox:auto-record",
+                "Start a recording when a contact begins, stop it after a quiet time");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(160);
   ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(), live.model_input.size());
-  remember_item(state, "input:model");
+  remember_item(state, "input:model",
+                "A saved model (tactile evaluate --save-model) to classify the stream with");
   ImGui::SameLine();
   if (ImGui::Button("Classify")) live.classify_request = std::string(live.model_input.data());
-  remember_item(state, "button:classify");
+  remember_item(state, "button:classify",
+                "Classify each touch of the stream with the model (a lane of decisions)");
   // Second line: what arrived and what did not.
   const SampleSource& source = *state.document->source;
   ImGui::Text("%s  received %lld   lost %lld   duplicated %lld   reordered %lld   broken %lld",

@@ -56,6 +56,8 @@ void draw_info_view(WorkbenchState& state, ImVec2 size) {
   }
   ImGui::Separator();
   if (ImGui::SmallButton("none")) std::fill(state.plotted.begin(), state.plotted.end(), 0);
+  remember_item(state, "button:plot none",
+                "Plot no channel (then click taxels or tick channels below)");
   ImGui::SameLine();
   ImGui::TextDisabled("click a taxel to add its channel");
   ImGui::BeginChild("channels");
@@ -66,6 +68,8 @@ void draw_info_view(WorkbenchState& state, ImVec2 size) {
       bool shown = state.plotted[static_cast<size_t>(column)] != 0;
       if (ImGui::Checkbox(info.channels[static_cast<size_t>(column)].c_str(), &shown))
         state.plotted[static_cast<size_t>(column)] = shown;
+      remember_item(state, "checkbox:channel:" + info.channels[static_cast<size_t>(column)],
+                    "Plot this channel in the Signals view");
     }
   ImGui::EndChild();
   ImGui::EndChild();

@@ -17,7 +17,10 @@ void draw_choices(WorkbenchState& state) {
   const std::string own = state.document ? default_pipeline(state.document->layout.id) : "generic";
   const std::string shown = analysis.pipeline.empty() ? own + " (the skin's own)" : analysis.pipeline;
   ImGui::SetNextItemWidth(180);
-  if (ImGui::BeginCombo("features", shown.c_str())) {
+  const bool features = ImGui::BeginCombo("features", shown.c_str());
+  remember_item(state, "features",
+                "The feature set computed from each segment (each paper's own, or generic)");
+  if (features) {
     if (ImGui::Selectable((own + " (the skin's own)").c_str(), analysis.pipeline.empty()))
       analysis.pipeline.clear();
     for (const std::string& name : feature_pipelines()) {
@@ -26,10 +29,12 @@ void draw_choices(WorkbenchState& state) {
     }
     ImGui::EndCombo();
   }
-  remember_item(state, "features");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(130);
-  if (ImGui::BeginCombo("segments", to_string(analysis.segments))) {
+  const bool segments = ImGui::BeginCombo("segments", to_string(analysis.segments));
+  remember_item(state, "combo:segments",
+                "Which labels are the segments to learn from and their classes");
+  if (segments) {
     for (LabelSource source : {LabelSource::kGroundTruth, LabelSource::kManual,
                                LabelSource::kSegmenter, LabelSource::kModel})
       if (ImGui::Selectable(to_string(source), analysis.segments == source))
@@ -38,9 +43,13 @@ void draw_choices(WorkbenchState& state) {
   }
   ImGui::SetNextItemWidth(180);
   ImGui::InputText("classifier", analysis.classifier.data(), analysis.classifier.size());
-  remember_item(state, "classifier");
+  remember_item(
+      state, "classifier",
+      "A classifier specification (name[:key=value,...]); the list beside has every preset");
   ImGui::SameLine();
-  if (ImGui::BeginCombo("##presets", "", ImGuiComboFlags_NoPreview)) {
+  const bool presets = ImGui::BeginCombo("##presets", "", ImGuiComboFlags_NoPreview);
+  remember_item(state, "combo:presets", "Every classifier preset, with what it is");
+  if (presets) {
     for (const ml::ClassifierEntry& entry : ml::classifier_catalog()) {
       if (ImGui::Selectable(entry.name.c_str())) {
         analysis.classifier.fill('\0');
@@ -54,8 +63,9 @@ void draw_choices(WorkbenchState& state) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(110);
   ImGui::InputText("protocol", analysis.protocol.data(), analysis.protocol.size());
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("kfold:K[xR] | loo | loso | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY");
+  remember_item(state, "input:protocol",
+                "How rows are split for testing: kfold:K[xR] | loo | loso | holdout:FxR | "
+                "split:TRAIN_QUERY/TEST_QUERY");
 }
 
 void draw_run_controls(WorkbenchState& state) {
@@ -63,10 +73,12 @@ void draw_run_controls(WorkbenchState& state) {
   const bool running = analysis.job && analysis.job->status() == JobStatus::kRunning;
   ImGui::BeginDisabled(running || !state.document);
   if (ImGui::Button("Run")) start_training(state, analysis.classifier.data());
-  remember_item(state, "button:Run");
+  remember_item(state, "button:Run",
+                "Evaluate the classifier in the box and fit it on every row (Predict uses it)");
   ImGui::SameLine();
   if (ImGui::Button("Train all")) start_training(state, "all");
-  remember_item(state, "button:Train all");
+  remember_item(state, "button:Train all",
+                "Evaluate every preset on this skin's labels and show the best");
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::BeginDisabled(running || !can_predict(state));
@@ -82,7 +94,7 @@ void draw_run_controls(WorkbenchState& state) {
   if (running) {
     ImGui::SameLine();
     if (ImGui::Button("Cancel")) analysis.job->cancel();
-    remember_item(state, "button:Cancel");
+    remember_item(state, "button:Cancel", "Stop the training run");
     ImGui::SameLine();
     const std::string stage = analysis.job->stage();
     ImGui::ProgressBar(static_cast<float>(analysis.job->progress()), ImVec2(-1, 0), stage.c_str());

@@ -25,12 +25,15 @@ void go_to(WorkbenchState& state, double t0, double t1, int64_t label) {
   if (label != 0) state.selection.labels.push_back(label);
 }
 
-bool lane_combo(const char* name, const Lanes& lanes, int& chosen) {
+bool lane_combo(WorkbenchState& state, const char* name, const Lanes& lanes, int& chosen) {
   const std::string current =
       chosen >= 0 && chosen < static_cast<int>(lanes.keys.size()) ? lanes.keys[static_cast<size_t>(chosen)].title() : "-";
   bool changed = false;
   ImGui::SetNextItemWidth(120);
-  if (ImGui::BeginCombo(name, current.c_str())) {
+  const bool open = ImGui::BeginCombo(name, current.c_str());
+  remember_item(state, std::string("combo:") + name,
+                "One of the two lanes whose agreement is measured");
+  if (open) {
     for (size_t k = 0; k < lanes.keys.size(); ++k)
       if (ImGui::Selectable(lanes.keys[k].title().c_str(), static_cast<int>(k) == chosen)) {
         chosen = static_cast<int>(k);
@@ -90,8 +93,8 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
     ImGui::EndChild();
     return;
   }
-  lane_combo("A##agreement_a", lanes, a);
-  lane_combo("B##agreement_b", lanes, b);
+  lane_combo(state, "A##agreement_a", lanes, a);
+  lane_combo(state, "B##agreement_b", lanes, b);
   const Agreement& agreement = cache.agreement;
   ImGui::Text("kappa %.3f   F1 %.3f", agreement.kappa, agreement.f1);
   ImGui::TextDisabled("P %.2f R %.2f, %lld matched", agreement.precision, agreement.recall,

@@ -22,12 +22,14 @@ constexpr float kCollapsedHeight = 7.0f;
 void draw_transport(WorkbenchState& state) {
   PlaybackClock& clock = state.clock;
   if (ImGui::Button(clock.playing() ? "Pause" : "Play", ImVec2(70, 0))) clock.toggle();
-  remember_item(state, "button:play");
+  remember_item(state, "button:play", "Play or pause the recording (Space)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(80);
   char speed_text[16];
   std::snprintf(speed_text, sizeof(speed_text), "%gx", clock.speed());
-  if (ImGui::BeginCombo("##speed", speed_text)) {
+  const bool speeds = ImGui::BeginCombo("##speed", speed_text);
+  remember_item(state, "combo:speed", "Playback speed (recording seconds per second)");
+  if (speeds) {
     for (double speed : kSpeeds) {
       std::snprintf(speed_text, sizeof(speed_text), "%gx", speed);
       if (ImGui::Selectable(speed_text, speed == clock.speed())) clock.set_speed(speed);
@@ -37,6 +39,7 @@ void draw_transport(WorkbenchState& state) {
   ImGui::SameLine();
   bool looping = clock.looping();
   if (ImGui::Checkbox("loop", &looping)) clock.set_looping(looping);
+  remember_item(state, "checkbox:loop", "Play the recording (or the landed segment) over and over");
   ImGui::SameLine();
   const std::string now = format_seconds(clock.time()) + " / " + format_seconds(clock.end());
   ImGui::SetNextItemWidth(-1);
@@ -44,6 +47,7 @@ void draw_transport(WorkbenchState& state) {
   if (ImGui::SliderFloat("##time", &time, static_cast<float>(clock.start()),
                          static_cast<float>(clock.end()), now.c_str()))
     clock.seek(time);
+  remember_item(state, "slider:time", "The time cursor: drag to move through the recording");
 }
 
 }  // namespace

@@ -506,12 +506,13 @@ void Workbench::draw_menu_bar() {
         ImGui::InputTextWithHint(
             "##url", ("udp://:9000, serial:///dev/ttyUSB0, sim://" + skin_ids().front()).c_str(),
             connect_url_.data(), connect_url_.size());
-        remember_item(state_, "input:connect-url");
+        remember_item(state_, "input:connect-url", "Where the live data comes from (docs/LIVE.md)");
         ImGui::SetNextItemWidth(260);
         const std::string skin_hint = "skin (udp, serial): " + joined(packet_skin_ids());
         ImGui::InputTextWithHint("##skin", skin_hint.c_str(), connect_skin_.data(),
                                  connect_skin_.size());
-        remember_item(state_, "input:connect-skin");
+        remember_item(state_, "input:connect-skin",
+                      "The skin whose packets arrive (udp and serial sources)");
         if (ImGui::MenuItem("Connect")) connect_live(state_, services_.live, connect_url_.data(), connect_skin_.data());
         remember_item(state_, "menu:File/Connect/Connect");
         if (ImGui::MenuItem("Disconnect", nullptr, false, state_.live.connected))
@@ -556,6 +557,9 @@ void Workbench::draw_menu_bar() {
         ImGui::InputTextWithHint("##params", "parameters: key=value,...",
                                  state_.labelling.segmenter_params.data(),
                                  state_.labelling.segmenter_params.size());
+        remember_item(state_, "input:segmenter-params",
+                      "Parameters of the segmenter chosen below (tactile segment --help); empty: "
+                      "its defaults");
         for (const std::string& method : segmenter_methods()) {
           if (ImGui::MenuItem(method.c_str())) run_segmenter(state_, method);
           remember_item(state_, "menu:Labels/Run segmenter/" + method);
