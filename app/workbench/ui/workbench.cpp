@@ -672,6 +672,18 @@ nlohmann::json Workbench::analysis_json() const {
                ? current->classes[static_cast<size_t>(k)]
                : std::string("unknown");
   };
+  // The clicked cell's segments as its list shows them, the least sure first.
+  nlohmann::json cell_list = nlohmann::json::array();
+  for (const size_t k : analysis.cell_rows) {
+    if (!current || k >= current->rows.size()) break;
+    const ml::RowPrediction& row = current->rows[k];
+    cell_list.push_back({{"recording", row.recording},
+                         {"t0", row.t0},
+                         {"t1", row.t1},
+                         {"segment_id", row.segment_id},
+                         {"score", row.score},
+                         {"margin", row.margin}});
+  }
   nlohmann::json landed = nullptr;
   if (analysis.landed)
     landed = {{"recording", analysis.landed->recording}, {"t0", analysis.landed->t0},
@@ -691,23 +703,27 @@ nlohmann::json Workbench::analysis_json() const {
       confusion.push_back(counts);
     }
   }
-  return {{"training", training},
-          {"results", results},
-          {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
-          {"confusion", confusion},
-          {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
-          {"cell", {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
-                    {"predicted", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
-                    {"segments", analysis.cell_rows.size()},
-                    {"selected", analysis.cell_selected}}},
-          {"landed", landed},
-          {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
-          {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},
-                                                 {"columns", analysis.som->map().columns},
-                                                 {"neuron", analysis.som_neuron}})
-                               : nlohmann::json(nullptr)},
-          {"somatosensory", analysis.somatosensory},
-          {"somatosensory_taxels", analysis.map ? analysis.map->taxels.size() : 0}};
+  return {
+      {"training", training},
+      {"results", results},
+      {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
+      {"confusion", confusion},
+      {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
+      {"cell",
+       {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
+        {"predicted",
+         analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
+        {"segments", analysis.cell_rows.size()},
+        {"selected", analysis.cell_selected},
+        {"list", cell_list}}},
+      {"landed", landed},
+      {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
+      {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},
+                                             {"columns", analysis.som->map().columns},
+                                             {"neuron", analysis.som_neuron}})
+                           : nlohmann::json(nullptr)},
+      {"somatosensory", analysis.somatosensory},
+      {"somatosensory_taxels", analysis.map ? analysis.map->taxels.size() : 0}};
 }
 
 }  // namespace tactile
