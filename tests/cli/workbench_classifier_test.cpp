@@ -298,11 +298,13 @@ namespace {
 // the least sure prediction, Y confirms it, a digit corrects the next; both are manual labels
 // at once. The SVM's scores are probabilities, so the margins differ and U has a smallest.
 TEST_F(WorkbenchClassifiers, PredictionsRankByMarginAndAreConfirmedAndCorrectedByKeys) {
-  auto run = workbench(demo("fur-s01-t01.h5"),
-                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\n"
-                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n"
-                       "state @predicted.json\nkey U\nwait 2\nstate @uncertain.json\nkey Y\nwait 2\n"
-                       "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
+  auto run =
+      workbench(demo("fur-s01-t01.h5"),
+                "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\n"
+                "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n"
+                "state @predicted.json\nclick item header:margin\nwait 2\nstate @sorted.json\n"
+                "key U\nwait 2\nstate @uncertain.json\nkey Y\nwait 2\n"
+                "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto lane = [](const nlohmann::json& at, const std::string& id) {
     for (const nlohmann::json& lane : at["lanes"])
@@ -330,6 +332,20 @@ TEST_F(WorkbenchClassifiers, PredictionsRankByMarginAndAreConfirmedAndCorrectedB
     const int64_t chosen = state("uncertain.json")["selection"]["labels"][0].get<int64_t>();
     ASSERT_TRUE(margins.count(chosen)) << chosen;
     EXPECT_EQ(margins[chosen], least);
+    // The label table sorted by its margin header: the predictions least sure first, then
+    // the labels that have no margin.
+    const nlohmann::json table = state("sorted.json")["label_table"];
+    EXPECT_EQ(table["sort"], "margin");
+    EXPECT_EQ(table["ascending"], true);
+    const auto ids = table["ids"].get<std::vector<int64_t>>();
+    ASSERT_GT(ids.size(), margins.size());
+    for (size_t k = 0; k < margins.size(); ++k) {
+      ASSERT_TRUE(margins.count(ids[k])) << "a label without a margin before a prediction";
+      if (k > 0) {
+        EXPECT_LE(margins[ids[k - 1]], margins[ids[k]]);
+      }
+    }
+    EXPECT_EQ(margins[ids[0]], least);
   }
   const nlohmann::json evaluation =
       nlohmann::json::parse(std::ifstream(demo("models/fur-linear-svm.evaluation.json")));

@@ -1,10 +1,12 @@
 // Timeline view: transport (play, speed, loop, time), the classes with their keys and
 // the marks being made, one lane per tier of labels over the plot's time range (a
 // click moves the cursor and selects; right-click a lane's name to hide, collapse or
-// move it), and the table of labels.
+// move it), and the table of labels (a click on a header sorts by that column; `margin`,
+// a prediction's, puts the least sure first).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "labelling.h"
 #include "live.h"
@@ -271,6 +273,56 @@ void draw_lanes(WorkbenchState& state, float width) {
   }
 }
 
+constexpr const char* kLabelTableColumns[] = {"class",  "region",    "t0",    "t1",
+                                              "source", "annotator", "margin"};
+
+// A prediction's margin (labels of source model, their note); other labels have none and sort
+// after every prediction.
+double table_margin(const Label& label) {
+  return label.source == LabelSource::kModel ? prediction_margin(label)
+                                             : std::numeric_limits<double>::infinity();
+}
+
+// The rows in the order the table's header asks for: the recording's order until a header is
+// clicked, then by that column (a click again reverses it, a third goes back), stable.
+std::vector<size_t> label_table_rows(WorkbenchState& state, const std::vector<Label>& labels) {
+  std::vector<size_t> rows(labels.size());
+  for (size_t k = 0; k < rows.size(); ++k) rows[k] = k;
+  const ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs();
+  WorkbenchState::LabelTableOrder& order = state.label_table;
+  order.column.clear();
+  order.ascending = true;
+  if (specs && specs->SpecsCount > 0) {
+    const ImGuiTableColumnSortSpecs& spec = specs->Specs[0];
+    order.column = kLabelTableColumns[spec.ColumnIndex];
+    order.ascending = spec.SortDirection != ImGuiSortDirection_Descending;
+    const auto less = [&](const Label& a, const Label& b) {
+      switch (spec.ColumnIndex) {
+        case 0:
+          return a.class_name < b.class_name;
+        case 1:
+          return a.region < b.region;
+        case 2:
+          return a.t0 < b.t0;
+        case 3:
+          return a.t1 < b.t1;
+        case 4:
+          return std::string(to_string(a.source)) < to_string(b.source);
+        case 5:
+          return a.annotator < b.annotator;
+        default:
+          return table_margin(a) < table_margin(b);
+      }
+    };
+    std::stable_sort(rows.begin(), rows.end(), [&](size_t a, size_t b) {
+      return order.ascending ? less(labels[a], labels[b]) : less(labels[b], labels[a]);
+    });
+  }
+  order.ids.clear();
+  for (const size_t row : rows) order.ids.push_back(labels[row].id);
+  return rows;
+}
+
 void draw_label_table(WorkbenchState& state) {
   const Document& document = *state.document;
   const auto& labels = document.labels;
@@ -282,19 +334,26 @@ void draw_label_table(WorkbenchState& state) {
     ImGui::TextDisabled("No labels for this recording in %s.", document.labels_path.c_str());
     return;
   }
-  if (!ImGui::BeginTable("label_table", 6,
+  if (!ImGui::BeginTable("label_table", 7,
                          ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
-                             ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable))
+                             ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable |
+                             ImGuiTableFlags_Sortable | ImGuiTableFlags_SortTristate))
     return;
   ImGui::TableSetupScrollFreeze(0, 1);
-  for (const char* header : {"class", "region", "t0", "t1", "source", "annotator"})
-    ImGui::TableSetupColumn(header);
-  ImGui::TableHeadersRow();
+  for (const char* header : kLabelTableColumns) ImGui::TableSetupColumn(header);
+  // The header row by hand, so that a script can click a header (`click item header:margin`).
+  ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+  for (int column = 0; column < 7; ++column) {
+    ImGui::TableSetColumnIndex(column);
+    ImGui::TableHeader(kLabelTableColumns[column]);
+    remember_item(state, std::string("header:") + kLabelTableColumns[column]);
+  }
+  const std::vector<size_t> rows = label_table_rows(state, labels);
   ImGuiListClipper clipper;
   clipper.Begin(static_cast<int>(labels.size()));
   while (clipper.Step())
     for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
-      const Label& label = labels[static_cast<size_t>(row)];
+      const Label& label = labels[rows[static_cast<size_t>(row)]];
       const bool selected = std::find(state.selection.labels.begin(), state.selection.labels.end(),
                                       label.id) != state.selection.labels.end();
       ImGui::TableNextRow();
@@ -316,6 +375,8 @@ void draw_label_table(WorkbenchState& state) {
       ImGui::TextUnformatted(to_string(label.source));
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(label.annotator.c_str());
+      ImGui::TableNextColumn();
+      if (label.source == LabelSource::kModel) ImGui::Text("%.2f", prediction_margin(label));
     }
   ImGui::EndTable();
 }

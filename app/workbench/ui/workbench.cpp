@@ -581,6 +581,9 @@ nlohmann::json Workbench::state_json() const {
   json["playing"] = state_.clock.playing();
   json["speed"] = state_.clock.speed();
   json["duration"] = document ? document->samples().duration() : 0.0;
+  json["label_table"] = {{"sort", state_.label_table.column},
+                         {"ascending", state_.label_table.ascending},
+                         {"ids", state_.label_table.ids}};
   json["selection"] = {{"labels", state_.selection.labels},
                        {"taxels", state_.selection.taxels},
                        {"segments", state_.selection.segments}};
