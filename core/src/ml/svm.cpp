@@ -10,8 +10,8 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <numeric>
 
+#include "libsvm_support.h"
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
 #include "tactile/ml/checks.h"
@@ -109,62 +109,6 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   }
   order.resize(static_cast<size_t>(limit));
   return gather_rows(x, order);
-}
-
-struct ModelDeleter {
-  void operator()(svm_model* model) const { svm_free_and_destroy_model(&model); }
-};
-
-// libsvm's svm_binary_svc_probability: the rows in a shuffled order cut into 5 folds, each
-// fold's decision values from a model of the other four (the same parameters), oriented so
-// that f > 0 means the positive class (target +1), then Platt's sigmoid fitted to them. A
-// fold whose training part holds one class only gives its rows f = +1 or -1, as libsvm does.
-// libsvm shuffles with rand(), one generator for the whole process, which concurrent fits
-// (an evaluation's fold threads) would share; the order here is drawn from `engine`, so a
-// seed gives the same sigmoid on any thread.
-PlattSigmoid cross_validated_sigmoid(const svm_problem& problem, const svm_parameter& parameter,
-                                     std::mt19937_64 engine, const std::string& where) {
-  constexpr int kFolds = 5;
-  const auto rows = static_cast<size_t>(problem.l);
-  std::vector<size_t> order(rows);
-  std::iota(order.begin(), order.end(), size_t{0});
-  shuffle(order, engine);
-  std::vector<double> decisions(rows, 0.0);
-  std::vector<bool> positive(rows);
-  for (size_t row = 0; row < rows; ++row) positive[row] = problem.y[row] > 0.0;
-  svm_parameter fold_parameter = parameter;
-  fold_parameter.probability = 0;
-  std::vector<svm_node*> nodes;
-  std::vector<double> targets;
-  for (size_t fold = 0; fold < kFolds; ++fold) {
-    if (cancel_requested()) throw Error(where, "cancelled");
-    const size_t begin = fold * rows / kFolds, end = (fold + 1) * rows / kFolds;
-    nodes.clear();
-    targets.clear();
-    for (size_t slot = 0; slot < rows; ++slot) {
-      if (slot >= begin && slot < end) continue;
-      nodes.push_back(problem.x[order[slot]]);
-      targets.push_back(problem.y[order[slot]]);
-    }
-    const auto positives =
-        std::count_if(targets.begin(), targets.end(), [](double y) { return y > 0; });
-    const bool one_class =
-        positives == 0 || positives == static_cast<std::ptrdiff_t>(targets.size());
-    if (targets.empty() || one_class) {
-      const double value = targets.empty() ? 0.0 : positives > 0 ? 1.0 : -1.0;
-      for (size_t slot = begin; slot < end; ++slot) decisions[order[slot]] = value;
-      continue;
-    }
-    svm_problem fold_problem{static_cast<int>(targets.size()), targets.data(), nodes.data()};
-    const std::unique_ptr<svm_model, ModelDeleter> model(svm_train(&fold_problem, &fold_parameter));
-    if (!model) throw Error(where, "libsvm returned no model");
-    for (size_t slot = begin; slot < end; ++slot) {
-      double value = 0.0;
-      svm_predict_values(model.get(), problem.x[order[slot]], &value);
-      decisions[order[slot]] = value * model->label[0];
-    }
-  }
-  return fit_platt_sigmoid(decisions, positive);
 }
 
 }  // namespace
@@ -364,7 +308,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       parameter.probability = 0;
       if (const char* problem_text = svm_check_parameter(&problem, &parameter))
         throw Error(preset_, std::string("libsvm: ") + problem_text);
-      const std::unique_ptr<svm_model, ModelDeleter> model(svm_train(&problem, &parameter));
+      const LibsvmModel model(svm_train(&problem, &parameter));
       if (!model) throw Error(preset_, "libsvm returned no model");
       // The sigmoid's own draws, apart from the kernel scales' so that they stay as they were.
       if (fit_probabilities_)

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <vector>
 
+#include "libsvm_support.h"
 #include "tactile/error.h"
+#include "tactile/jobs/job.h"
+#include "tactile/random.h"
 
 namespace tactile::ml {
 
@@ -122,6 +127,53 @@ Vector couple_pairwise(const Matrix& pairwise) {
     }
   }
   return p;
+}
+
+//---- Platt's sigmoid of one libsvm learner --------------------------------------------------
+
+PlattSigmoid cross_validated_sigmoid(const svm_problem& problem, const svm_parameter& parameter,
+                                     std::mt19937_64 engine, const std::string& where) {
+  constexpr int kFolds = 5;
+  const auto rows = static_cast<size_t>(problem.l);
+  std::vector<size_t> order(rows);
+  std::iota(order.begin(), order.end(), size_t{0});
+  shuffle(order, engine);
+  std::vector<double> decisions(rows, 0.0);
+  std::vector<bool> positive(rows);
+  for (size_t row = 0; row < rows; ++row) positive[row] = problem.y[row] > 0.0;
+  svm_parameter fold_parameter = parameter;
+  fold_parameter.probability = 0;
+  std::vector<svm_node*> nodes;
+  std::vector<double> targets;
+  for (size_t fold = 0; fold < kFolds; ++fold) {
+    if (cancel_requested()) throw Error(where, "cancelled");
+    const size_t begin = fold * rows / kFolds, end = (fold + 1) * rows / kFolds;
+    nodes.clear();
+    targets.clear();
+    for (size_t slot = 0; slot < rows; ++slot) {
+      if (slot >= begin && slot < end) continue;
+      nodes.push_back(problem.x[order[slot]]);
+      targets.push_back(problem.y[order[slot]]);
+    }
+    const auto positives =
+        std::count_if(targets.begin(), targets.end(), [](double y) { return y > 0; });
+    const bool one_class =
+        positives == 0 || positives == static_cast<std::ptrdiff_t>(targets.size());
+    if (targets.empty() || one_class) {
+      const double value = targets.empty() ? 0.0 : positives > 0 ? 1.0 : -1.0;
+      for (size_t slot = begin; slot < end; ++slot) decisions[order[slot]] = value;
+      continue;
+    }
+    svm_problem fold_problem{static_cast<int>(targets.size()), targets.data(), nodes.data()};
+    const LibsvmModel model(svm_train(&fold_problem, &fold_parameter));
+    if (!model) throw Error(where, "libsvm returned no model");
+    for (size_t slot = begin; slot < end; ++slot) {
+      double value = 0.0;
+      svm_predict_values(model.get(), problem.x[order[slot]], &value);
+      decisions[order[slot]] = value * model->label[0];
+    }
+  }
+  return fit_platt_sigmoid(decisions, positive);
 }
 
 }  // namespace tactile::ml

@@ -2,7 +2,8 @@
 // Probabilities from SVM decision values, computed as libsvm computes them for a C-SVC
 // trained with `probability = 1` (libsvm 3.24 exports none of these steps):
 //   - one Platt sigmoid per binary learner, P(positive | f) = 1 / (1 + exp(A f + B)), fitted
-//     to decision values of held-out rows (svm.cpp runs libsvm's 5-fold cross-validation);
+//     to decision values of held-out rows (libsvm's 5-fold cross-validation, run by
+//     cross_validated_sigmoid in core/src/ml/libsvm_support.h);
 //   - the pairwise probabilities of the one-vs-one learners coupled into class probabilities.
 
 #include <vector>
