@@ -4,10 +4,11 @@
 // scatter and somatosensory views as PNGs; the prediction lane corrected by keys.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
-#include <cstdlib>
 #include <set>
 
 #include "cli_test_support.h"
@@ -145,9 +146,20 @@ TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
   EXPECT_EQ(cell["true"], truth);
   EXPECT_EQ(cell["predicted"], predicted);
   EXPECT_GE(cell["segments"].get<int>(), 1);
+  // The list: the least sure first, each with its margin and probability.
+  const nlohmann::json& list = cell["list"];
+  ASSERT_EQ(list.size(), cell["segments"].get<size_t>());
+  for (size_t k = 0; k < list.size(); ++k) {
+    EXPECT_GE(list[k]["score"].get<double>(), 0.0);
+    EXPECT_LE(list[k]["score"].get<double>(), 1.0);
+    if (k > 0) {
+      EXPECT_LE(list[k - 1]["margin"].get<double>(), list[k]["margin"].get<double>());
+    }
+  }
   const nlohmann::json at = state("landed.json");
   const nlohmann::json segment = at["analysis"]["landed"];
   ASSERT_FALSE(segment.is_null());
+  EXPECT_EQ(segment["segment_id"], list[0]["segment_id"]);  // Enter: the first, least sure
   EXPECT_EQ(segment["true"], truth);
   EXPECT_EQ(segment["predicted"], predicted);
   // Its recording is open, the cursor inside the segment (replaying), the plot around it,
@@ -282,14 +294,17 @@ TEST_F(WorkbenchClassifiers, ResultFilesOpenFromTheCommandLine) {
 namespace tactile {
 namespace {
 
-// The loop of the prediction lane: Run one classifier, Predict, U goes to the least sure
-// prediction, Y confirms it, a digit corrects the next; both are manual labels at once.
-TEST_F(WorkbenchClassifiers, PredictionsAreConfirmedAndCorrectedByKeys) {
-  auto run = workbench(demo("fur-s01-t01.h5"),
-                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\n"
-                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n"
-                       "state @predicted.json\nkey U\nwait 2\nstate @uncertain.json\nkey Y\nwait 2\n"
-                       "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
+// The loop of the prediction lane: Run one classifier (the linear SVM), Predict, U goes to
+// the least sure prediction, Y confirms it, a digit corrects the next; both are manual labels
+// at once. The SVM's scores are probabilities, so the margins differ and U has a smallest.
+TEST_F(WorkbenchClassifiers, PredictionsRankByMarginAndAreConfirmedAndCorrectedByKeys) {
+  auto run =
+      workbench(demo("fur-s01-t01.h5"),
+                "wait 2\nclick item tab:model\nwait 2\nclick item button:Run\nwait training\n"
+                "wait 2\nclick item tab:model\nwait 2\nclick item button:Predict\nwait jobs\n"
+                "state @predicted.json\nclick item header:margin\nwait 2\nstate @sorted.json\n"
+                "key U\nwait 2\nstate @uncertain.json\nkey Y\nwait 2\n"
+                "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto lane = [](const nlohmann::json& at, const std::string& id) {
     for (const nlohmann::json& lane : at["lanes"])
@@ -298,6 +313,46 @@ TEST_F(WorkbenchClassifiers, PredictionsAreConfirmedAndCorrectedByKeys) {
   };
   EXPECT_EQ(lane(state("predicted.json"), "model:model"), lane(state("predicted.json"), "ground-truth"));
   EXPECT_EQ(state("uncertain.json")["selection"]["labels"].size(), 1u);
+  {  // The margins of the model's labels (their notes: "margin=M model=SPEC"), U's the least.
+    const auto predictions = test::run_program(
+        "tactile", "labels list " + demo("labels.db") + " --source model --json", folder);
+    ASSERT_EQ(predictions.exit_code, 0) << predictions.err;
+    const nlohmann::json listed = nlohmann::json::parse(predictions.out);
+    std::map<int64_t, double> margins;
+    for (const nlohmann::json& label : listed["labels"])
+      if (label["recording"] == "fur-s01-t01")
+        margins[label["id"].get<int64_t>()] =
+            std::stod(label["note"].get<std::string>().substr(std::string("margin=").size()));
+    ASSERT_GE(margins.size(), 3u);
+    std::set<double> distinct;
+    double least = 2.0;
+    for (const auto& [id, margin] : margins)
+      distinct.insert(margin), least = std::min(least, margin);
+    EXPECT_GT(distinct.size(), margins.size() / 2) << "margins tie: vote shares, not probabilities";
+    const int64_t chosen = state("uncertain.json")["selection"]["labels"][0].get<int64_t>();
+    ASSERT_TRUE(margins.count(chosen)) << chosen;
+    EXPECT_EQ(margins[chosen], least);
+    // The label table sorted by its margin header: the predictions least sure first, then
+    // the labels that have no margin.
+    const nlohmann::json table = state("sorted.json")["label_table"];
+    EXPECT_EQ(table["sort"], "margin");
+    EXPECT_EQ(table["ascending"], true);
+    const auto ids = table["ids"].get<std::vector<int64_t>>();
+    ASSERT_GT(ids.size(), margins.size());
+    for (size_t k = 0; k < margins.size(); ++k) {
+      ASSERT_TRUE(margins.count(ids[k])) << "a label without a margin before a prediction";
+      if (k > 0) {
+        EXPECT_LE(margins[ids[k - 1]], margins[ids[k]]);
+      }
+    }
+    EXPECT_EQ(margins[ids[0]], least);
+  }
+  const nlohmann::json evaluation =
+      nlohmann::json::parse(std::ifstream(demo("models/fur-linear-svm.evaluation.json")));
+  std::set<double> row_margins;
+  for (const nlohmann::json& row : evaluation["rows"])
+    row_margins.insert(row["margin"].get<double>());
+  EXPECT_GT(row_margins.size(), evaluation["rows"].size() / 2) << "the confusion list cannot rank";
   EXPECT_EQ(lane(state("confirmed.json"), "manual:ana"), 1);
   EXPECT_EQ(lane(state("corrected.json"), "manual:ana"), 2);
   EXPECT_TRUE(std::filesystem::exists(demo("models/fur-linear-svm.json")));

@@ -62,13 +62,44 @@ TEST(KnnClassifier, NeighboursAreOrderedByDistanceThenTrainingOrder) {
   EXPECT_DOUBLE_EQ(nearest[1].distance, 2.0);
 }
 
-TEST(KnnClassifier, ScoresAreVoteFractionsSummingToOne) {
+TEST(KnnClassifier, EqualVotesDecideAndInverseDistancesScore) {
+  // Neighbours of 0.5: 0 and 1 (class 0, both at 1/2), 2 (class 1, at 3/2). The votes 2 : 1
+  // decide; the scores weigh each by 1/d: 2 + 2 against 2/3, i.e. 6/7 and 1/7.
   auto knn = make_classifier("knn:k=3");
   knn->fit(rows({{0}, {1}, {2}, {10}}), {0, 0, 1, 1}, 2, 1);
   const Matrix scores = knn->scores(rows({{0.5}}));
-  EXPECT_NEAR(scores(0, 0), 2.0 / 3.0, 1e-15);
-  EXPECT_NEAR(scores(0, 1), 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(scores(0, 0), 6.0 / 7.0, 1e-15);
+  EXPECT_NEAR(scores(0, 1), 1.0 / 7.0, 1e-15);
   EXPECT_NEAR(scores.row(0).sum(), 1.0, 1e-15);
+  EXPECT_EQ(knn->predict(rows({{0.5}}))[0], 0);
+  EXPECT_EQ(knn->decide(rows({{0.5}})).scores, scores);
+  // Two queries with the same 2 : 1 votes rank by their distances: 0.9's neighbours of class
+  // 0 are at 0.9 and 0.1, its class-1 neighbour at 1.1 (shares 1/0.9 + 10 against 1/1.1).
+  const Matrix closer = knn->scores(rows({{0.9}}));
+  EXPECT_NEAR(closer(0, 0), (1 / 0.9 + 10) / (1 / 0.9 + 10 + 1 / 1.1), 1e-12);
+  EXPECT_GT(closer(0, 0), scores(0, 0));
+}
+
+TEST(KnnClassifier, AMajorityOfFarNeighboursWinsWithMarginZero) {
+  // Neighbours of 0: 1 (class 1), 2 and -3 (class 0). The votes say 0 (spec §4.9: majority);
+  // the scores weigh 1 against 1/2 + 1/3, so class 1 holds 6/11 and the prediction is the
+  // least sure there is.
+  auto knn = make_classifier("knn:k=3");
+  knn->fit(rows({{1}, {2}, {-3}, {50}}), {1, 0, 0, 1}, 2, 1);
+  const Classifier::Decisions decisions = knn->decide(rows({{0}}));
+  EXPECT_EQ(decisions.classes[0], 0);
+  EXPECT_NEAR(decisions.scores(0, 1), 6.0 / 11.0, 1e-15);
+  EXPECT_NEAR(decisions.scores(0, 0), 5.0 / 11.0, 1e-15);
+  EXPECT_EQ(confidence_of(decisions.scores.row(0).transpose(), 0).margin, 0.0);
+}
+
+TEST(KnnClassifier, ANeighbourAtDistanceZeroTakesTheWholeScoreUnderEqualVotes) {
+  auto knn = make_classifier("knn:k=3");
+  knn->fit(rows({{0}, {0}, {0.1}, {5}}), {1, 0, 0, 1}, 2, 1);
+  const Matrix scores = knn->scores(rows({{0}}));
+  EXPECT_TRUE(scores.allFinite());
+  EXPECT_DOUBLE_EQ(scores(0, 0), 0.5);  // the two exact matches share it
+  EXPECT_DOUBLE_EQ(scores(0, 1), 0.5);
 }
 
 TEST(KnnClassifier, SquaredInverseWeightsFavourTheCloseMinority) {
@@ -142,7 +173,9 @@ TEST(KnnClassifier, PresetsCarryTheirMatlabSettings) {
 TEST(KnnClassifier, MoreNeighboursThanSamplesUsesThemAll) {
   auto knn = make_classifier("knn:k=10");
   knn->fit(rows({{0}, {1}, {2}}), {0, 1, 1}, 2, 1);
-  EXPECT_NEAR(knn->scores(rows({{0}}))(0, 1), 2.0 / 3.0, 1e-15);
+  // All three count: 1/d of 0.5 for class 0, of 0.5 and 1.5 for class 1: 2 against 8/3.
+  EXPECT_NEAR(knn->scores(rows({{0.5}}))(0, 1), 4.0 / 7.0, 1e-15);
+  EXPECT_EQ(knn->predict(rows({{0.5}}))[0], 1);
 }
 
 TEST(KnnClassifier, BadParametersNameTheKey) {

@@ -79,10 +79,11 @@ TEST(SupportVectorMachine, NonLinearKernelsLearnExclusiveOrAndTheLinearOneCannot
   EXPECT_LE(toy::accuracy(linear.predict(test.x), test.y), 0.75);
 }
 
-TEST(SupportVectorMachine, ScoresAreVoteFractionsThatSumToOne) {
+TEST(SupportVectorMachine, WithoutProbabilitiesScoresAreVoteFractionsThatSumToOne) {
   const toy::LabelledSet train = toy::blobs(three_centres(), 20, 1.0, 8);
-  SupportVectorMachine svm = make_svm("medium-gaussian-svm");
+  SupportVectorMachine svm = make_svm("medium-gaussian-svm", "probability=false");
   svm.fit(train.x, train.y, 4, 1);  // class 3 has no training sample
+  EXPECT_FALSE(svm.has_probabilities());
   const Matrix scores = svm.scores(train.x);
   ASSERT_EQ(scores.rows(), train.x.rows());
   ASSERT_EQ(scores.cols(), 4);
@@ -264,6 +265,10 @@ TEST(SupportVectorMachine, ParametersNameDefaultsAndRejectUnknownKeys) {
   EXPECT_EQ(make_svm("fine-gaussian-svm").parameters().text("scale", ""), "0.25sqrtP");
   EXPECT_EQ(make_svm("coarse-gaussian-svm").parameters().text("scale", ""), "4sqrtP");
   EXPECT_EQ(make_svm("linear-svm", "c=10").parameters().text("c", ""), "10");
+  EXPECT_EQ(make_svm("linear-svm").parameters().text("probability", ""), "true");
+  EXPECT_EQ(make_svm("linear-svm", "probability=false").parameters().text("probability", ""),
+            "false");
+  EXPECT_THROW(make_svm("linear-svm", "probability=maybe"), Error);
   EXPECT_THROW(make_svm("linear-svm", "gamma=1"), Error);
   EXPECT_THROW(make_svm("linear-svm", "c=0"), Error);
   EXPECT_THROW(make_svm("linear-svm", "c=-1"), Error);

@@ -337,6 +337,10 @@ void select_cell(WorkbenchState& state, int truth, int predicted) {
   for (size_t k = 0; k < result->rows.size(); ++k)
     if (result->rows[k].truth == truth && result->rows[k].predicted == predicted)
       analysis.cell_rows.push_back(k);
+  // The least sure first: the segments most worth a look, in a right cell as in a wrong one.
+  std::stable_sort(analysis.cell_rows.begin(), analysis.cell_rows.end(), [&](size_t a, size_t b) {
+    return result->rows[a].margin < result->rows[b].margin;
+  });
   analysis.list_active = !analysis.cell_rows.empty();
   if (analysis.cell_rows.empty() && result->rows.empty())
     state.notice = "this result lists no rows (written without --out?)";

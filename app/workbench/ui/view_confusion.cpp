@@ -1,6 +1,7 @@
 // Confusion view: counts and row percentages on a colour scale, class names on both axes,
-// hover for the figures; a click on a cell lists its segments (recording, time, score),
-// Enter or a click on one lands on it. N / Shift+N walk the misclassified segments.
+// hover for the figures; a click on a cell lists its segments (recording, time, region,
+// margin and the predicted class's probability: ml::confidence_of), the smallest margin
+// first; Enter or a click on one lands on it. N / Shift+N walk the misclassified segments.
 #include <algorithm>
 #include <cstdio>
 
@@ -112,15 +113,16 @@ void draw_cell_list(WorkbenchState& state, const ml::EvaluationResult& result, I
     ImGui::TextDisabled("Click a cell (framed red: wrong) to list its segments; N walks the mistakes.");
     return;
   }
-  ImGui::Text("true %s, predicted %s: %zu segments", class_name(result, analysis.cell_true).c_str(),
+  ImGui::Text("true %s, predicted %s: %zu segments, least sure first",
+              class_name(result, analysis.cell_true).c_str(),
               class_name(result, analysis.cell_predicted).c_str(), analysis.cell_rows.size());
   ImGui::BeginChild("cell_list", size, true);
   for (size_t k = 0; k < analysis.cell_rows.size(); ++k) {
     const ml::RowPrediction& row = result.rows[analysis.cell_rows[k]];
     char text[256];
-    std::snprintf(text, sizeof text, "%s  %s-%s  %s  score %.2f##%zu", row.recording.c_str(),
-                  format_seconds(row.t0).c_str(), format_seconds(row.t1).c_str(),
-                  row.region.c_str(), row.score, k);
+    std::snprintf(text, sizeof text, "%s  %s-%s  %s  margin %.2f  probability %.2f##%zu",
+                  row.recording.c_str(), format_seconds(row.t0).c_str(),
+                  format_seconds(row.t1).c_str(), row.region.c_str(), row.margin, row.score, k);
     const bool selected = static_cast<int>(k) == analysis.cell_selected;
     if (ImGui::Selectable(text, selected)) {
       analysis.cell_selected = static_cast<int>(k);

@@ -697,6 +697,9 @@ nlohmann::json Workbench::state_json() const {
   json["playing"] = state_.clock.playing();
   json["speed"] = state_.clock.speed();
   json["duration"] = document ? document->samples().duration() : 0.0;
+  json["label_table"] = {{"sort", state_.label_table.column},
+                         {"ascending", state_.label_table.ascending},
+                         {"ids", state_.label_table.ids}};
   json["selection"] = {{"labels", state_.selection.labels},
                        {"taxels", state_.selection.taxels},
                        {"segments", state_.selection.segments}};
@@ -793,6 +796,18 @@ nlohmann::json Workbench::analysis_json() const {
                ? current->classes[static_cast<size_t>(k)]
                : std::string("unknown");
   };
+  // The clicked cell's segments as its list shows them, the least sure first.
+  nlohmann::json cell_list = nlohmann::json::array();
+  for (const size_t k : analysis.cell_rows) {
+    if (!current || k >= current->rows.size()) break;
+    const ml::RowPrediction& row = current->rows[k];
+    cell_list.push_back({{"recording", row.recording},
+                         {"t0", row.t0},
+                         {"t1", row.t1},
+                         {"segment_id", row.segment_id},
+                         {"score", row.score},
+                         {"margin", row.margin}});
+  }
   nlohmann::json landed = nullptr;
   if (analysis.landed)
     landed = {{"recording", analysis.landed->recording}, {"t0", analysis.landed->t0},
@@ -826,7 +841,8 @@ nlohmann::json Workbench::analysis_json() const {
         {"predicted",
          analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
         {"segments", analysis.cell_rows.size()},
-        {"selected", analysis.cell_selected}}},
+        {"selected", analysis.cell_selected},
+        {"list", cell_list}}},
       {"landed", landed},
       {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
       {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},

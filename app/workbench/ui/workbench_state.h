@@ -260,6 +260,14 @@ struct WorkbenchState {
   RestScale rest_scale;
   int rest_scale_modality = -1;  // modality rest_scale was computed for; -1: stale
   Selection selection;
+  // The timeline's label table as last drawn: the column its header sorts by ("" = the
+  // recording's order), the direction, and the label ids in the order shown.
+  struct LabelTableOrder {
+    std::string column;
+    bool ascending = true;
+    std::vector<int64_t> ids;
+  };
+  LabelTableOrder label_table;
   LabellingState labelling;
   AnalysisState analysis;
   LiveState live;

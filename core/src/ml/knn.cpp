@@ -195,29 +195,35 @@ std::vector<std::vector<Neighbour>> KnnClassifier::neighbours(const Matrix& x) c
   return result;
 }
 
-Vector KnnClassifier::vote(const std::vector<Neighbour>& nearest) const {
+Vector KnnClassifier::vote(const std::vector<Neighbour>& nearest, KnnWeights weights) const {
   Vector votes = Vector::Zero(class_count_);
   // Inverse weights would be infinite at distance 0: such neighbours share the whole vote.
-  const bool exact_match = settings_.weights != KnnWeights::kEqual && !nearest.empty() &&
+  const bool exact_match = weights != KnnWeights::kEqual && !nearest.empty() &&
                            nearest.front().distance <= kZeroDistance;
   for (const Neighbour& neighbour : nearest) {
     double weight = 1.0;
     if (exact_match)
       weight = neighbour.distance <= kZeroDistance ? 1.0 : 0.0;
-    else if (settings_.weights == KnnWeights::kInverse)
+    else if (weights == KnnWeights::kInverse)
       weight = 1.0 / neighbour.distance;
-    else if (settings_.weights == KnnWeights::kSquaredInverse)
+    else if (weights == KnnWeights::kSquaredInverse)
       weight = 1.0 / (neighbour.distance * neighbour.distance);
     votes(labels_[static_cast<size_t>(neighbour.row)]) += weight;
   }
   return votes / votes.sum();
 }
 
+KnnWeights KnnClassifier::score_weights() const {
+  // Equal votes of k neighbours take few values (k = 10: multiples of 0.1); 1/d tells a
+  // query between two close neighbours from one between two far ones.
+  return settings_.weights == KnnWeights::kEqual ? KnnWeights::kInverse : settings_.weights;
+}
+
 Matrix KnnClassifier::scores(const Matrix& x) const {
   const auto nearest = neighbours(x);
   Matrix result(x.rows(), class_count_);
   for (Eigen::Index row = 0; row < x.rows(); ++row)
-    result.row(row) = vote(nearest[static_cast<size_t>(row)]).transpose();
+    result.row(row) = vote(nearest[static_cast<size_t>(row)], score_weights()).transpose();
   return result;
 }
 
@@ -229,8 +235,9 @@ Classifier::Decisions KnnClassifier::decide(const Matrix& x) const {
   decisions.classes.assign(static_cast<size_t>(x.rows()), kUnknownClass);
   decisions.scores.resize(x.rows(), class_count_);
   for (size_t row = 0; row < nearest.size(); ++row) {
-    const Vector votes = vote(nearest[row]);
-    decisions.scores.row(static_cast<Eigen::Index>(row)) = votes.transpose();
+    const Vector votes = vote(nearest[row], settings_.weights);
+    decisions.scores.row(static_cast<Eigen::Index>(row)) =
+        vote(nearest[row], score_weights()).transpose();
     const double best = votes.maxCoeff();
     // Spec §4.9: a tie between classes goes to the nearest neighbour among the tied classes.
     for (const Neighbour& neighbour : nearest[row]) {

@@ -38,7 +38,7 @@ struct ClassifierRow {
 const std::vector<ClassifierRow>& classifier_table() {
   static const std::vector<ClassifierRow> table = {
       // {"name", "one-line description", make_name_classifier},  (include "tactile/ml/family.h")
-      {"linear-svm", "C-SVC, linear kernel, standardised, one-vs-one (c, scale)",
+      {"linear-svm", "C-SVC, linear kernel, standardised, one-vs-one (c, scale, probability)",
        make_linear_svm_classifier},
       {"quadratic-svm", "MATLAB Quadratic SVM: (1+x'z/s^2)^2, scale auto per pair",
        make_quadratic_svm_classifier},

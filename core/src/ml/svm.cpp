@@ -11,6 +11,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "libsvm_support.h"
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
 #include "tactile/ml/checks.h"
@@ -110,10 +111,6 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   return gather_rows(x, order);
 }
 
-struct ModelDeleter {
-  void operator()(svm_model* model) const { svm_free_and_destroy_model(&model); }
-};
-
 }  // namespace
 
 //---- Kernel scale --------------------------------------------------------------------------
@@ -183,7 +180,7 @@ SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Para
   });
   if (found == presets().end())
     throw Error(parameters.where(), "no SVM preset named '" + preset + "'");
-  parameters.expect_only({"c", "scale"});
+  parameters.expect_only({"c", "scale", "probability"});
   kernel_ = found->kernel;
   degree_ = found->degree;
   scale_ = found->scale;
@@ -192,12 +189,14 @@ SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Para
     throw Error(parameters.where(), "c=" + format_number(box_constraint_) + ": must be positive");
   if (parameters.has("scale"))
     scale_ = KernelScale::parse(parameters.text("scale", ""), parameters.where());
+  fit_probabilities_ = parameters.flag("probability", true);
 }
 
 Parameters SupportVectorMachine::parameters() const {
   Parameters parameters;
   parameters.set("c", format_number(box_constraint_));
   parameters.set("scale", scale_.to_string());
+  parameters.set("probability", fit_probabilities_ ? "true" : "false");
   return parameters;
 }
 
@@ -211,6 +210,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
   silence_libsvm();
   fitted_ = false;
   learners_.clear();
+  probabilities_ = false;
   class_count_ = class_count;
   only_class_ = -1;
   standardizer_.fit(x);
@@ -308,8 +308,12 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       parameter.probability = 0;
       if (const char* problem_text = svm_check_parameter(&problem, &parameter))
         throw Error(preset_, std::string("libsvm: ") + problem_text);
-      const std::unique_ptr<svm_model, ModelDeleter> model(svm_train(&problem, &parameter));
+      const LibsvmModel model(svm_train(&problem, &parameter));
       if (!model) throw Error(preset_, "libsvm returned no model");
+      // The sigmoid's own draws, apart from the kernel scales' so that they stay as they were.
+      if (fit_probabilities_)
+        learner.sigmoid = cross_validated_sigmoid(
+            problem, parameter, std::mt19937_64(derive_seed(seed, learners_.size())), preset_);
 
       // libsvm's decision value favours its first label; make f > 0 mean the positive class.
       const double sign = model->label[0] == 1 ? 1.0 : -1.0;
@@ -338,6 +342,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       learners_.push_back(std::move(learner));
     }
   }
+  probabilities_ = fit_probabilities_;
   fitted_ = true;
 }
 
@@ -383,21 +388,77 @@ Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
   return decision;
 }
 
-Matrix SupportVectorMachine::scores(const Matrix& x) const {
-  const Matrix decision = decision_values(x);
-  Matrix votes = Matrix::Zero(x.rows(), class_count_);
+std::vector<int> SupportVectorMachine::vote_winners(const Matrix& decision) const {
+  std::vector<int> winners(static_cast<size_t>(decision.rows()), only_class_);
+  if (only_class_ >= 0) return winners;
+  const Matrix votes = vote_shares(decision);
+  for (Eigen::Index row = 0; row < votes.rows(); ++row) {
+    Eigen::Index best = 0;
+    votes.row(row).maxCoeff(&best);  // the first of equal counts: the lowest class index
+    winners[static_cast<size_t>(row)] = static_cast<int>(best);
+  }
+  return winners;
+}
+
+Matrix SupportVectorMachine::vote_shares(const Matrix& decision) const {
+  Matrix votes = Matrix::Zero(decision.rows(), class_count_);
   if (only_class_ >= 0) {
     votes.col(only_class_).setOnes();
     return votes;
   }
   for (size_t index = 0; index < learners_.size(); ++index) {
     const PairwiseSvm& learner = learners_[index];
-    for (Eigen::Index row = 0; row < x.rows(); ++row) {
+    for (Eigen::Index row = 0; row < decision.rows(); ++row) {
       const bool positive = decision(row, static_cast<Eigen::Index>(index)) > 0.0;
       votes(row, positive ? learner.positive_class : learner.negative_class) += 1.0;
     }
   }
   return votes / static_cast<double>(learners_.size());
+}
+
+Matrix SupportVectorMachine::probabilities(const Matrix& decision) const {
+  if (only_class_ >= 0 || !probabilities_) return vote_shares(decision);
+  // The classes the learners know, each with its place in the coupling.
+  std::vector<int> classes;
+  for (const PairwiseSvm& learner : learners_) {
+    classes.push_back(learner.positive_class);
+    classes.push_back(learner.negative_class);
+  }
+  std::sort(classes.begin(), classes.end());
+  classes.erase(std::unique(classes.begin(), classes.end()), classes.end());
+  const auto place = [&](int label) {
+    return static_cast<Eigen::Index>(std::lower_bound(classes.begin(), classes.end(), label) -
+                                     classes.begin());
+  };
+  const auto known = static_cast<Eigen::Index>(classes.size());
+  Matrix result = Matrix::Zero(decision.rows(), class_count_);
+  Matrix pairwise = Matrix::Constant(known, known, 0.5);  // a pair without a learner: even
+  for (Eigen::Index row = 0; row < decision.rows(); ++row) {
+    for (size_t index = 0; index < learners_.size(); ++index) {
+      const PairwiseSvm& learner = learners_[index];
+      const double positive =
+          learner.sigmoid.probability(decision(row, static_cast<Eigen::Index>(index)));
+      pairwise(place(learner.positive_class), place(learner.negative_class)) = positive;
+      pairwise(place(learner.negative_class), place(learner.positive_class)) = 1.0 - positive;
+    }
+    const Vector coupled = couple_pairwise(pairwise);
+    for (Eigen::Index k = 0; k < known; ++k)
+      result(row, classes[static_cast<size_t>(k)]) = coupled(k);
+  }
+  return result;
+}
+
+Matrix SupportVectorMachine::scores(const Matrix& x) const {
+  return probabilities(decision_values(x));
+}
+
+std::vector<int> SupportVectorMachine::predict(const Matrix& x) const {
+  return vote_winners(decision_values(x));
+}
+
+Classifier::Decisions SupportVectorMachine::decide(const Matrix& x) const {
+  const Matrix decision = decision_values(x);
+  return {vote_winners(decision), probabilities(decision)};
 }
 
 //---- Save and load -----------------------------------------------------------------------------
@@ -411,14 +472,19 @@ nlohmann::json SupportVectorMachine::save() const {
       const Vector vector = learner.support_vectors.row(row).transpose();
       support_vectors.push_back(std::vector<double>(vector.data(), vector.data() + vector.size()));
     }
-    learners.push_back({{"positive_class", learner.positive_class},
-                        {"negative_class", learner.negative_class},
-                        {"scale", learner.scale},
-                        {"rho", learner.rho},
-                        {"coefficients", std::vector<double>(learner.coefficients.data(),
-                                                             learner.coefficients.data() +
-                                                                 learner.coefficients.size())},
-                        {"support_vectors", std::move(support_vectors)}});
+    nlohmann::json saved = {{"positive_class", learner.positive_class},
+                            {"negative_class", learner.negative_class},
+                            {"scale", learner.scale},
+                            {"rho", learner.rho},
+                            {"coefficients", std::vector<double>(learner.coefficients.data(),
+                                                                 learner.coefficients.data() +
+                                                                     learner.coefficients.size())},
+                            {"support_vectors", std::move(support_vectors)}};
+    if (probabilities_) {
+      saved["probability_a"] = learner.sigmoid.a;
+      saved["probability_b"] = learner.sigmoid.b;
+    }
+    learners.push_back(std::move(saved));
   }
   return {{"kernel", kernel_name(kernel_)},       {"degree", degree_},
           {"class_count", class_count_},          {"only_class", only_class_},
@@ -440,6 +506,7 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
     standardizer.load(model.at("standardizer"));
     const Eigen::Index feature_count = standardizer.mean.size();
     std::vector<PairwiseSvm> learners;
+    size_t with_sigmoid = 0;
     for (const auto& saved : model.at("learners")) {
       PairwiseSvm learner;
       learner.positive_class = saved.at("positive_class").get<int>();
@@ -470,13 +537,24 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
       }
       if (!learner.coefficients.allFinite() || !learner.support_vectors.allFinite())
         throw Error(where, "non-finite coefficient or support vector");
+      // A model saved before the sigmoids were kept has none: its scores are vote shares.
+      if (saved.contains("probability_a") || saved.contains("probability_b")) {
+        learner.sigmoid = {saved.at("probability_a").get<double>(),
+                           saved.at("probability_b").get<double>()};
+        if (!std::isfinite(learner.sigmoid.a) || !std::isfinite(learner.sigmoid.b))
+          throw Error(where, "non-finite probability_a or probability_b");
+        ++with_sigmoid;
+      }
       learners.push_back(std::move(learner));
     }
     if (only_class < 0 && learners.empty()) throw Error(where, "no learners");
+    if (with_sigmoid != 0 && with_sigmoid != learners.size())
+      throw Error(where, "some learners have a probability sigmoid and some do not");
     class_count_ = class_count;
     only_class_ = only_class;
     standardizer_ = std::move(standardizer);
     learners_ = std::move(learners);
+    probabilities_ = with_sigmoid > 0;
   } catch (const nlohmann::json::exception& error) {
     throw Error(where, error.what());
   }

@@ -30,9 +30,13 @@ class Classifier {
   // y holds class indices 0..class_count-1. Every random step draws from `seed`.
   // Throws tactile::Error on input it cannot learn from (e.g. no samples).
   virtual void fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t seed) = 0;
-  // Per-class scores, rows = samples, columns = classes; larger = more likely.
+  // Per-class scores, rows = samples, columns = classes; larger = more likely. What each
+  // classifier's are (probabilities, posteriors, weighted votes, ...): docs/CLASSIFIERS.md,
+  // "Scores".
   virtual Matrix scores(const Matrix& x) const = 0;
-  // Class per row: argmax of scores (first on ties) unless the method can answer unknown.
+  // Class per row: argmax of scores (first on ties), unless the method has its own rule (the
+  // SVM's vote, k-NN's majority with the nearest neighbour breaking ties) or can answer
+  // unknown.
   virtual std::vector<int> predict(const Matrix& x) const;
   // Both at once: the classes predict() gives and the scores() matrix. The default calls
   // both; a classifier whose two share their costly step (k-NN's neighbour search)

@@ -7,9 +7,15 @@
 //   weights      equal | inverse (1/d) | squared-inverse (1/d^2); neighbours at distance 0
 //                (<= 1e-12) take the whole vote, shared equally, so no weight is infinite
 //   standardize  true | false (default false): z-score fitted on the training fold (§6.4)
-// Neighbours are the k smallest distances, ties broken by training order. Scores are the
-// weighted votes normalised to sum 1. predict() breaks a tie between classes by the class of
-// the nearest neighbour among the tied classes (§4.9), not by the lowest class index.
+// Neighbours are the k smallest distances, ties broken by training order. predict() takes
+// the class with the most votes under `weights`, a tie between classes going to the class of
+// the nearest neighbour among the tied classes (§4.9), not to the lowest class index.
+// Scores are distance-weighted votes normalised to sum 1, so that they rank: with
+// weights=equal each neighbour counts 1/d in the scores (not in predict(), whose rule the
+// spec fixes), with inverse or squared-inverse the weighted votes that decide; neighbours at
+// distance 0 take the whole share, divided equally. With k = 1 every score is 1 (one
+// neighbour): nothing to rank by. Under equal weights a majority of far neighbours can win
+// against a nearer minority, which then has the larger score: the prediction's margin is 0.
 //
 // Presets (MATLAB Classification Learner, as in issue 5 and spec §2.13; parameters of `knn`
 // can still be overridden):
@@ -57,7 +63,9 @@ class KnnClassifier : public Classifier {
   std::vector<std::vector<Neighbour>> neighbours(const Matrix& x) const;
 
  private:
-  Vector vote(const std::vector<Neighbour>& nearest) const;
+  // Votes of `nearest` under `weights`, normalised to sum 1.
+  Vector vote(const std::vector<Neighbour>& nearest, KnnWeights weights) const;
+  KnnWeights score_weights() const;  // 1/d where the votes are equal
   void prepare();
 
   std::string name_;

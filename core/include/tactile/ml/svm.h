@@ -12,19 +12,34 @@
 //   medium-gaussian-svm  as above,                      s = sqrt(P)     (MATLAB Medium Gaussian)
 //   coarse-gaussian-svm  as above,                      s = 4 sqrt(P)   (MATLAB Coarse Gaussian)
 // P = number of features. Parameters: `c` (box constraint, default 1) and `scale`: "auto",
-// a positive number, or a multiple of sqrt(P) written "0.25sqrtP", "sqrtP", "4sqrtP".
+// a positive number, or a multiple of sqrt(P) written "0.25sqrtP", "sqrtP", "4sqrtP"; and
+// `probability` (true|false, default true: class probabilities as scores, see below).
 //
 // One-vs-one: for every pair of classes a < b present in the training set we train one
 // two-class libsvm C-SVC on the samples of a (in row order) followed by those of b — the
 // same sub-problem libsvm's own multi-class C-SVC solves — so each pair can have its own
 // kernel scale, as MATLAB's 'auto' scale is chosen per binary learner. A pair's decision
 // value f(x) = Σ coef_i K(sv_i, x) - rho votes for a when f > 0, else for b (libsvm's rule).
-// Scores are the vote counts divided by the number of pairs (rows sum to 1; argmax with
-// ties to the lowest class index is libsvm's prediction). A single class in the training
-// set scores 1 for every sample; classes absent from the training set score 0.
+// The predicted class is the vote winner: the class with the most pairs won, ties to the
+// lowest class index (libsvm's svm_predict rule). A single class in the training set is
+// predicted for every sample and scores 1; classes absent from the training set score 0.
+//
+// Scores are class probabilities, as libsvm's `-b 1` gives them (svm_probability.h): each
+// pair also fits Platt's sigmoid P(a | a or b) = 1 / (1 + exp(A f + B)) to the decision
+// values of libsvm's 5-fold cross-validation on the pair's rows (the shuffle drawn from the
+// fit's seed, so a seed gives the same model on any thread), and the pairwise probabilities
+// of a sample are coupled into class probabilities (Wu, Lin & Weng 2004, method 2). They sum
+// to 1 and, unlike vote shares, differ between samples whose votes tie, so margins rank. The
+// vote winner is almost always the most probable class; where the two rules disagree,
+// scores() still gives the probabilities, so the predicted class's margin
+// (ml::confidence_of) is 0: the least sure. Parameter `probability` (default true): false
+// skips the cross-validation (five more trainings per pair, see CLASSIFIERS.md for the cost)
+// and scores are the vote shares (votes / number of pairs), as are those of a model saved
+// before the sigmoids were kept (no probability_a/probability_b in its learners).
 //
 // Save/load keeps the standardiser, and per pair the kernel scale, rho, coefficients and
-// support vectors (in standardised units) in the JSON; no libsvm model file is written.
+// support vectors (in standardised units), and the sigmoid's A and B when fitted, in the JSON;
+// no libsvm model file is written.
 
 #include <cstdint>
 #include <memory>
@@ -33,6 +48,7 @@
 #include <vector>
 
 #include "tactile/ml/classifier.h"
+#include "tactile/ml/svm_probability.h"
 
 namespace tactile::ml {
 
@@ -56,6 +72,7 @@ struct PairwiseSvm {
   double rho = 0.0;
   Vector coefficients;     // y_i alpha_i per support vector
   Matrix support_vectors;  // rows, standardised; a linear learner keeps one: w, coefficient 1
+  PlattSigmoid sigmoid;    // P(positive | f); fitted only with probability=true
 };
 
 // MATLAB's 'auto' kernel scale for one binary learner: up to 100 points drawn per class
@@ -74,17 +91,25 @@ class SupportVectorMachine : public Classifier {
   Parameters parameters() const override;
   void fit(const Matrix& x, const std::vector<int>& y, int class_count, uint64_t seed) override;
   Matrix scores(const Matrix& x) const override;
+  // The vote winner of every row (not the argmax of scores(): see above).
+  std::vector<int> predict(const Matrix& x) const override;
+  Decisions decide(const Matrix& x) const override;
   nlohmann::json save() const override;
   void load(const nlohmann::json& model) override;
 
   // Decision value of every pair, rows = samples, columns = learners() in order.
   Matrix decision_values(const Matrix& x) const;
   const std::vector<PairwiseSvm>& learners() const { return learners_; }
+  // Whether scores() are probabilities (every learner has its sigmoid) or vote shares.
+  bool has_probabilities() const { return probabilities_; }
   SvmKernel kernel() const { return kernel_; }
   int degree() const { return degree_; }
 
  private:
   Matrix kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const;
+  std::vector<int> vote_winners(const Matrix& decision) const;
+  Matrix vote_shares(const Matrix& decision) const;
+  Matrix probabilities(const Matrix& decision) const;
   // K(z_i, s_j) for every row of z and of `support`, with kernel scale `scale`.
   Matrix kernel_matrix(const Matrix& z, const Matrix& support, double scale) const;
 
@@ -93,12 +118,14 @@ class SupportVectorMachine : public Classifier {
   int degree_ = 1;
   double box_constraint_ = 1.0;
   KernelScale scale_;
+  bool fit_probabilities_ = true;  // the `probability` parameter
 
   bool fitted_ = false;
   int class_count_ = 0;
   int only_class_ = -1;  // the single class seen in training, else -1
   Standardizer standardizer_;
   std::vector<PairwiseSvm> learners_;
+  bool probabilities_ = false;  // every learner has its sigmoid
 };
 
 std::vector<std::string> svm_preset_names();
