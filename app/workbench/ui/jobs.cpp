@@ -42,8 +42,11 @@ std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
   for (AnyJob* job : std::initializer_list<AnyJob*>{
            state.labelling.segment_job.get(), state.analysis.predict_job.get(),
            state.analysis.som_job.get(), state.analysis.scatter_job.get(),
-           state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get()})
+           state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get(),
+           state.files.import.preview_job.get()})
     if (job) jobs.push_back(job);
+  for (const auto& [kind, job] : state.files.jobs)
+    if (job) jobs.push_back(job.get());
   return jobs;
 }
 
@@ -81,6 +84,13 @@ bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) 
 bool draw_job_status(WorkbenchState& state) {
   AnyJob* job = state.labelling.segment_job ? static_cast<AnyJob*>(state.labelling.segment_job.get())
                                             : state.analysis.predict_job.get();
+  // Else a file command's (import, export, verify, ...), the first that runs.
+  if (!job || job->status() != JobStatus::kRunning)
+    for (const auto& [kind, file_job] : state.files.jobs)
+      if (file_job && file_job->status() == JobStatus::kRunning) {
+        job = file_job.get();
+        break;
+      }
   if (!job || job->status() != JobStatus::kRunning) return false;
   if (ImGui::SmallButton("Cancel")) job->cancel();
   remember_item(state, "button:Cancel job");

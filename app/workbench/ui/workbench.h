@@ -44,6 +44,9 @@ class Workbench {
   // Commands (scripts and menus go through these too).
   // False when the recording cannot be opened: it is marked damaged, with the reason.
   bool open(const std::string& path);
+  // A folder as the workspace, and its first recording that opens (as `tactile-workbench
+  // FOLDER` and File > Open folder do).
+  void open_folder(const std::string& folder);
   void seek(double time);
   void fail(const std::string& message) { state_.error = message; }
   // A view export requested this frame (File > Export view as PNG), taken once.
@@ -68,6 +71,8 @@ class Workbench {
   void draw_view(const char* name, ImVec2 size);
   void draw_status_bar();
   void carry_out_requests();
+  // The file commands' requests (files.h): a new workspace, a list to read again.
+  void carry_out_file_requests();
   // Marks the open recording damaged when its source read a damaged chunk as a gap.
   void note_damage();
   void load_settings();

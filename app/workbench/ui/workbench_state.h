@@ -16,6 +16,7 @@
 
 #include "document.h"
 #include "file_browser.h"
+#include "files_state.h"
 #include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/predict.h"
@@ -283,6 +284,7 @@ struct WorkbenchState {
   std::unique_ptr<Job<std::string>> export_job;  // writing an exported view's PNG: its path
   bool quit = false;
   FileBrowser file_browser;
+  FilesState files;  // File > Open folder, Import, Export, Verify, Upgrade (files.h)
 };
 
 // Puts `message` on the status bar's error line; false, so that a step can `return fail(...)`.
