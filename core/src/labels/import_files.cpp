@@ -13,12 +13,16 @@
 #include "tactile/io/label_store.h"
 #include "tactile/labels/commands.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
 namespace {
 
 void check_import_options(const FileImportOptions& options) {
+  if (options.layout.empty())
+    throw Error("--layout",
+                "required: a layout id (" + joined(known_layout_ids()) + "), grid:RxC or strip:N");
   if (options.wide) {
     if (!options.samples_per_capture) throw Error("--samples-per-capture", "required with --wide");
     if (!options.labels_file) throw Error("--labels-file", "required with --wide");
