@@ -97,6 +97,7 @@ std::optional<BrowseChoice> FileBrowser::draw(WorkbenchState& state) {
   }
   std::optional<std::string> chosen;
   ImGui::SetNextWindowSize(ImVec2(620, 440), ImGuiCond_Appearing);
+  ImGui::SetNextWindowBgAlpha(1.0f);
   bool keep = true;
   if (!ImGui::BeginPopupModal(popup.c_str(), &keep)) {
     // Closed by its title bar's button (or never shown): the dialog is over.

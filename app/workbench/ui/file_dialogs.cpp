@@ -132,7 +132,7 @@ void draw_features_export_dialog(WorkbenchState& state) {
     return;
   }
   if (!begin_file_dialog("Export features###export features", dialog.open, dialog.focus,
-                         ImVec2(620, 260)))
+                         ImVec2(620, 236)))
     return;
   dialog_keys(state, dialog.open);
   const std::string skin = state.document->layout.id;

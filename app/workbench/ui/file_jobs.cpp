@@ -11,6 +11,7 @@
 #include "tactile/io/verify.h"
 #include "tactile/labels/label_files.h"
 #include "tactile/skins/skin.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -233,7 +234,9 @@ void start_verify(WorkbenchState& state, const std::vector<std::string>& paths) 
     std::vector<std::string> lines;
     for (const FileProblem& problem : report.problems) lines.push_back(problem.message);
     lines.push_back(verify_summary_line(report));
-    outcome.report_title = "Verify";
+    std::vector<std::string> names;
+    for (const std::string& path : paths) names.push_back(fs::path(path).filename().string());
+    outcome.report_title = "Verify: " + joined(names);
     outcome.report_text = joined_lines(lines);
     outcome.report_json = verify_report_json(report);
     outcome.report_name = "verify.txt";

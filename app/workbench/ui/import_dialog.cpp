@@ -273,7 +273,7 @@ void draw_import_dialog(WorkbenchState& state) {
   import_field(state, "--layout", dialog.layout, layouts.c_str(), 440.0f);
   import_field(state, "--rate", dialog.rate,
                format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
-               200.0f);
+               320.0f);
   if (format == "CSV") {
     ImGui::SetCursorPosX(kImportLabelWidth);
     ImGui::Checkbox("--wide: one capture per row, with a labels file", &dialog.wide);
