@@ -287,7 +287,8 @@ void draw_import_dialog(WorkbenchState& state) {
         request.extensions = {".csv", ".txt"};
         state.file_browser.open(std::move(request));
       }
-      import_field(state, "--class-names", dialog.class_names, "a,b,c (default: the layout's)");
+      import_field(state, "--class-names", dialog.class_names, "a,b,c (default: the layout's)",
+                   440.0f);
     } else {
       import_field(state, "--class-column", dialog.class_column, "the column of class names",
                    320.0f);

@@ -30,8 +30,9 @@ class Workbench {
   // Advances the replay clock by `seconds` of wall time and draws one frame.
   void frame(double seconds);
   bool quit_requested() const { return state_.quit; }
-  // A job (segmenter, predict, SOM, scatter, somatosensory map, export) runs or its result is
-  // not applied yet: a screenshot waits for it, and so does `wait jobs`.
+  // A job (segmenter, predict, SOM, scatter, somatosensory map, export, a file command or the
+  // import preview) runs or its result is not applied yet: a screenshot waits for it, and so
+  // does `wait jobs`.
   bool jobs_running() const;
   // The last error (opening a file, ...), shown in the status bar; "" when none.
   const std::string& error() const { return state_.error; }
