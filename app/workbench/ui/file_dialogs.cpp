@@ -2,7 +2,9 @@
 // and the window that shows a report (verify, upgrade, agreement) and saves it.
 #include <imgui.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <utility>
 
 #include "files.h"
 #include "tactile/error.h"

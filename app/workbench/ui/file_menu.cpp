@@ -2,6 +2,8 @@
 // the state JSON.
 #include <imgui.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
