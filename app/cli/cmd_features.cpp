@@ -6,24 +6,16 @@
 // recording file of id R is DIR/R.h5 (DIR: the database's folder unless given). Skipped
 // segments are reported on stderr and listed in OUT.log.
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "progress.h"
 #include "tactile/error.h"
-#include "tactile/features/corpus.h"
-#include "tactile/features/dataset.h"
 #include "tactile/features/feature_extractor.h"
-#include "tactile/io/atomic_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/features/feature_table.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
 
@@ -58,99 +50,27 @@ void run_describe(const FeaturesOptions& options) {
   std::cout << columns.size() << " columns (" << extractor->name() << " on " << layout.id << ")\n";
 }
 
-// The skip log beside the output: written whole to a temporary file, then renamed.
-void write_log(const std::string& path, const CorpusDataset& corpus,
-               const FeaturesOptions& options) {
-  std::string text = "# tactile features --pipeline " + options.pipeline + ": " +
-                     std::to_string(corpus.skipped.size()) + " of " +
-                     std::to_string(corpus.segments) + " segments skipped\n";
-  text += "recording\tsegment_id\tt0\tt1\treason\n";
-  for (const SkippedSegment& skipped : corpus.skipped)
-    text += skipped.recording + "\t" + std::to_string(skipped.segment_id) + "\t" +
-            std::to_string(skipped.t0) + "\t" + std::to_string(skipped.t1) + "\t" + skipped.reason +
-            "\n";
-  write_file_atomically(path, text, "log");
-}
-
-nlohmann::json summary_json(const CorpusDataset& corpus, const FeaturesOptions& options) {
-  const Dataset& dataset = corpus.dataset;
-  nlohmann::json summary;
-  summary["pipeline"] = options.pipeline;
-  summary["out"] = options.out;
-  summary["rows"] = dataset.rows();
-  summary["skipped"] = corpus.skipped.size();
-  nlohmann::json columns = nlohmann::json::array();
-  for (const FeatureColumn& column : dataset.columns) columns.push_back(column.name);
-  summary["columns"] = columns;
-  nlohmann::json counts = nlohmann::json::object(), means = nlohmann::json::object();
-  for (const std::string& name : dataset.class_names()) {
-    Eigen::RowVectorXd sum = Eigen::RowVectorXd::Zero(dataset.features.cols());
-    int64_t count = 0;
-    for (int64_t row = 0; row < dataset.rows(); ++row)
-      if (dataset.classes[static_cast<size_t>(row)] == name) {
-        sum += dataset.features.row(row);
-        ++count;
-      }
-    counts[name] = count;
-    nlohmann::json class_means = nlohmann::json::object();
-    for (int64_t column = 0; column < dataset.features.cols(); ++column)
-      class_means[dataset.columns[static_cast<size_t>(column)].name] =
-          sum(column) / static_cast<double>(count);
-    means[name] = class_means;
-  }
-  summary["class_counts"] = counts;
-  summary["class_means"] = means;
-  return summary;
-}
-
 void run_extract(const FeaturesOptions& options) {
-  for (const auto& [option, value] :
-       {std::pair<const char*, const std::string&>{"--pipeline", options.pipeline},
-        {"--labels", options.database},
-        {"--out", options.out}})
-    if (value.empty()) throw Error(option, "required (or use --list / --describe NAME)");
-  const std::string extension = std::filesystem::path(options.out).extension().string();
-  if (extension != ".csv" && extension != ".arff")
-    throw Error("--out", "'" + options.out + "': the file name must end in .csv or .arff");
-  LabelSource source;
-  try {
-    source = parse_label_source(options.source);
-  } catch (const Error& error) {
-    throw Error("--source", error.message());
-  }
-  const auto extractor =
-      make_feature_extractor(options.pipeline, Parameters::parse(options.params, "--params"));
-  const std::vector<CorpusRecording> corpus_recordings =
-      corpus_from_store({options.database, source, options.recordings, ""});
-
+  FeatureTableOptions table_options;
+  table_options.pipeline = options.pipeline;
+  table_options.params = options.params;
+  table_options.database = options.database;
+  table_options.source = options.source;
+  table_options.recordings = options.recordings;
+  table_options.out = options.out;
+  table_options.threads = options.threads;
   ProgressBar progress("features " + options.pipeline);
-  CorpusOptions corpus_options;
-  corpus_options.threads = options.threads;
-  corpus_options.progress = [&progress](int64_t done, int64_t total) {
-    progress.update(done, total);
-  };
-  const CorpusDataset corpus = extract_corpus(*extractor, corpus_recordings, corpus_options);
+  const FeatureTable table = extract_feature_table(
+      table_options, [&progress](int64_t done, int64_t total) { progress.update(done, total); });
   progress.finish();
-
-  for (const SkippedSegment& skipped : corpus.skipped)
+  for (const SkippedSegment& skipped : table.corpus.skipped)
     std::cerr << "skipped: " << skipped.recording << " segment " << skipped.segment_id << ": "
               << skipped.reason << "\n";
-  write_log(options.out + ".log", corpus, options);
-  if (corpus.dataset.rows() == 0)
-    throw Error(options.out, "no rows: all " + std::to_string(corpus.segments) +
-                                 " segments were skipped (see " + options.out + ".log)");
-  if (extension == ".arff")
-    write_dataset_arff(options.out, corpus.dataset, options.pipeline);
+  write_feature_table(table, table_options);
+  if (options.json)
+    std::cout << feature_table_json(table, table_options);
   else
-    write_dataset_csv(options.out, corpus.dataset);
-
-  if (options.json) {
-    std::cout << summary_json(corpus, options).dump(2) << "\n";
-  } else {
-    std::cout << corpus.dataset.rows() << " rows x " << corpus.dataset.columns.size()
-              << " features from " << corpus_recordings.size() << " recordings, "
-              << corpus.skipped.size() << " segments skipped -> " << options.out << "\n";
-  }
+    std::cout << feature_table_line(table, table_options) << "\n";
 }
 
 }  // namespace

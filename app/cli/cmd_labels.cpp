@@ -5,11 +5,8 @@
 // Every subcommand opens an existing database only: a mistyped path must not
 // leave a new empty database behind.
 #include <algorithm>
-#include <charconv>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -17,10 +14,8 @@
 
 #include "commands.h"
 #include "tactile/error.h"
-#include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_import.h"
 #include "tactile/io/label_store.h"
-#include "tactile/labels/agreement.h"
+#include "tactile/labels/label_files.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/labels/quality.h"
 #include "tactile/skins/skin.h"
@@ -40,13 +35,7 @@ struct LabelsOptions {
 LabelFilter filter_from(const LabelsOptions& options) {
   LabelFilter filter;
   if (!options.recording.empty()) filter.recording = options.recording;
-  if (!options.source.empty()) {
-    try {
-      filter.source = parse_label_source(options.source);
-    } catch (const Error& error) {
-      throw Error("--source", error.message());
-    }
-  }
+  if (!options.source.empty()) filter.source = label_source_option(options.source);
   return filter;
 }
 
@@ -94,24 +83,23 @@ void print_table(const std::vector<Label>& labels, std::ostream& out) {
 
 // Damaged rows met by a read were left out of its output: each is named on stderr
 // and the command fails, so a script never takes a partial export for the whole.
-void report_damage(const LabelStore& store) {
-  if (store.problems().empty()) return;
-  for (const StoreProblem& problem : store.problems())
-    std::cerr << "tactile: " << problem.where(store.path()) << ": " << problem.what << "\n";
-  throw Error(store.path(), std::to_string(store.problems().size()) +
-                                " damaged row(s) or digest(s); the output leaves them out");
+void report_damage(const std::string& database, const std::vector<std::string>& damaged) {
+  if (damaged.empty()) return;
+  for (const std::string& line : damaged) std::cerr << "tactile: " << line << "\n";
+  throw Error(database, std::to_string(damaged.size()) +
+                            " damaged row(s) or digest(s); the output leaves them out");
 }
+
+void report_damage(const LabelStore& store) { report_damage(store.path(), damage_lines(store)); }
 
 void run_export(const LabelsOptions& options) {
   if (options.csv.empty() == options.json.empty())
     throw Error("--csv/--json", "give exactly one of --csv OUT or --json OUT");
   const LabelFilter filter = filter_from(options);
-  LabelStore store(options.database, LabelStore::OpenMode::kExisting);
-  if (!options.csv.empty())
-    store.export_csv(options.csv, filter);
-  else
-    store.export_json(options.json, filter);
-  report_damage(store);
+  const bool json = options.csv.empty();
+  const LabelExport written =
+      export_labels(options.database, json ? options.json : options.csv, json, filter);
+  report_damage(options.database, written.damaged);
 }
 
 void run_list(const LabelsOptions& options) {
@@ -127,102 +115,22 @@ void run_list(const LabelsOptions& options) {
 
 // All or nothing: the file is read and checked whole, then added in one transaction.
 void run_import(const LabelsOptions& options) {
-  const std::vector<Label> labels = read_label_file(options.file);
-  LabelStore store(options.database);
-  store.add_many(labels);
-  std::cout << "imported " << labels.size() << (labels.size() == 1 ? " label" : " labels")
-            << " into " << options.database << "\n";
-}
-
-// A lane as `--a` / `--b` name it: "ground-truth", "manual:NAME" (or just NAME),
-// "segmenter:METHOD", "model:NAME".
-std::vector<Label> lane_labels(const LabelStore& store, const LabelsOptions& options,
-                               const std::string& lane, const char* option) {
-  std::string id = lane;
-  if (lane != "ground-truth" && lane.find(':') == std::string::npos) id = "manual:" + lane;
-  // The form lane ids had before they followed the documentation.
-  if (lane.starts_with("segmenter:segmenter:")) id = lane.substr(10);
-  LabelFilter filter;
-  if (!options.recording.empty()) filter.recording = options.recording;
-  std::vector<Label> labels;
-  for (const Label& label : store.list(filter))
-    if (lane_of(label).id() == id) labels.push_back(label);
-  if (labels.empty())
-    throw Error(option, "no labels in lane '" + id + "' of " + store.path());
-  return labels;
+  std::cout << imported_labels_line(import_label_file(options.database, options.file),
+                                    options.database)
+            << "\n";
 }
 
 void run_agreement(const LabelsOptions& options) {
-  const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
-  const std::vector<Label> a = lane_labels(store, options, options.a, "--a");
-  const std::vector<Label> b = lane_labels(store, options, options.b, "--b");
-  report_damage(store);
-  // Each recording's span and rate from its file, when it is in the folder.
-  const std::filesystem::path folder =
-      options.recordings.empty() ? std::filesystem::path(options.database).parent_path()
-                                 : std::filesystem::path(options.recordings);
-  std::map<std::string, RecordingTiming> timing;
-  for (const auto* labels : {&a, &b})
-    for (const Label& label : *labels) {
-      if (timing.count(label.recording)) continue;
-      const std::filesystem::path file = folder / (label.recording + ".h5");
-      std::error_code error;
-      if (!std::filesystem::exists(file, error)) continue;
-      const RecordingFile recording(file.string());
-      if (recording.streams().empty()) continue;
-      const StreamInfo& stream = recording.streams().front();
-      const double start = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
-      timing[label.recording] = {start, start + stream.duration(), stream.rate_hz};
-    }
-  const Agreement agreement = compute_agreement(a, b, timing, options.iou);
-  if (options.as_json) {
-    nlohmann::json disagreements = nlohmann::json::array();
-    for (const Disagreement& d : agreement.disagreements)
-      disagreements.push_back({{"recording", d.recording}, {"t0", d.t0}, {"t1", d.t1},
-                               {"a", d.a_class}, {"b", d.b_class}, {"kind", d.kind}});
-    std::cout << nlohmann::json{{"a", options.a},
-                                {"b", options.b},
-                                {"kappa", agreement.kappa},
-                                {"observed", agreement.observed},
-                                {"expected", agreement.expected},
-                                {"samples", agreement.samples},
-                                {"iou", options.iou},
-                                {"a_segments", agreement.a_segments},
-                                {"b_segments", agreement.b_segments},
-                                {"matched", agreement.matched},
-                                {"precision", agreement.precision},
-                                {"recall", agreement.recall},
-                                {"f1", agreement.f1},
-                                {"classes", agreement.classes},
-                                {"confusion", agreement.confusion},
-                                {"disagreements", disagreements}}
-                     .dump(2)
-              << "\n";
-    return;
-  }
-  std::printf("A: %s (%lld labels)   B: %s (%lld labels)\n", options.a.c_str(),
-              static_cast<long long>(agreement.a_segments), options.b.c_str(),
-              static_cast<long long>(agreement.b_segments));
-  std::printf("kappa over time: %.3f (observed %.3f, chance %.3f, %lld samples)\n",
-              agreement.kappa, agreement.observed, agreement.expected,
-              static_cast<long long>(agreement.samples));
-  std::printf("segments at IoU >= %.2f: precision %.3f, recall %.3f, F1 %.3f (%lld matched)\n",
-              options.iou, agreement.precision, agreement.recall, agreement.f1,
-              static_cast<long long>(agreement.matched));
-  std::printf("classes of matched segments (rows A, columns B):\n%12s", "");
-  for (const std::string& name : agreement.classes) std::printf(" %10.10s", name.c_str());
-  std::printf("\n");
-  for (size_t row = 0; row < agreement.classes.size(); ++row) {
-    std::printf("%12.12s", agreement.classes[row].c_str());
-    for (int64_t count : agreement.confusion[row]) std::printf(" %10lld", static_cast<long long>(count));
-    std::printf("\n");
-  }
-  std::printf("%zu disagreements\n", agreement.disagreements.size());
-  for (const Disagreement& d : agreement.disagreements)
-    std::printf("  %s %.3f-%.3f s: %s%s%s\n", d.recording.c_str(), d.t0, d.t1,
-                d.kind == "class" ? ("class " + d.a_class + " vs " + d.b_class).c_str() : "",
-                d.kind == "missed" ? ("only in A: " + d.a_class).c_str() : "",
-                d.kind == "extra" ? ("only in B: " + d.b_class).c_str() : "");
+  AgreementQuery query;
+  query.database = options.database;
+  query.a = options.a;
+  query.b = options.b;
+  query.recording = options.recording;
+  query.recordings = options.recordings;
+  query.iou = options.iou;
+  const AgreementReport report = lane_agreement(query);
+  report_damage(options.database, report.damaged);
+  std::cout << (options.as_json ? agreement_json(report) : agreement_text(report));
 }
 
 void run_check(const LabelsOptions& options) {

@@ -48,6 +48,8 @@ void run_simulate(const SimulateArgs& args) {
   } else {
     std::cout << "wrote " << summary.files.size() << " recordings (" << summary.seconds_recorded
               << " s) and " << summary.labels << " labels to " << folder << "\n";
+    // The demo is made to be looked at: say how.
+    if (!args.demo.empty()) std::cout << "open it: tactile-workbench " << folder << "\n";
   }
 }
 

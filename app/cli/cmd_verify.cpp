@@ -4,7 +4,6 @@
 // earlier versions in the current, checked format.
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 
 #include "commands.h"
 #include "tactile/error.h"
@@ -19,18 +18,6 @@ struct VerifyOptions {
   bool json = false;
 };
 
-const char* kind_name(FileKind kind) {
-  switch (kind) {
-    case FileKind::kRecording:
-      return "recording";
-    case FileKind::kLabelStore:
-      return "labels";
-    case FileKind::kUnknown:
-      break;
-  }
-  return "unknown";
-}
-
 // Problems found are the command's result, not an error of the command: exit 1
 // without the "tactile:" error line.
 [[noreturn]] void exit_with_problems() {
@@ -41,41 +28,16 @@ const char* kind_name(FileKind kind) {
 void run_verify(const VerifyOptions& options) {
   const VerifyReport report = verify_paths(options.paths);
   if (options.json) {
-    nlohmann::json files = nlohmann::json::array();
-    for (const VerifiedFile& file : report.files)
-      files.push_back({{"path", file.path}, {"kind", kind_name(file.kind)}, {"problems", file.problems}});
-    nlohmann::json problems = nlohmann::json::array();
-    for (const FileProblem& problem : report.problems)
-      problems.push_back({{"file", problem.file}, {"problem", problem.message}});
-    std::cout << nlohmann::json{{"files", files}, {"problems", problems}, {"ok", report.problems.empty()}}
-                     .dump(2)
-              << "\n";
+    std::cout << verify_report_json(report);
   } else {
     for (const FileProblem& problem : report.problems) std::cout << problem.message << "\n";
-    size_t recordings = 0, stores = 0;
-    for (const VerifiedFile& file : report.files) {
-      recordings += file.kind == FileKind::kRecording;
-      stores += file.kind == FileKind::kLabelStore;
-    }
-    std::cerr << "verified " << recordings << " recording(s) and " << stores
-              << " label store(s): "
-              << (report.problems.empty() ? "no problems"
-                                          : std::to_string(report.problems.size()) + " problem(s)")
-              << "\n";
+    std::cerr << verify_summary_line(report) << "\n";
   }
   if (!report.problems.empty()) exit_with_problems();
 }
 
 void run_upgrade(const std::vector<std::string>& paths) {
-  for (const std::string& path : paths) {
-    const UpgradeResult result = upgrade_file(path);
-    const char* what = result.kind == FileKind::kRecording ? "format" : "schema";
-    if (result.rewritten())
-      std::cout << path << ": " << what << " " << result.from_version << " -> "
-                << result.to_version << "\n";
-    else
-      std::cout << path << ": already " << what << " " << result.to_version << "\n";
-  }
+  for (const std::string& path : paths) std::cout << upgrade_line(path, upgrade_file(path)) << "\n";
 }
 
 }  // namespace

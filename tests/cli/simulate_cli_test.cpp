@@ -32,5 +32,19 @@ TEST(SimulateCommand, TheSameSeedWritesTheSameBytes) {
             test::read_text(folder.file("third") + "/fur-s01-t01.h5"));
 }
 
+TEST(SimulateCommand, TheDemoEndsBySayingHowToOpenIt) {
+  test::TempFolder folder{"tactile-simulate-demo"};
+  const auto result =
+      test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string last = "open it: tactile-workbench " + folder.file("demo") + "\n";
+  ASSERT_GE(result.out.size(), last.size());
+  EXPECT_EQ(result.out.substr(result.out.size() - last.size()), last) << result.out;
+  // Only the demo, which is made to be looked at, says it.
+  const auto skin = test::run_program(
+      "tactile", "simulate --skin fur --subjects 1 --out " + folder.file("one"), folder);
+  EXPECT_EQ(skin.out.find("open it"), std::string::npos) << skin.out;
+}
+
 }  // namespace
 }  // namespace tactile

@@ -43,8 +43,10 @@ std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
            state.labelling.segment_job.get(), state.analysis.predict_job.get(),
            state.analysis.som_job.get(), state.analysis.scatter_job.get(),
            state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get(),
-           state.demo_job.get()})
+           state.demo_job.get(), state.files.import.preview_job.get()})
     if (job) jobs.push_back(job);
+  for (const auto& [kind, job] : state.files.jobs)
+    if (job) jobs.push_back(job.get());
   return jobs;
 }
 
@@ -80,10 +82,13 @@ bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) 
 }
 
 bool draw_job_status(WorkbenchState& state) {
+  // The first that runs of the segmenter run, Predict, the demo workspace and the file commands
+  // (import, export, verify, ...).
+  std::vector<AnyJob*> candidates = {state.labelling.segment_job.get(),
+                                     state.analysis.predict_job.get(), state.demo_job.get()};
+  for (const auto& [kind, file_job] : state.files.jobs) candidates.push_back(file_job.get());
   AnyJob* job = nullptr;
-  for (AnyJob* candidate :
-       std::initializer_list<AnyJob*>{state.labelling.segment_job.get(),
-                                      state.analysis.predict_job.get(), state.demo_job.get()})
+  for (AnyJob* candidate : candidates)
     if (candidate && candidate->status() == JobStatus::kRunning) {
       job = candidate;
       break;

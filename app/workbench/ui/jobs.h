@@ -1,6 +1,7 @@
 #pragma once
 // The workbench's jobs (tactile/jobs/job.h): a segmenter run, a prediction, training, the SOM
-// map, the scatter's PCA, a somatosensory map, a view's PNG export, the demo workspace. Each is a
+// map, the scatter's PCA, a somatosensory map, a view's PNG export, the demo workspace, the file
+// commands (files.h: import and its preview, exports, labels import, agreement, verify, upgrade). Each is a
 // handle in the state, started by a key, a menu or a view; once a frame the window's thread takes a
 // finished job's result and applies it in one step. A second request replaces the running job: the
 // old one is retired (cancelled, ending on its worker while frames go on, dropped once ended), so
@@ -59,7 +60,8 @@ std::optional<Result> finished_job(WorkbenchState& state, std::unique_ptr<Job<Re
 // A job in a view: what it does, how far, and Cancel; after a cancel (`held`, when given), a
 // Compute button that asks for it again. False when there is neither.
 bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what);
-// The status bar's line while a job that belongs to no view runs (segmenter, prediction):
+// The status bar's line while a job that belongs to no view runs (segmenter, prediction, a
+// file command):
 // its name, its progress and Cancel. False when none runs.
 bool draw_job_status(WorkbenchState& state);
 

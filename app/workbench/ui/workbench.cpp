@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis.h"
+#include "files.h"
 #include "jobs.h"
 #include "keys.h"
 #include "labelling.h"
@@ -80,10 +81,7 @@ Workbench::Workbench(const WorkbenchOptions& options) {
         !options.record_path.empty())
       start_recording(state_, services_.live, options.record_path);
   } else if (fs::is_directory(options.open_path, error)) {
-    set_workspace(options.open_path);
-    // The first recording that opens; the damaged ones before it are marked.
-    for (const std::string& file : state_.workspace_files)
-      if (open(file)) break;
+    open_folder(options.open_path);
   } else if (!options.open_path.empty()) {
     open(options.open_path);
   }
@@ -220,8 +218,10 @@ void Workbench::frame(double seconds) {
   poll_training(state_);
   poll_jobs(state_);
   poll_demo();
+  poll_file_jobs(state_);
   apply_dragged_bounds(state_);
-  handle_keys(state_);
+  // A dialog or the file browser with the keyboard keeps its keys (Escape, Enter, digits).
+  if (!files_have_keys(state_)) handle_keys(state_);
   state_.targets = UiTargets{};
 
   const ImGuiViewport* viewport = ImGui::GetMainViewport();
@@ -243,7 +243,9 @@ void Workbench::frame(double seconds) {
     draw_status_bar();
   }
   ImGui::End();
-  if (auto chosen = state_.file_browser.draw()) state_.open_request = *chosen;
+  // The dialogs before the browser: an Escape that closes the browser is not theirs too.
+  draw_file_dialogs(state_);
+  if (auto chosen = state_.file_browser.draw(state_)) take_browser_choice(state_, *chosen);
   draw_class_picker(state_);
   draw_key_sheet(state_);
   draw_getting_started();
@@ -261,6 +263,7 @@ void Workbench::note_damage() {
 }
 
 void Workbench::carry_out_requests() {
+  carry_out_file_requests();
   if (auto path = std::exchange(state_.open_request, std::nullopt)) open(*path);
   carry_out_landing(state_);
   if (auto stream = std::exchange(state_.stream_request, std::nullopt))
@@ -500,6 +503,7 @@ void Workbench::draw_menu_bar() {
     if (ImGui::BeginMenu("File")) {
       if (ImGui::MenuItem("Open...", "Ctrl+O")) state_.file_browser.open(start, {".h5"});
       remember_item(state_, "menu:File/Open...");
+      draw_file_open_items(state_);
       if (ImGui::BeginMenu("Connect")) {
         // udp://:PORT listens on loopback; name an interface (udp://0.0.0.0:PORT) to be reached.
         ImGui::SetNextItemWidth(260);
@@ -529,6 +533,7 @@ void Workbench::draw_menu_bar() {
         ImGui::EndMenu();
       }
       remember_item(state_, "menu:File/Export view as PNG");
+      draw_file_export_items(state_);
       if (ImGui::MenuItem("Quit", "Ctrl+Q")) state_.quit = true;
       remember_item(state_, "menu:File/Quit");
       ImGui::EndMenu();
@@ -567,6 +572,7 @@ void Workbench::draw_menu_bar() {
         ImGui::EndMenu();
       }
       remember_item(state_, "menu:Labels/Run segmenter");
+      draw_labels_file_items(state_);
       ImGui::EndMenu();
     }
     remember_item(state_, "menu:Labels");
@@ -782,6 +788,7 @@ nlohmann::json Workbench::state_json() const {
                     {"started_frame", record.started_frame},
                     {"finished_frame", record.finished_frame}});
   json["jobs"] = jobs;
+  json["files"] = files_json(state_);
   return json;
 }
 

@@ -30,8 +30,9 @@ class Workbench {
   // Advances the replay clock by `seconds` of wall time and draws one frame.
   void frame(double seconds);
   bool quit_requested() const { return state_.quit; }
-  // A job (segmenter, predict, SOM, scatter, somatosensory map, export) runs or its result is
-  // not applied yet: a screenshot waits for it, and so does `wait jobs`.
+  // A job (segmenter, predict, SOM, scatter, somatosensory map, export, a file command or the
+  // import preview) runs or its result is not applied yet: a screenshot waits for it, and so
+  // does `wait jobs`.
   bool jobs_running() const;
   // The last error (opening a file, ...), shown in the status bar; "" when none.
   const std::string& error() const { return state_.error; }
@@ -44,6 +45,9 @@ class Workbench {
   // Commands (scripts and menus go through these too).
   // False when the recording cannot be opened: it is marked damaged, with the reason.
   bool open(const std::string& path);
+  // A folder as the workspace, and its first recording that opens (as `tactile-workbench
+  // FOLDER` and File > Open folder do).
+  void open_folder(const std::string& folder);
   void seek(double time);
   void fail(const std::string& message) { state_.error = message; }
   // A view export requested this frame (File > Export view as PNG), taken once.
@@ -75,6 +79,8 @@ class Workbench {
   void start_demo(const std::string& folder);
   void poll_demo();
   void carry_out_requests();
+  // The file commands' requests (files.h): a new workspace, a list to read again.
+  void carry_out_file_requests();
   // Marks the open recording damaged when its source read a damaged chunk as a gap.
   void note_damage();
   void load_settings();

@@ -16,6 +16,7 @@
 
 #include "document.h"
 #include "file_browser.h"
+#include "files_state.h"
 #include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/predict.h"
@@ -309,6 +310,7 @@ struct WorkbenchState {
     bool keys_open = false;   // the sheet of keys (F1, Help > Keys)
     bool about_open = false;  // Help > Getting started
   } help;
+  FilesState files;  // File > Open folder, Import, Export, Verify, Upgrade (files.h)
 };
 
 // Puts `message` on the status bar's error line; false, so that a step can `return fail(...)`.

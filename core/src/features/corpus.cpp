@@ -106,11 +106,13 @@ std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query) {
   LabelStore store(query.database, LabelStore::OpenMode::kExisting);
   LabelFilter filter;
   filter.source = query.source;
+  if (!query.recording.empty()) filter.recording = query.recording;
   const std::vector<Label> labels = store.list(filter);
   std::map<std::string, std::vector<Label>> ground_truth;
   if (query.source != LabelSource::kGroundTruth) {
     LabelFilter truth;
     truth.source = LabelSource::kGroundTruth;
+    if (!query.recording.empty()) truth.recording = query.recording;
     for (Label& label : store.list(truth))
       ground_truth[label.recording].push_back(std::move(label));
   }
@@ -140,8 +142,10 @@ std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query) {
     if (known->second != std::string::npos) corpus[known->second].segments.push_back(label);
   }
   if (corpus.empty())
-    throw Error(query.database, std::string("no labels of source ") + to_string(query.source) +
-                                    (query.layout.empty() ? "" : " on " + query.layout + " recordings"));
+    throw Error(query.database,
+                std::string("no labels of source ") + to_string(query.source) +
+                    (query.layout.empty() ? "" : " on " + query.layout + " recordings") +
+                    (query.recording.empty() ? "" : " of recording " + query.recording));
   return corpus;
 }
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "hdf5_object.h"
@@ -280,7 +281,8 @@ std::vector<FileProblem> verify_label_store(const std::string& path, const Recor
   return problems;
 }
 
-VerifyReport verify_paths(const std::vector<std::string>& paths) {
+VerifyReport verify_paths(const std::vector<std::string>& paths,
+                          const std::function<void(double)>& step) {
   std::vector<std::string> files;
   VerifyReport report;
   for (const std::string& path : paths) {
@@ -302,9 +304,11 @@ VerifyReport verify_paths(const std::vector<std::string>& paths) {
     }
   }
   RecordingSpans spans;
+  size_t checked = 0;
   // Recordings first: their spans check the labels.
   for (const bool recordings : {true, false})
     for (const std::string& path : files) {
+      if (step) step(static_cast<double>(checked) / static_cast<double>(files.size()));
       const FileKind kind = file_kind(path);
       if ((kind == FileKind::kRecording) != recordings) continue;
       std::vector<FileProblem> problems;
@@ -316,8 +320,46 @@ VerifyReport verify_paths(const std::vector<std::string>& paths) {
         problems.push_back({path, path + ": neither a recording nor a label store"});
       report.files.push_back({path, kind, problems.size()});
       report.problems.insert(report.problems.end(), problems.begin(), problems.end());
+      ++checked;
     }
   return report;
+}
+
+const char* file_kind_name(FileKind kind) {
+  switch (kind) {
+    case FileKind::kRecording:
+      return "recording";
+    case FileKind::kLabelStore:
+      return "labels";
+    case FileKind::kUnknown:
+      break;
+  }
+  return "unknown";
+}
+
+std::string verify_summary_line(const VerifyReport& report) {
+  size_t recordings = 0, stores = 0;
+  for (const VerifiedFile& file : report.files) {
+    recordings += file.kind == FileKind::kRecording;
+    stores += file.kind == FileKind::kLabelStore;
+  }
+  return "verified " + std::to_string(recordings) + " recording(s) and " + std::to_string(stores) +
+         " label store(s): " +
+         (report.problems.empty() ? "no problems"
+                                  : std::to_string(report.problems.size()) + " problem(s)");
+}
+
+std::string verify_report_json(const VerifyReport& report) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const VerifiedFile& file : report.files)
+    files.push_back(
+        {{"path", file.path}, {"kind", file_kind_name(file.kind)}, {"problems", file.problems}});
+  nlohmann::json problems = nlohmann::json::array();
+  for (const FileProblem& problem : report.problems)
+    problems.push_back({{"file", problem.file}, {"problem", problem.message}});
+  return nlohmann::json{{"files", files}, {"problems", problems}, {"ok", report.problems.empty()}}
+             .dump(2) +
+         "\n";
 }
 
 namespace {
@@ -378,6 +420,14 @@ UpgradeResult upgrade_file(const std::string& path) {
       },
       "original");
   return result;
+}
+
+std::string upgrade_line(const std::string& path, const UpgradeResult& result) {
+  const std::string what = result.kind == FileKind::kRecording ? "format" : "schema";
+  if (result.rewritten())
+    return path + ": " + what + " " + std::to_string(result.from_version) + " -> " +
+           std::to_string(result.to_version);
+  return path + ": already " + what + " " + std::to_string(result.to_version);
 }
 
 }  // namespace tactile

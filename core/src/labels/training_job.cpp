@@ -2,6 +2,7 @@
 #include "tactile/labels/training_job.h"
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/features/corpus.h"

@@ -58,13 +58,15 @@ CorpusDataset extract_corpus(const FeatureExtractor& extractor,
 // The labels of one source in a label store grouped by recording (the store's order),
 // each recording's file `folder/ID.h5` (folder "" = the database's folder) checked up
 // front, with the ground truth of each for segments without a class. With `layout`, only
-// recordings of that skin (read from each file's attributes). Throws tactile::Error
-// naming the database when it holds no such labels, or the file that is missing.
+// recordings of that skin (read from each file's attributes); with `recording`, only that
+// one. Throws tactile::Error naming the database when it holds no such labels, or the file
+// that is missing.
 struct CorpusQuery {
   std::string database;
   LabelSource source = LabelSource::kGroundTruth;
   std::string folder;
   std::string layout;
+  std::string recording = {};  // a default: callers that list the fields above stay valid
 };
 std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query);
 

@@ -3,6 +3,7 @@
 // a label store, and what they must agree on. And rewriting files of earlier
 // versions in the current, checked format. `tactile verify` and `tactile upgrade`.
 
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -48,8 +49,19 @@ struct VerifyReport {
 };
 
 // Files and folders (walked recursively for .h5/.hdf5/.db/.sqlite/.sqlite3);
-// recordings first, so label stores are checked against their spans.
-VerifyReport verify_paths(const std::vector<std::string>& paths);
+// recordings first, so label stores are checked against their spans. `step` gets the
+// fraction of the files checked, after each (and may throw to stop).
+VerifyReport verify_paths(const std::vector<std::string>& paths,
+                          const std::function<void(double)>& step = {});
+
+// "recording", "labels", "unknown": a file's kind as reports name it.
+const char* file_kind_name(FileKind kind);
+// "verified 2 recording(s) and 1 label store(s): no problems" (or "3 problem(s)"): the
+// report's last line, after one line per problem (FileProblem::message).
+std::string verify_summary_line(const VerifyReport& report);
+// {"files": [{"path", "kind", "problems"}], "problems": [{"file", "problem"}], "ok"}, indented,
+// with a final line break: `tactile verify --json`.
+std::string verify_report_json(const VerifyReport& report);
 
 struct UpgradeResult {
   FileKind kind = FileKind::kUnknown;
@@ -64,5 +76,7 @@ struct UpgradeResult {
 // store of schema 1 gets its checksums in one transaction. Throws tactile::Error
 // naming the file when anything fails; the original then stays as it was.
 UpgradeResult upgrade_file(const std::string& path);
+// "PATH: format 1 -> 2", "PATH: already schema 3": what `tactile upgrade` prints per file.
+std::string upgrade_line(const std::string& path, const UpgradeResult& result);
 
 }  // namespace tactile

@@ -1,0 +1,97 @@
+#pragma once
+// The file commands of the window as plain data (files.h draws and runs them): the dialogs'
+// fields, the jobs that read and write the files, the report shown. Every command is core's
+// (labels/import_files.h, labels/label_files.h, features/feature_table.h, io/verify.h), as the
+// command line calls it; the window only gathers its options and shows what it did.
+
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "tactile/jobs/job.h"
+#include "tactile/labels/import_files.h"
+
+namespace tactile {
+
+// What a file job hands the window to apply once it has ended (poll_file_jobs).
+struct FileOutcome {
+  std::string notice;   // the status bar's line
+  std::string problem;  // shown as the error line ("" clears it): damage left out, problems
+  std::string report_title, report_text, report_json;  // a report to show; "" none
+  std::string report_name;                             // the file name its Save... proposes
+  std::string open;                // a recording to open (an import's first file)
+  bool refresh_workspace = false;  // files were written: the workspace list is read again
+  bool reload_labels = false;      // the open recording's labels changed
+  bool reopen = false;             // the open recording was rewritten (upgrade)
+};
+
+// File > Import...: the fields by `tactile import`'s flags ("" = not given) and the preview.
+struct ImportDialog {
+  bool open = false;
+  bool focus = false;  // take the keyboard on the next frame
+  std::array<char, 1024> file{}, out{}, labels{}, labels_file{};
+  std::array<char, 128> layout{}, rate{}, samples_per_capture{}, dataset{}, key{}, value_key{}, class_key{}, class_array{},
+      class_column{}, group_columns{}, recording_id{};
+  std::array<char, 512> class_names{};
+  bool wide = false, captures = false;
+  // The preview of what the fields read, made on a worker; a change of the fields starts the
+  // next once the running one has ended.
+  std::unique_ptr<Job<ImportPreview>> preview_job;
+  std::string preview_job_for;  // the fields (as text) the running preview reads
+  std::string preview_for;      // the fields the preview shown was made for
+  std::optional<ImportPreview> preview;
+  std::string failure;  // why the last import stopped; "" after one that wrote
+};
+
+// File > Export labels...: which labels, in which format (the file comes from a save dialog).
+struct LabelsExportDialog {
+  bool open = false, focus = false;
+  bool every_recording = false;  // the whole store, not only the open recording's labels
+  std::string source;  // "" = every source, else manual / segmenter / model / ground-truth
+  bool json = false;   // else CSV
+};
+
+// File > Export features...: `tactile features` for the open recording or its workspace.
+struct FeaturesExportDialog {
+  bool open = false, focus = false;
+  std::string pipeline;  // "" = the skin's own
+  std::array<char, 256> params{};
+  std::string source = "ground-truth";
+  bool workspace = false;  // every recording of this skin in the label store, not only this one
+  bool arff = false;       // else CSV
+};
+
+// Labels > Agreement report...: two lanes of the open recording.
+struct AgreementDialog {
+  bool open = false, focus = false;
+  std::string a, b;  // lane ids
+  float iou = 0.5f;
+};
+
+// A report shown in a window of its own (verify, upgrade, agreement), savable.
+struct ReportWindow {
+  bool open = false, focus = false;
+  std::string title, text, json, file_name;
+};
+
+struct FilesState {
+  ImportDialog import;
+  LabelsExportDialog labels_export;
+  FeaturesExportDialog features_export;
+  AgreementDialog agreement;
+  ReportWindow report;
+  // The file jobs by kind ("import", "export labels", "export features", "import labels",
+  // "agreement", "verify", "upgrade"): a second request of a kind replaces the first, kinds
+  // run side by side.
+  std::map<std::string, std::unique_ptr<Job<FileOutcome>>> jobs;
+  // A dialog (or the file browser) had the keyboard on the last frame: the window's own keys
+  // (labelling, playback) leave it alone.
+  bool has_keys = false;
+  // Requests for the Workbench, carried out after the frame.
+  std::optional<std::string> folder_request;  // Open folder: the new workspace
+  bool refresh_workspace = false;
+};
+
+}  // namespace tactile
