@@ -202,6 +202,22 @@ TEST(BuiltinLayouts, TsaHas21ModulesOfTwo4x4SheetsAt7mmPitch) {
   EXPECT_LT(head_top_y, thigh_y);
   expect_no_overlap_within(tsa, "sheet");
   expect_no_overlap_within(tsa, "location");
+  // The robot's outline (head, torso, two arms, two thighs) surrounds every pad.
+  ASSERT_EQ(tsa.body_outline.size(), 6u);
+  for (const Taxel& pad : tsa.taxels) {
+    const auto inside = [&pad](const std::vector<Point2>& polygon) {
+      bool odd = false;  // even-odd rule along a ray to the right
+      for (size_t a = 0, b = polygon.size() - 1; a < polygon.size(); b = a++) {
+        const Point2& p = polygon[a];
+        const Point2& q = polygon[b];
+        if ((p.y > pad.position.y) != (q.y > pad.position.y) &&
+            pad.position.x < p.x + (q.x - p.x) * (pad.position.y - p.y) / (q.y - p.y))
+          odd = !odd;
+      }
+      return odd;
+    };
+    EXPECT_TRUE(std::any_of(tsa.body_outline.begin(), tsa.body_outline.end(), inside)) << pad.name;
+  }
 }
 
 TEST(BuiltinLayouts, FurHas160CellsGrowingFrom2cmOnTopTo4cmBelow) {
