@@ -316,7 +316,7 @@ def make_fur():
 # given: the distribution below is ours. Each part lists its blocks: (side, rows, columns, film size,
 # block centre x, block top y). Front view: robot's right on the map's left (x < 0); back view:
 # robot's left on the map's left. The back view is shifted right by ROBOVIE_BACK_OFFSET_MM.
-ROBOVIE_BACK_OFFSET_MM = 600.0
+ROBOVIE_BACK_OFFSET_MM = 640.0
 ROBOVIE_FILM_GAP_MM = 5.0
 
 
@@ -341,19 +341,19 @@ def mirrored(parts_right):
 
 
 ROBOVIE_PARTS = [
-    ("head", "head (crown and back)", [("back", 4, 4, 30.0, 0.0, 0.0)]),
+    ("head", "head (back)", [("back", 4, 4, 30.0, 0.0, 0.0)]),
     ("face", "face", [("front", 3, 4, 30.0, 0.0, 0.0)]),
     ("neck", "neck", [("front", 1, 3, 30.0, 0.0, 110.0), ("back", 1, 3, 30.0, 0.0, 145.0)]),
 ] + mirrored([
     ("shoulder", "shoulder", [("front", 1, 3, 30.0, 140.0, 150.0),
                               ("back", 1, 3, 30.0, 140.0, 150.0)]),
 ]) + [
-    ("chest-upper", "body front (upper)", [("front", 3, 4, 50.0, 0.0, 190.0)]),
-    ("chest-lower", "body front (lower)", [("front", 3, 4, 50.0, 0.0, 360.0)]),
-    ("back-upper", "back (upper)", [("back", 3, 4, 50.0, 0.0, 190.0)]),
-    ("back-lower", "back (lower)", [("back", 3, 4, 50.0, 0.0, 360.0)]),
+    ("chest-upper", "upper chest", [("front", 3, 4, 50.0, 0.0, 190.0)]),
+    ("chest-lower", "lower chest", [("front", 3, 4, 50.0, 0.0, 360.0)]),
+    ("back-upper", "upper back", [("back", 3, 4, 50.0, 0.0, 190.0)]),
+    ("back-lower", "lower back", [("back", 3, 4, 50.0, 0.0, 360.0)]),
 ] + mirrored([
-    ("side", "side (flank)", [("front", 3, 1, 50.0, 137.5, 360.0),
+    ("side", "flank", [("front", 3, 1, 50.0, 137.5, 360.0),
                               ("back", 3, 1, 50.0, 137.5, 360.0)]),
     ("upper-arm", "upper arm", [("front", 5, 2, 30.0, 210.0, 190.0),
                                 ("back", 5, 2, 30.0, 210.0, 190.0)]),
