@@ -144,7 +144,7 @@ class NamePlacer {
     const ImVec2 centre(0.5f * (own.min.x + own.max.x), 0.5f * (own.min.y + own.max.y));
     std::optional<SkinViewBox> best;
     float best_cost = std::numeric_limits<float>::max();
-    const float longest = 0.25f * std::min(clip_.max.x - clip_.min.x, clip_.max.y - clip_.min.y);
+    const float longest = 0.3f * std::min(clip_.max.x - clip_.min.x, clip_.max.y - clip_.min.y);
     for (float x = 0.0f; x <= clip_.max.x - clip_.min.x; x += kLeaderStep)
       for (const float dy : {0.0f, -1.0f, 1.0f, -2.0f, 2.0f})
         for (const float left : {centre.x - x - extent.x, centre.x + x}) {
@@ -153,8 +153,8 @@ class NamePlacer {
           if (!free(box, false) || overlaps_a_patch(box)) continue;
           const auto [from, to] = margin_leader(centre, box);
           if (crosses_a_name(from, to)) continue;
-          // A taxel crossed costs as much as 40 pixels more of line; a line longer than a
-          // quarter of the view would lead the eye astray (a small view names less).
+          // A taxel crossed costs as much as 40 pixels more of line; a line longer than
+          // 0.3 of the view would lead the eye astray (a small view names less).
           const float length = std::hypot(to.x - from.x, to.y - from.y);
           if (length > longest) continue;
           const int crossings = crossed_taxels(from, to, patch);
@@ -194,11 +194,18 @@ class NamePlacer {
     return true;
   }
 
+  // The name's middle lies nearer its own patch than any other part's, by kClearance.
   bool nearest_to_own(const SkinViewBox& box, const Patch& own) const {
-    const float distance = box_distance(box, own.box);
-    for (const Patch& other : patches_)
-      if (other.group != own.group && box_distance(box, other.box) < distance + kClearance)
-        return false;
+    const ImVec2 middle(0.5f * (box.min.x + box.max.x), 0.5f * (box.min.y + box.max.y));
+    const SkinViewBox point{middle, middle};
+    const float distance = box_distance(point, own.box);
+    for (const Patch& other : patches_) {
+      // A group holding this one (a layer holding a zone), or held by it, is not another part.
+      if (other.group == own.group || box_inside(own.box, other.box) ||
+          box_inside(other.box, own.box))
+        continue;
+      if (box_distance(point, other.box) < distance + kClearance) return false;
+    }
     return true;
   }
 
