@@ -147,6 +147,14 @@ void draw_body_outline(ImDrawList& draw, const SkinLayout& layout, const MapTran
 void taxel_tooltip(const SkinLayout& layout, const Taxel& taxel, float value, bool has_value) {
   ImGui::BeginTooltip();
   ImGui::Text("Taxel %lld  %s", static_cast<long long>(taxel.id), taxel.name.c_str());
+  // A taxel of one channel named otherwise (a grid's r3c14 records ch94): the recorded name.
+  const auto channel = std::find_if(taxel.channels.begin(), taxel.channels.end(),
+                                    [](int index) { return index >= 0; });
+  if (std::count_if(taxel.channels.begin(), taxel.channels.end(),
+                    [](int index) { return index >= 0; }) == 1 &&
+      static_cast<size_t>(*channel) < layout.channels.size() &&
+      layout.channels[static_cast<size_t>(*channel)].name != taxel.name)
+    ImGui::Text("Channel: %s", layout.channels[static_cast<size_t>(*channel)].name.c_str());
   if (!taxel.body_part.empty()) ImGui::Text("Body part: %s", taxel.body_part.c_str());
   std::string groups;
   for (const Group* group : layout.groups_of(taxel.id)) {
