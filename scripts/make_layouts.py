@@ -284,11 +284,11 @@ def make_fur():
         row_top += size + FUR_GAP_MM
     assert_no_overlap(taxels, lambda entry: "head")
     regions = [
-        group("top", "region", "top of the head (rows 0-2, smallest cells)",
+        group("top", "region", "top of head",
               [entry["id"] for entry in taxels if entry["body_part"] == "head-top"]),
-        group("middle", "region", "middle of the head (rows 3-6)",
+        group("middle", "region", "middle of head",
               [entry["id"] for entry in taxels if entry["body_part"] == "head-middle"]),
-        group("lower", "region", "lower head (rows 7-9, largest cells)",
+        group("lower", "region", "lower head",
               [entry["id"] for entry in taxels if entry["body_part"] == "head-lower"]),
     ]
     description = (

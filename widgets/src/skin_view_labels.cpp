@@ -24,6 +24,7 @@ constexpr float kLeaderStep = 12.0f;  // further out, with a line to the patch, 
 constexpr int kLeaderSteps = 5;
 constexpr int kMarginCrossings = 4;  // a name in the margin: its line crosses at most this many
 const ImU32 kLeader = IM_COL32(200, 200, 210, 150);
+constexpr size_t kMostTaxelNames = 64;
 constexpr float kLegendBarWidth = 14.0f;
 constexpr float kLegendBarHeight = 10.0f;  // the bar of a bottom legend
 constexpr int kLegendSteps = 32;
@@ -85,41 +86,25 @@ class NamePlacer {
   // Beside its patch: first away from the map's middle (where the map ends there is room),
   // then above, below, then towards the middle; each centred on the patch's side, then flush
   // with either end of it. A name must lie nearer its own patch than any other part's, so it
-  // is not read as theirs. Failing that, further out with a line to the patch.
+  // is not read as theirs.
   bool place_beside(const Patch& patch, const std::string& text) {
-    const ImVec2 extent = ImGui::CalcTextSize(text.c_str());
-    const SkinViewBox& own = patch.box;
-    const bool on_the_left = own.min.x + own.max.x < clip_.min.x + clip_.max.x;
-    // Candidates at `away` pixels from the patch, on each side in order.
-    const auto candidates = [&](float away) {
-      const float middle_y = 0.5f * (own.min.y + own.max.y - extent.y);
-      const float middle_x = 0.5f * (own.min.x + own.max.x - extent.x);
-      const float left = own.min.x - away - extent.x, right = own.max.x + away;
-      const float top = own.min.y - away - extent.y, bottom = own.max.y + away;
-      const std::vector<ImVec2> left_side = {
-          {left, middle_y}, {left, own.min.y}, {left, own.max.y - extent.y}};
-      const std::vector<ImVec2> right_side = {
-          {right, middle_y}, {right, own.min.y}, {right, own.max.y - extent.y}};
-      const std::vector<ImVec2> above = {
-          {middle_x, top}, {own.min.x, top}, {own.max.x - extent.x, top}};
-      const std::vector<ImVec2> below = {
-          {middle_x, bottom}, {own.min.x, bottom}, {own.max.x - extent.x, bottom}};
-      std::vector<ImVec2> all;
-      for (const auto* side : {on_the_left ? &left_side : &right_side, &above, &below,
-                               on_the_left ? &right_side : &left_side})
-        all.insert(all.end(), side->begin(), side->end());
-      return all;
-    };
-    for (const ImVec2& at : candidates(kNameGap)) {
+    for (const ImVec2& at : candidates(patch, text, kNameGap)) {
       const SkinViewBox box = text_box(ImVec2(std::floor(at.x), std::floor(at.y)), text);
       if (free(box, false) && nearest_to_own(box, patch)) {
         draw(patch.group->id, text, box);
         return true;
       }
     }
-    // Further out, the nearest place whose line to the patch crosses no other taxel.
+    return false;
+  }
+
+  // For a part with no room beside it, once every part has had its turn there: further out
+  // with a line to the patch, the nearest place whose line crosses no other taxel.
+  bool place_with_line(const Patch& patch, const std::string& text) {
+    const SkinViewBox& own = patch.box;
     for (int step = 1; step <= kLeaderSteps; ++step)
-      for (const ImVec2& at : candidates(kNameGap + kLeaderStep * static_cast<float>(step))) {
+      for (const ImVec2& at :
+           candidates(patch, text, kNameGap + kLeaderStep * static_cast<float>(step))) {
         const SkinViewBox box = text_box(ImVec2(std::floor(at.x), std::floor(at.y)), text);
         if (!free(box, false)) continue;
         const auto [from, to] = leader_ends(own, box);
@@ -135,6 +120,31 @@ class NamePlacer {
     return place_in_margin(patch, text);
   }
 
+  // Places for a name `away` pixels from its patch, on each side in the order place_beside
+  // tries them.
+  std::vector<ImVec2> candidates(const Patch& patch, const std::string& text, float away) const {
+    const ImVec2 extent = ImGui::CalcTextSize(text.c_str());
+    const SkinViewBox& own = patch.box;
+    const bool on_the_left = own.min.x + own.max.x < clip_.min.x + clip_.max.x;
+    const float middle_y = 0.5f * (own.min.y + own.max.y - extent.y);
+    const float middle_x = 0.5f * (own.min.x + own.max.x - extent.x);
+    const float left = own.min.x - away - extent.x, right = own.max.x + away;
+    const float top = own.min.y - away - extent.y, bottom = own.max.y + away;
+    const std::vector<ImVec2> left_side = {
+        {left, middle_y}, {left, own.min.y}, {left, own.max.y - extent.y}};
+    const std::vector<ImVec2> right_side = {
+        {right, middle_y}, {right, own.min.y}, {right, own.max.y - extent.y}};
+    const std::vector<ImVec2> above = {
+        {middle_x, top}, {own.min.x, top}, {own.max.x - extent.x, top}};
+    const std::vector<ImVec2> below = {
+        {middle_x, bottom}, {own.min.x, bottom}, {own.max.x - extent.x, bottom}};
+    std::vector<ImVec2> all;
+    for (const auto* side : {on_the_left ? &left_side : &right_side, &above, &below,
+                             on_the_left ? &right_side : &left_side})
+      all.insert(all.end(), side->begin(), side->end());
+    return all;
+  }
+
   // Last, in the margin left or right of the map, clear of every part, with a line across
   // whatever lies between to a dot in the middle of the patch (as an anatomical chart names
   // what lies inside): the line that crosses the fewest taxels.
@@ -145,22 +155,30 @@ class NamePlacer {
     std::optional<SkinViewBox> best;
     float best_cost = std::numeric_limits<float>::max();
     const float longest = 0.3f * std::min(clip_.max.x - clip_.min.x, clip_.max.y - clip_.min.y);
-    for (float x = 0.0f; x <= clip_.max.x - clip_.min.x; x += kLeaderStep)
+    // Left and right of the patch's middle (a line or two up or down), then above and below
+    // it (centred, or half a name aside).
+    std::vector<ImVec2> places;
+    for (float away = 0.0f; away <= longest; away += kLeaderStep) {
       for (const float dy : {0.0f, -1.0f, 1.0f, -2.0f, 2.0f})
-        for (const float left : {centre.x - x - extent.x, centre.x + x}) {
-          const float top = std::floor(centre.y - 0.5f * extent.y + dy * (extent.y + 2.0f));
-          const SkinViewBox box = text_box(ImVec2(std::floor(left), top), text);
-          if (!free(box, false) || overlaps_a_patch(box)) continue;
-          const auto [from, to] = margin_leader(centre, box);
-          if (crosses_a_name(from, to)) continue;
-          // A taxel crossed costs as much as 40 pixels more of line; a line longer than
-          // 0.3 of the view would lead the eye astray (a small view names less).
-          const float length = std::hypot(to.x - from.x, to.y - from.y);
-          if (length > longest) continue;
-          const int crossings = crossed_taxels(from, to, patch);
-          const float cost = static_cast<float>(crossings) + length / 40.0f;
-          if (crossings <= kMarginCrossings && cost < best_cost) best = box, best_cost = cost;
-        }
+        for (const float left : {centre.x - away - extent.x, centre.x + away})
+          places.push_back({left, centre.y - 0.5f * extent.y + dy * (extent.y + 2.0f)});
+      for (const float dx : {0.0f, -0.5f, 0.5f})
+        for (const float top : {centre.y - away - extent.y, centre.y + away})
+          places.push_back({centre.x - 0.5f * extent.x + dx * extent.x, top});
+    }
+    for (const ImVec2& place : places) {
+      const SkinViewBox box = text_box(ImVec2(std::floor(place.x), std::floor(place.y)), text);
+      if (!free(box, false) || overlaps_a_patch(box)) continue;
+      const auto [from, to] = margin_leader(centre, box);
+      if (crosses_a_name(from, to)) continue;
+      // A taxel crossed costs as much as 40 pixels more of line; a line longer than
+      // 0.3 of the view would lead the eye astray (a small view names less).
+      const float length = std::hypot(to.x - from.x, to.y - from.y);
+      if (length > longest) continue;
+      const int crossings = crossed_taxels(from, to, patch);
+      const float cost = static_cast<float>(crossings) + length / 40.0f;
+      if (crossings <= kMarginCrossings && cost < best_cost) best = box, best_cost = cost;
+    }
     if (!best) return false;
     const auto [from, to] = margin_leader(centre, *best);
     draw_.AddLine(from, to, kOutline, 3.0f);
@@ -234,9 +252,12 @@ class NamePlacer {
     return false;
   }
 
+  // From the patch's middle to the name's nearest point, stopping 2 pixels short of it.
   static std::pair<ImVec2, ImVec2> margin_leader(ImVec2 centre, const SkinViewBox& name) {
-    const float x = name.min.x > centre.x ? name.min.x - 2.0f : name.max.x + 2.0f;
-    return {centre, ImVec2(x, 0.5f * (name.min.y + name.max.y))};
+    const SkinViewBox around{ImVec2(name.min.x - 2, name.min.y - 2),
+                             ImVec2(name.max.x + 2, name.max.y + 2)};
+    return {centre, ImVec2(std::clamp(centre.x, around.min.x, around.max.x),
+                           std::clamp(centre.y, around.min.y, around.max.y))};
   }
 
   bool overlaps_a_patch(const SkinViewBox& box) const {
@@ -349,6 +370,7 @@ std::vector<SkinViewLabel> draw_names(ImDrawList& draw, const SkinLayout& layout
     for (const auto& [side, box] : patches_of(*group, true)) patches.push_back({group, box});
   NamePlacer placer(draw, boxes, patches, clip);
   std::vector<bool> named_inside(boxes.size(), false);
+  std::vector<const Patch*> crowded;  // no room beside them
 
   // Side names centred above their taxels, in the line the view keeps free for them.
   for (const Group& group : layout.groups) {
@@ -376,9 +398,12 @@ std::vector<SkinViewLabel> draw_names(ImDrawList& draw, const SkinLayout& layout
         continue;
       }
     }
-    placer.place_beside(patch, text);
+    if (!placer.place_beside(patch, text)) crowded.push_back(&patch);
   }
-  // Taxels big enough to hold their names (a grid's r3c14, a flux stripe's y2) name themselves.
+  for (const Patch* patch : crowded) placer.place_with_line(*patch, name_of_group(*patch->group));
+  // Taxels big enough to hold their names (a grid's r3c14, a flux stripe's y2) name themselves,
+  // on a skin of a few: more names than that are a texture, not something read.
+  if (layout.taxels.size() > kMostTaxelNames) return placer.take();
   for (size_t index = 0; index < boxes.size() && index < layout.taxels.size(); ++index) {
     ImVec2 at;
     const std::string& name = layout.taxels[index].name;
