@@ -482,10 +482,13 @@ void draw_colour_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size, bool hor
 
 namespace {
 
+// A legend row: a line of text and two pixels, so Robovie's 21 parts fit a 720 px window.
+float category_line() { return ImGui::GetTextLineHeight() + 2.0f; }
+
 // Rows of a category legend `height` high, and the width of one column.
 std::pair<size_t, float> category_legend_columns(const SkinViewCategories& categories,
                                                  float height) {
-  const float line = ImGui::GetTextLineHeightWithSpacing();
+  const float line = category_line();
   const auto rows = static_cast<size_t>(std::max(1.0f, std::floor((height - 8.0f) / line)));
   float widest = 0.0f;
   for (const std::string& name : categories.names)
@@ -504,7 +507,7 @@ float category_legend_width(const SkinViewCategories& categories, float height) 
 std::vector<SkinViewLabel> draw_category_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size,
                                                 const SkinViewCategories& categories) {
   const auto [rows, column_width] = category_legend_columns(categories, size.y);
-  const float line = ImGui::GetTextLineHeightWithSpacing();
+  const float line = category_line();
   const ImVec4 clip(top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y);
   std::vector<SkinViewLabel> swatches;
   for (size_t k = 0; k < categories.names.size(); ++k) {
