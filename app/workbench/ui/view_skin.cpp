@@ -64,17 +64,18 @@ void select_in_rectangle(WorkbenchState& state, const SkinLayout& layout,
   }
 }
 
-// The layout's body regions, for colouring the somatosensory map: its groups of the first of
-// these kinds it has, each a colour of the categorical palette (the classes' palette).
+// The layout's body regions, for colouring the somatosensory map: the groups of the first of
+// these kinds that holds every taxel (else of the kind that holds the most), each a colour of
+// the categorical palette (the classes' palette).
 SkinViewCategories body_regions(const SkinLayout& layout) {
   static const char* const kRegionKinds[] = {"body-part", "location", "region",
                                              "zone",      "side",     "layer"};
-  SkinViewCategories regions;
-  regions.of_taxel.assign(layout.taxels.size(), -1);
   std::map<int64_t, size_t> index_of;
   for (size_t index = 0; index < layout.taxels.size(); ++index)
     index_of.emplace(layout.taxels[index].id, index);
-  for (const char* kind : kRegionKinds) {
+  const auto regions_of_kind = [&](const std::string& kind) {
+    SkinViewCategories regions;
+    regions.of_taxel.assign(layout.taxels.size(), -1);
     for (const Group& group : layout.groups) {
       if (group.kind != kind) continue;
       const int category = static_cast<int>(regions.names.size());
@@ -86,9 +87,18 @@ SkinViewCategories body_regions(const SkinLayout& layout) {
           regions.of_taxel[found->second] = category;
       }
     }
-    if (!regions.names.empty()) break;
+    return regions;
+  };
+  SkinViewCategories best;
+  long best_held = 0;
+  for (const char* kind : kRegionKinds) {
+    SkinViewCategories regions = regions_of_kind(kind);
+    const long held = std::count_if(regions.of_taxel.begin(), regions.of_taxel.end(),
+                                    [](int category) { return category >= 0; });
+    if (held > best_held) best = std::move(regions), best_held = held;
+    if (best_held == static_cast<long>(layout.taxels.size())) break;
   }
-  return regions;
+  return best;
 }
 
 // The skin as the view draws it this frame (state.skin_drawing), made again when the layout,
