@@ -45,8 +45,8 @@ def group(group_id, kind, name, taxels):
 
 
 def layout(layout_id, name, description, rate, modalities, display, channels, taxels, groups,
-           disjoint_kinds, classes):
-    return {
+           disjoint_kinds, classes, outline=None):
+    result = {
         "id": layout_id,
         "name": name,
         "description": description,
@@ -60,6 +60,9 @@ def layout(layout_id, name, description, rate, modalities, display, channels, ta
         "disjoint_kinds": disjoint_kinds,
         "classes": classes,
     }
+    if outline:
+        result["outline"] = [[[rounded(x), rounded(y)] for x, y in polygon] for polygon in outline]
+    return result
 
 
 def assert_no_overlap(taxels, sheet_of):
@@ -146,17 +149,43 @@ def make_nao():
 # does not give). Our distribution: 3 top of head, 1 + 1 cheeks, 2 forehead, 4 back of head,
 # 3 + 3 arms, 2 + 2 thighs = 21.
 TSA_LOCATIONS = [
-    # id, name, module count, module centres on the map (front view: the robot's right on the
-    # map's left; the back of the head drawn above the top of the head, as if unfolded over it)
-    ("head-top", "top of head", [(-125.0, 70.0), (0.0, 70.0), (125.0, 70.0)]),
-    ("cheek-left", "left cheek", [(62.5, 210.0)]),
-    ("cheek-right", "right cheek", [(-62.5, 210.0)]),
-    ("forehead", "forehead", [(-62.5, 140.0), (62.5, 140.0)]),
+    # id, name, module centres on the map (front view: the robot's right on the map's left; the
+    # back of the head drawn above the top of the head, as if unfolded over it). The simulator
+    # reads these positions (a palm near a sheet's edge reaches the next sheet of the same
+    # location), so only whole locations are moved on the map, never a module within one: the
+    # modules of a location keep their distances (125 mm across the head, 70 mm down a limb).
+    ("head-top", "top of head", [(-125.0, 46.0), (0.0, 46.0), (125.0, 46.0)]),
+    ("cheek-left", "left cheek", [(62.5, 138.0)]),
+    ("cheek-right", "right cheek", [(-62.5, 138.0)]),
+    ("forehead", "forehead", [(-62.5, 92.0), (62.5, 92.0)]),
     ("head-back", "back of head", [(-187.5, 0.0), (-62.5, 0.0), (62.5, 0.0), (187.5, 0.0)]),
-    ("arm-left", "left arm", [(320.0, 300.0), (320.0, 370.0), (320.0, 440.0)]),
-    ("arm-right", "right arm", [(-320.0, 300.0), (-320.0, 370.0), (-320.0, 440.0)]),
-    ("thigh-left", "left thigh", [(65.0, 520.0), (65.0, 590.0)]),
-    ("thigh-right", "right thigh", [(-65.0, 520.0), (-65.0, 590.0)]),
+    ("arm-left", "left arm", [(157.5, 220.0), (157.5, 290.0), (157.5, 360.0)]),
+    ("arm-right", "right arm", [(-157.5, 220.0), (-157.5, 290.0), (-157.5, 360.0)]),
+    ("thigh-left", "left thigh", [(48.5, 330.0), (48.5, 400.0)]),
+    ("thigh-right", "right thigh", [(-48.5, 330.0), (-48.5, 400.0)]),
+]
+
+
+def chamfered_box(left, top, right, bottom, corner):
+    """A rectangle with its corners cut at 45 degrees, clockwise from the top left."""
+    return [[left + corner, top], [right - corner, top], [right, top + corner],
+            [right, bottom - corner], [right - corner, bottom], [left + corner, bottom],
+            [left, bottom - corner], [left, top + corner]]
+
+
+# The robot's silhouette around the modules (a drawing only: head, neck and torso, arms, thighs),
+# a few millimetres clear of every pad. The torso carries no sensor.
+TSA_OUTLINE = [
+    # head: wide at the back of the head, a jaw below the cheeks
+    [[-205.0, -35.0], [205.0, -35.0], [242.0, -8.0], [242.0, 100.0], [125.0, 170.0],
+     [-125.0, 170.0], [-242.0, 100.0], [-242.0, -8.0]],
+    # neck, shoulders and torso down to the hips
+    [[-40.0, 170.0], [40.0, 170.0], [40.0, 184.0], [110.0, 196.0], [110.0, 308.0],
+     [-110.0, 308.0], [-110.0, 196.0], [-40.0, 184.0]],
+    chamfered_box(-207.0, 190.0, -113.0, 384.0, 10.0),  # right arm
+    chamfered_box(113.0, 190.0, 207.0, 384.0, 10.0),  # left arm
+    chamfered_box(-99.0, 308.0, -3.0, 424.0, 8.0),  # right thigh
+    chamfered_box(3.0, 308.0, 99.0, 424.0, 8.0),  # left thigh
 ]
 TSA_PAD_DIAMETER_MM = 5.0
 TSA_PAD_PITCH_MM = 7.0
@@ -214,7 +243,7 @@ def make_tsa():
     return layout(
         "tsa", "Capacitive TSA on an ABS shell (21 modules)", description, 8.0, ["cap"],
         {"modality": "cap", "min": 0.0, "max": 4095.0}, channels, taxels, groups,
-        ["location", "module", "sheet"], ["T1", "T2", "T3", "T4", "T5", "T6"])
+        ["location", "module", "sheet"], ["T1", "T2", "T3", "T4", "T5", "T6"], TSA_OUTLINE)
 
 
 # ---- fur ------------------------------------------------------------------------------------------
@@ -255,11 +284,11 @@ def make_fur():
         row_top += size + FUR_GAP_MM
     assert_no_overlap(taxels, lambda entry: "head")
     regions = [
-        group("top", "region", "top of the head (rows 0-2, smallest cells)",
+        group("top", "region", "top of head",
               [entry["id"] for entry in taxels if entry["body_part"] == "head-top"]),
-        group("middle", "region", "middle of the head (rows 3-6)",
+        group("middle", "region", "middle of head",
               [entry["id"] for entry in taxels if entry["body_part"] == "head-middle"]),
-        group("lower", "region", "lower head (rows 7-9, largest cells)",
+        group("lower", "region", "lower head",
               [entry["id"] for entry in taxels if entry["body_part"] == "head-lower"]),
     ]
     description = (
@@ -287,7 +316,7 @@ def make_fur():
 # given: the distribution below is ours. Each part lists its blocks: (side, rows, columns, film size,
 # block centre x, block top y). Front view: robot's right on the map's left (x < 0); back view:
 # robot's left on the map's left. The back view is shifted right by ROBOVIE_BACK_OFFSET_MM.
-ROBOVIE_BACK_OFFSET_MM = 600.0
+ROBOVIE_BACK_OFFSET_MM = 640.0
 ROBOVIE_FILM_GAP_MM = 5.0
 
 
@@ -312,19 +341,19 @@ def mirrored(parts_right):
 
 
 ROBOVIE_PARTS = [
-    ("head", "head (crown and back)", [("back", 4, 4, 30.0, 0.0, 0.0)]),
+    ("head", "head (back)", [("back", 4, 4, 30.0, 0.0, 0.0)]),
     ("face", "face", [("front", 3, 4, 30.0, 0.0, 0.0)]),
     ("neck", "neck", [("front", 1, 3, 30.0, 0.0, 110.0), ("back", 1, 3, 30.0, 0.0, 145.0)]),
 ] + mirrored([
     ("shoulder", "shoulder", [("front", 1, 3, 30.0, 140.0, 150.0),
                               ("back", 1, 3, 30.0, 140.0, 150.0)]),
 ]) + [
-    ("chest-upper", "body front (upper)", [("front", 3, 4, 50.0, 0.0, 190.0)]),
-    ("chest-lower", "body front (lower)", [("front", 3, 4, 50.0, 0.0, 360.0)]),
-    ("back-upper", "back (upper)", [("back", 3, 4, 50.0, 0.0, 190.0)]),
-    ("back-lower", "back (lower)", [("back", 3, 4, 50.0, 0.0, 360.0)]),
+    ("chest-upper", "upper chest", [("front", 3, 4, 50.0, 0.0, 190.0)]),
+    ("chest-lower", "lower chest", [("front", 3, 4, 50.0, 0.0, 360.0)]),
+    ("back-upper", "upper back", [("back", 3, 4, 50.0, 0.0, 190.0)]),
+    ("back-lower", "lower back", [("back", 3, 4, 50.0, 0.0, 360.0)]),
 ] + mirrored([
-    ("side", "side (flank)", [("front", 3, 1, 50.0, 137.5, 360.0),
+    ("side", "flank", [("front", 3, 1, 50.0, 137.5, 360.0),
                               ("back", 3, 1, 50.0, 137.5, 360.0)]),
     ("upper-arm", "upper arm", [("front", 5, 2, 30.0, 210.0, 190.0),
                                 ("back", 5, 2, 30.0, 210.0, 190.0)]),

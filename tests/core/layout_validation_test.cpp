@@ -232,6 +232,34 @@ TEST(LayoutValidation, DisjointKindWithoutGroupsIsATypo) {
   EXPECT_EQ(error_of(layout), "tiny.json: disjoint_kinds: no group of kind \"sied\"");
 }
 
+TEST(LayoutJson, BodyOutlineIsReadAsPolygonsInMapUnits) {
+  Json layout = tiny_layout();
+  layout["outline"] = {{{-10, -10}, {30, -10}, {30, 10}, {-10, 10}}, {{0, 20}, {5, 30}, {-5, 30}}};
+  const SkinLayout parsed = parse_layout_json(layout.dump(), "tiny.json");
+  ASSERT_EQ(parsed.body_outline.size(), 2u);
+  EXPECT_EQ(parsed.body_outline[0].size(), 4u);
+  EXPECT_DOUBLE_EQ(parsed.body_outline[1][1].x, 5.0);
+  EXPECT_DOUBLE_EQ(parsed.body_outline[1][1].y, 30.0);
+  // The outline is drawing only: the bounds still hold the taxels alone.
+  EXPECT_DOUBLE_EQ(parsed.bounds().first.x, -5.0);
+}
+
+TEST(LayoutValidation, BodyOutlineOfTooFewOrNonFinitePointsIsNamed) {
+  Json short_polygon = tiny_layout();
+  short_polygon["outline"] = {{{0, 0}, {5, 0}}};
+  EXPECT_EQ(error_of(short_polygon),
+            "tiny.json: outline[0]: a polygon needs at least 3 points (got 2)");
+  Json not_a_number = tiny_layout();
+  not_a_number["outline"] = {{{0, 0}, {5, 0}, {5, 5}}, {{0, 0}, {5, 0}, {"NaN", 5}}};
+  EXPECT_EQ(error_of(not_a_number), "tiny.json: outline[1]: point 2 is NaN");
+  Json not_pairs = tiny_layout();
+  not_pairs["outline"] = Json::array({5});
+  EXPECT_EQ(error_of(not_pairs), "tiny.json: outline[0]: points must be an array, got number");
+  Json triple = tiny_layout();
+  triple["outline"] = {{{0, 0, 1}, {5, 0}, {5, 5}}};
+  EXPECT_EQ(error_of(triple), "tiny.json: outline[0]: points[0] must be a pair [x, y]");
+}
+
 TEST(LayoutValidation, ValidateLayoutChecksLayoutsBuiltInCode) {
   SkinLayout layout = make_grid_layout(2, 2);
   layout.taxels[3].position.y = std::nan("");

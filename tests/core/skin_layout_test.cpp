@@ -202,6 +202,22 @@ TEST(BuiltinLayouts, TsaHas21ModulesOfTwo4x4SheetsAt7mmPitch) {
   EXPECT_LT(head_top_y, thigh_y);
   expect_no_overlap_within(tsa, "sheet");
   expect_no_overlap_within(tsa, "location");
+  // The robot's outline (head, torso, two arms, two thighs) surrounds every pad.
+  ASSERT_EQ(tsa.body_outline.size(), 6u);
+  for (const Taxel& pad : tsa.taxels) {
+    const auto inside = [&pad](const std::vector<Point2>& polygon) {
+      bool odd = false;  // even-odd rule along a ray to the right
+      for (size_t a = 0, b = polygon.size() - 1; a < polygon.size(); b = a++) {
+        const Point2& p = polygon[a];
+        const Point2& q = polygon[b];
+        if ((p.y > pad.position.y) != (q.y > pad.position.y) &&
+            pad.position.x < p.x + (q.x - p.x) * (pad.position.y - p.y) / (q.y - p.y))
+          odd = !odd;
+      }
+      return odd;
+    };
+    EXPECT_TRUE(std::any_of(tsa.body_outline.begin(), tsa.body_outline.end(), inside)) << pad.name;
+  }
 }
 
 TEST(BuiltinLayouts, FurHas160CellsGrowingFrom2cmOnTopTo4cmBelow) {
@@ -331,6 +347,28 @@ TEST(GenericLayouts, StripIsOneRowOfChannels) {
   EXPECT_NO_THROW(validate_layout(strip, strip.id));
 }
 
+TEST(GenericLayouts, StripInRowsKeepsNamesAndChannelsAndWrapsByColumns) {
+  const SkinLayout strip = load_layout("strip:10");
+  const SkinLayout rows = strip_in_rows(strip, 4);
+  ASSERT_EQ(rows.taxels.size(), 10u);
+  const Taxel& sixth = rows.taxels[5];  // row 1, column 1
+  EXPECT_EQ(sixth.name, strip.taxels[5].name);
+  EXPECT_EQ(sixth.channels, strip.taxels[5].channels);
+  EXPECT_DOUBLE_EQ(sixth.position.x, 15.0);
+  EXPECT_DOUBLE_EQ(sixth.position.y, 15.0);
+  EXPECT_DOUBLE_EQ(rows.taxels[9].position.y, 25.0);  // the third row holds two
+  EXPECT_NO_THROW(validate_layout(rows, rows.id));
+  EXPECT_THROW(strip_in_rows(load_layout("grid:2x2"), 2), Error);
+  EXPECT_THROW(strip_in_rows(strip, 0), Error);
+}
+
+TEST(GenericLayouts, StripColumnsToFitGiveTheLargestSquareCells) {
+  EXPECT_EQ(strip_columns_to_fit(64, 640.0, 10.0), 64);   // a wide panel: one row
+  EXPECT_EQ(strip_columns_to_fit(64, 400.0, 400.0), 8);   // a square panel: 8 x 8
+  EXPECT_EQ(strip_columns_to_fit(64, 400.0, 200.0), 12);  // 6 rows of 33 px (not 8 x 8 of 25)
+  EXPECT_EQ(strip_columns_to_fit(1, 50.0, 500.0), 1);
+}
+
 TEST(GenericLayouts, LargestAllowedGridHas65536Taxels) {
   EXPECT_EQ(load_layout("grid:256x256").taxels.size(), 65536u);
 }
@@ -350,6 +388,22 @@ TEST(GenericLayouts, BadIdsThrowNamingTheId) {
 }
 
 //---- Outlines and bounds ------------------------------------------------------------------
+
+TEST(NearestTaxel, DistancesAreToTheClosestOtherCentre) {
+  SkinLayout layout = load_layout("grid:3x4");
+  layout.taxels[11].position = {100.0, 100.0};  // one taxel far from the rest
+  const std::vector<double> nearest = nearest_taxel_distances(layout);
+  ASSERT_EQ(nearest.size(), 12u);
+  EXPECT_DOUBLE_EQ(nearest[0], 10.0);
+  EXPECT_DOUBLE_EQ(nearest[5], 10.0);
+  // Taxel 11 is nearest to taxel 10 at (25, 25).
+  EXPECT_DOUBLE_EQ(nearest[11], std::hypot(75.0, 75.0));
+  const std::vector<double> alone = nearest_taxel_distances(load_layout("strip:1"));
+  EXPECT_TRUE(std::isinf(alone.at(0)));
+  const SkinLayout tsa = load_layout("tsa");
+  const std::vector<double> pads = nearest_taxel_distances(tsa);
+  EXPECT_NEAR(*std::max_element(pads.begin(), pads.end()), 7.0, 1e-9);  // the pad pitch
+}
 
 TEST(TaxelOutline, PointyHexagonHasSixVerticesAtItsCornerRadius) {
   Taxel cell;

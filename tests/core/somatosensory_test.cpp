@@ -65,6 +65,20 @@ TEST(SomatosensoryMap, TaxelsTouchedTogetherLieTogether) {
   }
 }
 
+TEST(SomatosensoryMap, OnTheMapTaxelsLeaveTheBodyAndItsOutline) {
+  SkinLayout layout = load_layout("strip:6");
+  layout.body_outline = {{{0.0, 0.0}, {60.0, 0.0}, {60.0, 10.0}, {0.0, 10.0}}};
+  const MemorySampleSource source(two_groups(2000, 2), layout.id, "r1");
+  const SomatosensoryMap map = somatosensory_map(source, layout, 0);
+  const SkinLayout moved = layout_on_map(layout, map);
+  EXPECT_TRUE(moved.body_outline.empty());
+  for (size_t k = 0; k < map.taxels.size(); ++k) {
+    const Taxel& taxel = *moved.find_taxel(map.taxels[k]);
+    EXPECT_DOUBLE_EQ(taxel.position.x, map.positions[k].x);
+    EXPECT_EQ(taxel.shape, TaxelShape::kCircle);
+  }
+}
+
 TEST(SomatosensoryMap, PooledSumsEqualOnePassAndGapsAreLeftOut) {
   const Stream stream = two_groups(3000, 2);
   const MemorySampleSource whole(stream, "strip:6", "r");

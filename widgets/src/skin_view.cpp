@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <vector>
 
+#include "skin_view_parts.h"
 #include "tactile/widgets/colormap.h"
 #include "tactile/widgets/polygon.h"
 
@@ -14,35 +14,61 @@ namespace tactile {
 
 namespace {
 
-constexpr float kMapMargin = 8.0f;
-constexpr float kLegendWidth = 76.0f;
-constexpr float kLegendBarWidth = 14.0f;
-constexpr int kLegendSteps = 32;
-constexpr float kOutlineMinPixels = 6.0f;  // smaller taxels: outlines would hide the fill
+using skin_parts::kOutline;
 
-const ImU32 kOutline = IM_COL32(18, 18, 22, 255);
+constexpr float kMapMargin = 8.0f;
+constexpr float kOutlineMinPixels = 6.0f;  // smaller taxels: outlines would hide the fill
+// A taxel grows towards its neighbours at most this much, and stops this many pixels (or a
+// twentieth of the spacing) short of touching them.
+constexpr double kMaxGrowth = 1.6;
+constexpr double kGapPixels = 1.0;
+// A taxel at least half-way up the colour scale reads as touched: drawn on top of its
+// neighbours and at least this large (at most three times its size), so that a touch on the
+// small pads of a crowded map still shows.
+constexpr float kTouchedPosition = 0.5f;
+constexpr float kTouchedMinPixels = 10.0f;
+
 // Selected taxels: the colour of the time cursor, so "what is selected" reads as one thing.
 const ImU32 kSelection = IM_COL32(255, 140, 40, 255);
 const ImU32 kHighlight = IM_COL32(255, 255, 255, 255);
-const ImU32 kText = IM_COL32(225, 225, 230, 255);
-const ImU32 kTextShadow = IM_COL32(0, 0, 0, 200);
+const ImU32 kBodyFill = IM_COL32(120, 130, 150, 26);
+const ImU32 kBodyLine = IM_COL32(125, 135, 155, 190);
+const ImU32 kNoCategory = IM_COL32(90, 90, 95, 255);
 
-// A taxel's outline on screen, clockwise on the y-down screen as ImGui's
-// anti-aliased fill wants.
+// A taxel's outline on screen, clockwise on the y-down screen as ImGui's anti-aliased fill
+// wants; grown towards its neighbours when the style gives their distances.
 struct ScreenTaxel {
   std::vector<ImVec2> points;
-  std::vector<Point2> map_points;
+  std::vector<Point2> map_points;  // the drawn outline on the map, for picking
+  ImVec2 centre;
   bool convex = true;
   float extent = 0.0f;  // smaller side of its screen bounding box
+  SkinViewBox box;
 };
 
-ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform) {
+ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform, double spacing) {
   ScreenTaxel screen;
   screen.map_points = taxel_outline(taxel);
   if (signed_area(screen.map_points) < 0) {
     std::reverse(screen.map_points.begin(), screen.map_points.end());
   }
   screen.convex = is_convex(screen.map_points);
+  if (std::isfinite(spacing) && spacing > 0.0 && !screen.map_points.empty()) {
+    Point2 low = screen.map_points.front(), high = low;
+    for (const Point2& point : screen.map_points) {
+      low = {std::min(low.x, point.x), std::min(low.y, point.y)};
+      high = {std::max(high.x, point.x), std::max(high.y, point.y)};
+    }
+    const double own = std::max(high.x - low.x, high.y - low.y);
+    const double gap = std::max(0.05 * spacing, kGapPixels / transform.scale);
+    const double factor = own > 0.0 ? std::clamp((spacing - gap) / own, 1.0, kMaxGrowth) : 1.0;
+    if (factor > 1.0) {
+      const Point2 centre = taxel.position;
+      for (Point2& point : screen.map_points)
+        point = {centre.x + factor * (point.x - centre.x),
+                 centre.y + factor * (point.y - centre.y)};
+    }
+  }
   ImVec2 low(std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
   ImVec2 high(-low.x, -low.y);
   for (const Point2& point : screen.map_points) {
@@ -51,7 +77,10 @@ ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform) {
     low = ImVec2(std::min(low.x, pixel.x), std::min(low.y, pixel.y));
     high = ImVec2(std::max(high.x, pixel.x), std::max(high.y, pixel.y));
   }
+  screen.centre = transform.apply(taxel.position);
   screen.extent = screen.points.empty() ? 0.0f : std::min(high.x - low.x, high.y - low.y);
+  screen.box =
+      screen.points.empty() ? SkinViewBox{screen.centre, screen.centre} : SkinViewBox{low, high};
   return screen;
 }
 
@@ -68,143 +97,64 @@ void fill_taxel(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 colour) {
   }
 }
 
-void shadowed_text(ImDrawList& draw, ImVec2 centre, float font_size, const std::string& text) {
-  const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(font_size, FLT_MAX, 0.0f, text.c_str());
-  const ImVec2 at(std::floor(centre.x - 0.5f * extent.x), std::floor(centre.y - 0.5f * extent.y));
-  draw.AddText(ImGui::GetFont(), font_size, ImVec2(at.x + 1, at.y + 1), kTextShadow, text.c_str());
-  draw.AddText(ImGui::GetFont(), font_size, at, kText, text.c_str());
+// A touched taxel again, on top, enlarged about its centre to kTouchedMinPixels when smaller,
+// with a dark rim that parts it from its lit neighbours (and a white ring when its fill is a
+// region's colour, not its value's). Returns its drawn box.
+SkinViewBox draw_touched(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 fill, bool ring) {
+  const float factor = taxel.extent > 0.0f && taxel.extent < kTouchedMinPixels
+                           ? std::min(kTouchedMinPixels / taxel.extent, 3.0f)
+                           : 1.0f;
+  ScreenTaxel enlarged = taxel;
+  SkinViewBox box{taxel.centre, taxel.centre};
+  for (ImVec2& point : enlarged.points) {
+    point = ImVec2(taxel.centre.x + factor * (point.x - taxel.centre.x),
+                   taxel.centre.y + factor * (point.y - taxel.centre.y));
+    box.min = ImVec2(std::min(box.min.x, point.x), std::min(box.min.y, point.y));
+    box.max = ImVec2(std::max(box.max.x, point.x), std::max(box.max.y, point.y));
+  }
+  const int count = static_cast<int>(enlarged.points.size());
+  if (count < 3) return box;
+  fill_taxel(draw, enlarged, fill);
+  draw.AddPolyline(enlarged.points.data(), count, ring ? kHighlight : kOutline, ImDrawFlags_Closed,
+                   ring ? 2.0f : 1.0f);
+  return box;
 }
 
-bool is_side_group(const Group& group) { return group.kind == "side"; }
-bool is_part_group(const Group& group) {
-  return group.kind == "body-part" || group.kind == "location";
-}
-bool has_side_groups(const SkinLayout& layout) {
-  return std::any_of(layout.groups.begin(), layout.groups.end(), is_side_group);
-}
-const std::string& group_label(const Group& group) {
-  return group.name.empty() ? group.id : group.name;
-}
-
-// Names of body-part and location groups at the centroid of their taxels, one name
-// per side (a body part seen on the front and on the back map is named on both, not
-// half-way between), and side names centred above their taxels, so a viewer
-// recognises the map.
-void draw_group_names(ImDrawList& draw, const SkinLayout& layout, const MapTransform& transform) {
-  const float font_size = ImGui::GetFontSize() * 0.85f;
-  std::map<int64_t, size_t> side_of;  // taxel id -> index of its side group
-  for (size_t index = 0; index < layout.groups.size(); ++index) {
-    if (!is_side_group(layout.groups[index])) continue;
-    for (int64_t id : layout.groups[index].taxels) side_of.emplace(id, index);
-  }
-  // Names are placed greedily, biggest group first, and a name that would overlap one
-  // already drawn, or (a body part) is wider than its part on screen, is left out: zoom
-  // in to see it; the tooltip still names every taxel's groups.
-  struct Placed {
-    ImVec2 min, max;
-  };
-  std::vector<Placed> placed;
-  auto place = [&](ImVec2 centre, const std::string& text, float max_width) {
-    const ImVec2 extent = ImGui::GetFont()->CalcTextSizeA(font_size, FLT_MAX, 0.0f, text.c_str());
-    if (extent.x > max_width) return;
-    const ImVec2 low(centre.x - 0.5f * extent.x - 2.0f, centre.y - 0.5f * extent.y);
-    const ImVec2 high(centre.x + 0.5f * extent.x + 2.0f, centre.y + 0.5f * extent.y);
-    for (const Placed& other : placed)
-      if (low.x < other.max.x && other.min.x < high.x && low.y < other.max.y &&
-          other.min.y < high.y)
-        return;
-    placed.push_back({low, high});
-    shadowed_text(draw, centre, font_size, text);
-  };
-  std::vector<const Group*> parts;
-  for (const Group& group : layout.groups) {
-    if (is_side_group(group)) {
-      double top = std::numeric_limits<double>::infinity();
-      double left = top, right = -top;
-      for (int64_t id : group.taxels) {
-        const Taxel* taxel = layout.find_taxel(id);
-        if (!taxel) continue;
-        for (const Point2& point : taxel_outline(*taxel)) {
-          top = std::min(top, point.y);
-          left = std::min(left, point.x);
-          right = std::max(right, point.x);
-        }
-      }
-      if (!std::isfinite(top)) continue;
-      const ImVec2 anchor = transform.apply({0.5 * (left + right), top});
-      place(ImVec2(anchor.x, anchor.y - 0.6f * ImGui::GetFontSize()), group_label(group), FLT_MAX);
-    } else if (is_part_group(group)) {
-      parts.push_back(&group);
+// The body's silhouette under the taxels: a faint fill and a line. Concave polygons are
+// filled by triangles without anti-aliasing, whose fringes would show as seams.
+void draw_body_outline(ImDrawList& draw, const SkinLayout& layout, const MapTransform& transform) {
+  for (std::vector<Point2> polygon : layout.body_outline) {
+    if (polygon.size() < 3) continue;
+    if (signed_area(polygon) < 0) std::reverse(polygon.begin(), polygon.end());
+    std::vector<ImVec2> points;
+    points.reserve(polygon.size());
+    for (const Point2& point : polygon) points.push_back(transform.apply(point));
+    const int count = static_cast<int>(points.size());
+    if (is_convex(polygon)) {
+      draw.AddConvexPolyFilled(points.data(), count, kBodyFill);
+    } else {
+      const ImDrawListFlags flags = draw.Flags;
+      draw.Flags &= ~ImDrawListFlags_AntiAliasedFill;
+      for (const std::array<int, 3>& triangle : triangulate(polygon))
+        draw.AddTriangleFilled(points[triangle[0]], points[triangle[1]], points[triangle[2]],
+                               kBodyFill);
+      draw.Flags = flags;
     }
-  }
-  std::stable_sort(parts.begin(), parts.end(), [](const Group* a, const Group* b) {
-    return a->taxels.size() > b->taxels.size();
-  });
-  for (const Group* group : parts) {
-    struct Part {
-      Point2 sum{0.0, 0.0};  // of the members' centres
-      int members = 0;
-      double left = std::numeric_limits<double>::infinity();
-      double right = -std::numeric_limits<double>::infinity();
-    };
-    std::map<size_t, Part> by_side;  // the part's taxels on each side of the map
-    for (int64_t id : group->taxels) {
-      const Taxel* taxel = layout.find_taxel(id);
-      if (!taxel) continue;
-      const auto side = side_of.find(id);
-      Part& part = by_side[side == side_of.end() ? SIZE_MAX : side->second];
-      part.sum.x += taxel->position.x;
-      part.sum.y += taxel->position.y;
-      ++part.members;
-      part.left = std::min(part.left, taxel->position.x - 0.5 * taxel->size.x);
-      part.right = std::max(part.right, taxel->position.x + 0.5 * taxel->size.x);
-    }
-    for (const auto& [side, part] : by_side) {
-      const Point2 centroid{part.sum.x / part.members, part.sum.y / part.members};
-      const float width = static_cast<float>((part.right - part.left) * transform.scale);
-      // A little wider than the part is still read as its name.
-      place(transform.apply(centroid), group_label(*group), 1.2f * width + 8.0f);
-    }
-  }
-}
-
-void draw_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size, double value_min, double value_max,
-                 const std::string& label, bool change) {
-  const float line = ImGui::GetTextLineHeight();
-  const float bar_left = top_left.x + 8.0f;
-  const float bar_top = top_left.y + 1.5f * line + 4.0f;
-  const float bar_bottom = top_left.y + size.y - 0.5f * line - 4.0f;
-  if (bar_bottom - bar_top < 8.0f) return;
-  // Position 1 (value_max) at the top, 0 (value_min) at the bottom.
-  for (int step = 0; step < kLegendSteps; ++step) {
-    const float upper = 1.0f - static_cast<float>(step) / kLegendSteps;
-    const float lower = 1.0f - static_cast<float>(step + 1) / kLegendSteps;
-    const float y0 = bar_top + (bar_bottom - bar_top) * (1.0f - upper);
-    const float y1 = bar_top + (bar_bottom - bar_top) * (1.0f - lower);
-    const ImU32 top_colour = pack_abgr(viridis(upper));
-    const ImU32 bottom_colour = pack_abgr(viridis(lower));
-    draw.AddRectFilledMultiColor(ImVec2(bar_left, y0), ImVec2(bar_left + kLegendBarWidth, y1),
-                                 top_colour, top_colour, bottom_colour, bottom_colour);
-  }
-  draw.AddRect(ImVec2(bar_left, bar_top), ImVec2(bar_left + kLegendBarWidth, bar_bottom), kOutline);
-  char text[32];
-  std::snprintf(text, sizeof text, change ? "+%.3g" : "%.3g", value_max);
-  draw.AddText(ImVec2(bar_left + kLegendBarWidth + 4.0f, bar_top - 0.5f * line), kText, text);
-  if (change)
-    std::snprintf(text, sizeof text, "rest");
-  else
-    std::snprintf(text, sizeof text, "%.3g", value_min);
-  draw.AddText(ImVec2(bar_left + kLegendBarWidth + 4.0f, bar_bottom - 0.5f * line), kText, text);
-  if (!label.empty()) {
-    const ImVec4 clip(top_left.x, top_left.y, top_left.x + size.x, top_left.y + size.y);
-    draw.AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(bar_left - 4.0f, top_left.y + 2.0f),
-                 kText, label.c_str(), nullptr, 0.0f, &clip);
+    draw.AddPolyline(points.data(), count, kBodyLine, ImDrawFlags_Closed, 1.5f);
   }
 }
 
 void taxel_tooltip(const SkinLayout& layout, const Taxel& taxel, float value, bool has_value) {
   ImGui::BeginTooltip();
   ImGui::Text("Taxel %lld  %s", static_cast<long long>(taxel.id), taxel.name.c_str());
+  // A taxel of one channel named otherwise (a grid's r3c14 records ch94): the recorded name.
+  const auto channel = std::find_if(taxel.channels.begin(), taxel.channels.end(),
+                                    [](int index) { return index >= 0; });
+  if (std::count_if(taxel.channels.begin(), taxel.channels.end(),
+                    [](int index) { return index >= 0; }) == 1 &&
+      static_cast<size_t>(*channel) < layout.channels.size() &&
+      layout.channels[static_cast<size_t>(*channel)].name != taxel.name)
+    ImGui::Text("Channel: %s", layout.channels[static_cast<size_t>(*channel)].name.c_str());
   if (!taxel.body_part.empty()) ImGui::Text("Body part: %s", taxel.body_part.c_str());
   std::string groups;
   for (const Group* group : layout.groups_of(taxel.id)) {
@@ -249,6 +199,11 @@ void apply_zoom(SkinViewZoom& zoom, SkinViewGeometry& geometry, bool hovered, Im
   transform.scale *= zoom.zoom;
 }
 
+bool has_side_groups(const SkinLayout& layout) {
+  return std::any_of(layout.groups.begin(), layout.groups.end(),
+                     [](const Group& group) { return group.kind == "side"; });
+}
+
 }  // namespace
 
 //---- Public
@@ -262,7 +217,12 @@ MapTransform fit_map(const SkinLayout& layout, ImVec2 top_left, ImVec2 size, flo
     transform.offset_y = top_left.y + 0.5 * size.y;
     return transform;
   }
-  const auto [low, high] = layout.bounds();
+  auto [low, high] = layout.bounds();
+  for (const std::vector<Point2>& polygon : layout.body_outline)
+    for (const Point2& point : polygon) {
+      low = {std::min(low.x, point.x), std::min(low.y, point.y)};
+      high = {std::max(high.x, point.x), std::max(high.y, point.y)};
+    }
   const double width = high.x - low.x;
   const double height = high.y - low.y;
   // A map of zero width or height (one stripe, one row of points) still fits the other way.
@@ -279,15 +239,35 @@ MapTransform fit_map(const SkinLayout& layout, ImVec2 top_left, ImVec2 size, flo
 
 SkinViewGeometry skin_view_geometry(const SkinLayout& layout, ImVec2 top_left, ImVec2 size,
                                     const SkinViewStyle& style) {
-  SkinViewGeometry geometry;
   // Side names go above their taxels: keep a line free for them.
   const float label_line =
       style.show_group_names && has_side_groups(layout) ? ImGui::GetFontSize() : 0.0f;
-  geometry.map_min = ImVec2(top_left.x, top_left.y + label_line);
-  geometry.map_size = ImVec2(std::max(size.x - (style.show_legend ? kLegendWidth : 0.0f), 1.0f),
-                             std::max(size.y - label_line, 1.0f));
-  geometry.transform = fit_map(layout, geometry.map_min, geometry.map_size, kMapMargin);
-  return geometry;
+  const ImVec2 below_names(size.x, std::max(size.y - label_line, 1.0f));
+  const auto fitted = [&](ImVec2 map_size) {
+    SkinViewGeometry geometry;
+    geometry.map_min = ImVec2(top_left.x, top_left.y + label_line);
+    geometry.map_size = ImVec2(std::max(map_size.x, 1.0f), std::max(map_size.y, 1.0f));
+    geometry.transform = fit_map(layout, geometry.map_min, geometry.map_size, kMapMargin);
+    return geometry;
+  };
+  if (!style.show_legend) return fitted(below_names);
+  const float right_width =
+      style.categories
+          ? std::min(skin_parts::category_legend_width(*style.categories, size.y), 0.45f * size.x)
+          : skin_parts::kLegendWidth;
+  SkinViewGeometry right = fitted(ImVec2(below_names.x - right_width, below_names.y));
+  right.legend_min = ImVec2(top_left.x + right.map_size.x, top_left.y);
+  right.legend_size = ImVec2(size.x - right.map_size.x, size.y);
+  if (style.categories) return right;
+  // The colour scale along the bottom instead when the map is wider than the panel's shape
+  // and so grows by it.
+  const float strip = skin_parts::bottom_legend_height();
+  SkinViewGeometry bottom = fitted(ImVec2(below_names.x, below_names.y - strip));
+  if (bottom.transform.scale <= 1.02 * right.transform.scale) return right;
+  bottom.legend_along_bottom = true;
+  bottom.legend_min = ImVec2(top_left.x, top_left.y + size.y - strip);
+  bottom.legend_size = ImVec2(size.x, strip);
+  return bottom;
 }
 
 float scale_position(float value, double value_min, double value_max) {
@@ -314,31 +294,55 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
   result.transform = geometry.transform;
 
   // From the top of the view: side names sit in the line above the map.
-  draw.PushClipRect(
-      origin,
-      ImVec2(geometry.map_min.x + geometry.map_size.x, geometry.map_min.y + geometry.map_size.y),
-      true);
+  const ImVec2 map_max(geometry.map_min.x + geometry.map_size.x,
+                       geometry.map_min.y + geometry.map_size.y);
+  draw.PushClipRect(origin, map_max, true);
+  draw_body_outline(draw, layout, geometry.transform);
+  const SkinViewCategories* categories = style.categories;
+  const auto fill_of = [&](size_t index, float position) -> ImU32 {
+    if (!categories) return pack_abgr(viridis(position));
+    const int category = index < categories->of_taxel.size() ? categories->of_taxel[index] : -1;
+    return category >= 0 && category < static_cast<int>(categories->colours.size())
+               ? categories->colours[static_cast<size_t>(category)]
+               : kNoCategory;
+  };
   const ScreenTaxel* hovered_outline = nullptr;
   std::vector<ScreenTaxel> screens;
   screens.reserve(layout.taxels.size());
+  std::vector<float> positions(layout.taxels.size());
+  std::vector<std::pair<float, size_t>> touched;
   for (size_t index = 0; index < layout.taxels.size(); ++index) {
     const Taxel& taxel = layout.taxels[index];
-    screens.push_back(screen_taxel(taxel, geometry.transform));
+    const double spacing = index < style.neighbour_distances.size()
+                               ? style.neighbour_distances[index]
+                               : std::numeric_limits<double>::quiet_NaN();
+    screens.push_back(screen_taxel(taxel, geometry.transform, spacing));
     const ScreenTaxel& screen = screens.back();
     // Missing values (a short array) are drawn like NaN, grey, never read past the end.
     const float value =
         index < taxel_values.size() ? taxel_values[index] : std::numeric_limits<float>::quiet_NaN();
-    fill_taxel(draw, screen, pack_abgr(viridis(scale_position(value, value_min, value_max))));
+    positions[index] = scale_position(value, value_min, value_max);
+    fill_taxel(draw, screen, fill_of(index, positions[index]));
     if (screen.extent >= kOutlineMinPixels && screen.points.size() >= 2) {
       draw.AddPolyline(screen.points.data(), static_cast<int>(screen.points.size()), kOutline,
                        ImDrawFlags_Closed, 1.0f);
     }
+    if (positions[index] >= kTouchedPosition) touched.emplace_back(positions[index], index);
     if (hovered && point_in_polygon(screen.map_points, geometry.transform.invert(mouse))) {
       result.hovered_taxel = taxel.id;
       hovered_outline = &screen;
     }
   }
-  // Selected taxels: a thick white outline, drawn over the fills of their neighbours.
+  for (const ScreenTaxel& screen : screens) result.taxels.push_back(screen.box);
+  // Touched taxels on top of their neighbours, the strongest last.
+  std::stable_sort(touched.begin(), touched.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [position, index] : touched) {
+    result.taxels[index] =
+        draw_touched(draw, screens[index], fill_of(index, position), categories != nullptr);
+    result.touched_taxels.push_back(layout.taxels[index].id);
+  }
+  // Selected taxels: a thick outline, drawn over the fills of their neighbours.
   for (size_t index = 0; index < layout.taxels.size(); ++index) {
     const auto& selected = style.selected_taxels;
     if (std::find(selected.begin(), selected.end(), layout.taxels[index].id) == selected.end())
@@ -352,7 +356,13 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
                      static_cast<int>(hovered_outline->points.size()), kHighlight,
                      ImDrawFlags_Closed, 2.0f);
   }
-  if (style.show_group_names) draw_group_names(draw, layout, geometry.transform);
+  if (style.show_group_names) {
+    // Names keep clear of the taxels as drawn untouched, so they do not move with a touch.
+    std::vector<SkinViewBox> boxes;
+    boxes.reserve(screens.size());
+    for (const ScreenTaxel& screen : screens) boxes.push_back(screen.box);
+    result.names = skin_parts::draw_names(draw, layout, boxes, SkinViewBox{origin, map_max});
+  }
   if (taxel_values.size() != layout.taxels.size()) {
     // Said on screen rather than asserted: a mismatch is the caller's data, not a crash.
     char text[96];
@@ -363,12 +373,14 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
   }
   draw.PopClipRect();
 
-  if (style.show_legend) {
-    const ImVec2 legend_min(origin.x + geometry.map_size.x, origin.y);
-    draw_legend(draw, legend_min, ImVec2(size.x - geometry.map_size.x, size.y), value_min,
-                value_max,
-                style.modality_label.empty() ? layout.display_modality : style.modality_label,
-                style.values_are_change);
+  if (style.show_legend && categories) {
+    result.legend = skin_parts::draw_category_legend(draw, geometry.legend_min,
+                                                     geometry.legend_size, *categories);
+  } else if (style.show_legend) {
+    skin_parts::draw_colour_legend(
+        draw, geometry.legend_min, geometry.legend_size, geometry.legend_along_bottom, value_min,
+        value_max, style.modality_label.empty() ? layout.display_modality : style.modality_label,
+        style.values_are_change);
   }
 
   if (result.hovered_taxel >= 0) {

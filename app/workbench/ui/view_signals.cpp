@@ -5,6 +5,21 @@
 
 namespace tactile {
 
+namespace {
+
+// A channel as the plot's legend names it: its recorded name, and its taxel's name when that
+// says more (a grid's ch94 is r3c14, a fur cell's f017 is r1c01). Recordings keep the names.
+std::string legend_name(const SkinLayout& layout, const std::string& channel) {
+  const int index = layout.channel_index(channel);
+  if (index < 0) return channel;
+  for (const Taxel& taxel : layout.taxels)
+    if (std::find(taxel.channels.begin(), taxel.channels.end(), index) != taxel.channels.end())
+      return channel.find(taxel.name) == std::string::npos ? channel + " " + taxel.name : channel;
+  return channel;
+}
+
+}  // namespace
+
 void draw_signals_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("signals_view", size, false);
   const Document& document = *state.document;
@@ -13,7 +28,8 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
   for (int column = 0; column < source.channel_count(); ++column) {
     if (!state.plotted[static_cast<size_t>(column)]) continue;
     PlotChannel channel;
-    channel.name = source.info().channels[static_cast<size_t>(column)];
+    channel.name =
+        legend_name(document.layout, source.info().channels[static_cast<size_t>(column)]);
     channel.source = &source;
     channel.channel = column;
     channel.colour = plot_colour(static_cast<int>(channels.size()));

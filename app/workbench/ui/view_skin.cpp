@@ -4,6 +4,7 @@
 
 #include <cfloat>
 #include <cstdio>
+#include <map>
 
 #include "analysis.h"
 #include "jobs.h"
@@ -61,6 +62,71 @@ void select_in_rectangle(WorkbenchState& state, const SkinLayout& layout,
             state.selection.taxels.end())
       state.selection.taxels.push_back(taxel.id);
   }
+}
+
+// The layout's body regions, for colouring the somatosensory map: the groups of the first of
+// these kinds that holds every taxel (else of the kind that holds the most), each a colour of
+// the categorical palette (the classes' palette).
+SkinViewCategories body_regions(const SkinLayout& layout) {
+  static const char* const kRegionKinds[] = {"body-part", "location", "region",
+                                             "zone",      "side",     "layer"};
+  std::map<int64_t, size_t> index_of;
+  for (size_t index = 0; index < layout.taxels.size(); ++index)
+    index_of.emplace(layout.taxels[index].id, index);
+  const auto regions_of_kind = [&](const std::string& kind) {
+    SkinViewCategories regions;
+    regions.of_taxel.assign(layout.taxels.size(), -1);
+    for (const Group& group : layout.groups) {
+      if (group.kind != kind) continue;
+      const int category = static_cast<int>(regions.names.size());
+      regions.names.push_back(group.name.empty() ? group.id : group.name);
+      regions.colours.push_back(class_palette_colour(regions.names.size() - 1));
+      for (int64_t id : group.taxels) {
+        const auto found = index_of.find(id);
+        if (found != index_of.end() && regions.of_taxel[found->second] < 0)
+          regions.of_taxel[found->second] = category;
+      }
+    }
+    return regions;
+  };
+  SkinViewCategories best;
+  long best_held = 0;
+  for (const char* kind : kRegionKinds) {
+    SkinViewCategories regions = regions_of_kind(kind);
+    const long held = std::count_if(regions.of_taxel.begin(), regions.of_taxel.end(),
+                                    [](int category) { return category >= 0; });
+    if (held > best_held) best = std::move(regions), best_held = held;
+    if (best_held == static_cast<long>(layout.taxels.size())) break;
+  }
+  return best;
+}
+
+// The skin as the view draws it this frame (state.skin_drawing), made again when the layout,
+// the map or, for a strip, the number of columns that fill the panel changes.
+const SkinLayout& skin_drawing_of(WorkbenchState& state, const SkinLayout& layout, bool on_map,
+                                  ImVec2 available) {
+  WorkbenchState::SkinDrawing& drawing = state.skin_drawing;
+  const bool strip = !on_map && layout.id.rfind("strip:", 0) == 0;
+  const int64_t columns = strip ? strip_columns_to_fit(static_cast<int64_t>(layout.taxels.size()),
+                                                       std::max(available.x - 16.0f, 1.0f),
+                                                       std::max(available.y - 16.0f, 1.0f))
+                                : 0;
+  std::string key = state.document->path + "|" + layout.id + "|" + std::to_string(columns);
+  if (on_map) {
+    const SomatosensoryMap& map = *state.analysis.map;
+    key += "|map " + state.analysis.map_for + " " + map.source + " " + std::to_string(map.samples);
+  }
+  if (drawing.key != key) {
+    drawing = {};
+    drawing.key = key;
+    drawing.columns = columns;
+    if (strip) drawing.rows = strip_in_rows(layout, columns);
+    // The somatosensory map's dots keep their size: their neighbours are wherever MDS put them.
+    if (!on_map)
+      drawing.neighbour_distances = nearest_taxel_distances(drawing.rows ? *drawing.rows : layout);
+    drawing.regions = body_regions(state.document->layout);
+  }
+  return drawing.rows ? *drawing.rows : layout;
 }
 
 }  // namespace
@@ -144,22 +210,36 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   // was added, it pointed into the freed buffer; found by ASan in the landing test).
   style.selected_taxels = outlined;
   const SkinLayout* drawn = &layout;
-  if (state.analysis.somatosensory && ensure_somatosensory(state)) {
+  const bool on_map = state.analysis.somatosensory && ensure_somatosensory(state);
+  if (on_map) {
     if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id)
       state.analysis.map_layout = layout_on_map(layout, *state.analysis.map);
     drawn = &*state.analysis.map_layout;
     style.show_group_names = false;
     const SomatosensoryMap& map = *state.analysis.map;
-    ImGui::TextDisabled("%zu taxels by MDS of -ln|R| over %lld samples of %s (non-Euclidean share %.2f)",
-                        map.taxels.size(), static_cast<long long>(map.samples), map.source.c_str(),
-                        map.negative_eigenvalue_ratio);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", map.source.c_str());
+    // In plain words, wrapped at the panel's edge; the method's terms in the tooltip.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped(
+        "Taxels placed by how alike their signals are (MDS of correlations, %lld samples of %s); "
+        "colour: body region, white ring: touched now.",
+        static_cast<long long>(map.samples), map.source.c_str());
+    ImGui::PopStyleColor();
+    remember_item(state, "somatosensory:caption");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "%zu taxels placed by classical MDS of the distances -ln|R| between their signals\n"
+          "(R: Pearson correlation over %s).\nShare of the distances no flat map can hold "
+          "(negative eigenvalues): %.2f",
+          map.taxels.size(), map.source.c_str(), map.negative_eigenvalue_ratio);
   } else if (state.analysis.somatosensory) {
     // Computing: the body map meanwhile, the job's progress above it.
     draw_job(state, state.analysis.map_job.get(), nullptr, "somatosensory map");
   }
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
+  drawn = &skin_drawing_of(state, *drawn, on_map, available);
+  style.neighbour_distances = state.skin_drawing.neighbour_distances;
+  if (on_map) style.categories = &state.skin_drawing.regions;
   const SkinViewResult result =
       draw_skin_view("skin_view", *drawn, values, value_min, value_max, available, style);
   if (landed_here) {
@@ -202,10 +282,20 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     draw.AddText(font, size, at, IM_COL32(255, 255, 255, 255), text);
   }
   state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));
-  for (const Taxel& taxel : drawn->taxels) {
+  for (size_t index = 0; index < drawn->taxels.size(); ++index) {
+    const Taxel& taxel = drawn->taxels[index];
     const ImVec2 centre = result.transform.apply(taxel.position);
     state.targets.taxels[taxel.id] = {centre.x, centre.y};
+    if (index < result.taxels.size())
+      state.targets.taxel_boxes[taxel.id] =
+          to_rect(result.taxels[index].min, result.taxels[index].max);
   }
+  state.targets.touched_taxels = result.touched_taxels;
+  for (const SkinViewLabel& name : result.names)
+    state.targets.skin_names.emplace_back(name.id, to_rect(name.box.min, name.box.max));
+  for (const SkinViewLabel& entry : result.legend)
+    remember_legend(state, "somatosensory", entry.id, entry.box.min,
+                    entry.box.max.x - entry.box.min.x);
   if (result.clicked_taxel >= 0) {
     select_taxel(state, result.clicked_taxel, ImGui::GetIO().KeyShift);
     toggle_taxel_channel(state, result.clicked_taxel);

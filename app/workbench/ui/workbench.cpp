@@ -739,6 +739,28 @@ nlohmann::json Workbench::state_json() const {
   nlohmann::json items = nlohmann::json::array();
   for (const auto& [name, rect] : state_.targets.items) items.push_back(name);
   json["items"] = items;
+  // The skin as drawn: each taxel's box (a touched one's enlarged box), the touched taxels,
+  // the names on the map, and the columns of a strip laid in rows (0: as the layout lies).
+  const auto box_json = [](const ScreenRect& rect) {
+    return nlohmann::json{
+        {"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+  };
+  nlohmann::json skin_taxels = nlohmann::json::object();
+  for (const auto& [id, rect] : state_.targets.taxel_boxes)
+    skin_taxels[std::to_string(id)] = box_json(rect);
+  nlohmann::json skin_names = nlohmann::json::array();
+  for (const auto& [name, rect] : state_.targets.skin_names) {
+    nlohmann::json entry = box_json(rect);
+    entry["id"] = name;
+    skin_names.push_back(entry);
+  }
+  json["skin"] = {{"taxels", skin_taxels},
+                  {"touched", state_.targets.touched_taxels},
+                  {"names", skin_names},
+                  {"columns", state_.skin_drawing.columns}};
+  if (const auto caption = state_.targets.items.find("somatosensory:caption");
+      caption != state_.targets.items.end())
+    json["skin"]["caption"] = box_json(caption->second);
   json["panels"] = {{"sidebar_width", state_.sizes.sidebar_width},
                     {"skin_fraction", state_.sizes.skin_fraction},
                     {"timeline_height", state_.sizes.timeline_height}};

@@ -55,6 +55,9 @@ struct UiTargets {
   std::map<int64_t, std::pair<float, float>> taxels;  // taxel id -> centre on screen
   ScreenRect skin_map;                                // the skin view's drawing area
   std::map<std::string, std::string> tips;            // a control's tooltip, by its item name
+  std::map<int64_t, ScreenRect> taxel_boxes;          // taxel id -> its box as drawn
+  std::vector<int64_t> touched_taxels;                // drawn enlarged as touched
+  std::vector<std::pair<std::string, ScreenRect>> skin_names;  // group id or taxel name, box
 };
 
 // Sizes of the arrangement, kept per user between runs (settings file).
@@ -257,6 +260,17 @@ struct WorkbenchState {
   std::vector<char> plotted;  // per channel of the source
   int modality = 0;
   SkinViewZoom skin_zoom;
+  // The skin as the skin view draws it, made again only when `key` changes: a strip laid in
+  // rows that fill the panel (else the layout as it is), the distances to each taxel's
+  // nearest neighbour that size its drawing, and the body regions that colour the
+  // somatosensory map.
+  struct SkinDrawing {
+    std::string key;
+    std::optional<SkinLayout> rows;  // a strip:N in rows; empty: the layout as given
+    int64_t columns = 0;
+    std::vector<double> neighbour_distances;
+    SkinViewCategories regions;
+  } skin_drawing;
   bool show_raw_values = false;  // the skin shows change from rest unless raw is asked for
   RestScale rest_scale;
   int rest_scale_modality = -1;  // modality rest_scale was computed for; -1: stale

@@ -1,5 +1,6 @@
 // Generic layouts built in code: grid:RxC and strip:N, for recordings of any rectangular sensor.
 
+#include <algorithm>
 #include <string>
 
 #include "tactile/error.h"
@@ -86,6 +87,40 @@ SkinLayout make_grid_layout(int64_t rows, int64_t columns, const std::string& id
   }
   layout.disjoint_kinds = {"row"};
   return layout;
+}
+
+SkinLayout strip_in_rows(const SkinLayout& strip, int64_t columns) {
+  if (strip.id.rfind("strip:", 0) != 0) {
+    throw Error("layout " + strip.id, "only a strip:N layout can be laid out in rows");
+  }
+  if (columns < 1) {
+    throw Error("layout " + strip.id,
+                "needs at least one column (got " + std::to_string(columns) + ")");
+  }
+  SkinLayout rows = strip;
+  for (size_t index = 0; index < rows.taxels.size(); ++index) {
+    Taxel& taxel = rows.taxels[index];
+    const auto place = static_cast<int64_t>(index);
+    taxel.position = {(static_cast<double>(place % columns) + 0.5) * kPitchMillimetres,
+                      (static_cast<double>(place / columns) + 0.5) * kPitchMillimetres};
+  }
+  return rows;
+}
+
+int64_t strip_columns_to_fit(int64_t count, double width, double height) {
+  int64_t best_columns = std::max<int64_t>(count, 1);
+  double best_cell = 0.0;
+  for (int64_t columns = 1; columns <= count; ++columns) {
+    const int64_t rows = (count + columns - 1) / columns;
+    const double cell =
+        std::min(width / static_cast<double>(columns), height / static_cast<double>(rows));
+    // Ties go to more columns: fewer rows read more like the strip they are.
+    if (cell >= best_cell) {
+      best_cell = cell;
+      best_columns = columns;
+    }
+  }
+  return best_columns;
 }
 
 SkinLayout make_strip_layout(int64_t count, const std::string& id) {

@@ -110,6 +110,21 @@ class Reader {
     return value;
   }
 
+  // A list of [x, y] pairs: an outline.
+  std::vector<Point2> points(const Json& value, const std::string& entry,
+                             const std::string& key) const {
+    array(value, entry, key.c_str());
+    std::vector<Point2> result;
+    for (size_t point = 0; point < value.size(); ++point) {
+      const Json& pair = value[point];
+      const std::string place = key + "[" + std::to_string(point) + "]";
+      if (!pair.is_array() || pair.size() != 2) fail(entry, place + " must be a pair [x, y]");
+      result.push_back(
+          {number(pair[0], entry, place + "[0]"), number(pair[1], entry, place + "[1]")});
+    }
+    return result;
+  }
+
   std::vector<std::string> strings(const Json& value, const char* key) const {
     array(value, "", key);
     std::vector<std::string> result;
@@ -157,14 +172,7 @@ Taxel parse_taxel(const Reader& reader, const Json& value, size_t index, const S
   taxel.area = reader.number(reader.require(value, "area", entry), entry, "area");
   taxel.shape = parse_shape(reader, reader.text_or(value, "shape", entry, "rect"), entry);
   if (const Json* outline = reader.optional(value, "outline")) {
-    reader.array(*outline, entry, "outline");
-    for (size_t point = 0; point < outline->size(); ++point) {
-      const Json& pair = (*outline)[point];
-      const std::string key = "outline[" + std::to_string(point) + "]";
-      if (!pair.is_array() || pair.size() != 2) reader.fail(entry, key + " must be a pair [x, y]");
-      taxel.outline.push_back(
-          {reader.number(pair[0], entry, key + "[0]"), reader.number(pair[1], entry, key + "[1]")});
-    }
+    taxel.outline = reader.points(*outline, entry, "outline");
   }
   const Json& channels = reader.require(value, "channels", entry);
   if (!channels.is_object()) {
@@ -252,9 +260,10 @@ SkinLayout parse_layout_json(const std::string& text, const std::string& where) 
   const Json root = parse_text(text, where);
   const Reader reader(where);
   reader.check_object(root, "");
-  reader.check_keys(root, "",
-                    {"id", "name", "description", "map_unit", "sample_rate_hz", "modalities",
-                     "display", "channels", "taxels", "groups", "disjoint_kinds", "classes"});
+  reader.check_keys(
+      root, "",
+      {"id", "name", "description", "map_unit", "sample_rate_hz", "modalities", "display",
+       "channels", "taxels", "groups", "disjoint_kinds", "classes", "outline"});
   SkinLayout layout;
   layout.id = reader.text(reader.require(root, "id", ""), "", "id");
   layout.name = reader.text(reader.require(root, "name", ""), "", "name");
@@ -319,6 +328,13 @@ SkinLayout parse_layout_json(const std::string& text, const std::string& where) 
   }
   if (const Json* classes = reader.optional(root, "classes")) {
     layout.classes = reader.strings(*classes, "classes");
+  }
+  if (const Json* outline = reader.optional(root, "outline")) {
+    reader.array(*outline, "", "outline");
+    for (size_t index = 0; index < outline->size(); ++index) {
+      const std::string entry = "outline[" + std::to_string(index) + "]";
+      layout.body_outline.push_back(reader.points((*outline)[index], entry, "points"));
+    }
   }
   validate_layout(layout, where);
   return layout;

@@ -189,6 +189,24 @@ void check_groups(const SkinLayout& layout, const std::string& where) {
   }
 }
 
+void check_body_outline(const SkinLayout& layout, const std::string& where) {
+  for (size_t index = 0; index < layout.body_outline.size(); ++index) {
+    const std::string entry = "outline[" + std::to_string(index) + "]";
+    const std::vector<Point2>& polygon = layout.body_outline[index];
+    if (polygon.size() < 3) {
+      throw Error(where, entry + ": a polygon needs at least 3 points (got " +
+                             std::to_string(polygon.size()) + ")");
+    }
+    for (size_t point = 0; point < polygon.size(); ++point) {
+      const Point2& vertex = polygon[point];
+      if (!non_finite(vertex.x).empty() || !non_finite(vertex.y).empty()) {
+        throw Error(where, entry + ": point " + std::to_string(point) + " is " +
+                               non_finite(std::isfinite(vertex.x) ? vertex.y : vertex.x));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void validate_layout(const SkinLayout& layout, const std::string& where) {
@@ -196,6 +214,7 @@ void validate_layout(const SkinLayout& layout, const std::string& where) {
   check_channels(layout, where);
   check_taxels(layout, where);
   check_groups(layout, where);
+  check_body_outline(layout, where);
 }
 
 }  // namespace tactile

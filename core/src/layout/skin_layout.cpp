@@ -74,6 +74,33 @@ std::pair<Point2, Point2> SkinLayout::bounds() const {
   return {low, high};
 }
 
+// A sweep over the centres sorted by x: a candidate further away in x than the best so far
+// ends the search on that side, so rows of taxels cost about their length.
+std::vector<double> nearest_taxel_distances(const SkinLayout& layout) {
+  const size_t count = layout.taxels.size();
+  std::vector<size_t> by_x(count);
+  for (size_t index = 0; index < count; ++index) by_x[index] = index;
+  std::sort(by_x.begin(), by_x.end(), [&layout](size_t a, size_t b) {
+    return layout.taxels[a].position.x < layout.taxels[b].position.x;
+  });
+  std::vector<double> nearest(count, std::numeric_limits<double>::infinity());
+  for (size_t rank = 0; rank < count; ++rank) {
+    const Point2& centre = layout.taxels[by_x[rank]].position;
+    double& best = nearest[by_x[rank]];
+    const auto consider = [&](size_t other) {
+      const Point2& point = layout.taxels[by_x[other]].position;
+      if (std::abs(point.x - centre.x) >= best) return false;
+      best = std::min(best, std::hypot(point.x - centre.x, point.y - centre.y));
+      return true;
+    };
+    for (size_t other = rank + 1; other < count && consider(other); ++other) {
+    }
+    for (size_t other = rank; other-- > 0 && consider(other);) {
+    }
+  }
+  return nearest;
+}
+
 //---- Shapes -----------------------------------------------------------------------------------
 
 const char* taxel_shape_name(TaxelShape shape) {

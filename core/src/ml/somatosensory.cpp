@@ -285,6 +285,7 @@ bool write_somatosensory_corpus_cache(const std::string& cache_path,
 
 SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map) {
   SkinLayout moved = layout;
+  moved.body_outline.clear();  // the taxels have left the body: its outline would mislead
   // A dot's size: a fraction of the map, so 274 films do not cover each other.
   double x0 = 1e300, x1 = -1e300;
   for (const Point2& point : map.positions) x0 = std::min(x0, point.x), x1 = std::max(x1, point.x);

@@ -65,6 +65,9 @@ struct SkinLayout {
   std::vector<Group> groups;
   std::vector<std::string> disjoint_kinds;  // group kinds whose groups may not share taxels
   std::vector<std::string> classes;         // the paper's class vocabulary
+  // The body's silhouette on the map (JSON "outline"): closed polygons in map units (head,
+  // torso, limbs) that a skin view draws under the taxels; empty when the layout has none.
+  std::vector<std::vector<Point2>> body_outline;
 
   int channel_index(const std::string& name) const;   // -1 when absent
   int modality_index(const std::string& name) const;  // -1 when absent
@@ -72,7 +75,7 @@ struct SkinLayout {
   const Group* find_group(const std::string& id) const;
   // Groups of the given kind that contain the taxel ("" kind: all groups).
   std::vector<const Group*> groups_of(int64_t taxel_id, const std::string& kind = {}) const;
-  // Map bounding box over all taxel outlines: {min, max}.
+  // Map bounding box over all taxel outlines: {min, max} (the body outline left out).
   std::pair<Point2, Point2> bounds() const;
 };
 
@@ -90,6 +93,16 @@ SkinLayout make_grid_layout(int64_t rows, int64_t columns, const std::string& id
 SkinLayout make_strip_layout(int64_t count, const std::string& id = {});
 // True for ids of the form "grid:..." or "strip:..." (valid or not).
 bool is_generic_layout_id(const std::string& id);
+// A strip:N layout with its taxels laid `columns` to a row, row after row at the strip's pitch
+// (a long strip drawn in a panel taller than one row); ids, names, channels unchanged. Throws
+// tactile::Error for a layout that is not a strip or columns < 1.
+SkinLayout strip_in_rows(const SkinLayout& strip, int64_t columns);
+// The number of columns that gives `count` square cells the largest size in width x height.
+int64_t strip_columns_to_fit(int64_t count, double width, double height);
+
+// Per taxel (layout order), the distance between its centre and the nearest other taxel's
+// centre; infinity for a layout of one taxel. What "neighbours" means to a drawing.
+std::vector<double> nearest_taxel_distances(const SkinLayout& layout);
 
 // A layout added by add_layout, else assets/layouts/<id>.json, or a generic grid:RxC /
 // strip:N layout. Throws tactile::Error naming the file and the entry on any invalid content.

@@ -83,8 +83,8 @@ bool write_somatosensory_corpus_cache(const std::string& cache_path,
                                       const std::vector<std::string>& recordings,
                                       const SomatosensoryMap& map);
 
-// The layout with its taxels moved to the map's positions (drawn as small circles);
-// taxels not on the map keep their place.
+// The layout with its taxels moved to the map's positions (drawn as small circles) and
+// without its body outline; taxels not on the map keep their place.
 SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map);
 
 }  // namespace tactile
