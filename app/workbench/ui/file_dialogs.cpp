@@ -115,7 +115,8 @@ void draw_labels_export_dialog(WorkbenchState& state) {
                                          stem + (dialog.json ? ".json" : ".csv"),
                                          {dialog.json ? ".json" : ".csv"}));
   }
-  remember_item(state, "button:export-labels/Export...");
+  remember_item(state, "button:export-labels/Export...",
+                "Choose the file and write the labels to it");
   ImGui::EndDisabled();
   if (running) {
     ImGui::SameLine();
@@ -150,10 +151,12 @@ void draw_features_export_dialog(WorkbenchState& state) {
     }
     ImGui::EndCombo();
   }
-  remember_item(state, "combo:export-features/--pipeline");
+  remember_item(state, "combo:export-features/--pipeline",
+                "The feature set computed from each segment");
   ImGui::SetNextItemWidth(300);
   ImGui::InputTextWithHint("--params", "key=value,...", dialog.params.data(), dialog.params.size());
-  remember_item(state, "input:export-features/--params");
+  remember_item(state, "input:export-features/--params",
+                "The feature set's parameters, key=value,... (empty: its defaults)");
   source_choice(state, "export-features", dialog.source, false);
   if (radio_item(state, "radio:export-features/this recording",
                  ("this recording (" + state.document->recording_id() + ")").c_str(),
@@ -178,12 +181,13 @@ void draw_features_export_dialog(WorkbenchState& state) {
                                          stem + (dialog.arff ? ".arff" : ".csv"),
                                          {dialog.arff ? ".arff" : ".csv"}));
   }
-  remember_item(state, "button:export-features/Export...");
+  remember_item(state, "button:export-features/Export...",
+                "Choose the file (.csv or .arff) and write the feature table to it");
   ImGui::EndDisabled();
   if (running) {
     ImGui::SameLine();
     if (ImGui::Button("Cancel")) running->cancel();
-    remember_item(state, "button:export-features/Cancel");
+    remember_item(state, "button:export-features/Cancel", "Stop computing the features");
     ImGui::SameLine();
     const std::string stage = running->stage();
     ImGui::ProgressBar(static_cast<float>(running->progress()), ImVec2(-1, 0), stage.c_str());
@@ -228,12 +232,15 @@ void draw_agreement_dialog(WorkbenchState& state) {
   ImGui::SetNextItemWidth(120);
   ImGui::InputFloat("--iou", &dialog.iou, 0.05f, 0.1f, "%.2f");
   dialog.iou = std::clamp(dialog.iou, 0.01f, 1.0f);
-  remember_item(state, "input:agreement/--iou");
+  remember_item(
+      state, "input:agreement/--iou",
+      "How much two segments must overlap (intersection over union) to count as the same touch");
   ImGui::Separator();
   AnyJob* running = running_file_job(state, "agreement");
   ImGui::BeginDisabled(running != nullptr || dialog.a.empty() || dialog.b.empty());
   if (ImGui::Button("Compute")) start_agreement(state);
-  remember_item(state, "button:agreement/Compute");
+  remember_item(state, "button:agreement/Compute",
+                "Compare the two lanes: kappa over time, segment F1");
   ImGui::EndDisabled();
   ImGui::End();
 }
@@ -257,10 +264,10 @@ void draw_report_window(WorkbenchState& state) {
     state.file_browser.open(
         save_request(state, "save report", "Save the report", report.file_name, extensions));
   }
-  remember_item(state, "button:report/Save...");
+  remember_item(state, "button:report/Save...", "Write this report to a file");
   ImGui::SameLine();
   if (ImGui::Button("Close")) report.open = false;
-  remember_item(state, "button:report/Close");
+  remember_item(state, "button:report/Close", "Close the report (Escape)");
   if (!report.json.empty()) {
     ImGui::SameLine();
     ImGui::TextDisabled("a name ending in .json saves the JSON report");

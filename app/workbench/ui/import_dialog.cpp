@@ -56,13 +56,14 @@ void import_field(WorkbenchState& state, const char* flag, std::array<char, Size
   ImGui::SameLine(kImportLabelWidth);
   ImGui::SetNextItemWidth(width);
   ImGui::InputTextWithHint((std::string("##") + flag).c_str(), hint, buffer.data(), buffer.size());
-  remember_item(state, std::string("input:import/") + flag);
+  remember_item(state, std::string("input:import/") + flag,
+                std::string("tactile import ") + flag + ": " + hint + " (docs/IMPORT.md)");
 }
 
 bool import_browse(WorkbenchState& state, const char* flag) {
   ImGui::SameLine();
   const bool pressed = ImGui::Button((std::string("Browse...##") + flag).c_str());
-  remember_item(state, std::string("button:import/Browse ") + flag);
+  remember_item(state, std::string("button:import/Browse ") + flag, "Choose the file in a browser");
   return pressed;
 }
 
@@ -283,7 +284,9 @@ void draw_import_dialog(WorkbenchState& state) {
   if (format == "CSV") {
     ImGui::SetCursorPosX(kImportLabelWidth);
     ImGui::Checkbox("--wide: one capture per row, with a labels file", &dialog.wide);
-    remember_item(state, "checkbox:import/--wide");
+    remember_item(
+        state, "checkbox:import/--wide",
+        "One capture per row, channel-major, with a labels file of one class per capture");
     if (dialog.wide) {
       import_field(state, "--samples-per-capture", dialog.samples_per_capture, "N", 200.0f);
       import_field(state, "--labels-file", dialog.labels_file, "one class per capture", -90.0f);
@@ -318,7 +321,8 @@ void draw_import_dialog(WorkbenchState& state) {
                  format == ".json" ? "the key of the classes" : "the array of the classes", 320.0f);
     ImGui::SetCursorPosX(kImportLabelWidth);
     ImGui::Checkbox("--captures: [captures][channels][samples]", &dialog.captures);
-    remember_item(state, "checkbox:import/--captures");
+    remember_item(state, "checkbox:import/--captures",
+                  "The array is [captures][channels][samples]: captures laid end to end");
   }
   FileImportOptions options;
   std::string refusal;
@@ -383,15 +387,16 @@ void draw_import_dialog(WorkbenchState& state) {
   AnyJob* running = running_file_job(state, "import");
   ImGui::BeginDisabled(running != nullptr || file.empty() || !parsed);
   if (ImGui::Button("Import")) start_import(state, options);
-  remember_item(state, "button:import/Import");
+  remember_item(state, "button:import/Import",
+                "Write the recording (and its ground truth) as the preview shows it, then open it");
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Close")) open = false;
-  remember_item(state, "button:import/Close");
+  remember_item(state, "button:import/Close", "Close the dialog (Escape); nothing is written");
   if (running) {
     ImGui::SameLine();
     if (ImGui::Button("Cancel")) running->cancel();
-    remember_item(state, "button:import/Cancel");
+    remember_item(state, "button:import/Cancel", "Stop the import; the files already written stay");
     ImGui::SameLine();
     const std::string stage = running->stage();
     ImGui::ProgressBar(static_cast<float>(running->progress()), ImVec2(-1, 0), stage.c_str());

@@ -137,7 +137,8 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   ImGui::Text("SOM %d x %d: neurons coloured by their class, each row a dot on its winner", map.rows, map.columns);
   ImGui::SameLine();
   ImGui::Checkbox("U-matrix", &analysis.u_matrix);
-  remember_item(state, "U-matrix");
+  remember_item(state, "U-matrix",
+                "Shade each neuron by its distance to its neighbours: dark valleys are clusters");
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
   const float legend_width = 130.0f;

@@ -76,10 +76,10 @@ void remember_item(WorkbenchState& state, const std::string& name) {
   state.targets.items[name] = to_rect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
 }
 
-void remember_item(WorkbenchState& state, const std::string& name, const char* tip) {
+void remember_item(WorkbenchState& state, const std::string& name, const std::string& tip) {
   remember_item(state, name);
   state.targets.tips[name] = tip;
-  tooltip(tip);
+  tooltip(tip.c_str());
 }
 
 void tooltip(const char* text) {

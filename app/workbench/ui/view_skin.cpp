@@ -134,20 +134,35 @@ const SkinLayout& skin_drawing_of(WorkbenchState& state, const SkinLayout& layou
 void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("skin_panel", size, false);
   const SkinLayout& layout = state.document->layout;
+  // Each caption before its box, so that it reads as that box's.
+  const auto caption = [](const char* text) {
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(text);
+    ImGui::SameLine(0.0f, 4.0f);
+  };
+  caption("modality");
   ImGui::SetNextItemWidth(100);
   const char* current =
       layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)].c_str();
-  if (ImGui::BeginCombo("modality", current)) {
+  const bool modalities = ImGui::BeginCombo("##modality", current);
+  remember_item(state, "combo:modality",
+                "Which of the skin's senses colours the taxels and is plotted");
+  if (modalities) {
     for (int k = 0; k < static_cast<int>(layout.modalities.size()); ++k)
       if (ImGui::Selectable(layout.modalities[static_cast<size_t>(k)].c_str(), k == state.modality))
         state.modality = k;
     ImGui::EndCombo();
   }
-  ImGui::SameLine();
+  ImGui::SameLine(0.0f, 12.0f);
   // The region a new label gets: choose a body part (or click taxels on the skin).
+  caption("region");
   ImGui::SetNextItemWidth(90);
   const std::string region = region_of_taxels(layout, state.selection.taxels);
-  if (ImGui::BeginCombo("region", region.c_str())) {
+  const bool regions = ImGui::BeginCombo("##region", region.c_str());
+  remember_item(
+      state, "region",
+      "The body part the next label is given (or select taxels on the skin; all: none chosen)");
+  if (regions) {
     if (ImGui::Selectable("all", region == "all")) state.selection.taxels.clear();
     for (const Group& group : layout.groups) {
       const std::string name = group.name.empty() ? group.id : group.name + " (" + group.id + ")";
@@ -156,7 +171,6 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     }
     ImGui::EndCombo();
   }
-  remember_item(state, "region");
   // A narrow panel wraps its tool row rather than hiding the last tools past its edge.
   const auto same_line_if_room = [](float width) {
     ImGui::SameLine();
@@ -164,6 +178,9 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   };
   same_line_if_room(ImGui::GetFrameHeight() + ImGui::CalcTextSize("raw values").x + 12.0f);
   ImGui::Checkbox("raw values", &state.show_raw_values);
+  remember_item(
+      state, "checkbox:raw values",
+      "Colour taxels by their raw values instead of their change from rest beyond the noise");
   same_line_if_room(120.0f);
   // The body as built, or the somatosensory map: taxels placed by how they are touched together.
   ImGui::SetNextItemWidth(120);
@@ -171,7 +188,12 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   const char* shown = !analysis.somatosensory          ? "body map"
                       : analysis.somatosensory_corpus ? "somatosensory (all)"
                                                       : "somatosensory";
-  if (ImGui::BeginCombo("##map", shown)) {
+  const bool maps = ImGui::BeginCombo("##map", shown);
+  remember_item(
+      state, "map",
+      "body map: the skin as built\nsomatosensory: taxels placed by MDS of their correlation\n"
+      "distances -ln|R| over this recording (Robovie paper); cached beside it");
+  if (maps) {
     if (ImGui::Selectable("body map", !analysis.somatosensory)) analysis.somatosensory = false;
     remember_item(state, "map:body");
     if (ImGui::Selectable("somatosensory: this recording",
@@ -184,10 +206,6 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     remember_item(state, "map:somatosensory-corpus");
     ImGui::EndCombo();
   }
-  remember_item(state, "map");
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("body map: the skin as built\nsomatosensory: taxels placed by MDS of their correlation\n"
-                      "distances -ln|R| over this recording (Robovie paper); cached beside it");
   double value_min = 0.0, value_max = 1.0;
   const std::vector<float> values = skin_values_now(state, value_min, value_max);
   SkinViewStyle style;

@@ -57,7 +57,7 @@ std::string format_seconds(double seconds);
 void remember_item(WorkbenchState& state, const std::string& name);
 // The same, for a control, with the tooltip it shows while hovered (kept in the state JSON's
 // `tips`, so a test can hold every control to having one).
-void remember_item(WorkbenchState& state, const std::string& name, const char* tip);
+void remember_item(WorkbenchState& state, const std::string& name, const std::string& tip);
 // A tooltip for the last item while it is hovered.
 void tooltip(const char* text);
 ScreenRect to_rect(ImVec2 min, ImVec2 max);
