@@ -43,6 +43,20 @@ class TempFolder {
   std::filesystem::path path_;
 };
 
+// A workbench script (docs/SCRIPTING.md) written into `folder` as `name`, or by default as
+// script-N.txt (the first N not taken), each `@` of `text` replaced by the folder's path and a
+// slash; returns its path.
+inline std::string write_script(const TempFolder& folder, std::string text,
+                                const std::string& name = "") {
+  for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
+    text.replace(at, 1, folder.path().string() + "/");
+  std::string path = name.empty() ? "" : folder.file(name);
+  for (int n = 1; path.empty() || (name.empty() && std::filesystem::exists(path)); ++n)
+    path = folder.file("script-" + std::to_string(n) + ".txt");
+  std::ofstream(path) << text;
+  return path;
+}
+
 struct CommandResult {
   int exit_code = -1;
   std::string out;

@@ -28,11 +28,7 @@ class WorkbenchClassifiers : public ::testing::Test {
     std::string all = arguments + " --annotator ana --size 1400x800 --settings " +
                       folder.file("settings.json");
     if (!script_text.empty()) {
-      for (size_t at = script_text.find('@'); at != std::string::npos; at = script_text.find('@', at))
-        script_text.replace(at, 1, folder.path().string() + "/");
-      const std::string path = folder.file("script-" + std::to_string(++scripts) + ".txt");
-      std::ofstream(path) << script_text;
-      all += " --script " + path;
+      all += " --script " + test::write_script(folder, script_text);
     }
     return test::run_program("tactile-workbench-headless", all, folder);
   }
@@ -60,7 +56,6 @@ class WorkbenchClassifiers : public ::testing::Test {
   }
 
   test::TempFolder folder{"tactile-workbench-classifiers"};
-  int scripts = 0;
 };
 
 const char* kTrainAll =

@@ -26,13 +26,7 @@ class WorkbenchFiles : public ::testing::Test {
   }
   std::string recording() const { return folder.file("ws/fur-s01-t01.h5"); }
   std::string database() const { return folder.file("ws/labels.db"); }
-  std::string script(std::string text) {
-    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
-      text.replace(at, 1, folder.path().string() + "/");
-    const std::string path = folder.file("script-" + std::to_string(++scripts) + ".txt");
-    std::ofstream(path) << text;
-    return path;
-  }
+  std::string script(const std::string& text) { return test::write_script(folder, text); }
   // The headless workbench on `open` ("" = nothing) playing `text`.
   test::CommandResult workbench(const std::string& open, const std::string& text) {
     return test::run_program("tactile-workbench-headless",
@@ -49,7 +43,6 @@ class WorkbenchFiles : public ::testing::Test {
   }
 
   test::TempFolder folder{"tactile-workbench-files"};
-  int scripts = 0;
 };
 
 TEST_F(WorkbenchFiles, EscapeClosesTheFileDialogAndTheNextClickWorks) {

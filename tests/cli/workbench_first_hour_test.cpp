@@ -26,15 +26,12 @@ class FirstHour : public ::testing::Test {
   std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
   // Runs the headless workbench on `open` (a file, a folder, or nothing) with a script whose
   // `@` stand for this test's folder.
-  test::CommandResult workbench(const std::string& open, std::string text,
+  test::CommandResult workbench(const std::string& open, const std::string& text,
                                 const std::string& size = "1280x720") {
-    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
-      text.replace(at, 1, folder.path().string() + "/");
-    const std::string path = folder.file("script-" + std::to_string(++scripts_) + ".txt");
-    std::ofstream(path) << text;
     return test::run_program("tactile-workbench-headless",
                              open + " --annotator ana --size " + size + " --settings " +
-                                 folder.file("settings.json") + " --script " + path,
+                                 folder.file("settings.json") + " --script " +
+                                 test::write_script(folder, text),
                              folder);
   }
   nlohmann::json state(const std::string& name) const {
@@ -48,9 +45,6 @@ class FirstHour : public ::testing::Test {
   }
 
   test::TempFolder folder{"tactile-first-hour"};
-
- private:
-  int scripts_ = 0;
 };
 
 TEST_F(FirstHour, AnEmptyWindowSaysWhatToDoAndMakesTheDemoWorkspace) {

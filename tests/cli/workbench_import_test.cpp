@@ -47,13 +47,7 @@ class WorkbenchImport : public ::testing::Test {
     csv.close();
     std::filesystem::create_directories(folder.file("ws"));
   }
-  std::string script(std::string text) {
-    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
-      text.replace(at, 1, folder.path().string() + "/");
-    const std::string path = folder.file("script-" + std::to_string(++scripts) + ".txt");
-    std::ofstream(path) << text;
-    return path;
-  }
+  std::string script(const std::string& text) { return test::write_script(folder, text); }
   // The workbench on the empty workspace `ws`: imports land there.
   test::CommandResult workbench(const std::string& text) {
     return test::run_program("tactile-workbench-headless",
@@ -77,7 +71,6 @@ class WorkbenchImport : public ::testing::Test {
   }
 
   test::TempFolder folder{"tactile-workbench-import"};
-  int scripts = 0;
 };
 
 TEST_F(WorkbenchImport, EachFormatImportsFromTheDialogAsTheCommandLineDoes) {

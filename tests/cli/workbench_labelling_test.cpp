@@ -40,13 +40,7 @@ class WorkbenchLabelling : public ::testing::Test {
   }
   std::string recording() const { return folder.file("ws/fur-s01-t01.h5"); }
   std::string database() const { return folder.file("ws/labels.db"); }
-  std::string script(std::string text) {
-    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
-      text.replace(at, 1, folder.path().string() + "/");
-    const std::string path = folder.file("script-" + std::to_string(++scripts) + ".txt");
-    std::ofstream(path) << text;
-    return path;
-  }
+  std::string script(const std::string& text) { return test::write_script(folder, text); }
   std::string arguments(const std::string& script_path) const {
     return recording() + " --annotator ana --size 1200x760 --settings " +
            folder.file("settings.json") + " --script " + script_path;
@@ -109,7 +103,6 @@ class WorkbenchLabelling : public ::testing::Test {
 
   test::TempFolder folder{"tactile-workbench-labelling"};
   std::vector<std::string> vocabulary;
-  int scripts = 0;
 };
 
 TEST_F(WorkbenchLabelling, KeysMakeALabelThatIsInTheDatabaseAtOnce) {

@@ -27,14 +27,7 @@ using test::run_program;
 
 class WorkbenchLive : public ::testing::Test {
  protected:
-  std::string script(const std::string& text) {
-    std::string body = text;
-    for (size_t at = body.find('@'); at != std::string::npos; at = body.find('@', at))
-      body.replace(at, 1, folder.path().string() + "/");
-    const std::string path = folder.file("script.txt");
-    std::ofstream(path) << body;
-    return path;
-  }
+  std::string script(const std::string& text) { return test::write_script(folder, text); }
   nlohmann::json state(const std::string& name) {
     std::ifstream in(folder.file(name));
     return nlohmann::json::parse(in);

@@ -31,12 +31,8 @@ class WorkbenchScript : public ::testing::Test {
   }
   std::string recording() const { return folder.file("press.h5"); }
   // Writes a script; "@" stands for this test's folder.
-  std::string script(std::string text) {
-    for (size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at))
-      text.replace(at, 1, folder.path().string() + "/");
-    const std::string path = folder.file("script.txt");
-    std::ofstream(path) << text;
-    return path;
+  std::string script(const std::string& text) {
+    return test::write_script(folder, text, "script.txt");
   }
   test::CommandResult run(const std::string& arguments) {
     return test::run_program("tactile-workbench-headless",

@@ -15,7 +15,8 @@ namespace tactile {
 
 namespace {
 
-constexpr const char* kLabelColumns[] = {"class", "t0", "t1", "lane", "margin", "region"};
+// The margin second: a narrow sidebar shows it without scrolling sideways.
+constexpr const char* kLabelColumns[] = {"class", "margin", "t0", "t1", "lane", "region"};
 constexpr int kLabelColumnCount = static_cast<int>(std::size(kLabelColumns));
 
 // A prediction's margin (labels of source model, their note); other labels have none and sort
@@ -41,10 +42,14 @@ std::vector<size_t> sorted_rows(WorkbenchState& state, const std::vector<Label>&
     const auto less = [&](const Label& a, const Label& b) {
       switch (spec.ColumnIndex) {
         case 0: return a.class_name < b.class_name;
-        case 1: return a.t0 < b.t0;
-        case 2: return a.t1 < b.t1;
-        case 3: return lane_of(a).title() < lane_of(b).title();
-        case 4: return table_margin(a) < table_margin(b);
+        case 1:
+          return table_margin(a) < table_margin(b);
+        case 2:
+          return a.t0 < b.t0;
+        case 3:
+          return a.t1 < b.t1;
+        case 4:
+          return lane_of(a).title() < lane_of(b).title();
         default: return a.region < b.region;
       }
     };
@@ -107,7 +112,7 @@ void draw_labels_view(WorkbenchState& state, ImVec2 size) {
                                    ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable |
                                    ImGuiTableFlags_Sortable | ImGuiTableFlags_SortTristate)) {
     ImGui::TableSetupScrollFreeze(1, 1);
-    const float widths[] = {110.0f, 56.0f, 56.0f, 130.0f, 50.0f, 90.0f};
+    const float widths[] = {100.0f, 48.0f, 56.0f, 56.0f, 130.0f, 90.0f};
     for (int column = 0; column < kLabelColumnCount; ++column)
       ImGui::TableSetupColumn(kLabelColumns[column], ImGuiTableColumnFlags_WidthFixed, widths[column]);
     // The header row by hand, so that a script can click a header (`click item header:margin`).
@@ -144,13 +149,13 @@ void draw_labels_view(WorkbenchState& state, ImVec2 size) {
         remember_item(state, "label-row:" + std::to_string(label.id));
         ImGui::PopID();
         ImGui::TableNextColumn();
+        if (label.source == LabelSource::kModel) ImGui::Text("%.2f", prediction_margin(label));
+        ImGui::TableNextColumn();
         ImGui::Text("%.3f", label.t0);
         ImGui::TableNextColumn();
         ImGui::Text("%.3f", label.t1);
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(lane_of(label).title().c_str());
-        ImGui::TableNextColumn();
-        if (label.source == LabelSource::kModel) ImGui::Text("%.2f", prediction_margin(label));
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(label.region.c_str());
       }
