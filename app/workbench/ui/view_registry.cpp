@@ -83,7 +83,13 @@ void remember_item(WorkbenchState& state, const std::string& name, const std::st
 }
 
 void tooltip(const char* text) {
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+  if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+  // Wrapped at a reading width: a long tip on one line ran past the window's edge.
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);
+  ImGui::TextUnformatted(text);
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
 }
 
 const RestScale& current_rest_scale(WorkbenchState& state, const std::vector<int>& columns) {
