@@ -47,20 +47,28 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
 
   const uint16_t port = free_port();
   const std::string url = "udp://127.0.0.1:" + std::to_string(port);
-  // The workbench listens first; the sender starts once it is up (a second later), sends 20 s
+  // The workbench listens first; the sender starts once it has drawn a frame, sends 20 s
   // of device time at 4x (5 s), and the script watches for 9 s.
   const std::string record = folder.file("session.h5");
   std::future<CommandResult> workbench = std::async(std::launch::async, [&] {
-    return run_program("tactile-workbench-headless",
-                       "--connect udp://:" + std::to_string(port) + " --skin fur --record " + record +
-                           " --model " + folder.file("model.json") + " --annotator ana --size 1200x800 --settings " +
-                           folder.file("settings.json") + " --script " +
-                           script("sleep 4\nscreenshot @live.png\nstate @during.json\n"
-                                  "key [\nsleep 1\nkey ]\nkey 1\nkey Enter\n"
-                                  "sleep 4\nstate @after.json\nkey Ctrl+R\nwait 2\nstate @stopped.json\n"),
-                       folder);
+    return run_program(
+        "tactile-workbench-headless",
+        "--connect udp://:" + std::to_string(port) + " --skin fur --record " + record +
+            " --model " + folder.file("model.json") +
+            " --annotator ana --size 1200x800 --settings " + folder.file("settings.json") +
+            " --script " +
+            script("state @listening.json\nsleep 4\nscreenshot @live.png\nstate @during.json\n"
+                   "key [\nsleep 1\nkey ]\nkey 1\nkey Enter\n"
+                   "sleep 4\nstate @after.json\nkey Ctrl+R\nwait 2\nstate @stopped.json\n"),
+        folder);
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  // The sender starts once the workbench has drawn a frame (it listens from before its first),
+  // not after a guessed second: a slow start (a sanitizer build on a busy machine) lost the
+  // first datagrams and left the script's first look at 52 samples.
+  const auto listening = folder.file("listening.json");
+  for (int waited = 0; waited < 600 && !std::filesystem::exists(listening); ++waited)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(std::filesystem::exists(listening)) << "the workbench drew no frame in 30 s";
   const CommandResult sent =
       run_program("tactile", "stream-sim --skin fur --to " + url + " --rate-factor 4 --duration 20", folder);
   ASSERT_EQ(sent.exit_code, 0) << sent.err;
