@@ -44,15 +44,17 @@ RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusR
   rows.layout_id = layout.id;
   rows.columns = extractor.columns(layout);
   stop_if_cancelled();
-  const Recording recording = extractor.preprocess(raw, layout);
-  const auto subject = recording.metadata.find("subject");
-  Metadata shared = recording.metadata;
+  // A long recording has many segments: a cancel stops between two.
+  const FeatureExtractor::Segments extracted =
+      extractor.extract_segments(raw, layout, job.segments, [&](size_t) { stop_if_cancelled(); });
+  const auto subject = extracted.metadata.find("subject");
+  Metadata shared = extracted.metadata;
   // These have columns of their own in a dataset.
   for (const char* key : {"subject", "class", "recording", "segment_id"}) shared.erase(key);
   shared["layout"] = layout.id;
-  for (const Label& segment : job.segments) {
-    stop_if_cancelled();  // a long recording has many segments: a cancel stops between two
-    const FeatureResult result = extractor.extract(SegmentInput{recording, layout, segment});
+  for (size_t index_of_segment = 0; index_of_segment < job.segments.size(); ++index_of_segment) {
+    const Label& segment = job.segments[index_of_segment];
+    const FeatureResult& result = extracted.results[index_of_segment];
     std::string reason = result.skip_reason;
     if (reason.empty() && result.values.size() != rows.columns.size())
       reason = "extractor gave " + std::to_string(result.values.size()) + " values for " +
@@ -69,7 +71,7 @@ RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusR
     labelled.recording = job.id;
     labelled.class_name = segment_class(segment, job.ground_truth);
     rows.labels.push_back(std::move(labelled));
-    rows.subjects.push_back(subject == recording.metadata.end() ? "" : subject->second);
+    rows.subjects.push_back(subject == extracted.metadata.end() ? "" : subject->second);
     Metadata metadata = shared;
     metadata["region"] = segment.region;
     metadata["t0"] = shortest_text(segment.t0);

@@ -6,4 +6,18 @@ Recording FeatureExtractor::preprocess(const Recording& recording, const SkinLay
   return recording;
 }
 
+FeatureExtractor::Segments FeatureExtractor::extract_segments(
+    const Recording& raw, const SkinLayout& layout, const std::vector<Label>& segments,
+    const std::function<void(size_t)>& each) const {
+  const Recording recording = preprocess(raw, layout);
+  Segments extracted;
+  extracted.metadata = recording.metadata;
+  extracted.results.reserve(segments.size());
+  for (const Label& segment : segments) {
+    extracted.results.push_back(extract(SegmentInput{recording, layout, segment}));
+    if (each) each(extracted.results.size());
+  }
+  return extracted;
+}
+
 }  // namespace tactile

@@ -17,6 +17,7 @@
 #include "tactile/features/naya.h"
 #include "tactile/features/robovie_xcorr.h"
 #include "tactile/features/silvera_tawil.h"
+#include "tactile/features/stack.h"
 #include "tactile/features/tsa_event.h"
 #include "tactile/text.h"
 
@@ -86,6 +87,8 @@ void register_feature_pipeline(const std::string& name, ExtractorFactory make) {
 
 std::unique_ptr<FeatureExtractor> make_feature_extractor(const std::string& name,
                                                          const Parameters& parameters) {
+  if (name.find(kStackSeparator) != std::string::npos)
+    return make_stack_extractor(name, parameters);
   const ExtractorFactory make = find_factory(name);
   if (!make)
     throw Error("pipeline " + name,

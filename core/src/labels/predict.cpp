@@ -14,6 +14,7 @@
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/atomic_file.h"
+#include "tactile/ml/grid_search.h"
 #include "tactile/parameters.h"
 #include "tactile/text.h"
 
@@ -32,7 +33,8 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
   std::vector<int> labels;
   labels.reserve(dataset.classes.size());
   for (const std::string& name : dataset.classes) labels.push_back(index.at(name));
-  auto classifier = ml::make_classifier(specification);
+  // auto on a stacked table searches its pipelines too.
+  auto classifier = ml::make_classifier(ml::searched_specification(specification, dataset.columns));
   classifier->fit(dataset.features, labels, static_cast<int>(classes.size()), seed);
   nlohmann::json document = ml::save_classifier(*classifier);
   document["classes"] = classes;
@@ -160,14 +162,17 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
     throw Error(where, "pipeline " + model.pipeline + " gives " + std::to_string(columns.size()) +
                            " columns on " + layout.id + ", not the model's " +
                            std::to_string(model.features.size()) + " features");
-  const Recording prepared = extractor->preprocess(recording, layout);
   if (step) step(0.0);
+  const FeatureExtractor::Segments extracted =
+      extractor->extract_segments(recording, layout, segments, [&](size_t done) {
+        if (step) step(static_cast<double>(done) / static_cast<double>(segments.size()));
+      });
   Predictions predictions;
   std::vector<std::vector<double>> rows;
   std::vector<const Label*> kept;
   for (const Label& segment : segments) {
-    if (step) step(static_cast<double>(&segment - segments.data()) / static_cast<double>(segments.size()));
-    const FeatureResult result = extractor->extract(SegmentInput{prepared, layout, segment});
+    const FeatureResult& result =
+        extracted.results[static_cast<size_t>(&segment - segments.data())];
     std::string reason = result.skip_reason;
     if (reason.empty() && result.values.size() != columns.size())
       reason = "extractor gave " + std::to_string(result.values.size()) + " values";

@@ -153,15 +153,38 @@ std::vector<ClassFigures> class_figures(const Eigen::MatrixXi& confusion) {
 
 //---- Evaluation -----------------------------------------------------------------------------
 
-EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_specification,
+namespace {
+
+// True on a thread that runs folds of an evaluation beside other such threads.
+thread_local bool tl_on_evaluation_worker = false;
+
+class WorkerMark {
+ public:
+  explicit WorkerMark(bool parallel) : previous_(tl_on_evaluation_worker) {
+    tl_on_evaluation_worker = tl_on_evaluation_worker || parallel;
+  }
+  ~WorkerMark() { tl_on_evaluation_worker = previous_; }
+  WorkerMark(const WorkerMark&) = delete;
+  WorkerMark& operator=(const WorkerMark&) = delete;
+
+ private:
+  bool previous_;
+};
+
+}  // namespace
+
+EvaluationResult evaluate(const Dataset& dataset, const std::string& given_specification,
                           const Protocol& protocol, uint64_t seed,
                           const EvaluationControl& control) {
   const Clock::time_point start = Clock::now();
   check_dataset(dataset);
+  // auto on a stacked table searches its pipelines too.
+  const std::string classifier_specification =
+      searched_specification(given_specification, dataset.columns);
   make_classifier(classifier_specification);  // a bad name or parameter fails before any fold
 
   EvaluationResult result;
-  result.classifier = classifier_specification;
+  result.classifier = given_specification;
   result.protocol = protocol.to_string();
   result.seed = seed;
   result.classes = dataset.class_names();
@@ -176,17 +199,23 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
   const int fold_count = static_cast<int>(folds.size());
   std::vector<FoldOutcome> outcomes(folds.size());
 
-  unsigned threads = control.threads > 0 ? static_cast<unsigned>(control.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
+  // An evaluation inside a fold of another (a search's inner cross-validation) runs on its
+  // fold's thread: the outer one already keeps every core busy.
+  unsigned threads = control.threads > 0       ? static_cast<unsigned>(control.threads)
+                     : tl_on_evaluation_worker ? 1u
+                                               : std::max(1u, std::thread::hardware_concurrency());
   threads = std::min<unsigned>(threads, static_cast<unsigned>(fold_count));
   std::atomic<int> next_fold{0};
   std::atomic<bool> failed{false};
   std::mutex progress_mutex;
   int done = 0;
-  const auto cancelled = [&] { return control.cancel && control.cancel->load(); };
+  // The job's flag reaches nested evaluations through the thread's cancel scope.
+  const std::atomic<bool>* cancel = control.cancel ? control.cancel : current_cancel_flag();
+  const auto cancelled = [&] { return cancel && cancel->load(); };
   const auto work = [&] {
     // The folds' threads work for the same job: a classifier's fit polls its flag.
-    const CancelScope scope(control.cancel ? control.cancel : current_cancel_flag());
+    const CancelScope scope(cancel);
+    const WorkerMark mark(threads > 1);
     while (!failed.load() && !cancelled()) {
       const int fold = next_fold.fetch_add(1);
       if (fold >= fold_count) return;
@@ -338,8 +367,8 @@ nlohmann::json to_json(const EvaluationResult& result, bool with_rows) {
 
 std::vector<std::string> preset_names() {
   std::vector<std::string> names;
-  for (const std::string& name : classifier_names())
-    if (name != "grid" && name != "grid-search" && name != "auto") names.push_back(name);
+  for (const ClassifierEntry& entry : classifier_catalog())
+    if (entry.preset) names.push_back(entry.name);
   return names;
 }
 

@@ -1,9 +1,13 @@
 #include "tactile/ml/grid_search.h"
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <numeric>
 
 #include "tactile/error.h"
+#include "tactile/features/stack.h"
+#include "tactile/jobs/job.h"
 #include "tactile/ml/checks.h"
 #include "tactile/random.h"
 
@@ -27,7 +31,81 @@ std::vector<std::string> alternatives(const std::string& key, const std::string&
   }
 }
 
+// The base of "select:...,base=S" with S's ',' back in place ("" when there is none).
+std::string base_of_select(const std::string& specification) {
+  const size_t at = specification.find("base=");
+  if (at == std::string::npos) return "";
+  std::string base = specification.substr(at + 5);
+  base = base.substr(0, base.find(','));
+  std::replace(base.begin(), base.end(), ';', ',');
+  return base;
+}
+
+// The training rows (all when `rows` is empty) as a table the evaluation takes.
+Dataset inner_dataset(const Matrix& x, const std::vector<int>& y,
+                      const std::vector<int64_t>& rows) {
+  Dataset inner;
+  if (rows.empty()) {
+    inner.features = x;
+    for (int label : y) inner.classes.push_back(std::to_string(label));
+    return inner;
+  }
+  inner.features.resize(static_cast<Eigen::Index>(rows.size()), x.cols());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    inner.features.row(static_cast<Eigen::Index>(i)) = x.row(rows[i]);
+    inner.classes.push_back(std::to_string(y[static_cast<size_t>(rows[i])]));
+  }
+  return inner;
+}
+
 }  // namespace
+
+std::vector<AutoBlock> parse_auto_blocks(const std::string& text) {
+  std::vector<AutoBlock> blocks;
+  size_t start = 0;
+  while (start < text.size()) {
+    const size_t bar = std::min(text.find('|', start), text.size());
+    const std::string item = text.substr(start, bar - start);
+    const size_t colon = item.rfind(':');
+    const size_t dash = item.find('-', colon == std::string::npos ? 0 : colon);
+    AutoBlock block;
+    bool good = colon != std::string::npos && colon > 0 && dash != std::string::npos;
+    if (good) {
+      block.name = item.substr(0, colon);
+      const std::string first = item.substr(colon + 1, dash - colon - 1),
+                        last = item.substr(dash + 1);
+      good = !first.empty() && !last.empty() &&
+             first.find_first_not_of("0123456789") == std::string::npos &&
+             last.find_first_not_of("0123456789") == std::string::npos && first.size() < 10 &&
+             last.size() < 10;
+      if (good) {
+        block.first = std::stoi(first);
+        block.last = std::stoi(last);
+        good = block.first <= block.last;
+      }
+    }
+    if (!good)
+      throw Error("classifier auto",
+                  "blocks=" + text + ": '" + item + "' is not NAME:A-B (0-based columns, A <= B)");
+    blocks.push_back(block);
+    start = bar + 1;
+  }
+  return blocks;
+}
+
+std::vector<int64_t> rung_sizes(int64_t rows, int class_count, size_t candidates) {
+  // Each halving keeps a third; stop when one rung would leave a candidate alone or when the
+  // smallest rung would hold fewer than kSmallestRung rows or 5 a class.
+  const int64_t smallest = std::max<int64_t>(kSmallestRung, 5 * static_cast<int64_t>(class_count));
+  std::vector<int64_t> sizes = {rows};
+  size_t left = candidates;
+  while (left > kHalvingFactor &&
+         sizes.front() / static_cast<int64_t>(kHalvingFactor) >= smallest) {
+    sizes.insert(sizes.begin(), sizes.front() / static_cast<int64_t>(kHalvingFactor));
+    left = (left + kHalvingFactor - 1) / kHalvingFactor;
+  }
+  return sizes;
+}
 
 GridSearchClassifier::GridSearchClassifier(std::string base,
                                            std::vector<std::pair<std::string, std::string>> axes,
@@ -54,13 +132,17 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
   for (const std::string& parameters : specifications) {
     const std::string specification = base_ + (parameters.empty() ? "" : ":" + parameters);
     make_classifier(specification);  // an unknown base or parameter fails here, before any fit
-    candidates_.push_back({specification, 0.0});
+    candidates_.push_back({specification, 0.0, 0});
   }
+  listed_count_ = candidates_.size();
 }
 
 GridSearchClassifier::GridSearchClassifier(std::vector<std::string> specifications, Protocol inner,
-                                           std::string listed)
-    : auto_(true), listed_(std::move(listed)), inner_(std::move(inner)) {
+                                           std::string listed, std::string blocks)
+    : auto_(true),
+      listed_(std::move(listed)),
+      blocks_(std::move(blocks)),
+      inner_(std::move(inner)) {
   if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
       inner_.kind == Protocol::Kind::kSplit)
     throw Error("classifier auto", "inner=" + inner_.to_string() + ": the inner protocol must be kfold, loo or holdout");
@@ -70,8 +152,25 @@ GridSearchClassifier::GridSearchClassifier(std::vector<std::string> specificatio
     if (name == "auto" || name == "grid" || name == "grid-search")
       throw Error("classifier auto", "candidate '" + specification + "': searches are not candidates");
     make_classifier(specification);  // an unknown classifier or parameter fails here
-    candidates_.push_back({specification, 0.0});
   }
+  // Without blocks every candidate sees every column; with blocks, each candidate once per
+  // block, on that block's columns.
+  std::vector<AutoBlock> parsed = parse_auto_blocks(blocks_);
+  if (parsed.empty()) parsed.push_back({"", -1, -1});
+  for (const AutoBlock& block : parsed)
+    for (const std::string& specification : specifications) {
+      if (block.first < 0) {
+        candidates_.push_back({specification, 0.0, 0});
+      } else {
+        std::string base = specification;
+        std::replace(base.begin(), base.end(), ',', ';');
+        candidates_.push_back({"select:columns=" + std::to_string(block.first) + "-" +
+                                   std::to_string(block.last) + ",base=" + base,
+                               0.0, 0});
+      }
+      candidate_blocks_.push_back(block);
+    }
+  listed_count_ = candidates_.size();
 }
 
 Parameters GridSearchClassifier::parameters() const {
@@ -79,6 +178,7 @@ Parameters GridSearchClassifier::parameters() const {
   if (auto_) {
     parameters.set("inner", inner_.to_string());
     if (!listed_.empty()) parameters.set("candidates", listed_);
+    if (!blocks_.empty()) parameters.set("blocks", blocks_);
     return parameters;
   }
   parameters.set("base", base_);
@@ -87,38 +187,108 @@ Parameters GridSearchClassifier::parameters() const {
   return parameters;
 }
 
+double GridSearchClassifier::inner_accuracy(const Dataset& inner, const std::string& specification,
+                                            uint64_t inner_seed) const {
+  EvaluationControl control;  // every core, unless this fit runs in a fold of a parallel evaluation
+  return evaluate(inner, specification, inner_, inner_seed, control).accuracy;
+}
+
 void GridSearchClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_count,
                                uint64_t seed) {
   check_training_set(x, y, class_count, kGridSearchWhere);
-  Dataset inner;
-  inner.features = x;
-  for (int label : y) inner.classes.push_back(std::to_string(label));
-  EvaluationControl sequential;
-  sequential.threads = 1;  // the outer evaluation already runs one fold per core
   // Every candidate sees the same inner folds, so they are compared on equal terms.
   const uint64_t inner_seed = derive_seed(seed, 0);
   size_t best = 0;
-  for (size_t i = 0; i < candidates_.size(); ++i) {
-    try {
-      candidates_[i].inner_accuracy =
-          evaluate(inner, candidates_[i].specification, inner_, inner_seed, sequential).accuracy;
-    } catch (const Error& error) {
-      // A candidate that cannot learn from these rows (too few per class, ...) is passed
-      // over by auto; a grid's base failing is the grid's failure.
-      if (auto_) {
-        candidates_[i].inner_accuracy = -1.0;
-        continue;
+  if (auto_) {
+    best = halve_candidates(x, y, class_count, seed);
+  } else {
+    const Dataset inner = inner_dataset(x, y, {});
+    for (size_t i = 0; i < candidates_.size(); ++i) {
+      if (cancel_requested()) throw Error(kGridSearchWhere, "cancelled");
+      try {
+        candidates_[i].inner_accuracy =
+            inner_accuracy(inner, candidates_[i].specification, inner_seed);
+      } catch (const Error& error) {
+        throw Error(kGridSearchWhere, "inner " + inner_.to_string() + " on " +
+                                          std::to_string(x.rows()) +
+                                          " training rows: " + error.what());
       }
-      throw Error(kGridSearchWhere, "inner " + inner_.to_string() + " on " + std::to_string(x.rows()) +
-                              " training rows: " + error.what());
+      candidates_[i].rows = x.rows();
+      if (candidates_[i].inner_accuracy > candidates_[best].inner_accuracy) best = i;
     }
-    if (candidates_[i].inner_accuracy > candidates_[best].inner_accuracy) best = i;
   }
-  if (candidates_[best].inner_accuracy < 0.0)
-    throw Error(auto_ ? "classifier auto" : kGridSearchWhere, "no candidate could learn from " + std::to_string(x.rows()) + " training rows");
   std::unique_ptr<Classifier> chosen = make_classifier(candidates_[best].specification);
   chosen->fit(x, y, class_count, seed);
   chosen_ = std::move(chosen);
+}
+
+size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector<int>& y,
+                                              int class_count, uint64_t seed) {
+  // Columns that outnumber the rows: each candidate also runs on the k columns that best
+  // separate the classes of the training rows (chosen inside every inner fold).
+  candidates_.resize(listed_count_);
+  for (size_t i = 0; i < listed_count_; ++i) {
+    const AutoBlock& block = candidate_blocks_[i];
+    const int64_t width = block.first < 0 ? x.cols() : block.last - block.first + 1;
+    if (block.last >= x.cols())
+      throw Error("classifier auto", "blocks=" + blocks_ + ": block " + block.name +
+                                         " ends at column " + std::to_string(block.last) +
+                                         ", the table has " + std::to_string(x.cols()));
+    if (width <= x.rows()) continue;
+    const int64_t k = std::clamp<int64_t>(x.rows() / 4, 10, width);
+    std::string base = block.first < 0 ? candidates_[i].specification
+                                       : base_of_select(candidates_[i].specification);
+    std::replace(base.begin(), base.end(), ',', ';');
+    const std::string columns = block.first < 0 ? ""
+                                                : "columns=" + std::to_string(block.first) + "-" +
+                                                      std::to_string(block.last) + ",";
+    candidates_.push_back(
+        {"select:" + columns + "k=" + std::to_string(k) + ",base=" + base, 0.0, 0});
+  }
+  const std::vector<int64_t> sizes = rung_sizes(x.rows(), class_count, candidates_.size());
+  // Rows of every rung: per class, one shuffled order, each rung taking a longer prefix of
+  // it, so a rung's rows hold the smaller rungs' rows and the classes keep their shares.
+  std::vector<std::vector<int64_t>> by_class(static_cast<size_t>(class_count));
+  for (int64_t r = 0; r < x.rows(); ++r)
+    by_class[static_cast<size_t>(y[static_cast<size_t>(r)])].push_back(r);
+  std::mt19937_64 engine(derive_seed(seed, 1));
+  for (std::vector<int64_t>& rows : by_class) shuffle(rows, engine);
+  std::vector<size_t> alive(candidates_.size());
+  std::iota(alive.begin(), alive.end(), size_t{0});
+  const uint64_t inner_seed = derive_seed(seed, 0);
+  for (size_t rung = 0; rung < sizes.size(); ++rung) {
+    std::vector<int64_t> rows;
+    for (const std::vector<int64_t>& members : by_class) {
+      const auto share = static_cast<size_t>(
+          std::llround(static_cast<double>(members.size()) * static_cast<double>(sizes[rung]) /
+                       static_cast<double>(x.rows())));
+      const size_t take =
+          std::min(members.size(), std::max<size_t>(share, std::min<size_t>(members.size(), 2)));
+      rows.insert(rows.end(), members.begin(), members.begin() + static_cast<std::ptrdiff_t>(take));
+    }
+    std::sort(rows.begin(), rows.end());
+    const Dataset inner = inner_dataset(x, y, rows);
+    for (size_t i : alive) {
+      if (cancel_requested()) throw Error("classifier auto", "cancelled");
+      try {
+        candidates_[i].inner_accuracy =
+            inner_accuracy(inner, candidates_[i].specification, inner_seed);
+      } catch (const Error&) {
+        // A candidate that cannot learn from these rows (too few per class, ...) is passed over.
+        candidates_[i].inner_accuracy = -1.0;
+      }
+      candidates_[i].rows = static_cast<int64_t>(rows.size());
+    }
+    // The best first; equal ones in listed order.
+    std::stable_sort(alive.begin(), alive.end(), [&](size_t a, size_t b) {
+      return candidates_[a].inner_accuracy > candidates_[b].inner_accuracy;
+    });
+    if (rung + 1 < sizes.size()) alive.resize((alive.size() + kHalvingFactor - 1) / kHalvingFactor);
+  }
+  if (candidates_[alive.front()].inner_accuracy < 0.0)
+    throw Error("classifier auto",
+                "no candidate could learn from " + std::to_string(x.rows()) + " training rows");
+  return alive.front();
 }
 
 const Classifier& GridSearchClassifier::chosen() const {
@@ -127,7 +297,12 @@ const Classifier& GridSearchClassifier::chosen() const {
 }
 
 std::string GridSearchClassifier::chosen_specification() const {
-  return specification_of(chosen());
+  const std::string specification = specification_of(chosen());
+  for (const AutoBlock& block : parse_auto_blocks(blocks_))
+    if (specification.find("columns=" + std::to_string(block.first) + "-" +
+                           std::to_string(block.last)) != std::string::npos)
+      return block.name + "/" + specification;
+  return specification;
 }
 
 Matrix GridSearchClassifier::scores(const Matrix& x) const { return chosen().scores(x); }
@@ -139,20 +314,28 @@ std::vector<int> GridSearchClassifier::predict(const Matrix& x) const {
 nlohmann::json GridSearchClassifier::save() const {
   nlohmann::json candidates = nlohmann::json::array();
   for (const GridCandidate& candidate : candidates_)
-    candidates.push_back(
-        {{"specification", candidate.specification}, {"inner_accuracy", candidate.inner_accuracy}});
+    candidates.push_back({{"specification", candidate.specification},
+                          {"inner_accuracy", candidate.inner_accuracy},
+                          {"rows", candidate.rows}});
   return {{"candidates", candidates}, {"chosen", save_classifier(chosen())}};
 }
 
 void GridSearchClassifier::load(const nlohmann::json& model) {
   const nlohmann::json& candidates = model.at("candidates");
-  if (!candidates.is_array() || candidates.size() != candidates_.size())
-    throw Error("model " + name(), "the candidates differ from the grid's parameters");
-  for (size_t i = 0; i < candidates_.size(); ++i) {
-    if (candidates[i].at("specification").get<std::string>() != candidates_[i].specification)
-      throw Error("model " + name(), "the candidates differ from the grid's parameters");
-    candidates_[i].inner_accuracy = candidates[i].at("inner_accuracy").get<double>();
+  // auto adds the column-selecting variants at fit time, after the listed candidates.
+  if (!candidates.is_array() || candidates.size() < listed_count_ ||
+      (!auto_ && candidates.size() != listed_count_))
+    throw Error("model " + name(), "the candidates differ from the search's parameters");
+  std::vector<GridCandidate> loaded;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    GridCandidate candidate{candidates[i].at("specification").get<std::string>(),
+                            candidates[i].at("inner_accuracy").get<double>(),
+                            candidates[i].value("rows", int64_t{0})};
+    if (i < listed_count_ && candidate.specification != candidates_[i].specification)
+      throw Error("model " + name(), "the candidates differ from the search's parameters");
+    loaded.push_back(std::move(candidate));
   }
+  candidates_ = std::move(loaded);
   chosen_ = load_classifier(model.at("chosen"));
 }
 
@@ -178,17 +361,29 @@ namespace tactile::ml {
 
 std::vector<std::string> auto_candidates() {
   std::vector<std::string> candidates;
-  for (const std::string& name : classifier_names())
-    // Not the searches, and not em (clusters mapped to classes afterwards: not a classifier
-    // to pick by accuracy).
-    if (name != "grid" && name != "grid-search" && name != "auto" && name != "em") candidates.push_back(name);
+  for (const ClassifierEntry& entry : classifier_catalog())
+    // Not the searches and wrappers, and not em (clusters mapped to classes afterwards: not
+    // a classifier to pick by accuracy).
+    if (entry.preset && entry.name != "em") candidates.push_back(entry.name);
   // The standard k-NN grid.
   for (const char* k : {"3", "5", "10"}) candidates.push_back(std::string("knn:k=") + k + ",standardize=true");
   return candidates;
 }
 
+std::string searched_specification(const std::string& specification,
+                                   const std::vector<FeatureColumn>& columns) {
+  const size_t colon = specification.find(':');
+  if (specification.substr(0, colon) != "auto") return specification;
+  if (colon != std::string::npos &&
+      Parameters::parse(specification.substr(colon + 1), "classifier auto").has("blocks"))
+    return specification;
+  const std::string blocks = stack_blocks(columns);
+  if (blocks.empty()) return specification;
+  return specification + (colon == std::string::npos ? ":" : ",") + "blocks=" + blocks;
+}
+
 std::unique_ptr<Classifier> make_auto_classifier(const Parameters& parameters) {
-  parameters.expect_only({"inner", "candidates"});
+  parameters.expect_only({"inner", "candidates", "blocks"});
   Protocol inner = Protocol::parse("kfold:5");
   if (parameters.has("inner")) {
     try {
@@ -212,7 +407,8 @@ std::unique_ptr<Classifier> make_auto_classifier(const Parameters& parameters) {
       start = bar + 1;
     }
   }
-  return std::make_unique<GridSearchClassifier>(std::move(specifications), inner, listed);
+  return std::make_unique<GridSearchClassifier>(std::move(specifications), inner, listed,
+                                                parameters.text("blocks", ""));
 }
 
 }  // namespace tactile::ml

@@ -10,6 +10,7 @@
 #include "tactile/error.h"
 #include "tactile/ml/clafic.h"
 #include "tactile/ml/classifier.h"
+#include "tactile/ml/column_selection.h"
 #include "tactile/ml/em.h"
 #include "tactile/ml/gaussian.h"
 #include "tactile/ml/grid_search.h"
@@ -32,6 +33,7 @@ struct ClassifierRow {
   const char* name;
   const char* description;
   ClassifierFactory make;
+  bool preset = true;  // false: a search or wrapper of other classifiers
 };
 
 // Listed order is the order `tactile evaluate --list` prints.
@@ -60,12 +62,16 @@ const std::vector<ClassifierRow>& classifier_table() {
        make_subspace_knn_classifier},
       {"grid-search",
        "hyper-parameter grid by inner CV on the training fold: base=knn,k=1|3|5,inner=kfold:3",
-       make_grid_search_classifier},
-      {"grid", "short name of grid-search", make_grid_search_classifier},
+       make_grid_search_classifier, false},
+      {"grid", "short name of grid-search", make_grid_search_classifier, false},
       {"auto",
        "picks among the presets and a k-NN grid by inner CV on the training fold, refits the best "
        "(inner, candidates=a|b)",
-       make_auto_classifier},
+       make_auto_classifier, false},
+      {"select",
+       "a base classifier on some columns: a block (columns=A-B) and/or the k with the largest "
+       "ANOVA F on the training fold (k, base)",
+       make_select_classifier, false},
       {"tree", "CART, Gini, max_splits=100 (MATLAB Fine Tree)", make_tree_classifier},
       {"medium-tree", "CART, Gini, max_splits=20 (MATLAB Medium Tree)",
        make_medium_tree_classifier},
@@ -124,7 +130,7 @@ std::vector<std::string> classifier_names() {
 std::vector<ClassifierEntry> classifier_catalog() {
   std::vector<ClassifierEntry> entries;
   for (const ClassifierRow& row : classifier_table())
-    entries.push_back({row.name, row.description});
+    entries.push_back({row.name, row.description, row.preset});
   return entries;
 }
 

@@ -44,10 +44,23 @@ class FeatureExtractor {
   // channels), run once before any segment is extracted. Default: none.
   virtual Recording preprocess(const Recording& recording, const SkinLayout& layout) const;
   virtual FeatureResult extract(const SegmentInput& input) const = 0;
+
+  // A recording's segments, one result each in the given order, with the preprocessed
+  // recording's metadata (the pipeline's notes among it). `each(done)` is called after each
+  // segment (it may throw to stop). Default: preprocess once, then extract each segment; a
+  // stack of pipelines runs each of its pipelines this way and joins their results.
+  struct Segments {
+    Metadata metadata;
+    std::vector<FeatureResult> results;
+  };
+  virtual Segments extract_segments(const Recording& raw, const SkinLayout& layout,
+                                    const std::vector<Label>& segments,
+                                    const std::function<void(size_t)>& each = {}) const;
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
-// robovie_xcorr, flux, generic, then those added by register_feature_pipeline.
+// robovie_xcorr, flux, generic, ..., then those added by register_feature_pipeline. Besides
+// these, make_feature_extractor takes a stack "a+b+c" of registered pipelines (features/stack.h).
 std::vector<std::string> feature_pipelines();
 using ExtractorFactory = std::function<std::unique_ptr<FeatureExtractor>(const Parameters&)>;
 // Adds a pipeline (a new skin's), or replaces the one of the same name.

@@ -71,6 +71,9 @@ std::vector<std::string> classifier_names();
 struct ClassifierEntry {
   std::string name;
   std::string description;
+  // A classifier of its own with working defaults (Train all runs it, auto may pick it); false
+  // for the searches and wrappers that need another classifier (grid-search, auto, select).
+  bool preset = true;
 };
 std::vector<ClassifierEntry> classifier_catalog();
 // A model saved with save(), with its name and parameters, restored.

@@ -129,7 +129,7 @@ struct EvaluationControl {
   std::function<void(int done, int total)> progress;
   const std::atomic<bool>* cancel =
       nullptr;      // set to true to stop; evaluate() throws tactile::Error("cancelled")
-  int threads = 0;  // 0 = hardware concurrency
+  int threads = 0;  // 0 = every core, or 1 inside a fold of an evaluation that runs in parallel
   // Also compute each prediction's scores (RowPrediction::score and margin); costs one
   // scores() call per fold for classifiers that cannot give both at once.
   bool scores = false;
@@ -144,7 +144,7 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
 nlohmann::json to_json(const EvaluationResult& result, bool with_rows = false);
 
 // "Train all" (MATLAB's Classification Learner): every classifier of the catalogue with
-// its default parameters, the hyper-parameter searches (grid, grid-search) left out.
+// its default parameters (the entries marked preset: not the searches and wrappers).
 std::vector<std::string> preset_names();
 struct PresetOutcome {
   std::string classifier;
