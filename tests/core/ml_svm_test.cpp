@@ -258,6 +258,95 @@ TEST(SupportVectorMachine, GaussianPresetsScaleWithTheSquareRootOfTheFeatureCoun
   EXPECT_DOUBLE_EQ(fixed.learners()[0].scale, 3.0);
 }
 
+//---- Balanced class weights ---------------------------------------------------------------------
+
+// Two overlapping classes, `common` rows of class 0 around (0, 0) and `rare` of class 1
+// around (1.5, 0).
+toy::LabelledSet imbalanced_pair(int common, int rare, uint64_t seed) {
+  Matrix centres(2, 2);
+  centres << 0, 0, 1.5, 0;
+  const toy::LabelledSet both = toy::blobs(centres, common, 1.0, seed);
+  toy::LabelledSet kept;
+  std::vector<Eigen::Index> rows;
+  int rare_kept = 0;
+  for (size_t row = 0; row < both.y.size(); ++row)
+    if (both.y[row] == 0 || rare_kept++ < rare) rows.push_back(static_cast<Eigen::Index>(row));
+  kept.x.resize(static_cast<Eigen::Index>(rows.size()), 2);
+  for (size_t row = 0; row < rows.size(); ++row) {
+    kept.x.row(static_cast<Eigen::Index>(row)) = both.x.row(rows[row]);
+    kept.y.push_back(both.y[static_cast<size_t>(rows[row])]);
+  }
+  return kept;
+}
+
+double recall_of(const std::vector<int>& predicted, const std::vector<int>& truth, int label) {
+  int hits = 0;
+  int total = 0;
+  for (size_t row = 0; row < truth.size(); ++row) {
+    if (truth[row] != label) continue;
+    ++total;
+    if (predicted[row] == label) ++hits;
+  }
+  return total == 0 ? 0.0 : static_cast<double>(hits) / total;
+}
+
+TEST(SupportVectorMachine, BalancedWeightsAreScikitLearnsAndFavourTheRareClass) {
+  const toy::LabelledSet train = imbalanced_pair(200, 20, 60);
+  const toy::LabelledSet test = imbalanced_pair(200, 200, 61);
+  for (const std::string preset : {"linear-svm", "medium-gaussian-svm"}) {
+    SupportVectorMachine plain = make_svm(preset, "probability=false");
+    SupportVectorMachine balanced = make_svm(preset, "probability=false,weights=balanced");
+    plain.fit(train.x, train.y, 2, 62);
+    balanced.fit(train.x, train.y, 2, 62);
+    // n / (k n_c): 220 / (2 * 200) and 220 / (2 * 20).
+    EXPECT_EQ(plain.class_weights(), (std::vector<double>{1.0, 1.0})) << preset;
+    ASSERT_EQ(balanced.class_weights().size(), 2u) << preset;
+    EXPECT_DOUBLE_EQ(balanced.class_weights()[0], 0.55) << preset;
+    EXPECT_DOUBLE_EQ(balanced.class_weights()[1], 5.5) << preset;
+    // Unweighted, the 20 rare rows barely move the boundary: most rare test rows are lost.
+    // Weighted, each rare error costs ten times a common one, and the boundary moves over.
+    const double plain_recall = recall_of(plain.predict(test.x), test.y, 1);
+    const double balanced_recall = recall_of(balanced.predict(test.x), test.y, 1);
+    EXPECT_LT(plain_recall, 0.5) << preset;
+    EXPECT_GT(balanced_recall, plain_recall + 0.2) << preset;
+    EXPECT_GT(balanced_recall, 0.6) << preset;
+  }
+}
+
+TEST(SupportVectorMachine, BalancedWeightsOnBalancedClassesChangeNothing) {
+  const toy::LabelledSet train = toy::blobs(three_centres(), 30, 2.0, 63);
+  const toy::LabelledSet test = toy::blobs(three_centres(), 30, 2.0, 64);
+  for (const std::string preset : {"linear-svm", "quadratic-svm", "fine-gaussian-svm"}) {
+    SupportVectorMachine plain = make_svm(preset);
+    SupportVectorMachine balanced = make_svm(preset, "weights=balanced");
+    plain.fit(train.x, train.y, 3, 65);
+    balanced.fit(train.x, train.y, 3, 65);
+    EXPECT_EQ(balanced.class_weights(), (std::vector<double>{1.0, 1.0, 1.0})) << preset;
+    EXPECT_EQ(balanced.decision_values(test.x), plain.decision_values(test.x)) << preset;
+    EXPECT_EQ(balanced.scores(test.x), plain.scores(test.x)) << preset;
+  }
+}
+
+TEST(SupportVectorMachine, BalancedWeightsAreAParameterAndSavedInTheModel) {
+  EXPECT_EQ(make_svm("linear-svm").parameters().text("weights", ""), "none");
+  EXPECT_EQ(make_svm("cubic-svm", "weights=balanced").parameters().text("weights", ""), "balanced");
+  EXPECT_THROW(make_svm("linear-svm", "weights=inverse"), Error);
+  const toy::LabelledSet train = imbalanced_pair(60, 15, 66);
+  SupportVectorMachine svm = make_svm("coarse-gaussian-svm", "weights=balanced");
+  svm.fit(train.x, train.y, 2, 67);
+  const nlohmann::json saved = nlohmann::json::parse(svm.save().dump());
+  ASSERT_TRUE(saved.contains("class_weights"));
+  SupportVectorMachine restored = make_svm("coarse-gaussian-svm", "weights=balanced");
+  restored.load(saved);
+  EXPECT_EQ(restored.class_weights(), svm.class_weights());
+  EXPECT_EQ(restored.decision_values(train.x), svm.decision_values(train.x));
+  nlohmann::json broken = saved;
+  broken["class_weights"] = {1.0};
+  EXPECT_THROW(restored.load(broken), Error);
+  broken["class_weights"] = {1.0, -2.0};
+  EXPECT_THROW(restored.load(broken), Error);
+}
+
 //---- Parameters, save and load -----------------------------------------------------------------
 
 TEST(SupportVectorMachine, ParametersNameDefaultsAndRejectUnknownKeys) {

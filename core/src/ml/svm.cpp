@@ -111,6 +111,24 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   return gather_rows(x, order);
 }
 
+// scikit-learn's class_weight='balanced': w_c = n / (k n_c) over the k classes present in
+// the training set; every weight 1 without balancing.
+std::vector<double> balanced_class_weights(const std::vector<int64_t>& counts, bool balanced) {
+  std::vector<double> weights(counts.size(), 1.0);
+  if (!balanced) return weights;
+  int64_t total = 0;
+  int64_t present = 0;
+  for (const int64_t count : counts) {
+    total += count;
+    if (count > 0) ++present;
+  }
+  for (size_t label = 0; label < counts.size(); ++label)
+    if (counts[label] > 0)
+      weights[label] = static_cast<double>(total) /
+                       (static_cast<double>(present) * static_cast<double>(counts[label]));
+  return weights;
+}
+
 }  // namespace
 
 //---- Kernel scale --------------------------------------------------------------------------
@@ -180,7 +198,7 @@ SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Para
   });
   if (found == presets().end())
     throw Error(parameters.where(), "no SVM preset named '" + preset + "'");
-  parameters.expect_only({"c", "scale", "probability"});
+  parameters.expect_only({"c", "scale", "probability", "weights"});
   kernel_ = found->kernel;
   degree_ = found->degree;
   scale_ = found->scale;
@@ -190,6 +208,10 @@ SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Para
   if (parameters.has("scale"))
     scale_ = KernelScale::parse(parameters.text("scale", ""), parameters.where());
   fit_probabilities_ = parameters.flag("probability", true);
+  const std::string weights = parameters.text("weights", "none");
+  if (weights != "none" && weights != "balanced")
+    throw Error(parameters.where(), "weights=" + weights + ": expected none or balanced");
+  balanced_weights_ = weights == "balanced";
 }
 
 Parameters SupportVectorMachine::parameters() const {
@@ -197,6 +219,7 @@ Parameters SupportVectorMachine::parameters() const {
   parameters.set("c", format_number(box_constraint_));
   parameters.set("scale", scale_.to_string());
   parameters.set("probability", fit_probabilities_ ? "true" : "false");
+  parameters.set("weights", balanced_weights_ ? "balanced" : "none");
   return parameters;
 }
 
@@ -210,6 +233,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
   silence_libsvm();
   fitted_ = false;
   learners_.clear();
+  class_weights_ = balanced_class_weights(counts, balanced_weights_);
   probabilities_ = false;
   class_count_ = class_count;
   only_class_ = -1;
@@ -306,6 +330,16 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       parameter.p = 0.1;
       parameter.shrinking = 1;
       parameter.probability = 0;
+      // Per-class C: C w_a for the pair's positive rows, C w_b for its negative ones (libsvm's
+      // multi-class C-SVC gives each pair its two classes' weights the same way).
+      int weight_labels[2] = {1, -1};
+      double pair_weights[2] = {class_weights_[static_cast<size_t>(learner.positive_class)],
+                                class_weights_[static_cast<size_t>(learner.negative_class)]};
+      if (balanced_weights_) {
+        parameter.nr_weight = 2;
+        parameter.weight_label = weight_labels;
+        parameter.weight = pair_weights;
+      }
       if (const char* problem_text = svm_check_parameter(&problem, &parameter))
         throw Error(preset_, std::string("libsvm: ") + problem_text);
       const LibsvmModel model(svm_train(&problem, &parameter));
@@ -486,9 +520,12 @@ nlohmann::json SupportVectorMachine::save() const {
     }
     learners.push_back(std::move(saved));
   }
-  return {{"kernel", kernel_name(kernel_)},       {"degree", degree_},
-          {"class_count", class_count_},          {"only_class", only_class_},
-          {"standardizer", standardizer_.save()}, {"learners", std::move(learners)}};
+  nlohmann::json saved = {
+      {"kernel", kernel_name(kernel_)},       {"degree", degree_},
+      {"class_count", class_count_},          {"only_class", only_class_},
+      {"standardizer", standardizer_.save()}, {"learners", std::move(learners)}};
+  if (balanced_weights_) saved["class_weights"] = class_weights_;
+  return saved;
 }
 
 void SupportVectorMachine::load(const nlohmann::json& model) {
@@ -550,8 +587,21 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
     if (only_class < 0 && learners.empty()) throw Error(where, "no learners");
     if (with_sigmoid != 0 && with_sigmoid != learners.size())
       throw Error(where, "some learners have a probability sigmoid and some do not");
+    // The weights only shaped the training; kept for the record (a model saved before they
+    // existed has none: every weight 1).
+    std::vector<double> class_weights(static_cast<size_t>(class_count), 1.0);
+    if (model.contains("class_weights")) {
+      class_weights = model.at("class_weights").get<std::vector<double>>();
+      if (class_weights.size() != static_cast<size_t>(class_count))
+        throw Error(where, "class_weights has " + std::to_string(class_weights.size()) +
+                               " values, expected " + std::to_string(class_count));
+      for (const double weight : class_weights)
+        if (!std::isfinite(weight) || weight <= 0.0)
+          throw Error(where, "class_weights: not a positive finite number");
+    }
     class_count_ = class_count;
     only_class_ = only_class;
+    class_weights_ = std::move(class_weights);
     standardizer_ = std::move(standardizer);
     learners_ = std::move(learners);
     probabilities_ = with_sigmoid > 0;
