@@ -120,6 +120,9 @@ class SupportVectorMachine : public Classifier {
   Matrix probabilities(const Matrix& decision) const;
   // K(z_i, s_j) for every row of z and of `support`, with kernel scale `scale`.
   Matrix kernel_matrix(const Matrix& z, const Matrix& support, double scale) const;
+  // The kernel from the inner products `gram` (rows x columns) and both sides' squared norms.
+  Matrix kernel_from_gram(const Matrix& gram, const Vector& row_norms, const Vector& column_norms,
+                          double scale) const;
 
   std::string preset_;
   SvmKernel kernel_ = SvmKernel::kLinear;
