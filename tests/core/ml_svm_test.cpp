@@ -135,10 +135,28 @@ void train_libsvm(LibsvmModel& libsvm, const Matrix& z, const std::vector<int>& 
   libsvm.model = svm_train(&libsvm.problem, &parameter);
 }
 
+// `noise_features` columns of noise after the two informative ones: 62 or more make rows
+// long enough for our precomputed kernel, the fold's shared Gram matrix and the prediction
+// from the distinct support vectors.
+toy::LabelledSet with_noise_features(toy::LabelledSet set, int noise_features, uint64_t seed) {
+  if (noise_features == 0) return set;
+  std::mt19937_64 engine(seed);
+  Matrix padded(set.x.rows(), set.x.cols() + noise_features);
+  padded.leftCols(set.x.cols()) = set.x;
+  for (Eigen::Index row = 0; row < padded.rows(); ++row)
+    for (Eigen::Index column = set.x.cols(); column < padded.cols(); ++column)
+      padded(row, column) = toy::normal(engine);
+  set.x = padded;
+  return set;
+}
+
 void expect_same_decisions_as_libsvm(const std::string& preset, const std::string& parameters,
-                                     int kernel, int degree, double gamma, double coef0) {
-  const toy::LabelledSet train = toy::blobs(three_centres(), 25, 2.0, 21);  // overlapping
-  const toy::LabelledSet test = toy::blobs(three_centres(), 25, 2.5, 22);
+                                     int kernel, int degree, double gamma, double coef0,
+                                     int noise_features = 0) {
+  const toy::LabelledSet train =
+      with_noise_features(toy::blobs(three_centres(), 25, 2.0, 21), noise_features, 23);
+  const toy::LabelledSet test =
+      with_noise_features(toy::blobs(three_centres(), 25, 2.5, 22), noise_features, 24);
   SupportVectorMachine svm = make_svm(preset, parameters);
   svm.fit(train.x, train.y, 3, 5);
 
@@ -154,10 +172,10 @@ void expect_same_decisions_as_libsvm(const std::string& preset, const std::strin
   const std::vector<int> predicted = svm.predict(test.x);
   const Matrix z = standardizer.transform(test.x);
   for (Eigen::Index row = 0; row < z.rows(); ++row) {
-    std::vector<svm_node> node(3);
-    node[0] = {1, z(row, 0)};
-    node[1] = {2, z(row, 1)};
-    node[2] = {-1, 0.0};
+    std::vector<svm_node> node(static_cast<size_t>(z.cols() + 1));
+    for (Eigen::Index column = 0; column < z.cols(); ++column)
+      node[static_cast<size_t>(column)] = {static_cast<int>(column + 1), z(row, column)};
+    node[static_cast<size_t>(z.cols())] = {-1, 0.0};
     double theirs[3];
     const double label = svm_predict_values(libsvm.model, node.data(), theirs);
     EXPECT_EQ(predicted[static_cast<size_t>(row)], static_cast<int>(label))
@@ -178,6 +196,13 @@ TEST(SupportVectorMachine, PolynomialDecisionEqualsLibsvmPredict) {
 TEST(SupportVectorMachine, GaussianDecisionEqualsLibsvmPredict) {
   // Medium Gaussian on P = 2 features: s = sqrt(2), gamma = 1/2.
   expect_same_decisions_as_libsvm("medium-gaussian-svm", "", RBF, 1, 0.5, 0.0);
+}
+
+TEST(SupportVectorMachine, LongRowDecisionsEqualLibsvmPredict) {
+  // 80 features: the kernel is precomputed from one Gram matrix of the training set, and the
+  // decisions come from one product with the distinct support vectors of all pairs.
+  expect_same_decisions_as_libsvm("medium-gaussian-svm", "", RBF, 1, 1.0 / 80.0, 0.0, 78);
+  expect_same_decisions_as_libsvm("quadratic-svm", "scale=sqrtP", POLY, 2, 1.0 / 80.0, 1.0, 78);
 }
 
 //---- Kernel scales -----------------------------------------------------------------------------

@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <unordered_map>
 
 #include "libsvm_support.h"
 #include "tactile/error.h"
@@ -130,6 +131,49 @@ std::vector<double> balanced_class_weights(const std::vector<int64_t>& counts, b
       weights[label] = static_cast<double>(total) /
                        (static_cast<double>(present) * static_cast<double>(counts[label]));
   return weights;
+}
+
+// The distinct support vectors of all learners, and per learner where each of its own is.
+struct DistinctRows {
+  Matrix rows;
+  std::vector<std::vector<Eigen::Index>> of_learner;
+};
+
+DistinctRows distinct_support_vectors(const std::vector<PairwiseSvm>& learners) {
+  DistinctRows distinct;
+  std::unordered_multimap<uint64_t, Eigen::Index> seen;  // hash -> place in `kept`
+  std::vector<std::pair<size_t, Eigen::Index>> kept;     // learner and row of each distinct
+  for (size_t index = 0; index < learners.size(); ++index) {
+    const Matrix& vectors = learners[index].support_vectors;
+    std::vector<Eigen::Index>& columns = distinct.of_learner.emplace_back();
+    for (Eigen::Index row = 0; row < vectors.rows(); ++row) {
+      uint64_t hash = 1469598103934665603ull;  // FNV-1a over the values' bits
+      for (Eigen::Index column = 0; column < vectors.cols(); ++column) {
+        uint64_t bits = 0;
+        const double value = vectors(row, column);
+        std::memcpy(&bits, &value, sizeof bits);
+        hash = (hash ^ bits) * 1099511628211ull;
+      }
+      Eigen::Index found = -1;
+      const auto [begin, end] = seen.equal_range(hash);
+      for (auto it = begin; it != end && found < 0; ++it) {
+        const auto& [learner, at] = kept[static_cast<size_t>(it->second)];
+        if (learners[learner].support_vectors.row(at) == vectors.row(row)) found = it->second;
+      }
+      if (found < 0) {
+        found = static_cast<Eigen::Index>(kept.size());
+        kept.emplace_back(index, row);
+        seen.emplace(hash, found);
+      }
+      columns.push_back(found);
+    }
+  }
+  const Eigen::Index width = learners.empty() ? 0 : learners.front().support_vectors.cols();
+  distinct.rows.resize(static_cast<Eigen::Index>(kept.size()), width);
+  for (size_t at = 0; at < kept.size(); ++at)
+    distinct.rows.row(static_cast<Eigen::Index>(at)) =
+        learners[kept[at].first].support_vectors.row(kept[at].second);
+  return distinct;
 }
 
 }  // namespace
@@ -275,8 +319,13 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       PairwiseSvm learner;
       learner.positive_class = present[first];
       learner.negative_class = present[second];
-      const Matrix positive = gather_rows(z, members[static_cast<size_t>(learner.positive_class)]);
-      const Matrix negative = gather_rows(z, members[static_cast<size_t>(learner.negative_class)]);
+      // The sub-problem libsvm's multi-class C-SVC would solve: class a's rows, then b's.
+      const auto& positive_rows = members[static_cast<size_t>(learner.positive_class)];
+      const auto& negative_rows = members[static_cast<size_t>(learner.negative_class)];
+      std::vector<int64_t> order = positive_rows;
+      order.insert(order.end(), negative_rows.begin(), negative_rows.end());
+      const auto positive_count = static_cast<Eigen::Index>(positive_rows.size());
+      const auto rows = static_cast<Eigen::Index>(order.size());
       switch (scale_.mode) {
         case KernelScale::Mode::kFixed:
           learner.scale = scale_.value;
@@ -285,29 +334,25 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
           learner.scale = scale_.value * std::sqrt(static_cast<double>(feature_count));
           break;
         case KernelScale::Mode::kAuto:
-          learner.scale = auto_kernel_scale(positive, negative, engine);
+          learner.scale = auto_kernel_scale(gather_rows(z, positive_rows),
+                                            gather_rows(z, negative_rows), engine);
           break;
       }
-
-      // The sub-problem libsvm's multi-class C-SVC would solve: class a's rows, then b's.
-      const Eigen::Index rows = positive.rows() + negative.rows();
-      Matrix pair(rows, feature_count);
-      pair.topRows(positive.rows()) = positive;
-      pair.bottomRows(negative.rows()) = negative;
       std::vector<double> targets(static_cast<size_t>(rows));
       for (Eigen::Index row = 0; row < rows; ++row)
-        targets[static_cast<size_t>(row)] = row < positive.rows() ? 1.0 : -1.0;
+        targets[static_cast<size_t>(row)] = row < positive_count ? 1.0 : -1.0;
       // Small enough: the whole kernel matrix at once (one matrix product), handed to
       // libsvm as a precomputed kernel, so its solver never evaluates a kernel itself.
       const bool precomputed = rows <= kPrecomputedKernelRows && long_rows;
+      // The pair's rows themselves, unless the kernel comes from the fold's Gram matrix
+      // (then only the support vectors are copied, from z).
+      const bool shared_gram = precomputed && fold_gram.size() > 0;
+      const Matrix pair = shared_gram ? Matrix() : gather_rows(z, order);
       std::vector<svm_node> nodes;
       std::vector<svm_node*> row_nodes(static_cast<size_t>(rows));
       if (precomputed) {
         Matrix kernel;
-        if (fold_gram.size() > 0) {
-          std::vector<int64_t> order = members[static_cast<size_t>(learner.positive_class)];
-          const auto& second_rows = members[static_cast<size_t>(learner.negative_class)];
-          order.insert(order.end(), second_rows.begin(), second_rows.end());
+        if (shared_gram) {
           const Vector norms = fold_norms(order);
           kernel = kernel_from_gram(fold_gram(order, order), norms, norms, learner.scale);
         } else {
@@ -377,9 +422,10 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       learner.support_vectors = Matrix::Zero(model->l, feature_count);
       for (int vector = 0; vector < model->l; ++vector) {
         learner.coefficients(vector) = sign * model->sv_coef[0][vector];
-        if (precomputed) {  // a support vector is its serial number: the row of `pair`
+        if (precomputed) {  // a support vector is its serial number: the pair's row
           const auto row = static_cast<Eigen::Index>(model->SV[vector][0].value) - 1;
-          learner.support_vectors.row(vector) = pair.row(row);
+          learner.support_vectors.row(vector) =
+              z.row(static_cast<Eigen::Index>(order[static_cast<size_t>(row)]));
         } else {
           for (const svm_node* node = model->SV[vector]; node->index != -1; ++node)
             learner.support_vectors(vector, node->index - 1) = node->value;
@@ -439,6 +485,26 @@ Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
   check_query(x, standardizer_.mean.size(), preset_);
   const Matrix z = standardizer_.transform(x);
   Matrix decision(x.rows(), static_cast<Eigen::Index>(learners_.size()));
+  // Long rows, a non-linear kernel: a training row is a support vector of up to k - 1 pairs,
+  // so one product with the distinct support vectors serves every learner.
+  if (kernel_ != SvmKernel::kLinear && z.cols() >= kPrecomputedKernelFeatures &&
+      learners_.size() > 1) {
+    const DistinctRows distinct = distinct_support_vectors(learners_);
+    const Matrix gram = z * distinct.rows.transpose();
+    const Vector query_norms = z.rowwise().squaredNorm();
+    const Vector support_norms = distinct.rows.rowwise().squaredNorm();
+    for (size_t index = 0; index < learners_.size(); ++index) {
+      const PairwiseSvm& learner = learners_[index];
+      const std::vector<Eigen::Index>& columns = distinct.of_learner[index];
+      decision.col(static_cast<Eigen::Index>(index)) =
+          (kernel_from_gram(gram(Eigen::all, columns), query_norms, support_norms(columns),
+                            learner.scale) *
+           learner.coefficients)
+              .array() -
+          learner.rho;
+    }
+    return decision;
+  }
   for (size_t index = 0; index < learners_.size(); ++index) {
     const PairwiseSvm& learner = learners_[index];
     decision.col(static_cast<Eigen::Index>(index)) =
