@@ -196,9 +196,9 @@ def main():
                   f"{theirs_seconds / ours_seconds:5.2f}x  "
                   f"{'ok' if row['pass'] else 'MISSED'}{'' if checked else ' (random)'}",
                   flush=True)
-    if args.raw:
-        with open(args.raw, "w") as handle:
-            json.dump(rows, handle, indent=1)
+            if args.raw:  # after every row, so that a stopped run keeps what it measured
+                with open(args.raw, "w") as handle:
+                    json.dump(rows, handle, indent=1)
     if args.out:
         write_markdown(rows, args)
     missed = [r for r in rows if not r["pass"]]
