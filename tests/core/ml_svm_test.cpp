@@ -135,10 +135,28 @@ void train_libsvm(LibsvmModel& libsvm, const Matrix& z, const std::vector<int>& 
   libsvm.model = svm_train(&libsvm.problem, &parameter);
 }
 
+// `noise_features` columns of noise after the two informative ones: 62 or more make rows
+// long enough for our precomputed kernel, the fold's shared Gram matrix and the prediction
+// from the distinct support vectors.
+toy::LabelledSet with_noise_features(toy::LabelledSet set, int noise_features, uint64_t seed) {
+  if (noise_features == 0) return set;
+  std::mt19937_64 engine(seed);
+  Matrix padded(set.x.rows(), set.x.cols() + noise_features);
+  padded.leftCols(set.x.cols()) = set.x;
+  for (Eigen::Index row = 0; row < padded.rows(); ++row)
+    for (Eigen::Index column = set.x.cols(); column < padded.cols(); ++column)
+      padded(row, column) = toy::normal(engine);
+  set.x = padded;
+  return set;
+}
+
 void expect_same_decisions_as_libsvm(const std::string& preset, const std::string& parameters,
-                                     int kernel, int degree, double gamma, double coef0) {
-  const toy::LabelledSet train = toy::blobs(three_centres(), 25, 2.0, 21);  // overlapping
-  const toy::LabelledSet test = toy::blobs(three_centres(), 25, 2.5, 22);
+                                     int kernel, int degree, double gamma, double coef0,
+                                     int noise_features = 0) {
+  const toy::LabelledSet train =
+      with_noise_features(toy::blobs(three_centres(), 25, 2.0, 21), noise_features, 23);
+  const toy::LabelledSet test =
+      with_noise_features(toy::blobs(three_centres(), 25, 2.5, 22), noise_features, 24);
   SupportVectorMachine svm = make_svm(preset, parameters);
   svm.fit(train.x, train.y, 3, 5);
 
@@ -154,10 +172,10 @@ void expect_same_decisions_as_libsvm(const std::string& preset, const std::strin
   const std::vector<int> predicted = svm.predict(test.x);
   const Matrix z = standardizer.transform(test.x);
   for (Eigen::Index row = 0; row < z.rows(); ++row) {
-    std::vector<svm_node> node(3);
-    node[0] = {1, z(row, 0)};
-    node[1] = {2, z(row, 1)};
-    node[2] = {-1, 0.0};
+    std::vector<svm_node> node(static_cast<size_t>(z.cols() + 1));
+    for (Eigen::Index column = 0; column < z.cols(); ++column)
+      node[static_cast<size_t>(column)] = {static_cast<int>(column + 1), z(row, column)};
+    node[static_cast<size_t>(z.cols())] = {-1, 0.0};
     double theirs[3];
     const double label = svm_predict_values(libsvm.model, node.data(), theirs);
     EXPECT_EQ(predicted[static_cast<size_t>(row)], static_cast<int>(label))
@@ -178,6 +196,13 @@ TEST(SupportVectorMachine, PolynomialDecisionEqualsLibsvmPredict) {
 TEST(SupportVectorMachine, GaussianDecisionEqualsLibsvmPredict) {
   // Medium Gaussian on P = 2 features: s = sqrt(2), gamma = 1/2.
   expect_same_decisions_as_libsvm("medium-gaussian-svm", "", RBF, 1, 0.5, 0.0);
+}
+
+TEST(SupportVectorMachine, LongRowDecisionsEqualLibsvmPredict) {
+  // 80 features: the kernel is precomputed from one Gram matrix of the training set, and the
+  // decisions come from one product with the distinct support vectors of all pairs.
+  expect_same_decisions_as_libsvm("medium-gaussian-svm", "", RBF, 1, 1.0 / 80.0, 0.0, 78);
+  expect_same_decisions_as_libsvm("quadratic-svm", "scale=sqrtP", POLY, 2, 1.0 / 80.0, 1.0, 78);
 }
 
 //---- Kernel scales -----------------------------------------------------------------------------
@@ -256,6 +281,95 @@ TEST(SupportVectorMachine, GaussianPresetsScaleWithTheSquareRootOfTheFeatureCoun
   SupportVectorMachine fixed = make_svm("medium-gaussian-svm", "scale=3");
   fixed.fit(train.x, train.y, 2, 1);
   EXPECT_DOUBLE_EQ(fixed.learners()[0].scale, 3.0);
+}
+
+//---- Balanced class weights ---------------------------------------------------------------------
+
+// Two overlapping classes, `common` rows of class 0 around (0, 0) and `rare` of class 1
+// around (1.5, 0).
+toy::LabelledSet imbalanced_pair(int common, int rare, uint64_t seed) {
+  Matrix centres(2, 2);
+  centres << 0, 0, 1.5, 0;
+  const toy::LabelledSet both = toy::blobs(centres, common, 1.0, seed);
+  toy::LabelledSet kept;
+  std::vector<Eigen::Index> rows;
+  int rare_kept = 0;
+  for (size_t row = 0; row < both.y.size(); ++row)
+    if (both.y[row] == 0 || rare_kept++ < rare) rows.push_back(static_cast<Eigen::Index>(row));
+  kept.x.resize(static_cast<Eigen::Index>(rows.size()), 2);
+  for (size_t row = 0; row < rows.size(); ++row) {
+    kept.x.row(static_cast<Eigen::Index>(row)) = both.x.row(rows[row]);
+    kept.y.push_back(both.y[static_cast<size_t>(rows[row])]);
+  }
+  return kept;
+}
+
+double recall_of(const std::vector<int>& predicted, const std::vector<int>& truth, int label) {
+  int hits = 0;
+  int total = 0;
+  for (size_t row = 0; row < truth.size(); ++row) {
+    if (truth[row] != label) continue;
+    ++total;
+    if (predicted[row] == label) ++hits;
+  }
+  return total == 0 ? 0.0 : static_cast<double>(hits) / total;
+}
+
+TEST(SupportVectorMachine, BalancedWeightsAreScikitLearnsAndFavourTheRareClass) {
+  const toy::LabelledSet train = imbalanced_pair(200, 20, 60);
+  const toy::LabelledSet test = imbalanced_pair(200, 200, 61);
+  for (const std::string preset : {"linear-svm", "medium-gaussian-svm"}) {
+    SupportVectorMachine plain = make_svm(preset, "probability=false");
+    SupportVectorMachine balanced = make_svm(preset, "probability=false,weights=balanced");
+    plain.fit(train.x, train.y, 2, 62);
+    balanced.fit(train.x, train.y, 2, 62);
+    // n / (k n_c): 220 / (2 * 200) and 220 / (2 * 20).
+    EXPECT_EQ(plain.class_weights(), (std::vector<double>{1.0, 1.0})) << preset;
+    ASSERT_EQ(balanced.class_weights().size(), 2u) << preset;
+    EXPECT_DOUBLE_EQ(balanced.class_weights()[0], 0.55) << preset;
+    EXPECT_DOUBLE_EQ(balanced.class_weights()[1], 5.5) << preset;
+    // Unweighted, the 20 rare rows barely move the boundary: most rare test rows are lost.
+    // Weighted, each rare error costs ten times a common one, and the boundary moves over.
+    const double plain_recall = recall_of(plain.predict(test.x), test.y, 1);
+    const double balanced_recall = recall_of(balanced.predict(test.x), test.y, 1);
+    EXPECT_LT(plain_recall, 0.5) << preset;
+    EXPECT_GT(balanced_recall, plain_recall + 0.2) << preset;
+    EXPECT_GT(balanced_recall, 0.6) << preset;
+  }
+}
+
+TEST(SupportVectorMachine, BalancedWeightsOnBalancedClassesChangeNothing) {
+  const toy::LabelledSet train = toy::blobs(three_centres(), 30, 2.0, 63);
+  const toy::LabelledSet test = toy::blobs(three_centres(), 30, 2.0, 64);
+  for (const std::string preset : {"linear-svm", "quadratic-svm", "fine-gaussian-svm"}) {
+    SupportVectorMachine plain = make_svm(preset);
+    SupportVectorMachine balanced = make_svm(preset, "weights=balanced");
+    plain.fit(train.x, train.y, 3, 65);
+    balanced.fit(train.x, train.y, 3, 65);
+    EXPECT_EQ(balanced.class_weights(), (std::vector<double>{1.0, 1.0, 1.0})) << preset;
+    EXPECT_EQ(balanced.decision_values(test.x), plain.decision_values(test.x)) << preset;
+    EXPECT_EQ(balanced.scores(test.x), plain.scores(test.x)) << preset;
+  }
+}
+
+TEST(SupportVectorMachine, BalancedWeightsAreAParameterAndSavedInTheModel) {
+  EXPECT_EQ(make_svm("linear-svm").parameters().text("weights", ""), "none");
+  EXPECT_EQ(make_svm("cubic-svm", "weights=balanced").parameters().text("weights", ""), "balanced");
+  EXPECT_THROW(make_svm("linear-svm", "weights=inverse"), Error);
+  const toy::LabelledSet train = imbalanced_pair(60, 15, 66);
+  SupportVectorMachine svm = make_svm("coarse-gaussian-svm", "weights=balanced");
+  svm.fit(train.x, train.y, 2, 67);
+  const nlohmann::json saved = nlohmann::json::parse(svm.save().dump());
+  ASSERT_TRUE(saved.contains("class_weights"));
+  SupportVectorMachine restored = make_svm("coarse-gaussian-svm", "weights=balanced");
+  restored.load(saved);
+  EXPECT_EQ(restored.class_weights(), svm.class_weights());
+  EXPECT_EQ(restored.decision_values(train.x), svm.decision_values(train.x));
+  nlohmann::json broken = saved;
+  broken["class_weights"] = {1.0};
+  EXPECT_THROW(restored.load(broken), Error);
+  broken["class_weights"] = {1.0, -2.0};
+  EXPECT_THROW(restored.load(broken), Error);
 }
 
 //---- Parameters, save and load -----------------------------------------------------------------

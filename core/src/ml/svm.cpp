@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <unordered_map>
 
 #include "libsvm_support.h"
 #include "tactile/error.h"
@@ -29,6 +30,9 @@ namespace {
 // 1200 3.3x faster).
 constexpr Eigen::Index kPrecomputedKernelRows = 3000;
 constexpr Eigen::Index kPrecomputedKernelFeatures = 64;
+// Training folds of long rows up to this many rows share one Gram matrix (rows² doubles:
+// 4000 rows, 128 MB) from which every pair's kernel is read.
+constexpr Eigen::Index kSharedGramRows = 4000;
 
 struct Preset {
   const char* name;
@@ -111,6 +115,67 @@ Matrix draw_rows(const Matrix& x, int64_t limit, std::mt19937_64& engine) {
   return gather_rows(x, order);
 }
 
+// scikit-learn's class_weight='balanced': w_c = n / (k n_c) over the k classes present in
+// the training set; every weight 1 without balancing.
+std::vector<double> balanced_class_weights(const std::vector<int64_t>& counts, bool balanced) {
+  std::vector<double> weights(counts.size(), 1.0);
+  if (!balanced) return weights;
+  int64_t total = 0;
+  int64_t present = 0;
+  for (const int64_t count : counts) {
+    total += count;
+    if (count > 0) ++present;
+  }
+  for (size_t label = 0; label < counts.size(); ++label)
+    if (counts[label] > 0)
+      weights[label] = static_cast<double>(total) /
+                       (static_cast<double>(present) * static_cast<double>(counts[label]));
+  return weights;
+}
+
+// The distinct support vectors of all learners, and per learner where each of its own is.
+struct DistinctRows {
+  Matrix rows;
+  std::vector<std::vector<Eigen::Index>> of_learner;
+};
+
+DistinctRows distinct_support_vectors(const std::vector<PairwiseSvm>& learners) {
+  DistinctRows distinct;
+  std::unordered_multimap<uint64_t, Eigen::Index> seen;  // hash -> place in `kept`
+  std::vector<std::pair<size_t, Eigen::Index>> kept;     // learner and row of each distinct
+  for (size_t index = 0; index < learners.size(); ++index) {
+    const Matrix& vectors = learners[index].support_vectors;
+    std::vector<Eigen::Index>& columns = distinct.of_learner.emplace_back();
+    for (Eigen::Index row = 0; row < vectors.rows(); ++row) {
+      uint64_t hash = 1469598103934665603ull;  // FNV-1a over the values' bits
+      for (Eigen::Index column = 0; column < vectors.cols(); ++column) {
+        uint64_t bits = 0;
+        const double value = vectors(row, column);
+        std::memcpy(&bits, &value, sizeof bits);
+        hash = (hash ^ bits) * 1099511628211ull;
+      }
+      Eigen::Index found = -1;
+      const auto [begin, end] = seen.equal_range(hash);
+      for (auto it = begin; it != end && found < 0; ++it) {
+        const auto& [learner, at] = kept[static_cast<size_t>(it->second)];
+        if (learners[learner].support_vectors.row(at) == vectors.row(row)) found = it->second;
+      }
+      if (found < 0) {
+        found = static_cast<Eigen::Index>(kept.size());
+        kept.emplace_back(index, row);
+        seen.emplace(hash, found);
+      }
+      columns.push_back(found);
+    }
+  }
+  const Eigen::Index width = learners.empty() ? 0 : learners.front().support_vectors.cols();
+  distinct.rows.resize(static_cast<Eigen::Index>(kept.size()), width);
+  for (size_t at = 0; at < kept.size(); ++at)
+    distinct.rows.row(static_cast<Eigen::Index>(at)) =
+        learners[kept[at].first].support_vectors.row(kept[at].second);
+  return distinct;
+}
+
 }  // namespace
 
 //---- Kernel scale --------------------------------------------------------------------------
@@ -180,7 +245,7 @@ SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Para
   });
   if (found == presets().end())
     throw Error(parameters.where(), "no SVM preset named '" + preset + "'");
-  parameters.expect_only({"c", "scale", "probability"});
+  parameters.expect_only({"c", "scale", "probability", "weights"});
   kernel_ = found->kernel;
   degree_ = found->degree;
   scale_ = found->scale;
@@ -190,6 +255,10 @@ SupportVectorMachine::SupportVectorMachine(const std::string& preset, const Para
   if (parameters.has("scale"))
     scale_ = KernelScale::parse(parameters.text("scale", ""), parameters.where());
   fit_probabilities_ = parameters.flag("probability", true);
+  const std::string weights = parameters.text("weights", "none");
+  if (weights != "none" && weights != "balanced")
+    throw Error(parameters.where(), "weights=" + weights + ": expected none or balanced");
+  balanced_weights_ = weights == "balanced";
 }
 
 Parameters SupportVectorMachine::parameters() const {
@@ -197,6 +266,7 @@ Parameters SupportVectorMachine::parameters() const {
   parameters.set("c", format_number(box_constraint_));
   parameters.set("scale", scale_.to_string());
   parameters.set("probability", fit_probabilities_ ? "true" : "false");
+  parameters.set("weights", balanced_weights_ ? "balanced" : "none");
   return parameters;
 }
 
@@ -210,6 +280,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
   silence_libsvm();
   fitted_ = false;
   learners_.clear();
+  class_weights_ = balanced_class_weights(counts, balanced_weights_);
   probabilities_ = false;
   class_count_ = class_count;
   only_class_ = -1;
@@ -229,6 +300,16 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
   }
 
   const Eigen::Index feature_count = z.cols();
+  // Long rows: the training fold's Gram matrix z z' once, each pair's
+  // precomputed kernel read from it, rather than a product per pair (each class takes part
+  // in k - 1 pairs). 1000 x 1200 rows: the products were over half of a fit's time.
+  const bool long_rows = feature_count >= kPrecomputedKernelFeatures;
+  Matrix fold_gram;
+  Vector fold_norms;
+  if (long_rows && z.rows() <= kSharedGramRows) {
+    fold_gram = z * z.transpose();
+    fold_norms = z.rowwise().squaredNorm();
+  }
   std::mt19937_64 engine(seed);
   for (size_t first = 0; first < present.size(); ++first) {
     for (size_t second = first + 1; second < present.size(); ++second) {
@@ -238,8 +319,13 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       PairwiseSvm learner;
       learner.positive_class = present[first];
       learner.negative_class = present[second];
-      const Matrix positive = gather_rows(z, members[static_cast<size_t>(learner.positive_class)]);
-      const Matrix negative = gather_rows(z, members[static_cast<size_t>(learner.negative_class)]);
+      // The sub-problem libsvm's multi-class C-SVC would solve: class a's rows, then b's.
+      const auto& positive_rows = members[static_cast<size_t>(learner.positive_class)];
+      const auto& negative_rows = members[static_cast<size_t>(learner.negative_class)];
+      std::vector<int64_t> order = positive_rows;
+      order.insert(order.end(), negative_rows.begin(), negative_rows.end());
+      const auto positive_count = static_cast<Eigen::Index>(positive_rows.size());
+      const auto rows = static_cast<Eigen::Index>(order.size());
       switch (scale_.mode) {
         case KernelScale::Mode::kFixed:
           learner.scale = scale_.value;
@@ -248,26 +334,30 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
           learner.scale = scale_.value * std::sqrt(static_cast<double>(feature_count));
           break;
         case KernelScale::Mode::kAuto:
-          learner.scale = auto_kernel_scale(positive, negative, engine);
+          learner.scale = auto_kernel_scale(gather_rows(z, positive_rows),
+                                            gather_rows(z, negative_rows), engine);
           break;
       }
-
-      // The sub-problem libsvm's multi-class C-SVC would solve: class a's rows, then b's.
-      const Eigen::Index rows = positive.rows() + negative.rows();
-      Matrix pair(rows, feature_count);
-      pair.topRows(positive.rows()) = positive;
-      pair.bottomRows(negative.rows()) = negative;
       std::vector<double> targets(static_cast<size_t>(rows));
       for (Eigen::Index row = 0; row < rows; ++row)
-        targets[static_cast<size_t>(row)] = row < positive.rows() ? 1.0 : -1.0;
+        targets[static_cast<size_t>(row)] = row < positive_count ? 1.0 : -1.0;
       // Small enough: the whole kernel matrix at once (one matrix product), handed to
       // libsvm as a precomputed kernel, so its solver never evaluates a kernel itself.
-      const bool precomputed =
-          rows <= kPrecomputedKernelRows && feature_count >= kPrecomputedKernelFeatures;
+      const bool precomputed = rows <= kPrecomputedKernelRows && long_rows;
+      // The pair's rows themselves, unless the kernel comes from the fold's Gram matrix
+      // (then only the support vectors are copied, from z).
+      const bool shared_gram = precomputed && fold_gram.size() > 0;
+      const Matrix pair = shared_gram ? Matrix() : gather_rows(z, order);
       std::vector<svm_node> nodes;
       std::vector<svm_node*> row_nodes(static_cast<size_t>(rows));
       if (precomputed) {
-        const Matrix kernel = kernel_matrix(pair, pair, learner.scale);
+        Matrix kernel;
+        if (shared_gram) {
+          const Vector norms = fold_norms(order);
+          kernel = kernel_from_gram(fold_gram(order, order), norms, norms, learner.scale);
+        } else {
+          kernel = kernel_matrix(pair, pair, learner.scale);
+        }
         const Eigen::Index width = rows + 2;  // serial number, the row, terminator
         nodes.resize(static_cast<size_t>(rows * width));
         for (Eigen::Index row = 0; row < rows; ++row) {
@@ -306,6 +396,16 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       parameter.p = 0.1;
       parameter.shrinking = 1;
       parameter.probability = 0;
+      // Per-class C: C w_a for the pair's positive rows, C w_b for its negative ones (libsvm's
+      // multi-class C-SVC gives each pair its two classes' weights the same way).
+      int weight_labels[2] = {1, -1};
+      double pair_weights[2] = {class_weights_[static_cast<size_t>(learner.positive_class)],
+                                class_weights_[static_cast<size_t>(learner.negative_class)]};
+      if (balanced_weights_) {
+        parameter.nr_weight = 2;
+        parameter.weight_label = weight_labels;
+        parameter.weight = pair_weights;
+      }
       if (const char* problem_text = svm_check_parameter(&problem, &parameter))
         throw Error(preset_, std::string("libsvm: ") + problem_text);
       const LibsvmModel model(svm_train(&problem, &parameter));
@@ -322,9 +422,10 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       learner.support_vectors = Matrix::Zero(model->l, feature_count);
       for (int vector = 0; vector < model->l; ++vector) {
         learner.coefficients(vector) = sign * model->sv_coef[0][vector];
-        if (precomputed) {  // a support vector is its serial number: the row of `pair`
+        if (precomputed) {  // a support vector is its serial number: the pair's row
           const auto row = static_cast<Eigen::Index>(model->SV[vector][0].value) - 1;
-          learner.support_vectors.row(vector) = pair.row(row);
+          learner.support_vectors.row(vector) =
+              z.row(static_cast<Eigen::Index>(order[static_cast<size_t>(row)]));
         } else {
           for (const svm_node* node = model->SV[vector]; node->index != -1; ++node)
             learner.support_vectors(vector, node->index - 1) = node->value;
@@ -354,8 +455,13 @@ Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const PairwiseSvm& l
 
 Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const Matrix& support,
                                            double scale) const {
+  return kernel_from_gram(z * support.transpose(), z.rowwise().squaredNorm(),
+                          support.rowwise().squaredNorm(), scale);
+}
+
+Matrix SupportVectorMachine::kernel_from_gram(const Matrix& gram, const Vector& row_norms,
+                                              const Vector& column_norms, double scale) const {
   const double gamma = 1.0 / (scale * scale);
-  const Matrix gram = z * support.transpose();
   switch (kernel_) {
     case SvmKernel::kLinear:
       return gamma * gram;
@@ -367,8 +473,7 @@ Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const Matrix& suppor
     }
     case SvmKernel::kGaussian: {
       const Eigen::ArrayXXd squared_distance =
-          ((-2.0 * gram).colwise() + z.rowwise().squaredNorm()).rowwise() +
-          support.rowwise().squaredNorm().transpose();
+          ((-2.0 * gram).colwise() + row_norms).rowwise() + column_norms.transpose();
       return (-gamma * squared_distance.max(0.0)).exp().matrix();
     }
   }
@@ -380,6 +485,26 @@ Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
   check_query(x, standardizer_.mean.size(), preset_);
   const Matrix z = standardizer_.transform(x);
   Matrix decision(x.rows(), static_cast<Eigen::Index>(learners_.size()));
+  // Long rows, a non-linear kernel: a training row is a support vector of up to k - 1 pairs,
+  // so one product with the distinct support vectors serves every learner.
+  if (kernel_ != SvmKernel::kLinear && z.cols() >= kPrecomputedKernelFeatures &&
+      learners_.size() > 1) {
+    const DistinctRows distinct = distinct_support_vectors(learners_);
+    const Matrix gram = z * distinct.rows.transpose();
+    const Vector query_norms = z.rowwise().squaredNorm();
+    const Vector support_norms = distinct.rows.rowwise().squaredNorm();
+    for (size_t index = 0; index < learners_.size(); ++index) {
+      const PairwiseSvm& learner = learners_[index];
+      const std::vector<Eigen::Index>& columns = distinct.of_learner[index];
+      decision.col(static_cast<Eigen::Index>(index)) =
+          (kernel_from_gram(gram(Eigen::all, columns), query_norms, support_norms(columns),
+                            learner.scale) *
+           learner.coefficients)
+              .array() -
+          learner.rho;
+    }
+    return decision;
+  }
   for (size_t index = 0; index < learners_.size(); ++index) {
     const PairwiseSvm& learner = learners_[index];
     decision.col(static_cast<Eigen::Index>(index)) =
@@ -486,9 +611,12 @@ nlohmann::json SupportVectorMachine::save() const {
     }
     learners.push_back(std::move(saved));
   }
-  return {{"kernel", kernel_name(kernel_)},       {"degree", degree_},
-          {"class_count", class_count_},          {"only_class", only_class_},
-          {"standardizer", standardizer_.save()}, {"learners", std::move(learners)}};
+  nlohmann::json saved = {
+      {"kernel", kernel_name(kernel_)},       {"degree", degree_},
+      {"class_count", class_count_},          {"only_class", only_class_},
+      {"standardizer", standardizer_.save()}, {"learners", std::move(learners)}};
+  if (balanced_weights_) saved["class_weights"] = class_weights_;
+  return saved;
 }
 
 void SupportVectorMachine::load(const nlohmann::json& model) {
@@ -550,8 +678,21 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
     if (only_class < 0 && learners.empty()) throw Error(where, "no learners");
     if (with_sigmoid != 0 && with_sigmoid != learners.size())
       throw Error(where, "some learners have a probability sigmoid and some do not");
+    // The weights only shaped the training; kept for the record (a model saved before they
+    // existed has none: every weight 1).
+    std::vector<double> class_weights(static_cast<size_t>(class_count), 1.0);
+    if (model.contains("class_weights")) {
+      class_weights = model.at("class_weights").get<std::vector<double>>();
+      if (class_weights.size() != static_cast<size_t>(class_count))
+        throw Error(where, "class_weights has " + std::to_string(class_weights.size()) +
+                               " values, expected " + std::to_string(class_count));
+      for (const double weight : class_weights)
+        if (!std::isfinite(weight) || weight <= 0.0)
+          throw Error(where, "class_weights: not a positive finite number");
+    }
     class_count_ = class_count;
     only_class_ = only_class;
+    class_weights_ = std::move(class_weights);
     standardizer_ = std::move(standardizer);
     learners_ = std::move(learners);
     probabilities_ = with_sigmoid > 0;

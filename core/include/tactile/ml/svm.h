@@ -37,6 +37,12 @@
 // and scores are the vote shares (votes / number of pairs), as are those of a model saved
 // before the sigmoids were kept (no probability_a/probability_b in its learners).
 //
+// Parameter `weights` (none|balanced, default none): balanced weights each class's box
+// constraint by w_c = n / (k n_c) (n training rows, k classes present, n_c rows of class c),
+// scikit-learn's class_weight='balanced'; a pair's rows get C w_a and C w_b (libsvm's
+// weight_label/weight), so a rare class's errors cost more. The weights are saved in the
+// model ("class_weights") with the parameter.
+//
 // Save/load keeps the standardiser, and per pair the kernel scale, rho, coefficients and
 // support vectors (in standardised units), and the sigmoid's A and B when fitted, in the JSON;
 // no libsvm model file is written.
@@ -104,6 +110,8 @@ class SupportVectorMachine : public Classifier {
   bool has_probabilities() const { return probabilities_; }
   SvmKernel kernel() const { return kernel_; }
   int degree() const { return degree_; }
+  // Per class, the factor of C the fit used (all 1 unless weights=balanced).
+  const std::vector<double>& class_weights() const { return class_weights_; }
 
  private:
   Matrix kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const;
@@ -112,6 +120,9 @@ class SupportVectorMachine : public Classifier {
   Matrix probabilities(const Matrix& decision) const;
   // K(z_i, s_j) for every row of z and of `support`, with kernel scale `scale`.
   Matrix kernel_matrix(const Matrix& z, const Matrix& support, double scale) const;
+  // The kernel from the inner products `gram` (rows x columns) and both sides' squared norms.
+  Matrix kernel_from_gram(const Matrix& gram, const Vector& row_norms, const Vector& column_norms,
+                          double scale) const;
 
   std::string preset_;
   SvmKernel kernel_ = SvmKernel::kLinear;
@@ -119,6 +130,7 @@ class SupportVectorMachine : public Classifier {
   double box_constraint_ = 1.0;
   KernelScale scale_;
   bool fit_probabilities_ = true;  // the `probability` parameter
+  bool balanced_weights_ = false;  // the `weights` parameter: balanced or none
 
   bool fitted_ = false;
   int class_count_ = 0;
@@ -126,6 +138,7 @@ class SupportVectorMachine : public Classifier {
   Standardizer standardizer_;
   std::vector<PairwiseSvm> learners_;
   bool probabilities_ = false;  // every learner has its sigmoid
+  std::vector<double> class_weights_;  // per class: C's factor in training (1 unless balanced)
 };
 
 std::vector<std::string> svm_preset_names();
