@@ -115,6 +115,16 @@ void print_result(const ml::EvaluationResult& result, const Dataset& dataset) {
               << (distinct_ids ? dataset.segment_ids[row] : wrong_rows[i]);
   }
   if (wrong_rows.size() > kShown) std::cout << ", ...";
+  // The tree ensembles say which columns they split on most (mean over folds).
+  if (!result.importances.empty()) {
+    constexpr size_t kTop = 10;
+    const size_t shown = std::min(kTop, result.importances.size());
+    std::cout << "\nimportance  top " << shown << " of " << result.importances.size()
+              << " features used (mean over folds)\n";
+    for (size_t i = 0; i < shown; ++i)
+      std::cout << "  " << std::fixed << std::setprecision(4) << result.importances[i].importance
+                << "  " << result.importances[i].feature << "\n";
+  }
   // Grid search chooses per fold: say what it chose, and how often.
   std::map<std::string, int> chosen;
   for (const std::string& model : result.fold_models) ++chosen[model];

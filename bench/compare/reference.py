@@ -10,12 +10,18 @@ import numpy as np
 from scipy.special import logsumexp
 from sklearn.base import BaseEstimator, ClassifierMixin, TransformerMixin
 from sklearn.discriminant_analysis import QuadraticDiscriminantAnalysis
+from sklearn.ensemble import BaggingClassifier, GradientBoostingClassifier, RandomForestClassifier
 from sklearn.mixture import GaussianMixture
 from sklearn.naive_bayes import GaussianNB
 from sklearn.neighbors import KNeighborsClassifier
 from sklearn.pipeline import make_pipeline
 from sklearn.svm import SVC
 from sklearn.tree import DecisionTreeClassifier
+
+try:  # Debian's python3-xgboost: the same library as our boosted-trees
+    from xgboost import XGBClassifier
+except ImportError:
+    XGBClassifier = None
 
 
 class SampleStandardizer(BaseEstimator, TransformerMixin):
@@ -169,6 +175,49 @@ def svc(kernel, options):
     return lambda seed, p: standardised(SVC(kernel=kernel, C=1.0, tol=1e-3, **options(p)))
 
 
+def boosted_trees_reference(seed):
+    """XGBoost's own defaults as ours runs them (both cores, hist); without python3-xgboost,
+    scikit-learn's GradientBoostingClassifier for information (another algorithm)."""
+    if XGBClassifier is not None:
+        return XGBClassifier(n_estimators=100, max_depth=6, learning_rate=0.3,
+                             tree_method="hist", objective="multi:softprob", n_jobs=2,
+                             random_state=seed, verbosity=0)
+    return GradientBoostingClassifier(random_state=seed)
+
+
+class LabelEncoded(BaseEstimator, ClassifierMixin):
+    """XGBClassifier wants classes 0..K-1; the tables have names."""
+
+    def __init__(self, model):
+        self.model = model
+
+    def fit(self, x, y):
+        self.classes_, codes = np.unique(y, return_inverse=True)
+        self.model.fit(x, codes)
+        return self
+
+    def predict(self, x):
+        return self.classes_[np.asarray(self.model.predict(x), dtype=int)]
+
+
+def tree_ensemble_pairs():
+    """Random models, so the mean over 5 seeds is compared. Both sides fit on both cores."""
+    return [
+        Pair("random-forest", "random-forest",
+             lambda seed, p: RandomForestClassifier(n_estimators=100, random_state=seed,
+                                                    n_jobs=2),
+             "RandomForest(100 trees, sqrt)", seeds=5),
+        Pair("bagged-trees", "bagged-trees",
+             lambda seed, p: BaggingClassifier(DecisionTreeClassifier(), n_estimators=30,
+                                               random_state=seed, n_jobs=2),
+             "Bagging(DecisionTree(), 30)", seeds=5),
+        Pair("boosted-trees", "boosted-trees",
+             lambda seed, p: LabelEncoded(boosted_trees_reference(seed)),
+             "XGBClassifier(100, depth 6, eta 0.3, hist)" if XGBClassifier is not None
+             else "GradientBoosting() (no python3-xgboost)", seeds=5),
+    ]
+
+
 def pairs():
     euclidean_unscaled = ('-A "weka.core.neighboursearch.LinearNNSearch -A '
                           '\\"weka.core.EuclideanDistance -D -R first-last\\""')
@@ -226,7 +275,7 @@ def pairs():
         Pair("em (classes to clusters)", "em",
              lambda seed, p: standardised(ClusterClassifier(seed)),
              "GaussianMixture(diag, K=classes)+majority", seeds=5),
-    ]
+    ] + tree_ensemble_pairs()
 
 
 #---- Weka --------------------------------------------------------------------------------------

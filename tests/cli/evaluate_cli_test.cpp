@@ -206,5 +206,36 @@ TEST(EvaluateCli, AllRunsEveryPresetIntoOneSortedTable) {
   EXPECT_NE(model.exit_code, 0);
 }
 
+TEST(EvaluateCli, RandomForestPrintsItsFeatureImportances) {
+  // `contact` tells the classes apart, `drift` is noise: the forest splits on contact most.
+  TempFolder folder;
+  {
+    std::mt19937_64 random(8);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::ofstream out(folder.file("features.csv"));
+    out << "drift,contact,class,subject,recording,segment_id\n";
+    for (int row = 0; row < 40; ++row) {
+      const bool stroke = row % 2 == 1;
+      out << normal(random) << "," << normal(random) + (stroke ? 4.0 : 0.0) << ","
+          << (stroke ? "stroke" : "tap") << ",s" << row % 4 << ",rec" << row % 4 << ".h5,"
+          << 500 + row << "\n";
+    }
+  }
+  const std::string command = "evaluate --features '" + folder.file("features.csv") +
+                              "' --classifier random-forest:trees=20 --protocol kfold:4";
+  const CommandResult text = run_program("tactile", command, folder);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const size_t heading = text.out.find("importance  top 2 of 2 features");
+  ASSERT_NE(heading, std::string::npos) << text.out;
+  EXPECT_LT(text.out.find("contact", heading), text.out.find("drift", heading)) << text.out;
+  const CommandResult json = run_program("tactile", command + " --json", folder);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json document = nlohmann::json::parse(json.out);
+  ASSERT_EQ(document["importances"].size(), 2u);
+  EXPECT_EQ(document["importances"][0]["feature"], "contact");
+  EXPECT_GT(document["importances"][0]["importance"].get<double>(),
+            document["importances"][1]["importance"].get<double>());
+}
+
 }  // namespace
 }  // namespace tactile::test

@@ -289,6 +289,20 @@ TEST_F(WorkbenchClassifiers, ResultFilesOpenFromTheCommandLine) {
 namespace tactile {
 namespace {
 
+// A preset with a dash in its name, typed into the Model tab's box, trains and fills the
+// results table (the box takes any name of the catalogue, the presets list shows them all).
+TEST_F(WorkbenchClassifiers, ARandomForestTypedIntoTheModelTabTrains) {
+  auto run = workbench(demo("fur-s01-t01.h5"),
+                       "wait 2\nclick item tab:model\nwait 2\nclick item classifier\nwait 1\n"
+                       "key Ctrl+A\ntype random-forest:trees=20\nkey Enter\nwait 2\n"
+                       "click item button:Run\nwait training\nwait 2\nstate @forest.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json analysis = state("forest.json")["analysis"];
+  ASSERT_EQ(analysis["results"].size(), 1u) << analysis.dump();
+  EXPECT_EQ(analysis["results"][0]["classifier"], "random-forest:trees=20");
+  EXPECT_GT(analysis["results"][0]["accuracy"].get<double>(), 0.5);
+}
+
 // The loop of the prediction lane: Run one classifier (the linear SVM), Predict, U goes to
 // the least sure prediction, Y confirms it, a digit corrects the next; both are manual labels
 // at once. The SVM's scores are probabilities, so the margins differ and U has a smallest.

@@ -33,6 +33,7 @@ struct FoldOutcome {
   std::vector<int> predicted;  // per test row
   Matrix scores;               // per test row, when asked for
   std::string model;
+  std::vector<double> importances;  // per feature column, when the classifier gives them
   double fit_seconds = 0.0;
   double predict_seconds = 0.0;
   std::exception_ptr failure;
@@ -71,6 +72,7 @@ FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, in
   const Clock::time_point fit_start = Clock::now();
   classifier->fit(rows_of(dataset.features, fold.train), train_classes, class_count, seed);
   outcome.fit_seconds = seconds_since(fit_start);
+  outcome.importances = classifier->feature_importances();
   const Clock::time_point predict_start = Clock::now();
   if (with_scores) {
     Classifier::Decisions decisions = classifier->decide(rows_of(dataset.features, fold.test));
@@ -95,6 +97,33 @@ double metadata_number(const Metadata& metadata, const char* key) {
   char* end = nullptr;
   const double value = std::strtod(found->second.c_str(), &end);
   return end != found->second.c_str() && std::isfinite(value) ? value : 0.0;
+}
+
+// The folds' importances averaged (a fold without them counts as all zero), named by column,
+// non-zero ones only, largest first.
+std::vector<FeatureImportance> mean_importances(const Dataset& dataset,
+                                                const std::vector<FoldOutcome>& outcomes) {
+  const auto columns = static_cast<size_t>(dataset.features.cols());
+  std::vector<double> sum(columns, 0.0);
+  bool any = false;
+  for (const FoldOutcome& outcome : outcomes) {
+    if (outcome.importances.size() != columns) continue;
+    any = true;
+    for (size_t column = 0; column < columns; ++column) sum[column] += outcome.importances[column];
+  }
+  std::vector<FeatureImportance> importances;
+  if (!any) return importances;
+  for (size_t column = 0; column < columns; ++column) {
+    if (!(sum[column] > 0.0)) continue;
+    const std::string name = column < dataset.columns.size() ? dataset.columns[column].name
+                                                             : "column " + std::to_string(column);
+    importances.push_back({name, sum[column] / static_cast<double>(outcomes.size())});
+  }
+  std::stable_sort(importances.begin(), importances.end(),
+                   [](const FeatureImportance& a, const FeatureImportance& b) {
+                     return a.importance > b.importance;
+                   });
+  return importances;
 }
 
 RowPrediction row_prediction(const Dataset& dataset, size_t row, int truth, int answer, int fold) {
@@ -285,6 +314,7 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& given_speci
   }
   result.accuracy = accuracy_of(result.confusion);
   result.per_class = class_figures(result.confusion);
+  result.importances = mean_importances(dataset, outcomes);
   result.seconds = seconds_since(start);
   return result;
 }
@@ -342,6 +372,12 @@ nlohmann::json to_json(const EvaluationResult& result, bool with_rows) {
           {"fit_seconds", result.fit_seconds},
           {"predict_seconds", result.predict_seconds}};
   document["mean_recall"] = mean_recall(result);
+  if (!result.importances.empty()) {
+    nlohmann::json importances = nlohmann::json::array();
+    for (const FeatureImportance& entry : result.importances)
+      importances.push_back({{"feature", entry.feature}, {"importance", entry.importance}});
+    document["importances"] = std::move(importances);
+  }
   if (!with_rows) return document;
   const auto class_name = [&](int index) {
     return index >= 0 && index < static_cast<int>(result.classes.size())
@@ -479,6 +515,15 @@ EvaluationResult evaluation_from_json(const nlohmann::json& document, const std:
   }
   result.predictions = result.confusion.cast<int64_t>().sum();
   result.per_class = class_figures(result.confusion);
+  if (document.contains("importances")) {
+    const nlohmann::json& importances = document.at("importances");
+    if (!importances.is_array()) throw Error(where, "'importances' is not an array");
+    for (size_t i = 0; i < importances.size(); ++i) {
+      const std::string at = where + ": importances[" + std::to_string(i) + "]";
+      result.importances.push_back({field<std::string>(importances[i], "feature", at),
+                                    field<double>(importances[i], "importance", at)});
+    }
+  }
   if (document.contains("rows")) {
     const nlohmann::json& rows = document.at("rows");
     if (!rows.is_array()) throw Error(where, "'rows' is not an array");

@@ -8,10 +8,12 @@
 #include <vector>
 
 #include "tactile/error.h"
+#include "tactile/ml/boosted_trees.h"
 #include "tactile/ml/clafic.h"
 #include "tactile/ml/classifier.h"
 #include "tactile/ml/column_selection.h"
 #include "tactile/ml/em.h"
+#include "tactile/ml/forest.h"
 #include "tactile/ml/gaussian.h"
 #include "tactile/ml/grid_search.h"
 #include "tactile/ml/knn.h"
@@ -82,6 +84,18 @@ const std::vector<ClassifierRow>& classifier_table() {
       {"tree", "CART, Gini, max_splits=100 (MATLAB Fine Tree)", make_tree_classifier},
       {"medium-tree", "CART, Gini, max_splits=20 (MATLAB Medium Tree)",
        make_medium_tree_classifier},
+      {"bagged-trees",
+       "MATLAB Bagged Trees: 30 deep CART trees on bootstrap samples, all predictors (trees, "
+       "predictors, max_splits, min_leaf)",
+       make_bagged_trees_classifier},
+      {"random-forest",
+       "random forest, scikit-learn defaults: 100 trees, sqrt(P) predictors per split, grown "
+       "until pure (trees, predictors=sqrt|all|N, max_splits, min_leaf)",
+       make_random_forest_classifier},
+      {"boosted-trees",
+       "XGBoost gradient boosted trees, softprob (rounds=100, depth=6, eta=0.3, subsample, "
+       "colsample)",
+       make_boosted_trees_classifier},
       {"logitboost", "LogitBoost with stumps (learners=10, learning_rate=1; Weka defaults)",
        make_logitboost_classifier},
       {"gaussian-ml",

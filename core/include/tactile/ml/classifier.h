@@ -48,6 +48,11 @@ class Classifier {
   virtual Decisions decide(const Matrix& x) const;
   virtual nlohmann::json save() const = 0;
   virtual void load(const nlohmann::json& model) = 0;
+  // How much each feature column served the fitted model (the tree ensembles' mean decrease
+  // in impurity, XGBoost's gain), one entry per column, normalised to sum 1; empty (the
+  // default) for a classifier that has no such figure. The evaluation averages them over
+  // folds.
+  virtual std::vector<double> feature_importances() const { return {}; }
 };
 
 // How sure one decision is, from its row of scores, comparable between classifiers: the

@@ -95,6 +95,12 @@ struct RowPrediction {
 // (truth, predicted and the rest left at their defaults).
 RowPrediction row_place(const Dataset& dataset, int64_t row);
 
+// How much one feature column served a classifier (Classifier::feature_importances).
+struct FeatureImportance {
+  std::string feature;  // the column's name
+  double importance = 0.0;
+};
+
 struct EvaluationResult {
   std::string classifier;  // specification as given
   std::string protocol;
@@ -115,6 +121,10 @@ struct EvaluationResult {
   // Per fold, the fitted model as a specification ("knn:k=3,..."); for grid search the
   // parameters it chose on that training fold.
   std::vector<std::string> fold_models;
+  // The classifier's feature importances averaged over folds (each fold's sum to 1), the
+  // columns with a non-zero one, largest first (ties in column order); empty for a classifier
+  // that reports none.
+  std::vector<FeatureImportance> importances;
 };
 
 // Spec §6.7 on a confusion matrix with rows = true classes and columns = predicted ones, an
@@ -139,7 +149,8 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& classifier_
                           const Protocol& protocol, uint64_t seed,
                           const EvaluationControl& control = {});
 
-// The result as JSON; with `with_rows`, also `rows: [{recording, t0, t1, region, true,
+// The result as JSON (with `importances: [{feature, importance}]` when there are any); with
+// `with_rows`, also `rows: [{recording, t0, t1, region, true,
 // predicted, score, margin, segment_id, fold}]`, one per test prediction.
 nlohmann::json to_json(const EvaluationResult& result, bool with_rows = false);
 

@@ -15,9 +15,15 @@
 // if its Gini index decreases. Within a node the best split is searched over every feature
 // and every midpoint between consecutive distinct values; ties go to the lower feature, then
 // the lower threshold. Features are used as given: splits do not depend on scaling.
+//
+// The growth itself (grow_tree) is shared with the tree ensembles (forest.h): it takes
+// per-row integer weights (a bootstrap's draw counts; 0 = not drawn) and may draw a random
+// subset of the predictors at each split.
 
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -34,6 +40,49 @@ struct TreeNode {
   std::vector<double> class_fractions;  // of the training samples that reached the node
 };
 
+// Each column's rows in ascending value order (equal values by row), computed once per fit
+// and shared by every tree grown on the same x: a large node sweeps a column in this order
+// instead of sorting its rows again.
+struct SortedColumns {
+  std::vector<std::vector<int32_t>> order;  // order[feature][rank] = row
+};
+// `threads` sort columns in parallel (0 = hardware concurrency); the result does not depend
+// on it.
+SortedColumns sort_columns(const Matrix& x, int threads = 1);
+
+struct TreeGrowth {
+  int64_t max_splits = 100;  // branch nodes at most
+  int64_t min_parent = 10;   // weighted samples a node needs to be split
+  int64_t min_leaf = 1;      // weighted samples each child keeps at least
+  // Predictors drawn at each split (0 = all, in column order). Drawn without replacement
+  // from the tree's engine; when none of them gives a split that lowers the Gini index,
+  // more are drawn until one does or all were tried (scikit-learn's rule).
+  int64_t predictors = 0;
+};
+
+struct GrownTree {
+  std::vector<TreeNode> nodes;  // node 0 is the root
+  // Per feature: Σ over the splits on it of (node weight / root weight) x Gini decrease
+  // (mean decrease in impurity, not normalised).
+  Vector importances;
+};
+
+// CART growth as described above on the rows with weight > 0; `weights` has one entry per row
+// of x. TreeNode::samples and class_fractions count weighted samples. `engine` is drawn from
+// only when growth.predictors > 0.
+GrownTree grow_tree(const Matrix& x, const std::vector<int>& y, int class_count,
+                    const std::vector<int32_t>& weights, const SortedColumns& sorted,
+                    const TreeGrowth& growth, std::mt19937_64& engine);
+
+// The nodes of a tree as JSON and back; nodes_from_json checks every node (class fractions,
+// feature index, children after their parent) and throws tactile::Error naming `where`.
+nlohmann::json nodes_to_json(const std::vector<TreeNode>& nodes);
+std::vector<TreeNode> nodes_from_json(const nlohmann::json& saved, int class_count,
+                                      Eigen::Index feature_count, const std::string& where);
+// The class fractions of the leaf that row `row` of x lands in.
+const std::vector<double>& leaf_fractions(const std::vector<TreeNode>& nodes, const Matrix& x,
+                                          Eigen::Index row);
+
 class DecisionTree : public Classifier {
  public:
   // `preset` is "tree" or "medium-tree"; throws tactile::Error on an unknown key or a bad value.
@@ -46,6 +95,8 @@ class DecisionTree : public Classifier {
   Matrix scores(const Matrix& x) const override;
   nlohmann::json save() const override;
   void load(const nlohmann::json& model) override;
+  // Mean decrease in impurity per feature, normalised to sum 1 (all 0 without a split).
+  std::vector<double> feature_importances() const override { return importances_; }
 
   // Node 0 is the root.
   const std::vector<TreeNode>& nodes() const { return nodes_; }
@@ -60,6 +111,7 @@ class DecisionTree : public Classifier {
   int class_count_ = 0;
   Eigen::Index feature_count_ = 0;
   std::vector<TreeNode> nodes_;
+  std::vector<double> importances_;
 };
 
 std::vector<std::string> tree_preset_names();
