@@ -47,7 +47,7 @@ class FeatureExtractor {
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
-// robovie_xcorr, flux, generic, then those added by register_feature_pipeline.
+// robovie_xcorr, flux, generic, raw, rocket, then those added by register_feature_pipeline.
 std::vector<std::string> feature_pipelines();
 using ExtractorFactory = std::function<std::unique_ptr<FeatureExtractor>(const Parameters&)>;
 // Adds a pipeline (a new skin's), or replaces the one of the same name.
