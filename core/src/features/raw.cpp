@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "tactile/error.h"
 #include "tactile/features/generic.h"
@@ -56,7 +57,7 @@ std::vector<double> resample_linear(std::span<const double> values, int64_t coun
 RawReading read_raw_parameters(const Parameters& parameters, int64_t default_samples,
                                int64_t minimum_samples) {
   RawReading reading;
-  reading.modality = parameters.text("modality", "display");
+  reading.modality = parameters.text("modality", "all");
   reading.stream = parameters.text("stream", "");
   reading.samples = parameters.integer("samples", default_samples);
   if (reading.samples < minimum_samples || reading.samples > 100000)
@@ -107,29 +108,59 @@ const Stream& raw_stream(const Recording& recording, const SkinLayout& layout,
     throw Error("recording " + recording.id, reading.stream.empty()
                                                  ? "has no streams"
                                                  : "has no stream '" + reading.stream + "'");
-  if (stream->channel_count() != static_cast<int64_t>(layout.channels.size()))
+  if (stream->channels.empty() &&
+      stream->channel_count() != static_cast<int64_t>(layout.channels.size()))
     throw Error("recording " + recording.id + " stream " + stream->name,
-                std::to_string(stream->channel_count()) + " channels, but layout " + layout.id +
-                    " has " + std::to_string(layout.channels.size()));
+                std::to_string(stream->channel_count()) + " unnamed channels, but layout " +
+                    layout.id + " has " + std::to_string(layout.channels.size()));
   return *stream;
+}
+
+std::vector<int64_t> raw_stream_columns(const Stream& stream, const SkinLayout& layout,
+                                        const std::vector<int>& channels) {
+  std::vector<int64_t> columns;
+  bool any = false;
+  for (int channel : channels) {
+    int64_t column = -1;
+    if (stream.channels.empty()) {
+      column = channel;
+    } else {
+      const auto found = std::find(stream.channels.begin(), stream.channels.end(),
+                                   layout.channels[static_cast<size_t>(channel)].name);
+      if (found != stream.channels.end()) column = found - stream.channels.begin();
+    }
+    any = any || column >= 0;
+    columns.push_back(column);
+  }
+  if (!any)
+    throw Error("stream " + stream.name,
+                "holds none of the chosen channels of layout " + layout.id);
+  return columns;
 }
 
 Recording add_raw_levels(const Recording& recording, const SkinLayout& layout,
                          const RawReading& reading, const std::string& where) {
   const Stream& stream = raw_stream(recording, layout, reading);
   const std::vector<int> channels = raw_channels(layout, reading, where);
+  const std::vector<int64_t> columns = raw_stream_columns(stream, layout, channels);
   const bool reversed = layout.display_min > layout.display_max;
+  // One column per layout channel (not per stream column).
   Stream levels;
   levels.name = reading.levels_stream;
   levels.rate_hz = stream.rate_hz;
-  levels.channels = stream.channels;
-  levels.units = stream.units;
-  levels.samples = SampleMatrix::Zero(2, stream.channel_count());
+  for (const Channel& channel : layout.channels) {
+    levels.channels.push_back(channel.name);
+    levels.units.push_back(channel.unit);
+  }
+  levels.samples = SampleMatrix::Zero(2, static_cast<Eigen::Index>(layout.channels.size()));
   levels.samples.row(1).setOnes();
-  std::vector<double> all_magnitudes;
-  for (int channel : channels) {
+  // global: one pool of magnitudes per modality (channels of one modality share units).
+  std::map<std::string, std::vector<double>> modality_magnitudes;
+  for (size_t position = 0; position < channels.size(); ++position) {
+    const int channel = channels[position];
+    if (columns[position] < 0) continue;
     std::vector<double> values =
-        stats::to_double(stream.samples.col(channel).data(), stream.sample_count());
+        stats::to_double(stream.samples.col(columns[position]).data(), stream.sample_count());
     const bool channel_reversed =
         reversed &&
         layout.channels[static_cast<size_t>(channel)].modality == layout.display_modality;
@@ -141,12 +172,19 @@ Recording add_raw_levels(const Recording& recording, const SkinLayout& layout,
       if (std::isfinite(value)) magnitudes.push_back(std::abs(value - rest));
     if (reading.scale == RawScale::channel)
       levels.samples(1, channel) = static_cast<float>(raw_excursion_quantile(magnitudes));
-    else if (reading.scale == RawScale::global)
-      all_magnitudes.insert(all_magnitudes.end(), magnitudes.begin(), magnitudes.end());
+    else if (reading.scale == RawScale::global) {
+      std::vector<double>& pool =
+          modality_magnitudes[layout.channels[static_cast<size_t>(channel)].modality];
+      pool.insert(pool.end(), magnitudes.begin(), magnitudes.end());
+    }
   }
   if (reading.scale == RawScale::global) {
-    const double factor = raw_excursion_quantile(std::move(all_magnitudes));
-    for (int channel : channels) levels.samples(1, channel) = static_cast<float>(factor);
+    std::map<std::string, double> factors;
+    for (auto& [modality, pool] : modality_magnitudes)
+      factors[modality] = raw_excursion_quantile(std::move(pool));
+    for (int channel : channels)
+      levels.samples(1, channel) =
+          static_cast<float>(factors[layout.channels[static_cast<size_t>(channel)].modality]);
   }
   Recording prepared = recording;
   prepared.streams.push_back(std::move(levels));
@@ -162,11 +200,17 @@ Eigen::MatrixXd raw_segment(const SegmentInput& input, const RawReading& reading
     return {};
   }
   const Stream* levels = input.recording.find_stream(reading.levels_stream);
-  Eigen::MatrixXd points(reading.samples, static_cast<Eigen::Index>(channels.size()));
+  if (levels != nullptr &&
+      levels->channel_count() != static_cast<int64_t>(input.layout.channels.size()))
+    levels = nullptr;
+  const std::vector<int64_t> columns = raw_stream_columns(stream, input.layout, channels);
+  Eigen::MatrixXd points =
+      Eigen::MatrixXd::Zero(reading.samples, static_cast<Eigen::Index>(channels.size()));
   for (size_t position = 0; position < channels.size(); ++position) {
     const int channel = channels[position];
+    if (columns[position] < 0) continue;  // a layout channel the stream lacks reads as 0
     const std::vector<double> values =
-        stats::to_double(stream.samples.col(channel).data() + first, last - first);
+        stats::to_double(stream.samples.col(columns[position]).data() + first, last - first);
     const auto bad = std::find_if(values.begin(), values.end(),
                                   [](double value) { return !std::isfinite(value); });
     if (bad != values.end()) {
