@@ -101,6 +101,30 @@ TEST(RawFeatures, RestIsSubtractedAndEachScaleIsItsDocumentedQuantile) {
   EXPECT_DOUBLE_EQ(point("scale=channel", 1, 7), 0.0);
 }
 
+// Channels of two modalities do not share a global factor; a layout channel missing from the
+// stream (as flux's virtual sums are) reads as 0, and a stream with none of them is an error.
+TEST(RawFeatures, GlobalScaleIsPerModalityAndMissingChannelsReadAsZero) {
+  SkinLayout layout = make_strip_layout(2);
+  layout.channels[1].modality = "temperature";
+  layout.modalities.push_back("temperature");
+  Recording recording = raw_test_ramp(layout);
+  for (int64_t k = 0; k < 100; ++k)
+    recording.streams[0].samples(k, 1) = 100.0f + static_cast<float>(k % 2);
+  const auto extractor = make_raw_extractor(Parameters::parse("samples=20", "--params"));
+  const FeatureResult result =
+      raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60));
+  ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+  EXPECT_NEAR(result.values.at(7), 7.0 / 18.0, 1e-6);  // channel 0's own 99th percentile
+  recording.streams[0].channels[1] = "not-in-the-layout";
+  const FeatureResult missing =
+      raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60));
+  ASSERT_TRUE(missing.skip_reason.empty()) << missing.skip_reason;
+  EXPECT_NEAR(missing.values.at(7), 7.0 / 18.0, 1e-6);
+  for (size_t k = 20; k < 40; ++k) EXPECT_EQ(missing.values.at(k), 0.0);
+  recording.streams[0].channels[0] = "neither";
+  EXPECT_THROW(raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60)), Error);
+}
+
 TEST(RawFeatures, BadParametersAreNamed) {
   const auto message = [](const std::string& text) {
     try {
