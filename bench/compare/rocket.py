@@ -34,11 +34,15 @@ RUNS = [("paper", "linear-svm"), ("paper", "ridge"), ("generic", "linear-svm"), 
         ("raw", "medium-gaussian-svm"), ("raw", "ridge"), ("rocket", "ridge")]
 
 
+class Failed(Exception):
+    pass
+
+
 def run(command):
     began = time.perf_counter()
     done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode != 0:
-        raise SystemExit(f"{' '.join(command)}: {done.stderr.strip()}")
+        raise Failed(done.stderr.strip().splitlines()[-1] if done.stderr.strip() else f"exit {done.returncode}")
     return done.stdout, time.perf_counter() - began
 
 
@@ -104,18 +108,34 @@ def main():
         for kind in ["paper", "generic", "raw", "rocket"]:
             pipeline = PAPER[skin] if kind == "paper" else kind
             table = os.path.join(args.work, f"{skin}-{pipeline}.csv")
-            _, feature_seconds[kind] = run([args.tactile, "features", "--pipeline", pipeline, "--threads", "1",
-                                            "--labels", os.path.join(folder, "labels.db"), "--out", table])
-            tables[kind] = table
+            try:
+                _, feature_seconds[kind] = run([args.tactile, "features", "--pipeline", pipeline, "--threads", "1",
+                                                "--labels", os.path.join(folder, "labels.db"), "--out", table])
+                tables[kind] = table
+            except Failed as failure:
+                tables[kind] = str(failure)
         for kind, classifier in RUNS:
-            accuracy, seconds = evaluate(args.tactile, tables[kind], classifier, "loso")
             pipeline = PAPER[skin] if kind == "paper" else kind
+            if not tables[kind].endswith(".csv"):
+                results.append({"skin": skin, "pipeline": pipeline, "classifier": classifier, "failed": tables[kind]})
+                continue
+            accuracy, seconds = evaluate(args.tactile, tables[kind], classifier, "loso")
             results.append({"skin": skin, "pipeline": pipeline, "classifier": classifier, "accuracy": accuracy,
                             "feature_seconds": feature_seconds[kind], "evaluate_seconds": seconds})
             print(results[-1], flush=True)
         versus.append(ridge_against_sklearn(args.tactile, tables["rocket"], args.work, skin))
         print(versus[-1], flush=True)
-    with open(os.path.splitext(args.out)[0] + ".json", "w") as handle:
+    # --skins reruns some skins: the others' rows are kept from the last run's JSON.
+    raw_path = os.path.splitext(args.out)[0] + ".json"
+    if os.path.exists(raw_path):
+        with open(raw_path) as handle:
+            earlier = json.load(handle)
+        results = [r for r in earlier["skins"] if r["skin"] not in args.skins] + results
+        versus = [r for r in earlier["ridge_vs_sklearn"] if r["skin"] not in args.skins] + versus
+        order = {skin: index for index, skin in enumerate(PAPER)}
+        results.sort(key=lambda r: order[r["skin"]])
+        versus.sort(key=lambda r: order[r["skin"]])
+    with open(raw_path, "w") as handle:
         json.dump({"skins": results, "ridge_vs_sklearn": versus}, handle, indent=1)
     lines = ["# raw, rocket and ridge on the simulated skins", "",
              "Written by `bench/compare/rocket.py` (see its docstring for the commands); one run on",
@@ -125,6 +145,9 @@ def main():
              "seconds: fit + predict summed over the folds, as `tactile evaluate` reports them.", "",
              "| skin | pipeline | classifier | accuracy % | feature s | evaluate s |", "|---|---|---|---|---|---|"]
     for row in results:
+        if "failed" in row:
+            lines.append(f"| {row['skin']} | {row['pipeline']} | {row['classifier']} | fails: {row['failed']} | | |")
+            continue
         lines.append(f"| {row['skin']} | {row['pipeline']} | {row['classifier']} | {100 * row['accuracy']:.2f} | "
                      f"{row['feature_seconds']:.1f} | {row['evaluate_seconds']:.2f} |")
     lines += ["", "## ridge against scikit-learn's RidgeClassifierCV on the same rocket table", "",
