@@ -40,10 +40,10 @@ std::vector<double> resample_linear(std::span<const double> values, int64_t coun
 // How raw and rocket read a segment: which channels, its reference and scale.
 enum class RawScale { none, global, channel };
 struct RawReading {
-  std::string modality = "all";      // a layout modality, "display" or "all"
-  std::string stream;                // empty: the recording's first stream
-  int64_t samples = 32;              // points per channel after resampling
-  bool subtract_rest = true;         // baseline=rest
+  std::string modality = "all";  // a layout modality, "display" or "all"
+  std::string stream;            // empty: the recording's first stream
+  int64_t samples = 32;          // points per channel after resampling
+  bool subtract_rest = true;     // baseline=rest
   RawScale scale = RawScale::global;
   std::string levels_stream = "raw.levels";  // what preprocess() adds (rest, scale rows)
 };
