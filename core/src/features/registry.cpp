@@ -15,7 +15,9 @@
 #include "tactile/features/kaboli.h"
 #include "tactile/features/koo.h"
 #include "tactile/features/naya.h"
+#include "tactile/features/raw.h"
 #include "tactile/features/robovie_xcorr.h"
+#include "tactile/features/rocket.h"
 #include "tactile/features/silvera_tawil.h"
 #include "tactile/features/stack.h"
 #include "tactile/features/tsa_event.h"
@@ -50,6 +52,8 @@ PipelineTable& pipeline_table() {
           {"robovie_xcorr", make_robovie_xcorr_extractor},
           {"flux", make_flux_extractor},
           {"generic", make_generic_extractor},
+          {"raw", make_raw_extractor},
+          {"rocket", make_rocket_extractor},
       }};
   return table;
 }

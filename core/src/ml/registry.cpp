@@ -19,6 +19,7 @@
 #include "tactile/ml/knn.h"
 #include "tactile/ml/logitboost.h"
 #include "tactile/ml/naive_bayes.h"
+#include "tactile/ml/ridge.h"
 #include "tactile/ml/som.h"
 #include "tactile/ml/svm.h"
 #include "tactile/ml/tree.h"
@@ -112,6 +113,10 @@ const std::vector<ClassifierRow>& classifier_table() {
        make_clafic_classifier},
       {"som", "Kohonen SOM (7x7) with neuron-to-class regions; rows, columns, epochs, schedules",
        make_som_classifier},
+      {"ridge",
+       "one-vs-rest ridge on z-scores, alpha by exact leave-one-out over 10^-3..10^3 (as "
+       "scikit-learn's RidgeClassifierCV; alpha_min, alpha_max, alphas)",
+       make_ridge_classifier},
       {"em", "EM Gaussian mixture, clusters mapped to classes (Kaboli Fig. 4)", make_em_classifier},
   };
   return table;

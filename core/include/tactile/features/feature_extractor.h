@@ -59,8 +59,9 @@ class FeatureExtractor {
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
-// robovie_xcorr, flux, generic, ..., then those added by register_feature_pipeline. Besides
-// these, make_feature_extractor takes a stack "a+b+c" of registered pipelines (features/stack.h).
+// robovie_xcorr, flux, generic, raw, rocket, grid, then those added by
+// register_feature_pipeline. Besides these, make_feature_extractor takes a stack "a+b+c" of
+// registered pipelines (features/stack.h).
 std::vector<std::string> feature_pipelines();
 using ExtractorFactory = std::function<std::unique_ptr<FeatureExtractor>(const Parameters&)>;
 // Adds a pipeline (a new skin's), or replaces the one of the same name.

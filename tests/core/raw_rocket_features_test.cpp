@@ -1,0 +1,265 @@
+// The raw-sample and rocket pipelines (issue 26) on hand-built strip recordings.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "tactile/error.h"
+#include "tactile/features/raw.h"
+#include "tactile/features/rocket.h"
+
+namespace tactile {
+namespace {
+
+// A strip recording at 100 Hz, every channel resting at `rest`.
+Recording raw_test_recording(const SkinLayout& layout, int64_t samples, float rest) {
+  Recording recording;
+  recording.id = "raw-hand-built";
+  recording.layout_id = layout.id;
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 100.0;
+  for (const Channel& channel : layout.channels) {
+    stream.channels.push_back(channel.name);
+    stream.units.push_back(channel.unit);
+  }
+  stream.samples =
+      SampleMatrix::Constant(samples, static_cast<int64_t>(layout.channels.size()), rest);
+  recording.streams.push_back(std::move(stream));
+  return recording;
+}
+
+Label raw_test_segment(double t0, double t1) {
+  Label label;
+  label.t0 = t0;
+  label.t1 = t1;
+  return label;
+}
+
+FeatureResult raw_test_run(const FeatureExtractor& extractor, const Recording& recording,
+                           const SkinLayout& layout, const Label& label) {
+  const Recording prepared = extractor.preprocess(recording, layout);
+  return extractor.extract(SegmentInput{prepared, layout, label});
+}
+
+// Channel 0 rises 0, 1, ..., 19 above rest 5 over samples 40..59 (t = 0.40..0.59 s).
+Recording raw_test_ramp(const SkinLayout& layout) {
+  Recording recording = raw_test_recording(layout, 100, 5.0f);
+  for (int64_t k = 0; k < 20; ++k)
+    recording.streams[0].samples(40 + k, 0) = 5.0f + static_cast<float>(k);
+  return recording;
+}
+
+//---- raw
+
+TEST(RawFeatures, ResamplingARampIsExactAtEveryPoint) {
+  const std::vector<double> ramp = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  const std::vector<double> coarse = resample_linear(ramp, 4);
+  ASSERT_EQ(coarse.size(), 4u);
+  for (size_t k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(coarse[k], 3.0 * static_cast<double>(k));
+  const std::vector<double> fine = resample_linear(ramp, 19);
+  ASSERT_EQ(fine.size(), 19u);
+  for (size_t k = 0; k < 19; ++k) EXPECT_NEAR(fine[k], 0.5 * static_cast<double>(k), 1e-12);
+  EXPECT_EQ(resample_linear(std::vector<double>{7.0}, 3), (std::vector<double>{7.0, 7.0, 7.0}));
+}
+
+TEST(RawFeatures, ColumnsAreEveryChannelsPointsInOrderAndEveryValueIsFinite) {
+  const SkinLayout layout = make_strip_layout(3);
+  Parameters parameters = Parameters::parse("samples=8", "--params");
+  const auto extractor = make_raw_extractor(parameters);
+  const std::vector<FeatureColumn> columns = extractor->columns(layout);
+  ASSERT_EQ(columns.size(), 24u);
+  EXPECT_EQ(columns[0].name, layout.channels[0].name + ".s0");
+  EXPECT_EQ(columns[9].name, layout.channels[1].name + ".s1");
+  const FeatureResult result =
+      raw_test_run(*extractor, raw_test_ramp(layout), layout, raw_test_segment(0.3, 0.7));
+  ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+  ASSERT_EQ(result.values.size(), 24u);
+  for (double value : result.values) EXPECT_TRUE(std::isfinite(value));
+}
+
+TEST(RawFeatures, RestIsSubtractedAndEachScaleIsItsDocumentedQuantile) {
+  const SkinLayout layout = make_strip_layout(2);
+  const Recording recording = raw_test_ramp(layout);
+  const Label segment = raw_test_segment(0.40, 0.60);
+  const auto point = [&](const std::string& parameters, size_t channel, size_t k) {
+    const auto extractor =
+        make_raw_extractor(Parameters::parse("samples=20," + parameters, "--params"));
+    const FeatureResult result = raw_test_run(*extractor, recording, layout, segment);
+    EXPECT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+    return result.values.at(channel * 20 + k);
+  };
+  EXPECT_DOUBLE_EQ(point("scale=none", 0, 7), 7.0);
+  EXPECT_DOUBLE_EQ(point("scale=none,baseline=none", 0, 7), 12.0);
+  // global: the 99th percentile (floor index 197 of 200) of |x - rest| over both channels:
+  // 181 zeros, then 1..19, so 17.
+  EXPECT_NEAR(point("scale=global", 0, 7), 7.0 / 17.0, 1e-6);
+  // channel: index 98 of channel 0's 100 values (81 zeros, then 1..19) is 18; a flat
+  // channel keeps its units.
+  EXPECT_NEAR(point("scale=channel", 0, 7), 7.0 / 18.0, 1e-6);
+  EXPECT_DOUBLE_EQ(point("scale=channel", 1, 7), 0.0);
+}
+
+// Channels of two modalities do not share a global factor; a layout channel missing from the
+// stream (as flux's virtual sums are) reads as 0, and a stream with none of them is an error.
+TEST(RawFeatures, GlobalScaleIsPerModalityAndMissingChannelsReadAsZero) {
+  SkinLayout layout = make_strip_layout(2);
+  layout.channels[1].modality = "temperature";
+  layout.modalities.push_back("temperature");
+  Recording recording = raw_test_ramp(layout);
+  for (int64_t k = 0; k < 100; ++k)
+    recording.streams[0].samples(k, 1) = 100.0f + static_cast<float>(k % 2);
+  const auto extractor = make_raw_extractor(Parameters::parse("samples=20", "--params"));
+  const FeatureResult result =
+      raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60));
+  ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+  EXPECT_NEAR(result.values.at(7), 7.0 / 18.0, 1e-6);  // channel 0's own 99th percentile
+  recording.streams[0].channels[1] = "not-in-the-layout";
+  const FeatureResult missing =
+      raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60));
+  ASSERT_TRUE(missing.skip_reason.empty()) << missing.skip_reason;
+  EXPECT_NEAR(missing.values.at(7), 7.0 / 18.0, 1e-6);
+  for (size_t k = 20; k < 40; ++k) EXPECT_EQ(missing.values.at(k), 0.0);
+  recording.streams[0].channels[0] = "neither";
+  EXPECT_THROW(raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60)), Error);
+}
+
+TEST(RawFeatures, BadParametersAreNamed) {
+  const auto message = [](const std::string& text) {
+    try {
+      make_raw_extractor(Parameters::parse(text, "--params"));
+    } catch (const Error& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("samples=1").find("samples=1"), std::string::npos);
+  EXPECT_NE(message("baseline=mean").find("baseline=mean"), std::string::npos);
+  EXPECT_NE(message("scale=feature").find("classifier"), std::string::npos);
+  EXPECT_NE(message("scale=row").find("scale=row"), std::string::npos);
+  EXPECT_NE(message("sample=8").find("sample"), std::string::npos);
+  const auto extractor = make_raw_extractor(Parameters::parse("modality=force", "--params"));
+  EXPECT_THROW(extractor->columns(make_strip_layout(2)), Error);
+}
+
+//---- rocket
+
+TEST(RocketFeatures, TheKernelsAreThe84TriplesOfPositionsInOrder) {
+  const std::vector<std::array<int, 3>> kernels = minirocket_kernels();
+  ASSERT_EQ(kernels.size(), 84u);
+  EXPECT_EQ(kernels.front(), (std::array<int, 3>{0, 1, 2}));
+  EXPECT_EQ(kernels[1], (std::array<int, 3>{0, 1, 3}));
+  EXPECT_EQ(kernels.back(), (std::array<int, 3>{6, 7, 8}));
+  std::set<std::array<int, 3>> distinct(kernels.begin(), kernels.end());
+  EXPECT_EQ(distinct.size(), 84u);
+  for (const auto& kernel : kernels) {
+    EXPECT_LT(kernel[0], kernel[1]);
+    EXPECT_LT(kernel[1], kernel[2]);
+    EXPECT_LE(kernel[2], 8);
+  }
+}
+
+TEST(RocketFeatures, DilationsGrowExponentiallyUpToAnEighthOfTheLength) {
+  const RocketPlan plan = plan_rocket(64, 3, 10000, 1, 16);
+  EXPECT_EQ(plan.feature_count(), 9996);
+  EXPECT_EQ(plan.dilations.front(), 1);
+  EXPECT_LE(plan.dilations.back(), 63 / 8);
+  EXPECT_GE(plan.dilations.back(), 4);
+  int64_t per_kernel = 0;
+  for (int count : plan.features_per_dilation) per_kernel += count;
+  EXPECT_EQ(per_kernel, 119);
+  for (const std::vector<int>& set : plan.channel_sets) {
+    ASSERT_FALSE(set.empty());
+    EXPECT_LE(set.size(), 3u);
+    EXPECT_TRUE(std::is_sorted(set.begin(), set.end()));
+    EXPECT_EQ(std::set<int>(set.begin(), set.end()).size(), set.size());
+  }
+  EXPECT_EQ(plan_rocket(9, 1, 84, 1, 16).dilations, std::vector<int>{1});
+  EXPECT_THROW(plan_rocket(8, 1, 84, 1, 16), Error);
+  EXPECT_THROW(plan_rocket(64, 1, 83, 1, 16), Error);
+}
+
+// An impulse at the centre of 9 samples: kernel k's output at t is its weight 8 - t.
+TEST(RocketFeatures, PpvOfAnImpulseIsCountedByHand) {
+  const RocketPlan plan = plan_rocket(9, 1, 84, 1, 1);
+  ASSERT_EQ(plan.feature_count(), 84);
+  Eigen::MatrixXf impulse = Eigen::MatrixXf::Zero(9, 1);
+  impulse(4, 0) = 1.0f;
+  const std::vector<float> biases(84, -0.5f);
+  std::vector<double> features(84);
+  rocket_transform(plan, impulse, biases, features);
+  // Kernel 0 (2s at 0, 1, 2), zero-padded: outputs -1 x6, 2 x3 -> 3 of 9 above -0.5.
+  EXPECT_DOUBLE_EQ(features[0], 3.0 / 9.0);
+  // Kernel 1 (0, 1, 3), central part only (t = 4): weight 4 is -1.
+  EXPECT_DOUBLE_EQ(features[1], 0.0);
+  // Kernel 2 (0, 1, 4), zero-padded: weights 0, 1, 4 are 2 -> t = 8, 7, 4.
+  EXPECT_DOUBLE_EQ(features[2], 3.0 / 9.0);
+  // Kernel 3 (0, 1, 5), central: weight 4 is -1; kernel 13 (0, 3, 4), central: weight 4 is 2.
+  EXPECT_DOUBLE_EQ(features[3], 0.0);
+  EXPECT_DOUBLE_EQ(features[13], 1.0);
+}
+
+// The alpha/gamma sums give what the kernels' direct convolution gives, at every dilation.
+TEST(RocketFeatures, TheTransformAgreesWithDirectConvolution) {
+  const int64_t length = 40;
+  const RocketPlan plan = plan_rocket(length, 1, 84 * 12, 7, 1);
+  std::mt19937 generator(3);
+  std::normal_distribution<float> noise;
+  Eigen::MatrixXf series(length, 1);
+  for (int64_t t = 0; t < length; ++t) series(t, 0) = noise(generator);
+  std::vector<float> biases(static_cast<size_t>(plan.feature_count()));
+  for (size_t k = 0; k < biases.size(); ++k) biases[k] = 0.3f * static_cast<float>(k % 7) - 0.9f;
+  std::vector<double> features(biases.size());
+  rocket_transform(plan, series, biases, features);
+  const std::vector<double> values(series.data(), series.data() + length);
+  size_t feature = 0;
+  for (size_t d = 0; d < plan.dilations.size(); ++d)
+    for (int kernel = 0; kernel < 84; ++kernel) {
+      const std::vector<double> output = minirocket_convolution(values, kernel, plan.dilations[d]);
+      const bool padded = (static_cast<int>(d % 2) + kernel) % 2 == 0;
+      const size_t padding = padded ? 0 : static_cast<size_t>(4 * plan.dilations[d]);
+      for (int index = 0; index < plan.features_per_dilation[d]; ++index, ++feature) {
+        int positive = 0;
+        for (size_t t = padding; t < output.size() - padding; ++t)
+          positive += output[t] > biases[feature] ? 1 : 0;
+        EXPECT_NEAR(features[feature], positive / static_cast<double>(output.size() - 2 * padding),
+                    1e-12)
+            << "kernel " << kernel << " dilation " << plan.dilations[d];
+      }
+    }
+  EXPECT_EQ(feature, features.size());
+}
+
+TEST(RocketFeatures, SameSeedSameRowOtherSeedOtherRowAndOneValuePerColumn) {
+  const SkinLayout layout = make_strip_layout(4);
+  Recording recording = raw_test_ramp(layout);
+  for (int64_t k = 0; k < 100; ++k)
+    recording.streams[0].samples(k, 2) =
+        5.0f + static_cast<float>(std::sin(0.3 * static_cast<double>(k)));
+  const Label segment = raw_test_segment(0.30, 0.70);
+  const auto row = [&](const std::string& parameters) {
+    const auto extractor = make_rocket_extractor(Parameters::parse(parameters, "--params"));
+    const FeatureResult result = raw_test_run(*extractor, recording, layout, segment);
+    EXPECT_TRUE(result.skip_reason.empty()) << result.skip_reason;
+    EXPECT_EQ(result.values.size(), extractor->columns(layout).size());
+    return result.values;
+  };
+  const std::vector<double> first = row("features=1000,seed=4");
+  EXPECT_EQ(first.size(), 84u * 11);
+  for (double value : first) {
+    EXPECT_GE(value, 0.0);
+    EXPECT_LE(value, 1.0);
+  }
+  EXPECT_EQ(row("features=1000,seed=4"), first);
+  EXPECT_NE(row("features=1000,seed=5"), first);
+  EXPECT_EQ(row("").size(), 9996u);
+  // Without the preprocessing there are no biases: the segment is skipped, saying why.
+  const auto extractor = make_rocket_extractor({});
+  EXPECT_FALSE(extractor->extract(SegmentInput{recording, layout, segment}).skip_reason.empty());
+  EXPECT_THROW(make_rocket_extractor(Parameters::parse("features=50", "--params")), Error);
+  EXPECT_THROW(make_rocket_extractor(Parameters::parse("samples=8", "--params")), Error);
+}
+
+}  // namespace
+}  // namespace tactile
