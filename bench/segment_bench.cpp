@@ -3,7 +3,8 @@
 // (segment/scoring.h) of the skin's own segmenter, of `adaptive` as it was before issue 26
 // (kept below, verbatim in behaviour) and of `adaptive` now. bench/SEGMENT.md has the table.
 //
-//   build/bench/segment_bench [--subjects N] [--seed S] [skin ...]
+//   build/bench/segment_bench [--subjects N] [--seed S] [--params ADAPTIVE_PARAMS]
+//                             [--faults realistic|SPEC] [skin ...]
 //
 // Without skins: every skin with a simulator (skins/skin.h), so a new skin joins the table
 // by being registered; a skin id given on the line (e.g. a grid:RxC) is simulated too.
@@ -90,11 +91,17 @@ int main(int argc, char** argv) {
   try {
     int subjects = 3;
     uint64_t seed = 1;
+    std::string params;                    // `adaptive`'s parameters, "key=value,..."
+    std::string fault_spec = "realistic";  // the faulty rows' faults (sim/sensor_faults.h)
     std::vector<std::string> skins;
     for (int k = 1; k < argc; ++k) {
       const std::string word = argv[k];
       if (word == "--subjects" && k + 1 < argc)
         subjects = std::atoi(argv[++k]);
+      else if (word == "--params" && k + 1 < argc)
+        params = argv[++k];
+      else if (word == "--faults" && k + 1 < argc)
+        fault_spec = argv[++k];
       else if (word == "--seed" && k + 1 < argc)
         seed = std::strtoull(argv[++k], nullptr, 10);
       else
@@ -112,7 +119,7 @@ int main(int argc, char** argv) {
     for (const std::string& skin : skins) {
       const tactile::SkinRecord& record = tactile::skin_record(skin);
       const tactile::SkinLayout layout = tactile::load_layout(skin);
-      for (const char* faults : {"none", "realistic"}) {
+      for (const std::string& faults : {std::string("none"), fault_spec}) {
         tactile::SimulationOptions options;
         options.seed = seed;
         options.subjects = subjects;
@@ -136,10 +143,18 @@ int main(int argc, char** argv) {
           }
           add_scores(own, own_found, trial.labels, stream);
           add_scores(before, adaptive_before(trial.recording), trial.labels, stream);
-          add_scores(now, tactile::segment_recording("adaptive", trial.recording, layout),
-                     trial.labels, stream);
+          const std::vector<Label> found = tactile::segment_recording(
+              "adaptive", trial.recording, layout, tactile::Parameters::parse(params, "--params"));
+          add_scores(now, found, trial.labels, stream);
+          if (std::getenv("SEGMENT_BENCH_DUMP") && subject == 0 && faults == "none") {
+            for (const Label& l : trial.labels)
+              std::printf("T %.2f %.2f %s\n", l.t0, l.t1, l.class_name.c_str());
+            for (const Label& l : found) std::printf("  S %.2f %.2f\n", l.t0, l.t1);
+            const auto b = adaptive_before(trial.recording);
+            for (const Label& l : b) std::printf("    B %.2f %.2f\n", l.t0, l.t1);
+          }
         }
-        std::printf("| %s | %s | %lld | %s: %s | %s | %s |\n", skin.c_str(), faults,
+        std::printf("| %s | %s | %lld | %s: %s | %s | %s |\n", skin.c_str(), faults.c_str(),
                     static_cast<long long>(touches), tactile::default_segmenter(skin).first.c_str(),
                     format_scores(own).c_str(), format_scores(before).c_str(),
                     format_scores(now).c_str());
