@@ -16,7 +16,7 @@ struct AdaptiveOptions {
   double margin = 2.0;             // times the 3-sigma band: a taxel is off its rest
   int64_t taxels = 2;              // that many taxels off their rest make a touch frame
   double alone = 2.0;              // or one taxel this many times further
-  double level = 0.2;              // share of the touch level a touch needs somewhere
+  double level = 0.3;              // share of the touch level a touch needs somewhere
   double dip = 0.2;                // a release: the excursion below this share of both peaks
   double baseline_seconds = 20.0;  // the running median the rest follows
   double envelope_seconds = 0.03;  // a taxel's excursion is its largest over this span
@@ -252,7 +252,7 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
     }
   }
 
-  // The touch level: each moving channel's 99.5th percentile; the median of those stands in
+  // The touch level: each moving channel's 99.9th percentile; the median of those stands in
   // for channels that only a resting hand reached. A touch needs, somewhere, `taxels` channels
   // past `level` times that; a low broad press between touches never gets there.
   std::vector<float> high(static_cast<size_t>(channels), 0.0f);
@@ -263,7 +263,7 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
     if (z.empty()) continue;
     ++usable;
     std::vector<float> copy = z;
-    const auto index = static_cast<size_t>(0.995 * static_cast<double>(copy.size() - 1));
+    const auto index = static_cast<size_t>(0.999 * static_cast<double>(copy.size() - 1));
     high[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
     if (high[static_cast<size_t>(c)] > on) levels.push_back(high[static_cast<size_t>(c)]);
   }

@@ -15,8 +15,8 @@
 //   then minimum) so oscillations keep their level and edges stay put.
 // A frame is off rest when `taxels` (2) channels exceed margin (2) x 3 sigma, or one exceeds
 // `alone` (2) times that. A run of such frames, bridged over gaps up to quiet_seconds (0.02),
-// is a touch only where `taxels` channels (or one, alone) reach the touch level: `level` (0.2)
-// times the channel's 99.5th percentile z or the median of those over moving channels,
+// is a touch only where `taxels` channels (or one, alone) reach the touch level: `level` (0.3)
+// times the channel's 99.9th percentile z or the median of those over moving channels,
 // whichever is higher. A hand resting between touches is low (a sixth of a touch's press),
 // so it stays below, however broad and long; crosstalk follows a touch, so it never stands
 // alone. A run is split at each release: between two touch-level stretches, at the lowest
