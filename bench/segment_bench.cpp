@@ -210,13 +210,6 @@ int main(int argc, char** argv) {
           const std::vector<Label> found = tactile::segment_recording(
               "adaptive", trial.recording, layout, tactile::Parameters::parse(params, "--params"));
           add_scores(now, found, trial.labels, stream);
-          if (std::getenv("SEGMENT_BENCH_DUMP") && subject == 0 && faults == "none") {
-            for (const Label& l : trial.labels)
-              std::printf("T %.2f %.2f %s\n", l.t0, l.t1, l.class_name.c_str());
-            for (const Label& l : found) std::printf("  S %.2f %.2f\n", l.t0, l.t1);
-            const auto b = adaptive_before(trial.recording);
-            for (const Label& l : b) std::printf("    B %.2f %.2f\n", l.t0, l.t1);
-          }
         }
         std::printf("| %s | %s | %lld | %s: %s | %s | %s |\n", skin.c_str(), faults.c_str(),
                     static_cast<long long>(touches),
