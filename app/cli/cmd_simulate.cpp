@@ -78,6 +78,12 @@ void register_simulate(CLI::App& app) {
   command->add_flag("--multi-touch", args->options.multi_touch,
                     "nao: a front and a back gesture at once");
   command->add_option("--side", args->options.side, "nao: touch only the front or the back");
+  command
+      ->add_option("--faults", args->options.faults,
+                   "Sensor faults over each trial: none, realistic, or stuck=N,dead=N,drift=S,"
+                   "crosstalk=S,offsets=S,rest=P,rest_level=S,rest_patch=S,rest_gap=SECONDS "
+                   "(docs/SIMULATION.md)")
+      ->capture_default_str();
   command->add_flag("--json", args->json, "Print a machine-readable summary");
   command->callback([args] { run_simulate(*args); });
 }

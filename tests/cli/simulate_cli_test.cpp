@@ -46,5 +46,24 @@ TEST(SimulateCommand, TheDemoEndsBySayingHowToOpenIt) {
   EXPECT_EQ(skin.out.find("open it"), std::string::npos) << skin.out;
 }
 
+// --faults lays sensor faults over each trial (docs/SIMULATION.md): other bytes than the clean
+// trial, the same labels; an unknown fault is refused by name.
+TEST(SimulateCommand, FaultsChangeTheSamplesAndNotTheLabels) {
+  test::TempFolder folder{"tactile-simulate-faults"};
+  const std::string common = "simulate --skin fur --subjects 1 --repetitions 1 --seed 3 --out ";
+  ASSERT_EQ(test::run_program("tactile", common + folder.file("clean"), folder).exit_code, 0);
+  const auto faulty = test::run_program(
+      "tactile", common + folder.file("faulty") + " --faults realistic,stuck=1", folder);
+  ASSERT_EQ(faulty.exit_code, 0) << faulty.err;
+  EXPECT_NE(test::read_text(folder.file("clean") + "/fur-s01-t01.h5"),
+            test::read_text(folder.file("faulty") + "/fur-s01-t01.h5"));
+  EXPECT_EQ(test::read_text(folder.file("clean") + "/labels.db"),
+            test::read_text(folder.file("faulty") + "/labels.db"));
+  const auto refused =
+      test::run_program("tactile", common + folder.file("refused") + " --faults wobble=1", folder);
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("wobble"), std::string::npos) << refused.err;
+}
+
 }  // namespace
 }  // namespace tactile

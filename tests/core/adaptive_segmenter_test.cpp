@@ -46,3 +46,101 @@ TEST(AdaptiveSegmenter, FindsTouchesOnAnUncalibratedGridWithChannelsOfDifferentN
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// A 4 x 4 grid at 20 Hz with an uncalibrated rest per taxel and unit noise; touches press a
+// 2 x 2 patch by 60 counts.
+struct GridScene {
+  static constexpr int kRows = 4;
+  static constexpr double kRate = 20.0;
+  Eigen::MatrixXf values;
+
+  explicit GridScene(int64_t frames, uint64_t seed = 3) : values(frames, kRows * kRows) {
+    std::mt19937 random(static_cast<unsigned>(seed));
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    for (int c = 0; c < kRows * kRows; ++c)
+      for (int64_t t = 0; t < frames; ++t)
+        values(t, c) = 100.0f * static_cast<float>(c) + noise(random);
+  }
+  // Frames [first, last] on the patch whose top-left taxel is (row, column).
+  void press(int64_t first, int64_t last, int row = 1, int column = 1, float by = 60.0f) {
+    for (int r = row; r < row + 2; ++r)
+      for (int k = column; k < column + 2; ++k)
+        for (int64_t t = first; t <= last; ++t) values(t, r * kRows + k) += by;
+  }
+  std::vector<Label> segments(const std::string& parameters = "") const {
+    Recording recording;
+    recording.id = "grid";
+    recording.layout_id = "grid:4x4";
+    Stream stream;
+    stream.name = "skin";
+    stream.rate_hz = kRate;
+    for (int c = 0; c < kRows * kRows; ++c) stream.channels.push_back("ch" + std::to_string(c));
+    stream.samples = values;
+    recording.streams = {stream};
+    return segment_recording("adaptive", recording, load_layout("grid:4x4"),
+                             Parameters::parse(parameters, "test"));
+  }
+};
+
+TEST(AdaptiveSegmenter, TwoTouchesOneFrameApartAreTwoSegments) {
+  GridScene scene(1200);
+  scene.press(200, 209);
+  scene.press(211, 220);  // frame 210 is the release
+  const std::vector<Label> labels = scene.segments();
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_NEAR(labels[0].t0, 200 / GridScene::kRate, 1e-9);
+  EXPECT_NEAR(labels[0].t1, 210 / GridScene::kRate, 1e-9);
+  EXPECT_NEAR(labels[1].t0, 211 / GridScene::kRate, 1e-9);
+  EXPECT_NEAR(labels[1].t1, 221 / GridScene::kRate, 1e-9);
+}
+
+TEST(AdaptiveSegmenter, ABurstOfFiveTapsGivesFiveSegments) {
+  GridScene scene(1200);
+  for (int tap = 0; tap < 5; ++tap) scene.press(400 + 6 * tap, 403 + 6 * tap, 0, 2);
+  EXPECT_EQ(scene.segments().size(), 5u);
+}
+
+TEST(AdaptiveSegmenter, AStuckTaxelMakesNoTouch) {
+  GridScene scene(1200);
+  scene.press(100, 115);
+  // Taxel 6 sticks far above its rest from frame 300 to the end: 45 s.
+  scene.values.col(6).tail(900).setConstant(scene.values(300, 6) + 80.0f);
+  // A dead taxel reads 0 throughout.
+  scene.values.col(9).setZero();
+  const std::vector<Label> labels = scene.segments();
+  ASSERT_EQ(labels.size(), 1u);
+  EXPECT_NEAR(labels[0].t0, 100 / GridScene::kRate, 1e-9);
+}
+
+TEST(AdaptiveSegmenter, DriftOfTheRestMakesNoTouch) {
+  GridScene scene(2400);
+  // Every taxel's rest wanders by up to 40 counts over two minutes, each its own way.
+  for (int c = 0; c < 16; ++c)
+    for (int64_t t = 0; t < 2400; ++t)
+      scene.values(t, c) += (c % 2 ? 40.0f : -40.0f) * static_cast<float>(t) / 2400.0f;
+  for (int touch = 0; touch < 4; ++touch) scene.press(300 + 500 * touch, 315 + 500 * touch);
+  EXPECT_EQ(scene.segments().size(), 4u);
+}
+
+TEST(AdaptiveSegmenter, AHandRestingBetweenTouchesIsNoTouch) {
+  GridScene scene(2400);
+  for (int touch = 0; touch < 6; ++touch)
+    scene.press(200 + 300 * touch, 215 + 300 * touch, touch % 3, 1);
+  // A hand rests on 12 taxels for 6 s between two touches: 8 noise sigmas, past each
+  // taxel's noise band but less than a seventh of a touch's press; rising and falling over a
+  // second.
+  for (int64_t t = 560; t < 680; ++t) {
+    const float envelope =
+        std::min({1.0f, static_cast<float>(t - 560) / 20.0f, static_cast<float>(680 - t) / 20.0f});
+    for (int c = 0; c < 12; ++c) scene.values(t, c) += 8.0f * envelope;
+  }
+  EXPECT_EQ(scene.segments().size(), 6u);
+  // Without the touch level (level=0) the resting hand makes touches of its own.
+  EXPECT_GT(scene.segments("level=0").size(), 6u);
+}
+
+}  // namespace
+}  // namespace tactile

@@ -9,6 +9,7 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/sim/sensor_faults.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
 
@@ -45,6 +46,7 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
                 "has no simulator (simulated skins: " + joined(simulated_skin_ids()) + ")");
   const TrialGenerator& generate = record.simulate;
   const SkinLayout layout = load_layout(skin);
+  const SensorFaults faults = parse_sensor_faults(options.faults, "--faults");
   create_folder(folder);
 
   std::vector<TrialJob> jobs;
@@ -68,6 +70,8 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
     for (size_t index = next++; index < jobs.size(); index = next++) {
       try {
         SimulatedTrial result = generate(layout, options, jobs[index].subject, jobs[index].trial);
+        apply_sensor_faults(result, layout, faults, options.seed, jobs[index].subject,
+                            jobs[index].trial);
         const std::string path = (fs::path(folder) / (result.recording.id + ".h5")).string();
         write_recording(path, result.recording);
         summary.files[index] = path;

@@ -22,6 +22,9 @@ struct SimulationOptions {
   bool multi_touch = false;              // nao: a front and a back gesture at once
   std::string side;                      // nao: front | back | "" (both)
   int repetitions = 0;                   // gestures per class in one trial; 0 = the skin's default
+  // Sensor faults laid over each trial by write_simulation (sim/sensor_faults.h): "none",
+  // "realistic" or "stuck=2,drift=0.3,...". The generators themselves ignore it.
+  std::string faults = "none";
 };
 
 // One recording of one subject's trial, with its ground-truth labels (source
