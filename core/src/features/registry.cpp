@@ -12,6 +12,7 @@
 #include "tactile/features/flux.h"
 #include "tactile/features/fur.h"
 #include "tactile/features/generic.h"
+#include "tactile/features/grid.h"
 #include "tactile/features/kaboli.h"
 #include "tactile/features/koo.h"
 #include "tactile/features/naya.h"
@@ -49,6 +50,7 @@ PipelineTable& pipeline_table() {
           {"robovie_xcorr", make_robovie_xcorr_extractor},
           {"flux", make_flux_extractor},
           {"generic", make_generic_extractor},
+          {"grid", make_grid_extractor},
       }};
   return table;
 }
