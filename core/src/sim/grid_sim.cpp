@@ -25,7 +25,10 @@ constexpr double kGridFullCount = 1023.0;
 constexpr double kGridSpanCounts = 620.0;
 // Share of a row's summed response that leaks onto every taxel of that row (the shared row
 // line of a resistive matrix).
-constexpr double kRowCrosstalk = 0.025;
+constexpr double kRowCrosstalk = 0.01;
+// Share of the whole grid's summed response every taxel feels: pressing an inflated body
+// raises its air pressure everywhere.
+constexpr double kBodyCoupling = 0.0005;
 
 // How one person touches: kept over that person's trials.
 struct GridHabits {
@@ -50,9 +53,9 @@ struct Patch {
 GridHabits draw_grid_habits(uint64_t seed, int subject) {
   Random random(derive_engine(seed, "grid-subject", subject));
   GridHabits habits;
-  habits.hand = random.uniform(0.8, 1.25);
-  habits.force = random.uniform(0.6, 1.5);
-  habits.pace = random.uniform(0.7, 1.4);
+  habits.hand = random.uniform(0.75, 1.35);
+  habits.force = random.uniform(0.5, 1.8);
+  habits.pace = random.uniform(0.6, 1.6);
   habits.pause = random.uniform(0.6, 1.6);
   habits.rests = random.uniform(0.05, 0.3);
   return habits;
@@ -64,9 +67,12 @@ double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
                    GridTouch& touch) {
   const double last_row = static_cast<double>(rows - 1),
                last_column = static_cast<double>(columns - 1);
-  const double size = habits.hand * random.uniform(0.6, 1.6);  // this touch's size
-  const double force = habits.force * random.uniform(0.75, 1.3);
-  const double pace = habits.pace * random.uniform(0.8, 1.25);
+  // This touch's size, force and pace: wide and overlapping between gestures, as people vary.
+  const double size = habits.hand * std::exp(random.uniform(std::log(0.5), std::log(2.0)));
+  const double force = habits.force * std::exp(random.uniform(std::log(0.6), std::log(1.6)));
+  const double pace = habits.pace * std::exp(random.uniform(std::log(0.7), std::log(1.5)));
+  // Hand gestures done with a few fingers instead, now and then.
+  const double hand = random.chance(0.3) ? 0.4 : 1.0;
   const double angle = random.uniform(0.0, std::numbers::pi);
   const double row = random.uniform(0.0, last_row), column = random.uniform(0.0, last_column);
   Patch patch;
@@ -82,59 +88,59 @@ double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
   switch (gesture) {
     case kTap:  // a fingertip, briefly
       patch.along = patch.across = 0.45 * size;
-      patch.duration = random.uniform(0.08, 0.22) * pace;
+      patch.duration = random.uniform(0.08, 0.3) * pace;
       patch.rise = patch.fall = 0.03;
       patch.force = 0.8 * force;
       add(patch);
       break;
     case kPat: {  // a flat hand, two or three light pats
-      patch.along = 2.2 * size;
-      patch.across = 1.8 * size;
-      const int64_t pats = random.integer(2, 3);
+      patch.along = 2.0 * size * hand;
+      patch.across = 1.6 * size * hand;
+      const int64_t pats = random.integer(1, 3);
       double at = start;
       for (int64_t k = 0; k < pats; ++k) {
         patch.onset = at;
-        patch.duration = random.uniform(0.12, 0.22) * pace;
+        patch.duration = random.uniform(0.1, 0.3) * pace;
         patch.rise = patch.fall = 0.05;
-        patch.force = 0.45 * force * random.uniform(0.8, 1.2);
+        patch.force = 0.55 * force * random.uniform(0.8, 1.2);
         add(patch);
         at += patch.duration + random.uniform(0.08, 0.2) * pace;
       }
       break;
     }
     case kPush:  // fingers or palm pressed and held
-      patch.along = random.uniform(0.8, 2.6) * size;
+      patch.along = random.uniform(0.6, 2.0) * size * hand;
       patch.across = patch.along * random.uniform(0.7, 1.0);
-      patch.duration = random.uniform(1.0, 2.2) * pace;
-      patch.rise = 0.35 * pace;
-      patch.fall = 0.25 * pace;
-      patch.force = 1.0 * force;
+      patch.duration = random.uniform(0.4, 1.8) * pace;
+      patch.rise = 0.25 * pace;
+      patch.fall = 0.2 * pace;
+      patch.force = 0.8 * force;
       add(patch);
       break;
     case kStroke: {  // a palm drawn across, along its long axis
-      patch.along = 2.0 * size;
-      patch.across = 1.2 * size;
-      const double reach = random.uniform(0.35, 0.75) * std::max(last_row, last_column);
+      patch.along = 1.8 * size * hand;
+      patch.across = 1.2 * size * hand;
+      const double reach = random.uniform(0.15, 0.6) * std::max(last_row, last_column);
       patch.row1 = std::clamp(row + reach * std::sin(angle), 0.0, last_row);
       patch.column1 = std::clamp(column + reach * std::cos(angle), 0.0, last_column);
-      patch.duration = random.uniform(0.7, 1.6) * pace;
+      patch.duration = random.uniform(0.4, 1.4) * pace;
       patch.rise = patch.fall = 0.15 * pace;
-      patch.force = 0.45 * force;
+      patch.force = 0.5 * force;
       add(patch);
       break;
     }
     case kSlap:  // a whole hand, hard and short
-      patch.along = 2.6 * size;
-      patch.across = 2.2 * size;
-      patch.duration = random.uniform(0.06, 0.14);
+      patch.along = 2.2 * size * hand;
+      patch.across = 1.8 * size * hand;
+      patch.duration = random.uniform(0.06, 0.22) * pace;
       patch.rise = 0.02;
       patch.fall = 0.03;
-      patch.force = 1.5 * force;
+      patch.force = 1.2 * force;
       add(patch);
       break;
     case kTickle: {  // fingertips wiggling back and forth, lightly
       const int64_t fingers = random.integer(2, 4);
-      const double duration = random.uniform(1.0, 2.2) * pace;
+      const double duration = random.uniform(0.5, 1.6) * pace;
       const double gap = 1.6 * habits.hand;
       for (int64_t finger = 0; finger < fingers; ++finger) {
         Patch tip = patch;
@@ -146,7 +152,7 @@ double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
         tip.onset = start + random.uniform(0.0, 0.1);
         tip.duration = duration - (tip.onset - start);
         tip.rise = tip.fall = 0.1;
-        tip.force = 0.35 * force;
+        tip.force = 0.4 * force;
         tip.wobble = random.uniform(0.6, 1.5) * habits.hand;
         tip.wobble_hz = random.uniform(3.0, 6.0);
         tip.flutter = 0.6;
@@ -156,11 +162,11 @@ double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
     }
     case kSqueeze: {  // a hug: a large share of the grid, slowly, breathing
       const double extent = std::min(last_row, last_column) + 1.0;
-      patch.along = random.uniform(0.3, 0.5) * extent * habits.hand;
+      patch.along = random.uniform(0.2, 0.45) * extent * habits.hand;
       patch.across = patch.along * random.uniform(0.6, 0.9);
-      patch.duration = random.uniform(1.6, 3.2) * pace;
-      patch.rise = 0.6 * pace;
-      patch.fall = 0.45 * pace;
+      patch.duration = random.uniform(0.8, 2.4) * pace;
+      patch.rise = 0.4 * pace;
+      patch.fall = 0.3 * pace;
       patch.force = 0.9 * force;
       patch.wobble_hz = random.uniform(0.4, 0.8);
       patch.flutter = 0.15;
@@ -352,6 +358,7 @@ SimulatedTrial simulate_grid_trial(const SkinLayout& layout, const SimulationOpt
         response.middleCols(row * columns, columns).rowwise().sum() * kRowCrosstalk;
     leak.middleCols(row * columns, columns).colwise() += line;
   }
+  leak.colwise() += response.rowwise().sum() * kBodyCoupling;
 
   SimulatedTrial result;
   Recording& recording = result.recording;
