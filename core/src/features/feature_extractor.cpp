@@ -6,4 +6,6 @@ Recording FeatureExtractor::preprocess(const Recording& recording, const SkinLay
   return recording;
 }
 
+std::string FeatureExtractor::layout_note(const SkinLayout&) const { return {}; }
+
 }  // namespace tactile

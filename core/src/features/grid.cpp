@@ -402,6 +402,68 @@ std::vector<double> grid_summary(const GridFrames& frames, const GridMap& map, d
   return out;
 }
 
+//---- Whole recordings and segments
+
+void add_grid_rest(Recording& recording, const Stream& stream, const GridMap& map) {
+  Eigen::MatrixXd values(stream.sample_count(), static_cast<Eigen::Index>(map.channels.size()));
+  for (size_t k = 0; k < map.channels.size(); ++k)
+    values.col(static_cast<Eigen::Index>(k)) = stream.samples.col(map.channels[k]).cast<double>();
+  const GridRest rest = grid_rest(values, map.reversed);
+  Stream levels;
+  levels.name = kGridRestStream;
+  levels.rate_hz = stream.rate_hz;
+  levels.channels = stream.channels;
+  levels.units = stream.units;
+  levels.samples = SampleMatrix::Zero(2, stream.channel_count());
+  for (size_t k = 0; k < map.channels.size(); ++k) {
+    levels.samples(0, map.channels[k]) =
+        static_cast<float>(rest.rest(static_cast<Eigen::Index>(k)));
+    levels.samples(1, map.channels[k]) =
+        static_cast<float>(rest.noise(static_cast<Eigen::Index>(k)));
+  }
+  recording.streams.push_back(std::move(levels));
+}
+
+GridMap grid_region(const GridMap& map, const SkinLayout& layout, const std::string& region,
+                    std::string& skip_reason) {
+  if (region == "all" || region.empty()) return map;
+  const Group* group = layout.find_group(region);
+  if (group == nullptr) {
+    skip_reason = "region '" + region + "' is not a group of layout " + layout.id;
+    return {};
+  }
+  const std::set<int64_t> in_group(group->taxels.begin(), group->taxels.end());
+  std::vector<size_t> members;
+  for (size_t k = 0; k < map.taxels.size(); ++k)
+    if (in_group.count(map.taxels[k])) members.push_back(k);
+  return grid_submap(map, members);
+}
+
+std::vector<double> grid_segment(const Recording& recording, const Stream& stream,
+                                 const GridMap& map, int64_t first, int64_t count, double threshold,
+                                 std::string& skip_reason) {
+  Eigen::MatrixXd values(count, static_cast<Eigen::Index>(map.channels.size()));
+  for (size_t k = 0; k < map.channels.size(); ++k)
+    values.col(static_cast<Eigen::Index>(k)) =
+        stream.samples.col(map.channels[k]).segment(first, count).cast<double>();
+  if (!values.allFinite()) {
+    skip_reason = "NaN or infinite sample in the segment";
+    return {};
+  }
+  GridRest rest;
+  if (const Stream* levels = recording.find_stream(kGridRestStream)) {
+    rest.rest.resize(values.cols());
+    rest.noise.resize(values.cols());
+    for (size_t k = 0; k < map.channels.size(); ++k) {
+      rest.rest(static_cast<Eigen::Index>(k)) = levels->samples(0, map.channels[k]);
+      rest.noise(static_cast<Eigen::Index>(k)) = levels->samples(1, map.channels[k]);
+    }
+  } else {
+    rest = grid_rest(values, map.reversed);
+  }
+  return grid_summary(grid_frames(values, rest, map, threshold), map, stream.rate_hz);
+}
+
 //---- The extractor
 
 namespace {
@@ -432,68 +494,23 @@ class GridExtractor : public FeatureExtractor {
   }
 
   Recording preprocess(const Recording& recording, const SkinLayout& layout) const override {
-    const Stream& stream = find_stream(recording, layout);
-    const GridMap map = map_for(layout);
-    Eigen::MatrixXd values(stream.sample_count(), static_cast<Eigen::Index>(map.channels.size()));
-    for (size_t k = 0; k < map.channels.size(); ++k)
-      values.col(static_cast<Eigen::Index>(k)) = stream.samples.col(map.channels[k]).cast<double>();
-    const GridRest rest = grid_rest(values, map.reversed);
-    Stream levels;
-    levels.name = kGridRestStream;
-    levels.rate_hz = stream.rate_hz;
-    levels.channels = stream.channels;
-    levels.units = stream.units;
-    levels.samples = SampleMatrix::Zero(2, stream.channel_count());
-    for (size_t k = 0; k < map.channels.size(); ++k) {
-      levels.samples(0, map.channels[k]) =
-          static_cast<float>(rest.rest(static_cast<Eigen::Index>(k)));
-      levels.samples(1, map.channels[k]) =
-          static_cast<float>(rest.noise(static_cast<Eigen::Index>(k)));
-    }
     Recording prepared = recording;
-    prepared.streams.push_back(std::move(levels));
+    add_grid_rest(prepared, find_stream(recording, layout), map_for(layout));
     return prepared;
   }
 
   FeatureResult extract(const SegmentInput& input) const override {
     const Stream& stream = find_stream(input.recording, input.layout);
-    const GridMap whole = map_for(input.layout);
-    std::vector<size_t> members;
-    if (input.segment.region == "all" || input.segment.region.empty()) {
-      for (size_t k = 0; k < whole.channels.size(); ++k) members.push_back(k);
-    } else {
-      const Group* group = input.layout.find_group(input.segment.region);
-      if (group == nullptr)
-        return FeatureResult::skip("region '" + input.segment.region +
-                                   "' is not a group of layout " + input.layout.id);
-      const std::set<int64_t> in_group(group->taxels.begin(), group->taxels.end());
-      for (size_t k = 0; k < whole.taxels.size(); ++k)
-        if (in_group.count(whole.taxels[k])) members.push_back(k);
-    }
+    std::string skip_reason;
     const GridMap map =
-        members.size() == whole.channels.size() ? whole : grid_submap(whole, members);
+        grid_region(map_for(input.layout), input.layout, input.segment.region, skip_reason);
+    if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
     const auto [first, last] = sample_range(stream, input.segment.t0, input.segment.t1);
-    const int64_t count = last - first;
-    if (count < 1) return FeatureResult::skip("segment holds no samples");
-    Eigen::MatrixXd values(count, static_cast<Eigen::Index>(map.channels.size()));
-    for (size_t k = 0; k < map.channels.size(); ++k)
-      values.col(static_cast<Eigen::Index>(k)) =
-          stream.samples.col(map.channels[k]).segment(first, count).cast<double>();
-    if (!values.allFinite()) return FeatureResult::skip("NaN or infinite sample in the segment");
-    GridRest rest;
-    if (const Stream* levels = input.recording.find_stream(kGridRestStream)) {
-      rest.rest.resize(values.cols());
-      rest.noise.resize(values.cols());
-      for (size_t k = 0; k < map.channels.size(); ++k) {
-        rest.rest(static_cast<Eigen::Index>(k)) = levels->samples(0, map.channels[k]);
-        rest.noise(static_cast<Eigen::Index>(k)) = levels->samples(1, map.channels[k]);
-      }
-    } else {
-      rest = grid_rest(values, map.reversed);  // without preprocess(): the segment's own
-    }
-    const GridFrames frames = grid_frames(values, rest, map, threshold_);
+    if (last <= first) return FeatureResult::skip("segment holds no samples");
     FeatureResult result;
-    result.values = grid_summary(frames, map, stream.rate_hz);
+    result.values =
+        grid_segment(input.recording, stream, map, first, last - first, threshold_, skip_reason);
+    if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
     return result;
   }
 
@@ -545,7 +562,7 @@ class GridExtractor : public FeatureExtractor {
 
 std::unique_ptr<FeatureExtractor> make_grid_extractor(const Parameters& parameters) {
   parameters.expect_only({"modality", "threshold", "stream"});
-  const double threshold = parameters.number("threshold", 4.0);
+  const double threshold = parameters.number("threshold", kGridDefaultThreshold);
   if (!(threshold > 0.0))
     throw Error(parameters.where(),
                 "threshold=" + parameters.text("threshold", "") + ": must be positive");

@@ -30,6 +30,9 @@ constexpr double kRowCrosstalk = 0.01;
 // raises its air pressure everywhere.
 constexpr double kBodyCoupling = 0.0005;
 
+// The smallest contact patch's semi-axis, taxels.
+constexpr double kSmallestPatch = 0.6;
+
 // How one person touches: kept over that person's trials.
 struct GridHabits {
   double hand = 1.0;    // contact size scale
@@ -81,7 +84,10 @@ double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
   patch.column0 = patch.column1 = column;
   patch.angle = angle;
   double end = start;
-  auto add = [&](const Patch& made) {
+  auto add = [&](Patch made) {
+    // A fingertip covers at least one taxel's middle wherever it lands.
+    made.along = std::max(made.along, kSmallestPatch);
+    made.across = std::max(made.across, kSmallestPatch);
     patches.push_back(made);
     end = std::max(end, made.onset + made.duration);
   };

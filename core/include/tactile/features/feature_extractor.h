@@ -44,6 +44,9 @@ class FeatureExtractor {
   // channels), run once before any segment is extracted. Default: none.
   virtual Recording preprocess(const Recording& recording, const SkinLayout& layout) const;
   virtual FeatureResult extract(const SegmentInput& input) const = 0;
+  // What the pipeline chose for this layout, in one line for the user (`tactile features`
+  // prints it); empty when it has nothing to say.
+  virtual std::string layout_note(const SkinLayout& layout) const;
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,

@@ -71,6 +71,21 @@ std::vector<FeatureColumn> grid_columns(const std::string& prefix, const std::st
 // The segment's summary of its frames, in grid_columns order.
 std::vector<double> grid_summary(const GridFrames& frames, const GridMap& map, double rate_hz);
 inline constexpr size_t kGridColumnCount = 46;
+inline constexpr double kGridDefaultThreshold = 4.0;
+
+// What preprocess() does: adds a stream "grid.rest" to `recording` holding, per channel of
+// `stream`, its rest level (row 0) and noise deviation (row 1); map taxels only, 0 elsewhere.
+void add_grid_rest(Recording& recording, const Stream& stream, const GridMap& map);
+// The map's taxels in the segment's region ("all" or a layout group); empty with a reason in
+// `skip_reason` for a region that is no group.
+GridMap grid_region(const GridMap& map, const SkinLayout& layout, const std::string& region,
+                    std::string& skip_reason);
+// grid_summary of samples [first, first + count) of `stream` over the map's taxels, with the
+// rest levels of the recording's "grid.rest" stream (without one: the segment's own).
+// Empty with a reason in `skip_reason` when a value is not finite.
+std::vector<double> grid_segment(const Recording& recording, const Stream& stream,
+                                 const GridMap& map, int64_t first, int64_t count, double threshold,
+                                 std::string& skip_reason);
 
 // Throws tactile::Error naming the parameter on an unknown key or a threshold that is not
 // positive.
