@@ -4,20 +4,23 @@
 # `grid`, `generic` with per_channel=yes (its per-taxel block) and `generic` as it chooses
 # (per_channel=auto: whole-grid columns above 64 channels), evaluate leave one subject out.
 # Writes bench/compare/GRID.md. Usage: bench/grid_bench.sh [BUILD_DIR] [SEED]
+# EVALUATOR=path/to/tactile evaluates the tables with another build's `tactile evaluate`
+# (one that has the tree ensembles before their branch is merged).
 set -eu
 BUILD=${1:-build}
 SEED=${2:-1}
 TACTILE="$BUILD/bin/tactile"
+EVALUATOR=${EVALUATOR:-$TACTILE}
 WORK=$(mktemp -d /tmp/grid-bench.XXXXXX)
 OUT=bench/compare/GRID.md
 CLASSIFIERS="medium-tree tree linear-svm"
 # Ensembles, when this build has them (another branch of issue 26 brings them).
 for name in random-forest bagged-trees; do
-  if "$TACTILE" evaluate --list | grep -q "^$name "; then CLASSIFIERS="$CLASSIFIERS $name"; fi
+  if "$EVALUATOR" evaluate --list | grep -q "^$name "; then CLASSIFIERS="$CLASSIFIERS $name"; fi
 done
 
 accuracy() {  # features.csv classifier -> "81.4"
-  "$TACTILE" evaluate --features "$1" --classifier "$2" --protocol loso --seed "$SEED" --threads 1 |
+  "$EVALUATOR" evaluate --features "$1" --classifier "$2" --protocol loso --seed "$SEED" --threads 1 |
     awk '/^accuracy/ { gsub(/[(]/, "", $0); print $(NF-1) }'
 }
 
@@ -26,6 +29,9 @@ accuracy() {  # features.csv classifier -> "81.4"
   echo
   echo "Made by \`bench/grid_bench.sh\` (seed $SEED) on $(date -u +%Y-%m-%d); accuracy over"
   echo "every touch, leave one subject out (5 subjects, 70 touches each: 7 gestures x 10)."
+  if [ "$EVALUATOR" != "$TACTILE" ]; then
+    echo "Tables evaluated by \`$EVALUATOR\` (git $(git -C "$(dirname "$EVALUATOR")/../.." log -1 --format=%h 2>/dev/null || echo '?'))."
+  fi
   echo
   echo "| grid | pipeline | columns | classifier | accuracy |"
   echo "|---|---|---|---|---|"
