@@ -60,8 +60,8 @@ void stroke(Recording& recording, int64_t columns, double row, double column, do
   }
 }
 
-std::vector<double> row_of(const FeatureExtractor& extractor, const Recording& recording,
-                           const SkinLayout& layout) {
+std::vector<double> grid_row_of(const FeatureExtractor& extractor, const Recording& recording,
+                                const SkinLayout& layout) {
   Label label;
   label.recording = recording.id;
   label.t0 = 8.0 / kRate;
@@ -78,8 +78,8 @@ TEST(GridFeatures, TheSameTouchShiftedOnTheGridGivesTheSameRow) {
   Recording here = resting_grid(layout), there = resting_grid(layout);
   stroke(here, 16, 3.0, 2.0, 0.5);
   stroke(there, 16, 9.0, 7.0, 0.5);
-  const std::vector<double> a = row_of(*extractor, here, layout),
-                            b = row_of(*extractor, there, layout);
+  const std::vector<double> a = grid_row_of(*extractor, here, layout),
+                            b = grid_row_of(*extractor, there, layout);
   const std::vector<FeatureColumn> columns = extractor->columns(layout);
   ASSERT_EQ(a.size(), columns.size());
   ASSERT_EQ(b.size(), columns.size());
@@ -106,8 +106,8 @@ TEST(GridFeatures, ARotatedStrokeChangesItsOrientationOnly) {
   stroke(straight, 16, 4.0, 3.0, 0.4);
   stroke(turned, 16, 4.0, 3.0, 0.4,
          true);  // mirrored about the diagonal: a quarter turn of the axis
-  const std::vector<double> a = row_of(*extractor, straight, layout),
-                            b = row_of(*extractor, turned, layout);
+  const std::vector<double> a = grid_row_of(*extractor, straight, layout),
+                            b = grid_row_of(*extractor, turned, layout);
   const std::vector<FeatureColumn> columns = extractor->columns(layout);
   for (size_t k = 0; k < a.size(); ++k) {
     if (columns[k].name == "grid.orientation_mean") {
@@ -142,7 +142,7 @@ TEST(GridFeatures, AStuckTaxelAndQuietNoiseAreNoContact) {
       samples(frame, taxel) += static_cast<float>((frame * 7 + taxel * 3) % 3 - 1);  // +-1 count
   samples.col(5).setConstant(1000.0f);                                               // stuck
   const auto extractor = make_grid_extractor({});
-  const std::vector<double> row = row_of(*extractor, recording, layout);
+  const std::vector<double> row = grid_row_of(*extractor, recording, layout);
   EXPECT_EQ(row.at(1), 0.0);  // contact_share
 }
 
@@ -177,8 +177,8 @@ TEST(GridFeatures, GenericOnALargeGridWritesTheGridPipelinesFigures) {
   stroke(recording, 10, 2.0, 2.0, 0.3);
   const auto generic = make_generic_extractor({});
   const auto grid = make_grid_extractor({});
-  const std::vector<double> generic_row = row_of(*generic, recording, layout);
-  const std::vector<double> grid_row = row_of(*grid, recording, layout);
+  const std::vector<double> generic_row = grid_row_of(*generic, recording, layout);
+  const std::vector<double> grid_row = grid_row_of(*grid, recording, layout);
   ASSERT_GE(generic_row.size(), grid_row.size());
   const size_t offset = generic_row.size() - grid_row.size();
   for (size_t k = 0; k < grid_row.size(); ++k)
