@@ -48,6 +48,8 @@ void run_describe(const FeaturesOptions& options) {
     std::cout << column.name << std::string(width - column.name.size() + 2, ' ')
               << column.description << "\n";
   std::cout << columns.size() << " columns (" << extractor->name() << " on " << layout.id << ")\n";
+  if (const std::string note = extractor->layout_note(layout); !note.empty())
+    std::cout << note << "\n";
 }
 
 void run_extract(const FeaturesOptions& options) {
@@ -67,6 +69,13 @@ void run_extract(const FeaturesOptions& options) {
     std::cerr << "skipped: " << skipped.recording << " segment " << skipped.segment_id << ": "
               << skipped.reason << "\n";
   write_feature_table(table, table_options);
+  // What the pipeline chose for the table's layout (generic: per channel or whole grid).
+  if (const std::string layout = table.corpus.dataset.shared_metadata("layout"); !layout.empty()) {
+    const auto extractor =
+        make_feature_extractor(options.pipeline, Parameters::parse(options.params, "--params"));
+    if (const std::string note = extractor->layout_note(load_layout(layout)); !note.empty())
+      std::cerr << note << "\n";
+  }
   if (options.json)
     std::cout << feature_table_json(table, table_options);
   else

@@ -59,7 +59,9 @@ void register_simulate(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
   CLI::App* command =
       app.add_subcommand("simulate", "Write synthetic recordings with ground-truth labels");
-  command->add_option("--skin", args->skin, "Skin to simulate: " + joined(simulated_skin_ids()));
+  command->add_option("--skin", args->skin,
+                      "Skin to simulate: " + joined(simulated_skin_ids()) +
+                          ", or grid:RxC (a large uncalibrated pressure grid, 7 gestures)");
   command->add_option("--out", args->out, "Output folder (recordings as .h5, labels in labels.db)");
   command->add_option("--demo", args->demo,
                       "Write the small demo workspace of all five skins to this folder");

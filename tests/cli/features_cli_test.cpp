@@ -317,7 +317,7 @@ TEST_F(FeaturesCommand, PredictWritesModelLabelsFromASavedModel) {
   EXPECT_EQ(model["pipeline"], "generic");
   // Every setting of the pipeline, the defaults of this build included, so that a later
   // default cannot change what predict extracts with this model.
-  EXPECT_EQ(model["pipeline_params"], "modality=display,stream=,threshold=0.2");
+  EXPECT_EQ(model["pipeline_params"], "modality=display,per_channel=auto,stream=,threshold=0.2");
   EXPECT_EQ(model["layout"], "grid:5x5");
   EXPECT_EQ(model["classes"], nlohmann::json({"press", "swipe"}));
 

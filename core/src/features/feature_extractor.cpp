@@ -19,5 +19,6 @@ FeatureExtractor::Segments FeatureExtractor::extract_segments(
   }
   return extracted;
 }
+std::string FeatureExtractor::layout_note(const SkinLayout&) const { return {}; }
 
 }  // namespace tactile

@@ -266,6 +266,7 @@ struct ChannelPlan {
   bool reversed = false;             // small values mean contact (display_min > display_max)
   std::vector<bool> value_reversed;  // per value channel: of the reversed map modality
   std::vector<size_t> neighbour;     // per value channel: its nearest neighbour's position
+  bool whole_grid = false;           // whole-grid columns instead of the per-channel block
 };
 
 // Values per channel: 7 summary, 11 shape, the envelope (add_channel_columns, extract()).
@@ -306,20 +307,39 @@ void add_channel_columns(const std::string& name, const std::string& what, const
 
 class GenericExtractor : public FeatureExtractor {
  public:
-  GenericExtractor(std::string modality, double threshold, std::string stream, std::string where)
+  GenericExtractor(std::string modality, double threshold, std::string stream,
+                   std::string per_channel, std::string where)
       : modality_(std::move(modality)),
         threshold_(threshold),
+        per_channel_(std::move(per_channel)),
         stream_(std::move(stream)),
         where_(std::move(where)) {}
 
   std::string name() const override { return "generic"; }
   std::string description() const override {
-    return "Any layout: per channel the Hjorth triple, peak, mean, integral, time of peak, median and "
+    return "Any layout: per channel the Hjorth triple, peak, mean, integral, time of peak, median "
+           "and "
            "deciles, energy in three bands, zero crossings, peaks, onset and release slopes, time "
            "above the noise band and the envelope in 8 parts; across channels the same figures of "
            "the busiest channel (wherever the touch landed) and its share of the activity, and the "
-           "correlation of neighbouring channels; on 2-D maps the contact area (max, mean), spread, and the contact centroid's "
-           "path length and net displacement";
+           "correlation of neighbouring channels; on 2-D maps the contact area (max, mean), "
+           "spread, and the contact centroid's "
+           "path length and net displacement; over " +
+           std::to_string(kGridTaxelsForGeneric) +
+           " channels on a 2-D map (per_channel=auto), the grid pipeline's whole-grid columns "
+           "instead of the "
+           "per-channel block";
+  }
+
+  std::string layout_note(const SkinLayout& layout) const override {
+    const ChannelPlan plan = plan_for(layout);
+    const std::string channels = std::to_string(plan.value_channels.size()) + " channels";
+    if (plan.whole_grid)
+      return "generic on " + layout.id +
+             ": whole-grid columns (grid.*) instead of the per-channel block (" + channels +
+             (per_channel_ == "auto" ? " > " + std::to_string(kGridTaxelsForGeneric) : "") +
+             "; per_channel=yes keeps it)";
+    return "generic on " + layout.id + ": per-channel block (" + channels + ")";
   }
 
   std::vector<FeatureColumn> columns(const SkinLayout& layout) const override {
@@ -328,6 +348,10 @@ class GenericExtractor : public FeatureExtractor {
     std::set<std::string> units;
     for (size_t position = 0; position < plan.value_channels.size(); ++position) {
       const Channel& channel = layout.channels[static_cast<size_t>(plan.value_channels[position])];
+      if (plan.whole_grid) {
+        units.insert(channel.unit.empty() ? "units" : channel.unit);
+        continue;
+      }
       // For modalities where small means touch, the peak is the smallest value.
       const std::string extreme = plan.value_reversed[position] ? "smallest" : "largest";
       const std::string unit = channel.unit.empty() ? "units" : channel.unit;
@@ -365,6 +389,12 @@ class GenericExtractor : public FeatureExtractor {
                          "excursion-weighted distance of the contact taxels from the centroid, mean over "
                          "the samples with contact, " + unit});
     }
+    if (plan.whole_grid) {
+      const std::vector<FeatureColumn> grid =
+          grid_columns("grid.", units.size() == 1 ? *units.begin() : "units",
+                       layout.map_unit.empty() ? "map units" : layout.map_unit);
+      columns.insert(columns.end(), grid.begin(), grid.end());
+    }
     return columns;
   }
 
@@ -390,6 +420,8 @@ class GenericExtractor : public FeatureExtractor {
     }
     Recording prepared = recording;
     prepared.streams.push_back(std::move(rest));
+    if (plan.whole_grid)
+      add_grid_rest(prepared, stream, grid_map(layout, map_modality(layout), where_));
     return prepared;
   }
 
@@ -454,12 +486,28 @@ class GenericExtractor : public FeatureExtractor {
         sum += correlation(channel_values[position], channel_values[plan.neighbour[position]]);
       result.values.push_back(sum / static_cast<double>(channel_values.size()));
     }
+    // Whole grid: the per-channel block served the busiest channel's figures only.
+    if (plan.whole_grid)
+      result.values.erase(
+          result.values.begin(),
+          result.values.begin() + static_cast<std::ptrdiff_t>(channel_values.size() * block));
     if (plan.has_map) {
       std::string skip_reason;
       const ContactMotion motion = map_motion(input, stream, plan, first, count, skip_reason);
       if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
       result.values.insert(result.values.end(), {motion.max_area, motion.mean_area,
                                                  motion.path_length, motion.displacement, motion.spread});
+    }
+    if (plan.whole_grid) {
+      std::string skip_reason;
+      const GridMap map = grid_region(grid_map(input.layout, map_modality(input.layout), where_),
+                                      input.layout, input.segment.region, skip_reason);
+      const std::vector<double> grid = skip_reason.empty()
+                                           ? grid_segment(input.recording, stream, map, first,
+                                                          count, kGridDefaultThreshold, skip_reason)
+                                           : std::vector<double>{};
+      if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
+      result.values.insert(result.values.end(), grid.begin(), grid.end());
     }
     return result;
   }
@@ -498,6 +546,11 @@ class GenericExtractor : public FeatureExtractor {
       plan.value_channels = plan.map_channels;
     }
     plan.has_map = spans_two_dimensions(plan.positions);
+    if (per_channel_ == "no" && !plan.has_map)
+      throw Error(where_,
+                  "per_channel=no: layout " + layout.id + "'s taxels do not spread over a 2-D map");
+    plan.whole_grid = per_channel_ == "no" || (per_channel_ == "auto" && plan.has_map &&
+                                               plan.value_channels.size() > kGridTaxelsForGeneric);
     plan.areas.resize(static_cast<Eigen::Index>(plan.map_taxels.size()));
     for (size_t index = 0; index < plan.map_taxels.size(); ++index) {
       const Taxel& taxel = *layout.find_taxel(plan.map_taxels[index]);
@@ -589,6 +642,7 @@ class GenericExtractor : public FeatureExtractor {
 
   std::string modality_;
   double threshold_;
+  std::string per_channel_;
   std::string stream_;
   std::string where_;
 };
@@ -596,13 +650,17 @@ class GenericExtractor : public FeatureExtractor {
 }  // namespace
 
 std::unique_ptr<FeatureExtractor> make_generic_extractor(const Parameters& parameters) {
-  parameters.expect_only({"modality", "threshold", "stream"});
+  parameters.expect_only({"modality", "threshold", "stream", "per_channel"});
   const double threshold = parameters.number("threshold", 0.2);
+  const std::string per_channel = parameters.text("per_channel", "auto");
+  if (per_channel != "auto" && per_channel != "yes" && per_channel != "no")
+    throw Error(parameters.where(), "per_channel=" + per_channel + ": must be auto, yes or no");
   if (!(threshold >= 0.0 && threshold < 1.0))
     throw Error(parameters.where(),
                 "threshold=" + parameters.text("threshold", "") + ": must be in [0, 1)");
   return std::make_unique<GenericExtractor>(parameters.text("modality", "display"), threshold,
-                                            parameters.text("stream", ""), parameters.where());
+                                            parameters.text("stream", ""), per_channel,
+                                            parameters.where());
 }
 
 }  // namespace tactile

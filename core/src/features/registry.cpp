@@ -12,6 +12,7 @@
 #include "tactile/features/flux.h"
 #include "tactile/features/fur.h"
 #include "tactile/features/generic.h"
+#include "tactile/features/grid.h"
 #include "tactile/features/kaboli.h"
 #include "tactile/features/koo.h"
 #include "tactile/features/naya.h"
@@ -54,6 +55,7 @@ PipelineTable& pipeline_table() {
           {"generic", make_generic_extractor},
           {"raw", make_raw_extractor},
           {"rocket", make_rocket_extractor},
+          {"grid", make_grid_extractor},
       }};
   return table;
 }

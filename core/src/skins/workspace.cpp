@@ -10,6 +10,7 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/sim/sensor_faults.h"
+#include "tactile/sim/grid_sim.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
 
@@ -40,11 +41,14 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
   if (options.subjects < 1) throw Error("--subjects", "must be at least 1");
   if (options.trials < 1) throw Error("--trials", "must be at least 1");
   if (options.repetitions < 0) throw Error("--repetitions", "must not be negative");
-  const SkinRecord& record = skin_record(skin, "--skin " + skin);
-  if (!record.simulate)
-    throw Error("--skin " + skin,
-                "has no simulator (simulated skins: " + joined(simulated_skin_ids()) + ")");
-  const TrialGenerator& generate = record.simulate;
+  // A registered skin's own simulator; any grid:RxC layout that is no skin, the pressure grid's.
+  const SkinRecord* record = find_skin(skin);
+  const bool grid = record == nullptr && skin.rfind("grid:", 0) == 0;
+  if (!grid) record = &skin_record(skin, "--skin " + skin);
+  if (!grid && !record->simulate)
+    throw Error("--skin " + skin, "has no simulator (simulated skins: " +
+                                      joined(simulated_skin_ids()) + ", grid:RxC)");
+  const TrialGenerator generate = grid ? TrialGenerator(simulate_grid_trial) : record->simulate;
   const SkinLayout layout = load_layout(skin);
   const SensorFaults faults = parse_sensor_faults(options.faults, "--faults");
   create_folder(folder);
@@ -99,7 +103,7 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
   LabelStore store((fs::path(folder) / "labels.db").string());
   // Simulated ground truth carries no wall-clock time: the same seed writes the same bytes.
   store.use_fixed_time(kSimulatedLabelTime);
-  store.set_classes(skin, skin_classes(skin));
+  store.set_classes(skin, grid ? grid_gesture_classes() : skin_classes(skin));
   for (size_t index = 0; index < jobs.size(); ++index) {
     if (labels[index].empty()) continue;
     LabelFilter previous;

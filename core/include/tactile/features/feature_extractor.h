@@ -56,6 +56,9 @@ class FeatureExtractor {
   virtual Segments extract_segments(const Recording& raw, const SkinLayout& layout,
                                     const std::vector<Label>& segments,
                                     const std::function<void(size_t)>& each = {}) const;
+  // What the pipeline chose for this layout, in one line for the user (`tactile features`
+  // prints it); empty when it has nothing to say.
+  virtual std::string layout_note(const SkinLayout& layout) const;
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,

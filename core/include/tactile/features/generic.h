@@ -7,7 +7,12 @@
 // Parameters: modality = a layout modality, "display" (default: the layout's display
 // modality) or "all" (every channel); threshold = contact level as a fraction of the
 // segment's largest excursion from rest (see contact_motion), in [0, 1) (default 0.2);
-// stream = the stream to read (default: the first). The map modality is reversed (small
+// stream = the stream to read (default: the first); per_channel = auto (default), yes or no:
+// the per-channel block (26 columns per channel, the busiest channel's again and the
+// neighbours' correlation) for layouts of at most kGridTaxelsForGeneric channels, or where
+// the taxels do not spread over 2-D; for larger 2-D layouts, instead of the per-channel
+// block, the whole-grid columns of the grid pipeline (grid.h) prefixed "grid." (layout_note
+// says which). The map modality is reversed (small
 // values mean touch) when the layout's display_min > display_max. preprocess() finds each
 // channel's rest level over the whole recording (quiet_level).
 
@@ -17,10 +22,17 @@
 #include <vector>
 
 #include "tactile/features/feature_extractor.h"
+#include "tactile/features/grid.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/stats/statistics.h"
 
 namespace tactile {
+
+// Above this many channels on a 2-D map, generic's per_channel=auto leaves the per-channel
+// block out and writes whole-grid columns: a tree or SVM on thousands of per-taxel columns
+// learns where touches landed, not what they were. The papers' nao (32 force cells) and flux
+// (8) stay per channel; fur (160), robovie (274) and tsa (672) get whole-grid columns.
+inline constexpr size_t kGridTaxelsForGeneric = 64;
 
 struct ChannelSummary {
   stats::Hjorth hjorth;

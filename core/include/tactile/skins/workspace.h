@@ -19,7 +19,8 @@ struct SimulationSummary {
   double seconds_recorded = 0.0;
 };
 
-// Simulates options.subjects x options.trials recordings of one registered skin into `folder`
+// Simulates options.subjects x options.trials recordings of one registered skin, or of the
+// pressure grid for a grid:RxC layout that is no skin (sim/grid_sim.h), into `folder`
 // (created if missing) as <recording id>.h5, replacing earlier ground-truth labels of the
 // same recordings in folder/labels.db. Trials run on worker threads; output is identical
 // whatever the thread count. Throws tactile::Error.
