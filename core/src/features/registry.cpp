@@ -56,6 +56,7 @@ PipelineTable& pipeline_table() {
           {"raw", make_raw_extractor},
           {"rocket", make_rocket_extractor},
           {"grid", make_grid_extractor},
+          {"auto", make_auto_pipeline_extractor},
       }};
   return table;
 }

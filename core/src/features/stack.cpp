@@ -27,14 +27,30 @@ std::string StackExtractor::name() const {
   return text;
 }
 
+std::string StackExtractor::layout_note(const SkinLayout& layout) const {
+  std::string note;
+  for (const FeatureExtractor* pipeline : present(layout)) {
+    const std::string part = pipeline->layout_note(layout);
+    if (!part.empty()) note += (note.empty() ? "" : "; ") + part;
+  }
+  return note;
+}
+
 std::string StackExtractor::description() const {
   return "the columns of " + joined(names_) + " side by side, each named PIPELINE/column";
 }
 
 std::vector<const FeatureExtractor*> StackExtractor::present(const SkinLayout& layout) const {
   std::vector<const FeatureExtractor*> kept;
-  for (const auto& pipeline : pipelines_)
-    if (!pipeline->columns(layout).empty()) kept.push_back(pipeline.get());
+  for (const auto& pipeline : pipelines_) {
+    try {
+      if (!pipeline->columns(layout).empty()) kept.push_back(pipeline.get());
+    } catch (const Error&) {
+      // A pipeline this layout cannot have (grid on a strip) is left out of the stack.
+    }
+  }
+  if (kept.empty())
+    throw Error("pipeline " + name(), "none of its pipelines has columns on layout " + layout.id);
   return kept;
 }
 
@@ -77,6 +93,15 @@ StackExtractor::Segments StackExtractor::extract_segments(
     }
   }
   return joined_rows;
+}
+
+std::unique_ptr<FeatureExtractor> make_auto_pipeline_extractor(const Parameters& parameters) {
+  if (!parameters.values().empty())
+    throw Error(
+        "--params",
+        "the auto pipeline runs each of its pipelines with its defaults and takes no parameters");
+  return std::make_unique<StackExtractor>(
+      std::vector<std::string>(kAutoPipelines.begin(), kAutoPipelines.end()));
 }
 
 std::unique_ptr<FeatureExtractor> make_stack_extractor(const std::string& name,

@@ -94,14 +94,17 @@ std::vector<AutoBlock> parse_auto_blocks(const std::string& text) {
 }
 
 std::vector<int64_t> rung_sizes(int64_t rows, int class_count, size_t candidates) {
-  // Each halving keeps a third; stop when one rung would leave a candidate alone or when the
-  // smallest rung would hold fewer than kSmallestRung rows or 5 a class.
+  // One rung per halving until at most kHalvingFactor candidates are left for the last; each
+  // earlier rung a third of the next's rows, but never fewer than kSmallestRung rows or 5 a
+  // class (a small table repeats its size: the early rungs are then told apart by their
+  // single hold-out splits alone).
   const int64_t smallest = std::max<int64_t>(kSmallestRung, 5 * static_cast<int64_t>(class_count));
   std::vector<int64_t> sizes = {rows};
   size_t left = candidates;
-  while (left > kHalvingFactor &&
-         sizes.front() / static_cast<int64_t>(kHalvingFactor) >= smallest) {
-    sizes.insert(sizes.begin(), sizes.front() / static_cast<int64_t>(kHalvingFactor));
+  while (left > kHalvingFactor) {
+    sizes.insert(
+        sizes.begin(),
+        std::min(rows, std::max(smallest, sizes.front() / static_cast<int64_t>(kHalvingFactor))));
     left = (left + kHalvingFactor - 1) / kHalvingFactor;
   }
   return sizes;
@@ -268,11 +271,16 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
     }
     std::sort(rows.begin(), rows.end());
     const Dataset inner = inner_dataset(x, y, rows);
+    // The early rungs sort out the weak candidates on one stratified hold-out split each (a
+    // new split per rung); the last compares the few left by the inner protocol.
+    const bool last = rung + 1 == sizes.size();
+    const Protocol protocol = last ? inner_ : Protocol::parse("holdout:0.3x1");
+    const uint64_t rung_seed = last ? inner_seed : derive_seed(seed, 2 + rung);
     for (size_t i : alive) {
       if (cancel_requested()) throw Error("classifier auto", "cancelled");
       try {
         candidates_[i].inner_accuracy =
-            inner_accuracy(inner, candidates_[i].specification, inner_seed);
+            evaluate(inner, candidates_[i].specification, protocol, rung_seed).accuracy;
       } catch (const Error&) {
         // A candidate that cannot learn from these rows (too few per class, ...) is passed over.
         candidates_[i].inner_accuracy = -1.0;

@@ -62,7 +62,8 @@ class FeatureExtractor {
 };
 
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
-// robovie_xcorr, flux, generic, raw, rocket, grid, then those added by
+// robovie_xcorr, flux, generic, raw, rocket, grid, auto (the stack of generic, grid, raw and
+// rocket for auto to choose among), then those added by
 // register_feature_pipeline. Besides these, make_feature_extractor takes a stack "a+b+c" of
 // registered pipelines (features/stack.h).
 std::vector<std::string> feature_pipelines();

@@ -4,8 +4,10 @@
 // search (`auto` with blocks, ml/grid_search.h) can choose among them inside each training
 // fold. Each pipeline preprocesses the recording its own way (extract_segments); a segment
 // that any of them skips has no row. A pipeline with no columns on a layout (grid on a strip)
-// is left out of the stack on that layout. The pipelines run with their default parameters.
+// is left out of the stack on that layout (one that refuses the layout too). The pipelines
+// run with their default parameters.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +27,7 @@ class StackExtractor : public FeatureExtractor {
   std::string name() const override;
   std::string description() const override;
   std::vector<FeatureColumn> columns(const SkinLayout& layout) const override;
+  std::string layout_note(const SkinLayout& layout) const override;
   // One segment alone: each pipeline preprocesses the whole recording again (extract_segments
   // is the way to extract many).
   FeatureResult extract(const SegmentInput& input) const override;
@@ -39,6 +42,11 @@ class StackExtractor : public FeatureExtractor {
   std::vector<std::string> names_;
   std::vector<std::unique_ptr<FeatureExtractor>> pipelines_;
 };
+
+// The `auto` pipeline: the stack of the pipelines for any layout, for auto to choose among
+// (the whole-grid `grid` only where the taxels spread over a 2-D map).
+inline constexpr std::array<const char*, 4> kAutoPipelines = {"generic", "grid", "raw", "rocket"};
+std::unique_ptr<FeatureExtractor> make_auto_pipeline_extractor(const Parameters& parameters);
 
 // "a+b+c" -> a StackExtractor; throws tactile::Error naming --params when parameters are
 // given (a stack runs each pipeline with its defaults).

@@ -90,16 +90,17 @@ std::unique_ptr<Classifier> make_grid_search_classifier(const Parameters& parame
 // On a stacked table (features/stack.h), blocks=NAME:A-B|... makes it search pipelines too:
 // every candidate once per block, on that block's columns (select:columns=A-B).
 // The outer evaluation never lets the search see its test rows. It searches by successive
-// halving: every candidate is first cross-validated on a stratified third (or ninth, ...) of
-// the training rows, the best third of them go on to three times as many rows, and so on up
-// to all rows, where the best is chosen (rung_sizes). When the columns outnumber the rows,
-// each candidate also runs behind `select:k=K` (K = rows / 4, at least 10): the K columns of
-// largest ANOVA F on each inner training fold.
+// halving: every candidate is first tried on one stratified hold-out split (70/30) of a
+// stratified third (or ninth, ...) of the training rows, the best third go on to three times
+// as many rows, and so on; the last few are compared by the inner protocol on all rows
+// (rung_sizes). When the columns outnumber the rows, each candidate also runs behind
+// `select:k=K` (K = rows / 4, at least 10): the K columns of largest ANOVA F on each inner
+// training fold.
 inline constexpr size_t kHalvingFactor = 3;
 inline constexpr int64_t kSmallestRung = 30;
-// The rows of each rung, the last all `rows`: each earlier one a third of the next, as long as
-// the candidates left would still be more than one at the last rung and the smallest holds
-// kSmallestRung rows and 5 a class.
+// The rows of each rung, the last all `rows`: one rung per halving until at most
+// kHalvingFactor candidates are left, each earlier one a third of the next but at least
+// kSmallestRung rows and 5 a class (so a small table repeats its size).
 std::vector<int64_t> rung_sizes(int64_t rows, int class_count, size_t candidates);
 std::vector<std::string> auto_candidates();
 // `auto` given without blocks on a stacked table: the same with blocks=, so that it searches
