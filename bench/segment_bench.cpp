@@ -7,8 +7,8 @@
 //                             [--faults realistic|SPEC] [skin ...]
 //
 // Without skins: every skin with a simulator (skins/skin.h), so a new skin joins the table
-// by being registered, and "contact-grid", a stand-in grid with one label per contact (below);
-// a skin id given on the line (e.g. a grid:RxC) is simulated too.
+// by being registered, and the pressure grid grid:19x27 (sim/grid_sim.h); a skin id given on
+// the line (e.g. grid:16x16) is simulated instead.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -25,6 +25,7 @@
 #include "tactile/segment/segmenter.h"
 #include "tactile/segment/threshold.h"
 #include "tactile/signal/display_scale.h"
+#include "tactile/sim/grid_sim.h"
 #include "tactile/sim/sensor_faults.h"
 #include "tactile/skins/skin.h"
 
@@ -64,61 +65,6 @@ std::vector<Label> adaptive_before(const Recording& recording) {
     labels.push_back(label);
   }
   return labels;
-}
-
-// A stand-in until the grid simulator joins: a 19 x 27 pressure grid at 20 Hz, two minutes,
-// uncalibrated rests (1000 +- 300 counts), noise of 5 counts; contacts of 5-20 frames with a
-// round footprint (radius 1-3 taxels, 150-800 counts at the centre), one label each; a third
-// of them in bursts of 3-5 taps with releases of 1-3 frames, the others 0.5-3 s apart.
-tactile::SimulatedTrial contact_grid_trial(const tactile::SkinLayout& layout, uint64_t seed,
-                                           int subject) {
-  tactile::Random random(tactile::derive_engine(seed, "segment-bench-grid", subject));
-  const double rate = 20.0;
-  const int64_t frames = 2400;
-  const int rows = 19, columns = 27;
-  tactile::Stream stream;
-  stream.name = "skin";
-  stream.rate_hz = rate;
-  for (const tactile::Channel& channel : layout.channels) stream.channels.push_back(channel.name);
-  stream.samples.resize(frames, rows * columns);
-  for (int c = 0; c < rows * columns; ++c) {
-    const double rest = random.uniform(700.0, 1300.0);
-    for (int64_t t = 0; t < frames; ++t)
-      stream.samples(t, c) = static_cast<float>(rest + random.normal(0.0, 5.0));
-  }
-  tactile::SimulatedTrial trial;
-  int64_t t = 20;
-  while (t < frames - 60) {
-    const int taps = random.chance(1.0 / 3.0) ? static_cast<int>(random.integer(3, 5)) : 1;
-    const double row = random.uniform(2.0, rows - 3.0), column = random.uniform(2.0, columns - 3.0);
-    for (int tap = 0; tap < taps && t < frames - 30; ++tap) {
-      const int64_t length = taps > 1 ? random.integer(4, 8) : random.integer(5, 20);
-      const double radius = random.uniform(1.0, 3.0), height = random.uniform(150.0, 800.0);
-      for (int64_t u = 0; u < length; ++u) {
-        // Rises and falls over a frame or two, never 0 inside the touch.
-        const double envelope = std::min({1.0, (u + 1) / 2.0, (length - u) / 2.0});
-        for (int r = 0; r < rows; ++r)
-          for (int k = 0; k < columns; ++k) {
-            const double distance = std::hypot(r - row, k - column) / radius;
-            if (distance < 1.5)
-              stream.samples(t + u, r * columns + k) +=
-                  static_cast<float>(height * envelope * std::exp(-distance * distance));
-          }
-      }
-      Label label;
-      label.recording = "grid-bench";
-      label.t0 = static_cast<double>(t) / rate;
-      label.t1 = static_cast<double>(t + length) / rate;
-      label.class_name = "tap";
-      trial.labels.push_back(label);
-      t += length +
-           (tap + 1 < taps ? random.integer(1, 3) : std::llround(random.uniform(0.5, 3.0) * rate));
-    }
-  }
-  trial.recording.id = "grid-bench";
-  trial.recording.layout_id = layout.id;
-  trial.recording.streams.push_back(std::move(stream));
-  return trial;
 }
 
 struct Scores {
@@ -166,7 +112,7 @@ int main(int argc, char** argv) {
     }
     if (skins.empty()) {
       skins = tactile::simulated_skin_ids();
-      skins.push_back("contact-grid");
+      skins.push_back("grid:19x27");
     }
     std::printf(
         "segment_bench: %d subjects per skin, seed %llu; each cell: frame precision, "
@@ -177,9 +123,9 @@ int main(int argc, char** argv) {
         "|\n");
     std::printf("|---|---|---|---|---|---|\n");
     for (const std::string& skin : skins) {
-      const bool stand_in = skin == "contact-grid";
-      const tactile::SkinLayout layout =
-          stand_in ? tactile::make_grid_layout(19, 27) : tactile::load_layout(skin);
+      // A grid:RxC is no registered skin: the pressure grid's simulator, adaptive its own.
+      const bool grid = tactile::find_skin(skin) == nullptr && skin.rfind("grid:", 0) == 0;
+      const tactile::SkinLayout layout = tactile::load_layout(skin);
       for (const std::string& faults : {std::string("none"), fault_spec}) {
         tactile::SimulationOptions options;
         options.seed = seed;
@@ -189,15 +135,15 @@ int main(int argc, char** argv) {
         int64_t touches = 0;
         for (int subject = 0; subject < subjects; ++subject) {
           tactile::SimulatedTrial trial =
-              stand_in ? contact_grid_trial(layout, seed, subject)
-                       : tactile::skin_record(skin).simulate(layout, options, subject, 0);
+              grid ? tactile::simulate_grid_trial(layout, options, subject, 0)
+                   : tactile::skin_record(skin).simulate(layout, options, subject, 0);
           tactile::apply_sensor_faults(trial, layout,
                                        tactile::parse_sensor_faults(options.faults, "faults"),
                                        options.seed, subject, 0);
           const tactile::Stream& stream = trial.recording.streams.front();
           touches += static_cast<int64_t>(trial.labels.size());
           const auto [own_method, own_params] =
-              tactile::default_segmenter(stand_in ? layout.id : skin);
+              tactile::default_segmenter(skin);
           std::vector<Label> own_found;
           try {
             own_found = tactile::segment_recording(own_method, trial.recording, layout,
@@ -213,7 +159,7 @@ int main(int argc, char** argv) {
         }
         std::printf("| %s | %s | %lld | %s: %s | %s | %s |\n", skin.c_str(), faults.c_str(),
                     static_cast<long long>(touches),
-                    tactile::default_segmenter(stand_in ? layout.id : skin).first.c_str(),
+                    tactile::default_segmenter(skin).first.c_str(),
                     format_scores(own).c_str(), format_scores(before).c_str(),
                     format_scores(now).c_str());
         std::fflush(stdout);
