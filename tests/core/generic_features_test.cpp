@@ -308,6 +308,52 @@ TEST(GenericFeatures, BadParametersAndMismatchedRecordingsNameTheProblem) {
   EXPECT_THROW(run(*make_generic_extractor({}), recording, layout, whole(recording)), Error);
 }
 
+// A skin whose layout adds virtual channels (sums its own preprocessing computes) records only
+// its real ones: the stream's named channels are found in the layout, the rest read as 0.
+TEST(GenericFeatures, AStreamOfSomeOfTheLayoutsChannelsIsReadByName) {
+  const SkinLayout layout = make_grid_layout(4, 4);
+  Recording full = blank_recording(layout, 40, 100.0);
+  press_blob(full, 4, 20, 1, 1);
+  Recording partial = full;
+  Stream& stream = partial.streams[0];
+  // Channels 14, 13, ..., 0: reversed, the last layout channel missing.
+  const int64_t kept = 15;
+  std::vector<std::string> names;
+  SampleMatrix samples(stream.sample_count(), kept);
+  for (int64_t column = 0; column < kept; ++column) {
+    const int64_t channel = kept - 1 - column;
+    names.push_back(layout.channels[static_cast<size_t>(channel)].name);
+    samples.col(column) = stream.samples.col(channel);
+  }
+  stream.channels = names;
+  stream.units.assign(static_cast<size_t>(kept), "");
+  stream.samples = samples;
+  const std::vector<int64_t> columns = layout_columns(stream, layout);
+  EXPECT_EQ(columns, (std::vector<int64_t>{14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0, -1}));
+  EXPECT_FALSE(in_layout_order(stream, layout));
+  const Stream ordered = layout_ordered(stream, layout);
+  EXPECT_TRUE(in_layout_order(ordered, layout));
+  EXPECT_EQ(ordered.samples.col(5), full.streams[0].samples.col(5));
+  EXPECT_TRUE(ordered.samples.col(15).isZero());
+
+  const auto extractor = make_generic_extractor({});
+  const FeatureResult from_full = run(*extractor, full, layout, whole(full));
+  const FeatureResult from_partial = run(*extractor, partial, layout, whole(partial));
+  ASSERT_TRUE(from_full.skip_reason.empty()) << from_full.skip_reason;
+  ASSERT_TRUE(from_partial.skip_reason.empty()) << from_partial.skip_reason;
+  // The blob never reaches the last taxel, so both give the same row.
+  EXPECT_EQ(from_full.values, from_partial.values);
+
+  // A channel the layout lacks is refused by name.
+  stream.channels[0] = "elbow";
+  try {
+    layout_columns(stream, layout);
+    FAIL() << "a stranger channel was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(error.message().find("elbow"), std::string::npos) << error.message();
+  }
+}
+
 TEST(FeatureRegistry, ListsGenericAndNamesAnUnknownPipeline) {
   const std::vector<std::string> names = feature_pipelines();
   EXPECT_NE(std::find(names.begin(), names.end(), "generic"), names.end());

@@ -1,5 +1,10 @@
 #include "tactile/features/feature_extractor.h"
 
+#include <algorithm>
+#include <numeric>
+
+#include "tactile/error.h"
+
 namespace tactile {
 
 Recording FeatureExtractor::preprocess(const Recording& recording, const SkinLayout&) const {
@@ -20,5 +25,85 @@ FeatureExtractor::Segments FeatureExtractor::extract_segments(
   return extracted;
 }
 std::string FeatureExtractor::layout_note(const SkinLayout&) const { return {}; }
+
+const Stream& pipeline_stream(const Recording& recording, const std::string& name) {
+  const Stream* stream = name.empty()
+                             ? (recording.streams.empty() ? nullptr : &recording.streams.front())
+                             : recording.find_stream(name);
+  if (stream == nullptr)
+    throw Error("recording " + recording.id,
+                name.empty() ? "has no streams" : "has no stream '" + name + "'");
+  return *stream;
+}
+
+std::vector<int64_t> layout_columns(const Stream& stream, const SkinLayout& layout) {
+  const int64_t channel_count = static_cast<int64_t>(layout.channels.size());
+  std::vector<int64_t> columns(layout.channels.size(), -1);
+  const auto stranger =
+      std::find_if(stream.channels.begin(), stream.channels.end(),
+                   [&](const std::string& name) { return layout.channel_index(name) < 0; });
+  // Unnamed channels, or names of another's (an import's header), are the layout's in order.
+  if (stream.channels.empty() || stranger != stream.channels.end()) {
+    if (stream.channel_count() != channel_count)
+      throw Error(
+          "stream " + stream.name,
+          std::to_string(stream.channel_count()) + " channels, but layout " + layout.id + " has " +
+              std::to_string(channel_count) +
+              (stranger != stream.channels.end() ? " and no channel " + *stranger
+                                                 : std::string(" and the stream's are unnamed")));
+    std::iota(columns.begin(), columns.end(), int64_t{0});
+    return columns;
+  }
+  for (size_t channel = 0; channel < layout.channels.size(); ++channel) {
+    const auto found =
+        std::find(stream.channels.begin(), stream.channels.end(), layout.channels[channel].name);
+    if (found != stream.channels.end()) columns[channel] = found - stream.channels.begin();
+  }
+  return columns;
+}
+
+bool in_layout_order(const Stream& stream, const SkinLayout& layout) {
+  if (stream.channel_count() != static_cast<int64_t>(layout.channels.size())) return false;
+  bool named_in_order = true;
+  for (size_t channel = 0; channel < stream.channels.size() && named_in_order; ++channel)
+    named_in_order = stream.channels[channel] == layout.channels[channel].name;
+  if (named_in_order) return true;
+  const std::vector<int64_t> columns = layout_columns(stream, layout);
+  for (size_t channel = 0; channel < columns.size(); ++channel)
+    if (columns[channel] != static_cast<int64_t>(channel)) return false;
+  return true;
+}
+
+Stream layout_ordered(const Stream& stream, const SkinLayout& layout) {
+  const std::vector<int64_t> columns = layout_columns(stream, layout);
+  Stream ordered;
+  ordered.name = stream.name;
+  ordered.rate_hz = stream.rate_hz;
+  ordered.start_time = stream.start_time;
+  ordered.timestamps = stream.timestamps;
+  ordered.samples =
+      SampleMatrix::Zero(stream.sample_count(), static_cast<Eigen::Index>(columns.size()));
+  for (size_t channel = 0; channel < columns.size(); ++channel) {
+    ordered.channels.push_back(layout.channels[channel].name);
+    const bool held = columns[channel] >= 0;
+    ordered.units.push_back(held && static_cast<size_t>(columns[channel]) < stream.units.size()
+                                ? stream.units[static_cast<size_t>(columns[channel])]
+                                : layout.channels[channel].unit);
+    if (held)
+      ordered.samples.col(static_cast<Eigen::Index>(channel)) =
+          stream.samples.col(columns[channel]);
+  }
+  return ordered;
+}
+
+Recording with_layout_stream(const Recording& recording, const SkinLayout& layout,
+                             const std::string& name) {
+  const Stream& stream = pipeline_stream(recording, name);
+  Recording copy = recording;
+  if (!in_layout_order(stream, layout))
+    copy.streams[static_cast<size_t>(&stream - recording.streams.data())] =
+        layout_ordered(stream, layout);
+  return copy;
+}
 
 }  // namespace tactile

@@ -400,8 +400,10 @@ class GenericExtractor : public FeatureExtractor {
 
   // Adds a one-sample stream with each channel's rest level over the whole recording, so
   // a segment inside a long press still knows where rest is.
-  Recording preprocess(const Recording& recording, const SkinLayout& layout) const override {
-    const Stream& stream = find_stream(recording, layout);
+  Recording preprocess(const Recording& original, const SkinLayout& layout) const override {
+    Recording prepared = with_layout_stream(original, layout, stream_);
+    prepared.streams.reserve(prepared.streams.size() + 2);  // `stream` stays valid below
+    const Stream& stream = find_stream(prepared, layout);
     const ChannelPlan plan = plan_for(layout);
     std::vector<bool> reversed(static_cast<size_t>(stream.channel_count()), false);
     if (plan.reversed)
@@ -418,7 +420,6 @@ class GenericExtractor : public FeatureExtractor {
       rest.samples(0, channel) =
           static_cast<float>(quiet_level(values, reversed[static_cast<size_t>(channel)]));
     }
-    Recording prepared = recording;
     prepared.streams.push_back(std::move(rest));
     if (plan.whole_grid)
       add_grid_rest(prepared, stream, grid_map(layout, map_modality(layout), where_));
@@ -585,19 +586,12 @@ class GenericExtractor : public FeatureExtractor {
   }
 
   const Stream& find_stream(const Recording& recording, const SkinLayout& layout) const {
-    const Stream* stream = nullptr;
-    if (stream_.empty()) {
-      if (!recording.streams.empty()) stream = &recording.streams.front();
-    } else {
-      stream = recording.find_stream(stream_);
-    }
-    if (stream == nullptr)
-      throw Error("recording " + recording.id,
-                  stream_.empty() ? "has no streams" : "has no stream '" + stream_ + "'");
-    if (stream->channel_count() != static_cast<int64_t>(layout.channels.size()))
+    const Stream* stream = &pipeline_stream(recording, stream_);
+    if (!in_layout_order(*stream, layout))
       throw Error("recording " + recording.id + " stream " + stream->name,
-                  std::to_string(stream->channel_count()) + " channels, but layout " + layout.id +
-                      " has " + std::to_string(layout.channels.size()));
+                  std::to_string(stream->channel_count()) + " channels, not layout " + layout.id +
+                      "'s " + std::to_string(layout.channels.size()) +
+                      " in order (preprocess() puts them in order)");
     if (!(stream->rate_hz > 0.0))
       throw Error("recording " + recording.id + " stream " + stream->name,
                   "no sample rate, which the integral needs");

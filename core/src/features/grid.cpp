@@ -494,8 +494,9 @@ class GridExtractor : public FeatureExtractor {
   }
 
   Recording preprocess(const Recording& recording, const SkinLayout& layout) const override {
-    Recording prepared = recording;
-    add_grid_rest(prepared, find_stream(recording, layout), map_for(layout));
+    Recording prepared = with_layout_stream(recording, layout, stream_);
+    prepared.streams.reserve(prepared.streams.size() + 1);  // the stream stays valid below
+    add_grid_rest(prepared, find_stream(prepared, layout), map_for(layout));
     return prepared;
   }
 
@@ -536,16 +537,12 @@ class GridExtractor : public FeatureExtractor {
   }
 
   const Stream& find_stream(const Recording& recording, const SkinLayout& layout) const {
-    const Stream* stream = stream_.empty()
-                               ? (recording.streams.empty() ? nullptr : &recording.streams.front())
-                               : recording.find_stream(stream_);
-    if (stream == nullptr)
-      throw Error("recording " + recording.id,
-                  stream_.empty() ? "has no streams" : "has no stream '" + stream_ + "'");
-    if (stream->channel_count() != static_cast<int64_t>(layout.channels.size()))
+    const Stream* stream = &pipeline_stream(recording, stream_);
+    if (!in_layout_order(*stream, layout))
       throw Error("recording " + recording.id + " stream " + stream->name,
-                  std::to_string(stream->channel_count()) + " channels, but layout " + layout.id +
-                      " has " + std::to_string(layout.channels.size()));
+                  std::to_string(stream->channel_count()) + " channels, not layout " + layout.id +
+                      "'s " + std::to_string(layout.channels.size()) +
+                      " in order (preprocess() puts them in order)");
     if (!(stream->rate_hz > 0.0))
       throw Error("recording " + recording.id + " stream " + stream->name,
                   "no sample rate, which speeds need");

@@ -61,6 +61,23 @@ class FeatureExtractor {
   virtual std::string layout_note(const SkinLayout& layout) const;
 };
 
+// The stream a pipeline reads: the one named `name`, else the recording's first. Throws
+// tactile::Error naming the recording when it has none.
+const Stream& pipeline_stream(const Recording& recording, const std::string& name);
+// For each layout channel, its column in `stream` (-1: the stream lacks it). When every
+// stream channel is named as a layout channel they are found by name (a stream may lack a
+// layout's virtual channels); otherwise the stream's channels are the layout's in order.
+// Throws naming the stream when neither holds.
+std::vector<int64_t> layout_columns(const Stream& stream, const SkinLayout& layout);
+// Whether `stream`'s columns are the layout's channels in order.
+bool in_layout_order(const Stream& stream, const SkinLayout& layout);
+// `stream` with one column per layout channel in the layout's order; a channel the stream
+// lacks (a virtual channel that a skin's own preprocessing computes) reads as 0.
+Stream layout_ordered(const Stream& stream, const SkinLayout& layout);
+// `recording` with its pipeline stream (as pipeline_stream finds it) in the layout's order.
+Recording with_layout_stream(const Recording& recording, const SkinLayout& layout,
+                             const std::string& name);
+
 // The registered pipelines: kaboli, naya, silvera_tawil, koo, tsa_event, fur,
 // robovie_xcorr, flux, generic, raw, rocket, grid, auto (the stack of generic, grid, raw and
 // rocket for auto to choose among), then those added by
