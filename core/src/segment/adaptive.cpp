@@ -252,14 +252,14 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
     usable_channel[static_cast<size_t>(c)] = 1;
   }
   // A channel that no touch reached clearly (no tail either way, as most taxels of a large
-  // grid) takes the direction of the skin: the one at least three quarters of the channels
-  // with a direction share. Oscillating films have none, and keep both ways.
+  // grid) takes the direction of the skin: the one at least nine in ten of the channels with
+  // a direction share. Oscillating films have none, and keep both ways.
   {
     int64_t rising = 0, falling = 0;
     for (int direction : directions) rising += direction > 0, falling += direction < 0;
-    const int skin_direction = 4 * rising >= 3 * (rising + falling) && rising > 0     ? 1
-                               : 4 * falling >= 3 * (rising + falling) && falling > 0 ? -1
-                                                                                      : 0;
+    const int skin_direction = 10 * rising >= 9 * (rising + falling) && rising > 0     ? 1
+                               : 10 * falling >= 9 * (rising + falling) && falling > 0 ? -1
+                                                                                       : 0;
     for (int& direction : directions)
       if (direction == 0) direction = skin_direction;
   }
