@@ -28,7 +28,8 @@ accuracy() {  # features.csv classifier -> "81.4"
   echo "# Whole-grid features against per-taxel columns (simulated pressure grids)"
   echo
   echo "Made by \`bench/grid_bench.sh\` (seed $SEED) on $(date -u +%Y-%m-%d); accuracy over"
-  echo "every touch, leave one subject out (5 subjects, 70 touches each: 7 gestures x 10)."
+  echo "every touch, leave one subject out (5 subjects, 7 gestures x 10 each; each of a pat's 1-3"
+  echo "pats is its own touch, so 70-90 touches a subject)."
   if [ "$EVALUATOR" != "$TACTILE" ]; then
     echo "Tables evaluated by \`$EVALUATOR\` (git $(git -C "$(dirname "$EVALUATOR")/../.." log -1 --format=%h 2>/dev/null || echo '?'))."
   fi

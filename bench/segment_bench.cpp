@@ -7,8 +7,8 @@
 //                             [--faults realistic|SPEC] [skin ...]
 //
 // Without skins: every skin with a simulator (skins/skin.h), so a new skin joins the table
-// by being registered, and the pressure grid grid:19x27 (sim/grid_sim.h); a skin id given on
-// the line (e.g. grid:16x16) is simulated instead.
+// by being registered, and the pressure grids grid:16x16 and grid:19x27 (sim/grid_sim.h); a skin id
+// given on the line (e.g. grid:16x16) is simulated instead.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
     }
     if (skins.empty()) {
       skins = tactile::simulated_skin_ids();
+      skins.push_back("grid:16x16");
       skins.push_back("grid:19x27");
     }
     std::printf(

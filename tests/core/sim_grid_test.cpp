@@ -2,8 +2,11 @@
 // the plan says and at places that vary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <map>
 #include <set>
 
 #include "tactile/error.h"
@@ -41,7 +44,6 @@ TEST(GridSimulator, SameSeedSubjectAndTrialGiveIdenticalBytes) {
 TEST(GridSimulator, LabelsAreEveryGestureRepetitionsTimesInOrderInsideTheRecording) {
   const SkinLayout layout = make_grid_layout(16, 16);
   const SimulatedTrial trial = simulate_grid_trial(layout, grid_options(4), 0, 0);
-  ASSERT_EQ(trial.labels.size(), 7u * 4u);
   std::map<std::string, int> per_class;
   double previous_end = 0.0;
   for (const Label& label : trial.labels) {
@@ -54,8 +56,55 @@ TEST(GridSimulator, LabelsAreEveryGestureRepetitionsTimesInOrderInsideTheRecordi
   }
   EXPECT_LT(previous_end, trial.recording.duration());
   ASSERT_EQ(per_class.size(), 7u);
-  for (const std::string& name : grid_gesture_classes()) EXPECT_EQ(per_class[name], 4) << name;
+  // A pat is one to three contacts, each its own touch; every other gesture is one.
+  for (const std::string& name : grid_gesture_classes())
+    if (name != "pat") {
+      EXPECT_EQ(per_class[name], 4) << name;
+    }
+  EXPECT_GE(per_class["pat"], 4);
+  EXPECT_LE(per_class["pat"], 12);
   EXPECT_EQ(trial.recording.layout_id, "grid:16x16");
+}
+
+TEST(GridSimulator, EachPatIsItsOwnTouchAndTheGridReleasesBetweenThem) {
+  const SkinLayout layout = make_grid_layout(16, 16);
+  const SimulatedTrial trial = simulate_grid_trial(layout, grid_options(10), 1, 0);
+  const Stream& stream = trial.recording.streams.at(0);
+  // The grid's summed counts per frame; its rest drifts, so each pair is measured from the
+  // quietest frame within 5 s.
+  const Eigen::VectorXd total = stream.samples.cast<double>().rowwise().sum();
+  const auto frame_of = [&](double t) {
+    return std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::llround(t * kGridRateHz)), 0,
+                                    total.size() - 1);
+  };
+  int pats = 0, close = 0, tickles = 0;
+  for (size_t k = 0; k < trial.labels.size(); ++k) {
+    const Label& label = trial.labels[k];
+    tickles += label.class_name == "tickle";
+    if (label.class_name != "pat") continue;
+    ++pats;
+    if (k + 1 == trial.labels.size() || trial.labels[k + 1].class_name != "pat") continue;
+    const Label& next = trial.labels[k + 1];
+    if (next.t0 - label.t1 > 0.4) continue;
+    // Two pats of one gesture: between the two presses the grid comes back near its rest.
+    ++close;
+    const Eigen::Index from = frame_of(label.t0 - 5.0);
+    const double quiet = total.segment(from, frame_of(next.t1 + 5.0) - from + 1).minCoeff();
+    double low = std::numeric_limits<double>::infinity();
+    for (Eigen::Index t = frame_of(label.t1 - 0.04); t <= frame_of(next.t0 + 0.04); ++t)
+      low = std::min(low, total(t) - quiet);
+    const double first =
+        total.segment(frame_of(label.t0), frame_of(label.t1) - frame_of(label.t0) + 1).maxCoeff() -
+        quiet;
+    const double second =
+        total.segment(frame_of(next.t0), frame_of(next.t1) - frame_of(next.t0) + 1).maxCoeff() -
+        quiet;
+    EXPECT_LT(low, 0.5 * std::min(first, second)) << label.t0;
+  }
+  EXPECT_GT(pats, 10);  // some pats have two or three contacts
+  EXPECT_GE(close, 3);
+  // A tickle's fingers touch at once: one touch.
+  EXPECT_EQ(tickles, 10);
 }
 
 TEST(GridSimulator, EveryValueIsAWholeTenBitCountAndRestLevelsDifferPerTaxel) {

@@ -19,6 +19,7 @@ struct AdaptiveOptions {
   double level = 0.3;              // share of the touch level a touch needs somewhere
   double dip = 0.2;                // a release: the excursion below this share of both peaks
   double baseline_seconds = 20.0;  // the running median the rest follows
+  double opening_seconds = 4.0;    // the lower envelope the rest of a one-way channel follows
   double envelope_seconds = 0.03;  // a taxel's excursion is its largest over this span
   double stuck_seconds = 1.0;      // an unchanging run this long is a stuck taxel
   double quiet_seconds = 0.02;     // gaps this short inside a touch are bridged
@@ -28,8 +29,8 @@ struct AdaptiveOptions {
 
 AdaptiveOptions adaptive_options(const Parameters& parameters) {
   parameters.expect_only({"margin", "taxels", "alone", "level", "dip", "baseline_seconds",
-                          "envelope_seconds", "stuck_seconds", "quiet_seconds", "max_seconds",
-                          "min_seconds"});
+                          "opening_seconds", "envelope_seconds", "stuck_seconds", "quiet_seconds",
+                          "max_seconds", "min_seconds"});
   AdaptiveOptions options;
   options.margin = parameters.number("margin", options.margin);
   options.taxels = parameters.integer("taxels", options.taxels);
@@ -37,6 +38,7 @@ AdaptiveOptions adaptive_options(const Parameters& parameters) {
   options.level = parameters.number("level", options.level);
   options.dip = parameters.number("dip", options.dip);
   options.baseline_seconds = parameters.number("baseline_seconds", options.baseline_seconds);
+  options.opening_seconds = parameters.number("opening_seconds", options.opening_seconds);
   options.envelope_seconds = parameters.number("envelope_seconds", options.envelope_seconds);
   options.stuck_seconds = parameters.number("stuck_seconds", options.stuck_seconds);
   options.quiet_seconds = parameters.number("quiet_seconds", options.quiet_seconds);
@@ -50,6 +52,8 @@ AdaptiveOptions adaptive_options(const Parameters& parameters) {
   if (!(options.dip >= 0 && options.dip < 1)) throw Error("parameter dip", "must lie in [0, 1)");
   if (!(options.baseline_seconds > 0))
     throw Error("parameter baseline_seconds", "must be positive");
+  if (!(options.opening_seconds >= 0))
+    throw Error("parameter opening_seconds", "must not be negative");
   if (!(options.envelope_seconds >= 0))
     throw Error("parameter envelope_seconds", "must not be negative");
   if (!(options.stuck_seconds > 0)) throw Error("parameter stuck_seconds", "must be positive");
@@ -64,7 +68,8 @@ AdaptiveOptions adaptive_options(const Parameters& parameters) {
 // the time keeps its rest; a press shorter than the window's share leaves it where it was;
 // drift slower than the window moves it.
 std::vector<float> adaptive_baseline(const float* column, int64_t samples, int64_t block,
-                                     int64_t window, double quantile) {
+                                     int64_t window, double quantile, int direction,
+                                     int64_t opening) {
   const int64_t blocks = (samples + block - 1) / block;
   std::vector<float> block_median(static_cast<size_t>(blocks), 0.0f);
   std::vector<float> values;
@@ -83,7 +88,43 @@ std::vector<float> adaptive_baseline(const float* column, int64_t samples, int64
       block_median[static_cast<size_t>(b)] = block_median[static_cast<size_t>(b + 1)];
   std::vector<float> running(static_cast<size_t>(blocks));
   const int64_t half = window / 2;
-  for (int64_t b = 0; b < blocks; ++b) {
+  if (direction != 0 && opening > 0) {
+    // The lower envelope (upper, for channels that touches lower): a morphological opening of
+    // the block medians, a running minimum then a running maximum over `opening` blocks,
+    // centred and cut short at the ends. It keeps any drift that rises or falls steadily, or
+    // bends away from the touches, where it is, at every frame from the first to the last,
+    // and removes every press shorter than the window.
+    // Past each end the block medians are mirrored through the end (2 x(end) - x(end - k)),
+    // so that a drift still rising or falling there keeps its slope to the last frame.
+    const float sign = direction > 0 ? 1.0f : -1.0f;
+    const int64_t reach = opening / 2;
+    const int64_t padded = blocks + 4 * reach;
+    std::vector<float> extended(static_cast<size_t>(padded)), eroded(static_cast<size_t>(padded));
+    for (int64_t b = 0; b < padded; ++b) {
+      const int64_t at = b - 2 * reach;
+      const float value =
+          at < 0 ? 2.0f * block_median.front() -
+                       block_median[static_cast<size_t>(std::min(blocks - 1, -at))]
+          : at >= blocks
+              ? 2.0f * block_median.back() -
+                    block_median[static_cast<size_t>(std::max<int64_t>(0, 2 * (blocks - 1) - at))]
+              : block_median[static_cast<size_t>(at)];
+      extended[static_cast<size_t>(b)] = sign * value;
+    }
+    for (int64_t b = 0; b < padded; ++b) {
+      float least = std::numeric_limits<float>::infinity();
+      for (int64_t u = std::max<int64_t>(0, b - reach); u <= std::min(padded - 1, b + reach); ++u)
+        least = std::min(least, extended[static_cast<size_t>(u)]);
+      eroded[static_cast<size_t>(b)] = least;
+    }
+    for (int64_t b = 0; b < blocks; ++b) {
+      float most = -std::numeric_limits<float>::infinity();
+      for (int64_t u = b + reach; u <= b + 3 * reach; ++u)
+        most = std::max(most, eroded[static_cast<size_t>(u)]);
+      running[static_cast<size_t>(b)] = sign * most;
+    }
+  }
+  for (int64_t b = 0; b < blocks && !(direction != 0 && opening > 0); ++b) {
     // The window keeps its length at the ends of the recording.
     int64_t from = std::max<int64_t>(0, b - half);
     const int64_t to = std::min(blocks, from + window);
@@ -166,6 +207,8 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
   const int64_t window = std::max<int64_t>(3, std::llround(options.baseline_seconds / 0.25));
   const int64_t envelope = std::llround(options.envelope_seconds * rate / 2.0);
   const int64_t stuck = frames_of(options.stuck_seconds);
+  const int64_t opening = std::llround(options.opening_seconds / 0.25);
+  const int64_t peak_frames = std::llround(options.min_seconds * rate);
   const float on = static_cast<float>(options.margin * 3.0);  // in noise sigmas
 
   // Each channel's excursion from its running rest, in its own noise sigmas (1.4826 MAD of
@@ -174,11 +217,15 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
   std::vector<std::vector<float>> score(static_cast<size_t>(channels));
   std::vector<float> residual(static_cast<size_t>(samples));
   std::vector<float> deviations;
+  std::vector<std::vector<float>> kept_columns(static_cast<size_t>(channels));
+  std::vector<int> directions(static_cast<size_t>(channels), 0);
+  std::vector<uint8_t> usable_channel(static_cast<size_t>(channels), 0);
   for (int c = 0; c < channels; ++c) {
     // Runs of one unchanging value for stuck_seconds or more: a stuck or dead taxel. They
     // count as missing everywhere below (rest, direction, noise) and never as a touch.
     const float* raw = stream.samples.col(c).data();
-    std::vector<float> kept(raw, raw + samples);
+    std::vector<float>& kept = kept_columns[static_cast<size_t>(c)];
+    kept.assign(raw, raw + samples);
     for (int64_t t = 0; t < samples;) {
       int64_t end = t + 1;
       while (end < samples && raw[end] == raw[t]) ++end;
@@ -187,21 +234,46 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
       t = end;
     }
     const float* column = kept.data();
-    // Which way touches move the channel: the side of its median with the longer tail.
+    // Which way touches move the channel: the side of its median with the longer tail, once
+    // a running median over the opening window is taken off (drift has no tail of its own).
+    const std::vector<float> centred =
+        adaptive_baseline(column, samples, block, opening > 0 ? opening : window, 0.5, 0, 0);
     deviations.clear();
     for (int64_t t = 0; t < samples; ++t)
-      if (std::isfinite(column[t])) deviations.push_back(column[t]);
+      if (std::isfinite(column[t]))
+        deviations.push_back(column[t] - centred[static_cast<size_t>(t)]);
     if (deviations.size() < 3) continue;
     const float middle = stats::median(deviations);
     const size_t tail = (deviations.size() - 1) / 200;
     const float lowest = stats::nth_smallest(deviations, tail);
     const float highest = stats::nth_smallest(deviations, deviations.size() - 1 - tail);
     const float up = highest - middle, down = middle - lowest;
-    const int direction = up > 2.0f * down ? 1 : down > 2.0f * up ? -1 : 0;
+    directions[static_cast<size_t>(c)] = up > 2.0f * down ? 1 : down > 2.0f * up ? -1 : 0;
+    usable_channel[static_cast<size_t>(c)] = 1;
+  }
+  // A channel that no touch reached clearly (no tail either way, as most taxels of a large
+  // grid) takes the direction of the skin: the one at least nine in ten of the channels with
+  // a direction share. Oscillating films have none, and keep both ways.
+  {
+    int64_t rising = 0, falling = 0;
+    for (int direction : directions) rising += direction > 0, falling += direction < 0;
+    const int skin_direction = 10 * rising >= 9 * (rising + falling) && rising > 0     ? 1
+                               : 10 * falling >= 9 * (rising + falling) && falling > 0 ? -1
+                                                                                       : 0;
+    for (int& direction : directions)
+      if (direction == 0) direction = skin_direction;
+  }
+  std::vector<float> sigmas(static_cast<size_t>(channels), 0.0f);
+  for (int c = 0; c < channels; ++c) {
+    if (!usable_channel[static_cast<size_t>(c)]) continue;
+    const float* column = kept_columns[static_cast<size_t>(c)].data();
+    const int direction = directions[static_cast<size_t>(c)];
     const std::vector<float> rest = adaptive_baseline(column, samples, block, window,
                                                       direction > 0   ? 0.25
                                                       : direction < 0 ? 0.75
-                                                                      : 0.5);
+                                                                      : 0.5,
+                                                      direction, opening);
+
     deviations.clear();
     for (int64_t t = 0; t < samples; ++t) {
       residual[static_cast<size_t>(t)] =
@@ -220,6 +292,7 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
       if (deviations.size() < 3) continue;
       sigma = stats::median(deviations);
     }
+    sigmas[static_cast<size_t>(c)] = sigma;
     std::vector<float>& z = score[static_cast<size_t>(c)];
     z.assign(static_cast<size_t>(samples), 0.0f);
     // One-sided for a channel that touches move one way: the other way is no touch.
@@ -251,8 +324,22 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
       z = std::move(closed);
     }
   }
+  // A channel with almost no noise of its own (a tenth of the median channel's, or less) is
+  // stuck under a drifting offset, or dead: it never counts.
+  {
+    std::vector<float> noises;
+    for (int c = 0; c < channels; ++c)
+      if (!score[static_cast<size_t>(c)].empty()) noises.push_back(sigmas[static_cast<size_t>(c)]);
+    if (noises.size() >= 3) {
+      const float typical_noise = stats::median(noises);
+      for (int c = 0; c < channels; ++c)
+        if (sigmas[static_cast<size_t>(c)] < 0.1f * typical_noise)
+          score[static_cast<size_t>(c)].clear();
+    }
+  }
 
-  // The touch level: each moving channel's 99.9th percentile; the median of those stands in
+  // The touch level: each moving channel's peak, the highest z it holds for min_seconds (a
+  // channel touched once, briefly, keeps its press's level); the median of those stands in
   // for channels that only a resting hand reached. A touch needs, somewhere, `taxels` channels
   // past `level` times that; a low broad press between touches never gets there.
   std::vector<float> high(static_cast<size_t>(channels), 0.0f);
@@ -263,7 +350,8 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
     if (z.empty()) continue;
     ++usable;
     std::vector<float> copy = z;
-    const auto index = static_cast<size_t>(0.999 * static_cast<double>(copy.size() - 1));
+    const auto index = static_cast<size_t>(std::max<int64_t>(
+        0, static_cast<int64_t>(copy.size()) - std::max<int64_t>(1, peak_frames)));
     high[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
     if (high[static_cast<size_t>(c)] > on) levels.push_back(high[static_cast<size_t>(c)]);
   }

@@ -64,10 +64,10 @@ GridHabits draw_grid_habits(uint64_t seed, int subject) {
   return habits;
 }
 
-// The patches of one touch starting at `start`; returns its end.
+// The patches of one gesture starting at `start`; returns its end. Its contacts (grid_contacts)
+// are its touches.
 double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
-                   const GridHabits& habits, Random& random, std::vector<Patch>& patches,
-                   GridTouch& touch) {
+                   const GridHabits& habits, Random& random, std::vector<Patch>& patches) {
   const double last_row = static_cast<double>(rows - 1),
                last_column = static_cast<double>(columns - 1);
   // This touch's size, force and pace: wide and overlapping between gestures, as people vary.
@@ -182,14 +182,40 @@ double add_gesture(int gesture, double start, int64_t rows, int64_t columns,
     default:
       throw Error("grid simulator", "no gesture " + std::to_string(gesture));
   }
-  touch.gesture = gesture;
-  touch.t0 = start;
-  touch.t1 = end;
-  touch.row = row;
-  touch.column = column;
-  touch.radius = std::max(patches.back().along, patches.back().across);
-  touch.force = patches.back().force;
   return end;
+}
+
+// The touches of one gesture made of patches[first...]: a contact is a set of patches that
+// overlap in time (a tickle's fingers); a release between two patches (a pat's pats) is a
+// boundary, so each contact is its own labelled touch of the gesture's class (issue 26: "the
+// release between them is the boundary, however short").
+void add_grid_contacts(int gesture, const std::vector<Patch>& patches, size_t first,
+                       std::vector<GridTouch>& touches) {
+  std::vector<size_t> order;
+  for (size_t k = first; k < patches.size(); ++k) order.push_back(k);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return patches[a].onset < patches[b].onset; });
+  const size_t before = touches.size();
+  for (size_t k : order) {
+    const Patch& patch = patches[k];
+    const double end = patch.onset + patch.duration;
+    if (touches.size() > before && patch.onset < touches.back().t1) {
+      GridTouch& touch = touches.back();
+      touch.t1 = std::max(touch.t1, end);
+      touch.radius = std::max(patch.along, patch.across);
+      touch.force = patch.force;
+      continue;
+    }
+    GridTouch touch;
+    touch.gesture = gesture;
+    touch.t0 = patch.onset;
+    touch.t1 = end;
+    touch.row = patch.row0;
+    touch.column = patch.column0;
+    touch.radius = std::max(patch.along, patch.across);
+    touch.force = patch.force;
+    touches.push_back(touch);
+  }
 }
 
 // Pauses down to a fraction of a second, log-uniform up to a few seconds.
@@ -227,9 +253,9 @@ std::vector<GridTouch> play_grid_session(int64_t rows, int64_t columns,
   std::vector<GridTouch> touches;
   double t = random.uniform(1.5, 3.0);
   for (size_t k = 0; k < order.size(); ++k) {
-    GridTouch touch;
-    t = add_gesture(order[k], t, rows, columns, habits, random, patches, touch);
-    touches.push_back(touch);
+    const size_t first = patches.size();
+    t = add_gesture(order[k], t, rows, columns, habits, random, patches);
+    add_grid_contacts(order[k], patches, first, touches);
     const bool burst = order[k] == kTap && k + 1 < order.size() && order[k + 1] == kTap;
     const double pause =
         burst ? random.uniform(0.12, 0.35) * habits.pace : draw_pause(habits, random);

@@ -20,8 +20,10 @@ const std::vector<std::string>& grid_gesture_classes();
 // The sample rate of the simulated grid, Hz.
 inline constexpr double kGridRateHz = 25.0;
 
-// One labelled touch as planned: the gesture, when, and where its (first) contact patch is
-// centred when the touch starts, in taxel units (row, column; 0 is the first taxel's centre).
+// One labelled touch as planned: a contact (patches overlapping in time; a release between
+// two patches of a gesture, as between a pat's pats, makes two touches of that gesture), when,
+// and where its first patch is centred when the touch starts, in taxel units (row, column; 0
+// is the first taxel's centre).
 struct GridTouch {
   int gesture = 0;  // index into grid_gesture_classes()
   double t0 = 0.0, t1 = 0.0;
