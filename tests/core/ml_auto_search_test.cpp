@@ -134,6 +134,24 @@ TEST(SuccessiveHalving, WideTablesAlsoTryTheSelectedColumns) {
   EXPECT_EQ(restored->scores(dataset.features), picker->scores(dataset.features));
 }
 
+// Full-covariance models are tried whole only up to their catalog widest; a wider table gives
+// them its selected columns alone (a 600 x 600 covariance is no candidate worth its time).
+TEST(SuccessiveHalving, ACandidateWiderThanItsWidestRunsOnlyOnSelectedColumns) {
+  EXPECT_EQ(widest_columns("qda:ridge=1"), 500);
+  EXPECT_EQ(widest_columns("knn"), 0);
+  const Dataset dataset = one_informative_column(60, 600, 7, 5);
+  auto picker = make_classifier("auto:candidates=qda|knn,inner=kfold:3");
+  picker->fit(dataset.features, labels_of(dataset), 2, 1);
+  const auto& candidates = dynamic_cast<const GridSearchClassifier&>(*picker).candidates();
+  ASSERT_EQ(candidates.size(), 4u);
+  EXPECT_EQ(candidates[0].specification, "qda");
+  EXPECT_EQ(candidates[0].rows, 0) << "qda ran on all 600 columns";
+  EXPECT_LT(candidates[0].inner_accuracy, 0.0);
+  EXPECT_EQ(candidates[2].specification, "select:k=15,base=qda");
+  EXPECT_GT(candidates[2].rows, 0);
+  EXPECT_GT(candidates[1].rows, 0);  // knn has no widest: it ran whole
+}
+
 TEST(AutoBlocks, SearchesTheBlocksOfAStackedTableAndNamesTheChosenPipeline) {
   // Columns 0-9 are noise ("noise/"), 10-19 hold the class ("useful/").
   Dataset dataset = one_informative_column(60, 20, 14, 8);

@@ -227,9 +227,11 @@ void GridSearchClassifier::fit(const Matrix& x, const std::vector<int>& y, int c
 
 size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector<int>& y,
                                               int class_count, uint64_t seed) {
-  // Columns that outnumber the rows: each candidate also runs on the k columns that best
-  // separate the classes of the training rows (chosen inside every inner fold).
+  // Columns that outnumber the rows, or more than a candidate takes whole (its catalog
+  // widest): the candidate also runs on the k columns that best separate the classes of the
+  // training rows (chosen inside every inner fold); on more than its widest, only so.
   candidates_.resize(listed_count_);
+  std::vector<bool> too_wide(listed_count_, false);
   for (size_t i = 0; i < listed_count_; ++i) {
     const AutoBlock& block = candidate_blocks_[i];
     const int64_t width = block.first < 0 ? x.cols() : block.last - block.first + 1;
@@ -237,10 +239,13 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
       throw Error("classifier auto", "blocks=" + blocks_ + ": block " + block.name +
                                          " ends at column " + std::to_string(block.last) +
                                          ", the table has " + std::to_string(x.cols()));
-    if (width <= x.rows()) continue;
-    const int64_t k = std::clamp<int64_t>(x.rows() / 4, 10, width);
     std::string base = block.first < 0 ? candidates_[i].specification
                                        : base_of_select(candidates_[i].specification);
+    const int64_t widest = widest_columns(base);
+    too_wide[i] = widest > 0 && width > widest;
+    if (width <= x.rows() && !too_wide[i]) continue;
+    int64_t k = std::clamp<int64_t>(x.rows() / 4, 10, width);
+    if (widest > 0) k = std::min(k, widest);
     std::replace(base.begin(), base.end(), ',', ';');
     const std::string columns = block.first < 0 ? ""
                                                 : "columns=" + std::to_string(block.first) + "-" +
@@ -248,7 +253,14 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
     candidates_.push_back(
         {"select:" + columns + "k=" + std::to_string(k) + ",base=" + base, 0.0, 0});
   }
-  const std::vector<int64_t> sizes = rung_sizes(x.rows(), class_count, candidates_.size());
+  // The candidates that run: all but those too wide to run whole.
+  std::vector<size_t> alive;
+  for (size_t i = 0; i < candidates_.size(); ++i)
+    if (i >= listed_count_ || !too_wide[i])
+      alive.push_back(i);
+    else
+      candidates_[i].inner_accuracy = -1.0;
+  const std::vector<int64_t> sizes = rung_sizes(x.rows(), class_count, alive.size());
   // Rows of every rung: per class, one shuffled order, each rung taking a longer prefix of
   // it, so a rung's rows hold the smaller rungs' rows and the classes keep their shares.
   std::vector<std::vector<int64_t>> by_class(static_cast<size_t>(class_count));
@@ -256,8 +268,6 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
     by_class[static_cast<size_t>(y[static_cast<size_t>(r)])].push_back(r);
   std::mt19937_64 engine(derive_seed(seed, 1));
   for (std::vector<int64_t>& rows : by_class) shuffle(rows, engine);
-  std::vector<size_t> alive(candidates_.size());
-  std::iota(alive.begin(), alive.end(), size_t{0});
   const uint64_t inner_seed = derive_seed(seed, 0);
   for (size_t rung = 0; rung < sizes.size(); ++rung) {
     std::vector<int64_t> rows;

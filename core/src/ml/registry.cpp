@@ -37,7 +37,13 @@ struct ClassifierRow {
   const char* description;
   ClassifierFactory make;
   bool preset = true;  // false: a search or wrapper of other classifiers
+  int64_t widest = 0;  // ClassifierEntry::widest
 };
+
+// ClassifierEntry::widest of the full-covariance models, and of those that go over every
+// column many times (every node of every boosted tree; every neuron in every epoch).
+constexpr int64_t kWidestCovariance = 500;
+constexpr int64_t kWidestScanned = 2000;
 
 // Listed order is the order `tactile evaluate --list` prints.
 const std::vector<ClassifierRow>& classifier_table() {
@@ -96,23 +102,23 @@ const std::vector<ClassifierRow>& classifier_table() {
       {"boosted-trees",
        "XGBoost gradient boosted trees, softprob (rounds=100, depth=6, eta=0.3, subsample, "
        "colsample)",
-       make_boosted_trees_classifier},
+       make_boosted_trees_classifier, true, kWidestScanned},
       {"logitboost", "LogitBoost with stumps (learners=10, learning_rate=1; Weka defaults)",
        make_logitboost_classifier},
       {"gaussian-ml",
        "Gaussian maximum likelihood, full covariance per class, equal priors (smart fur)",
-       make_gaussian_ml_classifier},
+       make_gaussian_ml_classifier, true, kWidestCovariance},
       {"gaussian-nb", "MATLAB Gaussian Naive Bayes (var_smoothing, priors)",
        make_gaussian_nb_classifier},
       {"kernel-nb", "MATLAB Kernel Naive Bayes: normal kernel, unbounded support, Silverman width",
        make_kernel_nb_classifier},
       {"qda", "MATLAB Quadratic Discriminant, regularised when singular (ridge, priors)",
-       make_qda_classifier},
+       make_qda_classifier, true, kWidestCovariance},
       {"clafic",
        "CLAFIC subspace method: c1 subspace size, c2 sensor banks, tau fidelity -> unknown",
        make_clafic_classifier},
       {"som", "Kohonen SOM (7x7) with neuron-to-class regions; rows, columns, epochs, schedules",
-       make_som_classifier},
+       make_som_classifier, true, kWidestScanned},
       {"ridge",
        "one-vs-rest ridge on z-scores, alpha by exact leave-one-out over 10^-3..10^3 (as "
        "scikit-learn's RidgeClassifierCV; alpha_min, alpha_max, alphas)",
@@ -156,8 +162,15 @@ std::vector<std::string> classifier_names() {
 std::vector<ClassifierEntry> classifier_catalog() {
   std::vector<ClassifierEntry> entries;
   for (const ClassifierRow& row : classifier_table())
-    entries.push_back({row.name, row.description, row.preset});
+    entries.push_back({row.name, row.description, row.preset, row.widest});
   return entries;
+}
+
+int64_t widest_columns(const std::string& specification) {
+  const std::string name = specification.substr(0, specification.find(':'));
+  for (const ClassifierRow& row : classifier_table())
+    if (name == row.name) return row.widest;
+  return 0;
 }
 
 // The document holds what make_classifier needs to rebuild the same classifier (name and

@@ -79,8 +79,15 @@ struct ClassifierEntry {
   // A classifier of its own with working defaults (Train all runs it, auto may pick it); false
   // for the searches and wrappers that need another classifier (grid-search, auto, select).
   bool preset = true;
+  // The most columns auto tries it on whole (0: no limit): past them its training grows out
+  // of proportion (a full covariance is P x P and its inverse P^3; boosting scans every column
+  // in every node of hundreds of trees), so auto gives it wider blocks only through select.
+  int64_t widest = 0;
 };
 std::vector<ClassifierEntry> classifier_catalog();
+// The catalog's widest of the classifier a specification names ("qda:ridge=1" -> qda's); 0
+// for an unknown name.
+int64_t widest_columns(const std::string& specification);
 // A model saved with save(), with its name and parameters, restored.
 std::unique_ptr<Classifier> load_classifier(const nlohmann::json& document);
 nlohmann::json save_classifier(const Classifier& classifier);
