@@ -8,14 +8,21 @@ folds, at every table shape; exits 1 when a checked row differs by more than --t
         --out bench/compare/PARITY.md
 
 Both sides run as whole processes (start to exit: reading the CSV, standardising, every fold),
-and their wall times are compared. Rows drawn at random on both sides (the 'auto' kernel
-scale's draw of 100 points per class, subspace-knn's subspaces) are shown for information and
-not checked. See README.md ("Parity").
+and their wall times are compared. Ours prints its plain report (no --json: no per-row scores,
+so the SVM fits no Platt sigmoids, as scikit-learn's SVC() fits none); the row
+"medium-gaussian-svm, probabilities" runs ours with --json (per-row scores: the sigmoids)
+against SVC(probability=True). Rows drawn at random on both sides (the 'auto' kernel scale's
+draw of 100 points per class, subspace-knn's subspaces) are shown for information and not
+checked. The tree rows are checked against the mean of scikit-learn over --tree-seeds values of
+random_state (its order of trying features, which decides between equally good splits), the
+spread shown. See README.md ("Parity").
 """
 import argparse
 import json
 import os
 import platform
+import re
+import resource
 import subprocess
 import sys
 import time
@@ -51,6 +58,10 @@ ROWS = [
     ("tree", "tree", True),
     ("medium-tree", "medium-tree", True),
 ]
+# Rows whose scores ours reports (--json): the SVM fits its Platt sigmoids, as
+# SVC(probability=True) does.
+SCORED_ROWS = {"medium-gaussian-svm, probabilities"}
+TREE_ROWS = {"tree", "medium-tree"}
 
 
 def imbalanced(rows, features, shares, seed):
@@ -146,12 +157,22 @@ def tables(args):
 
 
 def timed(command):
+    """(result, wall seconds); the child's CPU seconds (user + sys) go into result["cpu"]."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run(command, capture_output=True, text=True)
     seconds = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)}: {done.stderr.strip()[-600:]}")
-    return json.loads(done.stdout), seconds
+    if done.stdout.lstrip().startswith("{"):
+        return {**json.loads(done.stdout), "cpu": cpu}, seconds
+    # Our plain report: "accuracy    0.9322 (4661/5000 predictions, 93.22 %)".
+    found = re.search(r"^accuracy\s+\S+ \((\d+)/(\d+) predictions", done.stdout, re.M)
+    if not found:
+        raise RuntimeError(f"{' '.join(command)}: no accuracy in {done.stdout[:300]!r}")
+    return {"accuracy": int(found.group(1)) / int(found.group(2)), "cpu": cpu}, seconds
 
 
 def main():
@@ -164,6 +185,8 @@ def main():
                         help="rows of the large 30-feature table (default 20000)")
     parser.add_argument("--threads", type=int, default=0, help="ours: --threads (0: every core)")
     parser.add_argument("--tolerance", type=float, default=0.3, help="points")
+    parser.add_argument("--tree-seeds", type=int, default=6,
+                        help="tree rows: scikit-learn's mean over this many random_state values")
     parser.add_argument("--tables", nargs="*", help="table names (default: all)")
     parser.add_argument("--only", nargs="*", help="row names (default: all)")
     parser.add_argument("--out", help="write the markdown table here (PARITY.md)")
@@ -178,24 +201,28 @@ def main():
             ours, ours_seconds = timed(
                 [args.tactile, "evaluate", "--features", path, "--classifier", ours_spec,
                  "--protocol", "group:fold", "--seed", str(args.seed), "--threads",
-                 str(args.threads), "--json"])
+                 str(args.threads)] + (["--json"] if name in SCORED_ROWS else []))
             theirs, theirs_seconds = timed(
                 [sys.executable, os.path.join(HERE, "parity_sklearn.py"), "--features", path,
-                 "--row", name, "--seed", str(args.seed)])
+                 "--row", name, "--seed", str(args.seed)] +
+                (["--seeds", str(args.tree_seeds)] if name in TREE_ROWS else []))
             difference = 100.0 * (ours["accuracy"] - theirs["accuracy"])
             row = {"table": table, "rows": count, "features": features, "classes": classes,
                    "classifier": name, "ours_spec": ours_spec, "checked": checked,
                    "ours": ours["accuracy"], "sklearn": theirs["accuracy"],
                    "sklearn_plain": theirs["plain"], "difference": difference,
                    "ours_seconds": ours_seconds, "sklearn_seconds": theirs_seconds,
+                   "sklearn_seeds": theirs.get("seeds", []),
+                   "ours_cpu": ours["cpu"], "sklearn_cpu": theirs["cpu"],
                    "pass": not checked or abs(difference) <= args.tolerance}
             rows.append(row)
             print(f"{table:20s} {name:28s} ours {100 * row['ours']:6.2f} sklearn "
                   f"{100 * row['sklearn']:6.2f} ({100 * row['sklearn_plain']:6.2f} own rule) "
                   f"{difference:+5.2f}  {ours_seconds:7.2f} s vs {theirs_seconds:7.2f} s "
-                  f"{theirs_seconds / ours_seconds:5.2f}x  "
-                  f"{'ok' if row['pass'] else 'MISSED'}{'' if checked else ' (random)'}",
-                  flush=True)
+                  f"{theirs_seconds / ours_seconds:5.2f}x  CPU {ours['cpu']:6.2f} vs "
+                  f"{theirs['cpu']:6.2f} {theirs['cpu'] / max(ours['cpu'], 1e-9):5.2f}x  "
+                  f"{'ok' if row['pass'] else 'MISSED'}{'' if checked else ' (random)'}"
+                  f"{spread(row)}", flush=True)
             if args.raw:  # after every row, so that a stopped run keeps what it measured
                 with open(args.raw, "w") as handle:
                     json.dump(rows, handle, indent=1)
@@ -208,6 +235,15 @@ def main():
     return 1 if missed else 0
 
 
+def spread(row):
+    """' (sklearn over N seeds: lo-hi)' for rows checked against a mean over seeds."""
+    seeds = row.get("sklearn_seeds", [])
+    if len(seeds) < 2:
+        return ""
+    return (f" (sklearn over {len(seeds)} seeds: {100 * min(seeds):.2f}-"
+            f"{100 * max(seeds):.2f})")
+
+
 def write_markdown(rows, args):
     lines = [
         "# Parity with scikit-learn (bench/compare/parity.py)", "",
@@ -217,23 +253,29 @@ def write_markdown(rows, args):
         "column (parity_sklearn.py). Standardisation inside the fold on both sides (sample "
         "deviation). Times are whole processes, start to exit (reading the CSV included; "
         "ours with `--threads "
-        f"{args.threads}`{' = every core' if args.threads == 0 else ''}, scikit-learn's SVC "
-        "single-threaded as it is), one run on this machine "
+        f"{args.threads}`{' = every core' if args.threads == 0 else ''}, its plain report: no "
+        "per-row scores, so no SVM sigmoids, except the probabilities row (--json) against "
+        "SVC(probability=True); scikit-learn's SVC single-threaded as it is; CPU = user + sys "
+        "of the process), one run on this machine "
         f"({os.cpu_count()} cores, {platform.machine()}); ratio = scikit-learn's seconds / ours. "
         f"A checked row passes when |diff| <= {args.tolerance} points; rows marked random draw "
         "at random on both sides and are shown, not checked. k-NN rows: the reference is "
         "scikit-learn's neighbours with our tie rule (nearest neighbour among tied classes); "
-        "scikit-learn's own rule (lowest label) in the last column.", "",
+        "scikit-learn's own rule (lowest label) in the last column. Tree rows: against "
+        f"scikit-learn's mean over random_state {args.seed}..{args.seed + args.tree_seeds - 1} "
+        "(its tie order between equally good splits), the spread shown.", "",
         "| shape | classifier | ours % | sklearn % | diff | ours s | sklearn s | ratio | "
-        "check | sklearn own rule % |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---|---:|"]
+        "ours CPU s | sklearn CPU s | CPU ratio | check | sklearn own rule % |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|"]
     for r in rows:
         check = ("ok" if r["pass"] else "**missed**") if r["checked"] else "random"
         lines.append(
             f"| {r['table']} | {r['classifier']} | {100 * r['ours']:.2f} | "
             f"{100 * r['sklearn']:.2f} | {r['difference']:+.2f} | {r['ours_seconds']:.2f} | "
             f"{r['sklearn_seconds']:.2f} | {r['sklearn_seconds'] / r['ours_seconds']:.2f}x | "
-            f"{check} | {100 * r['sklearn_plain']:.2f} |")
+            f"{r['ours_cpu']:.2f} | {r['sklearn_cpu']:.2f} | "
+            f"{r['sklearn_cpu'] / max(r['ours_cpu'], 1e-9):.2f}x | "
+            f"{check}{spread(r)} | {100 * r['sklearn_plain']:.2f} |")
     lines.append("")
     with open(args.out + ".tmp", "w") as handle:
         handle.write("\n".join(lines))

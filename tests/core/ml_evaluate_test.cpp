@@ -84,6 +84,27 @@ TEST(Evaluate, LeaveOneOutAndLeaveOneSubjectOutPredictEveryRowOnce) {
   EXPECT_DOUBLE_EQ(loso.accuracy, 1.0);
 }
 
+// Without scores to report the SVM skips its sigmoids (Classifier::skip_scores): the same
+// predictions row by row, and the scores only when asked for.
+TEST(Evaluate, AnSvmPredictsTheSameWithAndWithoutScores) {
+  const Dataset dataset = blob_dataset({25, 25, 25}, 2, 9);
+  EvaluationControl control;
+  control.scores = true;
+  const Protocol protocol = Protocol::parse("kfold:5");
+  const EvaluationResult with = evaluate(dataset, "medium-gaussian-svm", protocol, 3, control);
+  control.scores = false;
+  const EvaluationResult without = evaluate(dataset, "medium-gaussian-svm", protocol, 3, control);
+  EXPECT_EQ(with.confusion, without.confusion);
+  ASSERT_EQ(with.rows.size(), without.rows.size());
+  bool some_score = false;
+  for (size_t row = 0; row < with.rows.size(); ++row) {
+    EXPECT_EQ(with.rows[row].predicted, without.rows[row].predicted) << row;
+    some_score = some_score || with.rows[row].score > 0.0;
+    EXPECT_EQ(without.rows[row].score, 0.0) << row;
+  }
+  EXPECT_TRUE(some_score);
+}
+
 TEST(Evaluate, ProgressCountsEveryFold) {
   const Dataset dataset = blob_dataset({10, 10}, 2, 4);
   std::vector<int> reported;

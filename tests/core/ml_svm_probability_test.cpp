@@ -303,6 +303,27 @@ TEST(SupportVectorMachine, ProbabilitiesChangeNoDecisionNorPrediction) {
   }
 }
 
+// An evaluation that reports no scores says so before the fit: the sigmoids (five more
+// trainings per pair) are left out, the votes and so the predictions stay as they are.
+TEST(SupportVectorMachine, SkippedScoresLeaveOutTheSigmoidsButNoPrediction) {
+  const OverlapSet set = pinwheel();
+  Matrix queries(41, 2);
+  for (int k = 0; k < 41; ++k) queries.row(k) << 0.3 * (k % 7 - 3), 0.2 * (k / 7 - 3);
+  for (const std::string& preset : svm_preset_names()) {
+    SupportVectorMachine with = probability_svm(preset);
+    SupportVectorMachine skipped = probability_svm(preset);
+    skipped.skip_scores();
+    with.fit(set.x, set.y, 3, 17);
+    skipped.fit(set.x, set.y, 3, 17);
+    EXPECT_TRUE(with.has_probabilities()) << preset;
+    EXPECT_FALSE(skipped.has_probabilities()) << preset;
+    EXPECT_EQ(skipped.decision_values(queries), with.decision_values(queries)) << preset;
+    EXPECT_EQ(skipped.predict(queries), with.predict(queries)) << preset;
+    // Its parameters still say what was asked for: the model is the same but for the scores.
+    EXPECT_EQ(specification_of(skipped), specification_of(with)) << preset;
+  }
+}
+
 //---- Save and load -------------------------------------------------------------------------
 
 TEST(SupportVectorMachine, SavedProbabilitiesComeBackExactly) {

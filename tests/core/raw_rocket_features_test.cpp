@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <set>
 
@@ -259,6 +260,60 @@ TEST(RocketFeatures, SameSeedSameRowOtherSeedOtherRowAndOneValuePerColumn) {
   EXPECT_FALSE(extractor->extract(SegmentInput{recording, layout, segment}).skip_reason.empty());
   EXPECT_THROW(make_rocket_extractor(Parameters::parse("features=50", "--params")), Error);
   EXPECT_THROW(make_rocket_extractor(Parameters::parse("samples=8", "--params")), Error);
+}
+
+// A series from a formula (no library generator), the same on every platform.
+Eigen::MatrixXf rocket_stored_series(int64_t length, int64_t channels, double phase) {
+  Eigen::MatrixXf series(length, channels);
+  for (int64_t t = 0; t < length; ++t)
+    for (int64_t c = 0; c < channels; ++c)
+      series(t, c) = static_cast<float>(std::sin(0.37 * static_cast<double>(t * (c + 1)) + phase) +
+                                        0.1 * static_cast<double>((t * 7 + c * 3) % 11) - 0.5);
+  return series;
+}
+
+// FNV-1a over the features' bits: any change of any feature changes it.
+uint64_t rocket_stored_hash(const std::vector<double>& features) {
+  uint64_t hash = 14695981039346656037ull;
+  for (double value : features) {
+    uint64_t bits = 0;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int byte = 0; byte < 8; ++byte) {
+      hash ^= (bits >> (8 * byte)) & 0xffu;
+      hash *= 1099511628211ull;
+    }
+  }
+  return hash;
+}
+
+// Stored outputs of the transform (computed before its speed-up of issue 26): a faster
+// transform must give the same features to the last bit, on one channel and on several, at
+// lengths that are and are not multiples of a vector width.
+TEST(RocketFeatures, TransformGivesTheStoredFeaturesBitForBit) {
+  struct Case {
+    int64_t length, channels, features;
+    uint64_t hash;
+    double sum;
+  };
+  const Case cases[] = {
+      {64, 1, 10000, 4499109686123017204ull, 4988.1324404761936},
+      {64, 3, 10000, 13879939409898969231ull, 5014.6904761904734},
+      {37, 5, 2000, 14657207450017863641ull, 973.22880561501177},
+      {9, 1, 84, 2753016954947004400ull, 40.444444444444436},
+      {100, 12, 10000, 3670866819462143039ull, 5039.1723505769714},
+  };
+  for (const Case& c : cases) {
+    const RocketPlan plan = plan_rocket(c.length, c.channels, c.features, 3, 2);
+    const std::vector<float> biases =
+        rocket_biases(plan, {rocket_stored_series(c.length, c.channels, 0.5),
+                             rocket_stored_series(c.length, c.channels, 1.7)});
+    std::vector<double> features(static_cast<size_t>(plan.feature_count()));
+    rocket_transform(plan, rocket_stored_series(c.length, c.channels, 0.0), biases, features);
+    double sum = 0.0;
+    for (double value : features) sum += value;
+    EXPECT_EQ(rocket_stored_hash(features), c.hash) << c.length << " x " << c.channels;
+    EXPECT_EQ(sum, c.sum) << c.length << " x " << c.channels;
+  }
 }
 
 }  // namespace

@@ -69,6 +69,7 @@ FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, in
   std::vector<int> train_classes;
   train_classes.reserve(fold.train.size());
   for (int64_t row : fold.train) train_classes.push_back(classes[static_cast<size_t>(row)]);
+  if (!with_scores) classifier->skip_scores();  // predict() only: no work for scores
   const Clock::time_point fit_start = Clock::now();
   classifier->fit(rows_of(dataset.features, fold.train), train_classes, class_count, seed);
   outcome.fit_seconds = seconds_since(fit_start);

@@ -411,7 +411,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       const LibsvmModel model(svm_train(&problem, &parameter));
       if (!model) throw Error(preset_, "libsvm returned no model");
       // The sigmoid's own draws, apart from the kernel scales' so that they stay as they were.
-      if (fit_probabilities_)
+      if (fit_probabilities_ && !skip_scores_)
         learner.sigmoid = cross_validated_sigmoid(
             problem, parameter, std::mt19937_64(derive_seed(seed, learners_.size())), preset_);
 
@@ -443,7 +443,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       learners_.push_back(std::move(learner));
     }
   }
-  probabilities_ = fit_probabilities_;
+  probabilities_ = fit_probabilities_ && !skip_scores_;
   fitted_ = true;
 }
 

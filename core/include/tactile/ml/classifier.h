@@ -46,6 +46,11 @@ class Classifier {
     Matrix scores;
   };
   virtual Decisions decide(const Matrix& x) const;
+  // Said before fit() by a caller that will ask this fit for predict() only (an evaluation
+  // that reports no scores): a classifier whose scores cost extra work at fit time may leave
+  // that work out (the SVM's Platt sigmoids: five more trainings per pair). predict() gives the
+  // same classes either way; scores() remain defined, possibly cruder (the SVM's vote shares).
+  virtual void skip_scores() {}
   virtual nlohmann::json save() const = 0;
   virtual void load(const nlohmann::json& model) = 0;
   // How much each feature column served the fitted model (the tree ensembles' mean decrease

@@ -100,6 +100,8 @@ class SupportVectorMachine : public Classifier {
   // The vote winner of every row (not the argmax of scores(): see above).
   std::vector<int> predict(const Matrix& x) const override;
   Decisions decide(const Matrix& x) const override;
+  // The next fit leaves out the Platt sigmoids (the votes, hence predict(), are the same).
+  void skip_scores() override { skip_scores_ = true; }
   nlohmann::json save() const override;
   void load(const nlohmann::json& model) override;
 
@@ -131,6 +133,7 @@ class SupportVectorMachine : public Classifier {
   KernelScale scale_;
   bool fit_probabilities_ = true;  // the `probability` parameter
   bool balanced_weights_ = false;  // the `weights` parameter: balanced or none
+  bool skip_scores_ = false;       // skip_scores(): no sigmoids whatever `probability` says
 
   bool fitted_ = false;
   int class_count_ = 0;
