@@ -6,7 +6,9 @@
 // Parameters: modality = a layout modality, "display" or "all" (default: every channel);
 // stream = the stream to read (default: the first); samples = points per channel (default
 // 32, at least 2); baseline = rest (default: minus the channel's rest level over the
-// recording, generic's quiet_level) or none; scale = none | global (default) | channel.
+// recording, generic's quiet_level) or none; scale = none | global (default) | channel;
+// series = channels (default: each chosen channel) | summary (raw_summary below) | auto
+// (summary above kGridTaxelsForGeneric taxels; rocket's default).
 //
 // Where each scaling happens. A pipeline turns one segment into one row and may use the
 // whole recording (preprocess()), never the other rows of the table:
