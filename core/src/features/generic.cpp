@@ -306,43 +306,6 @@ void add_channel_columns(const std::string& name, const std::string& what, const
                            std::to_string(kEnvelopeBins) + " equal parts of the segment, " + unit});
 }
 
-// A recording whose stream holds only some of the layout's channels, by name, as flux's 8
-// coils against its layout's 10 channels with two virtual sums: the stream rewritten in
-// layout order, a layout channel it lacks reading as 0 (as raw reads it). nullopt otherwise
-// (as many channels as the layout or more, unnamed ones, or one the layout does not have):
-// find_stream then judges the stream as it is.
-std::optional<Recording> generic_in_layout_order(const Recording& recording,
-                                                 const SkinLayout& layout,
-                                                 const std::string& stream_name) {
-  const Stream* stream = stream_name.empty()
-                             ? (recording.streams.empty() ? nullptr : &recording.streams.front())
-                             : recording.find_stream(stream_name);
-  if (stream == nullptr || stream->channels.empty() ||
-      stream->channel_count() >= static_cast<int64_t>(layout.channels.size()))
-    return std::nullopt;
-  for (const std::string& name : stream->channels)
-    if (layout.channel_index(name) < 0) return std::nullopt;
-  SampleMatrix samples =
-      SampleMatrix::Zero(stream->sample_count(), static_cast<Eigen::Index>(layout.channels.size()));
-  for (size_t channel = 0; channel < layout.channels.size(); ++channel) {
-    const auto found =
-        std::find(stream->channels.begin(), stream->channels.end(), layout.channels[channel].name);
-    if (found == stream->channels.end()) continue;
-    samples.col(static_cast<Eigen::Index>(channel)) =
-        stream->samples.col(found - stream->channels.begin());
-  }
-  Recording ordered = recording;
-  Stream& rewritten = ordered.streams[static_cast<size_t>(stream - recording.streams.data())];
-  rewritten.samples = std::move(samples);
-  rewritten.channels.clear();
-  rewritten.units.clear();
-  for (const Channel& channel : layout.channels) {
-    rewritten.channels.push_back(channel.name);
-    rewritten.units.push_back(channel.unit);
-  }
-  return ordered;
-}
-
 class GenericExtractor : public FeatureExtractor {
  public:
   GenericExtractor(std::string modality, double threshold, std::string stream,
@@ -439,7 +402,7 @@ class GenericExtractor : public FeatureExtractor {
   // Adds a one-sample stream with each channel's rest level over the whole recording, so
   // a segment inside a long press still knows where rest is.
   Recording preprocess(const Recording& given, const SkinLayout& layout) const override {
-    const std::optional<Recording> ordered = generic_in_layout_order(given, layout, stream_);
+    const std::optional<Recording> ordered = recording_in_layout_order(given, layout, stream_);
     const Recording& recording = ordered ? *ordered : given;
     const Stream& stream = find_stream(recording, layout);
     const ChannelPlan plan = plan_for(layout);
@@ -688,6 +651,38 @@ class GenericExtractor : public FeatureExtractor {
 };
 
 }  // namespace
+
+std::optional<Recording> recording_in_layout_order(const Recording& recording,
+                                                   const SkinLayout& layout,
+                                                   const std::string& stream_name) {
+  const Stream* stream = stream_name.empty()
+                             ? (recording.streams.empty() ? nullptr : &recording.streams.front())
+                             : recording.find_stream(stream_name);
+  if (stream == nullptr || stream->channels.empty() ||
+      stream->channel_count() >= static_cast<int64_t>(layout.channels.size()))
+    return std::nullopt;
+  for (const std::string& name : stream->channels)
+    if (layout.channel_index(name) < 0) return std::nullopt;
+  SampleMatrix samples =
+      SampleMatrix::Zero(stream->sample_count(), static_cast<Eigen::Index>(layout.channels.size()));
+  for (size_t channel = 0; channel < layout.channels.size(); ++channel) {
+    const auto found =
+        std::find(stream->channels.begin(), stream->channels.end(), layout.channels[channel].name);
+    if (found == stream->channels.end()) continue;
+    samples.col(static_cast<Eigen::Index>(channel)) =
+        stream->samples.col(found - stream->channels.begin());
+  }
+  Recording ordered = recording;
+  Stream& rewritten = ordered.streams[static_cast<size_t>(stream - recording.streams.data())];
+  rewritten.samples = std::move(samples);
+  rewritten.channels.clear();
+  rewritten.units.clear();
+  for (const Channel& channel : layout.channels) {
+    rewritten.channels.push_back(channel.name);
+    rewritten.units.push_back(channel.unit);
+  }
+  return ordered;
+}
 
 std::unique_ptr<FeatureExtractor> make_generic_extractor(const Parameters& parameters) {
   parameters.expect_only({"modality", "threshold", "stream", "per_channel"});

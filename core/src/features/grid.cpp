@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <set>
 
 #include "tactile/error.h"
@@ -494,8 +495,11 @@ class GridExtractor : public FeatureExtractor {
   }
 
   Recording preprocess(const Recording& recording, const SkinLayout& layout) const override {
-    Recording prepared = recording;
-    add_grid_rest(prepared, find_stream(recording, layout), map_for(layout));
+    // flux's stream holds 8 of its 10 layout channels: read in layout order, the rest as 0.
+    std::optional<Recording> ordered = recording_in_layout_order(recording, layout, stream_);
+    Recording prepared = ordered ? std::move(*ordered) : recording;
+    const Stream stream = find_stream(prepared, layout);
+    add_grid_rest(prepared, stream, map_for(layout));
     return prepared;
   }
 

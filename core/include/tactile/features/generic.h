@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -94,6 +95,15 @@ ContactMotion contact_motion(const Eigen::MatrixXd& values, const Eigen::RowVect
 
 // True when the points do not all lie on one line (so area and a 2-D path make sense).
 bool spans_two_dimensions(const std::vector<Point2>& points);
+
+// A recording whose stream (`stream_name`, empty: the first) holds only some of the layout's
+// channels, by name, as flux's 8 coils against its layout's 10 channels with two virtual
+// sums: that stream rewritten in layout order, a layout channel it lacks reading as 0 (as raw
+// reads it). nullopt otherwise (as many channels as the layout or more, unnamed ones, or one
+// the layout does not have): generic and grid then judge the stream as it is.
+std::optional<Recording> recording_in_layout_order(const Recording& recording,
+                                                   const SkinLayout& layout,
+                                                   const std::string& stream_name);
 
 // Throws tactile::Error naming the parameter on an unknown key or a threshold outside [0, 1).
 std::unique_ptr<FeatureExtractor> make_generic_extractor(const Parameters& parameters);
