@@ -354,6 +354,33 @@ TEST(GenericFeatures, AStreamOfSomeOfTheLayoutsChannelsIsReadByName) {
   }
 }
 
+// flux's stream holds 8 of its layout's 10 channels (the two virtual sums are computed by its
+// own preprocessing): generic reads the missing ones as 0, as raw does, not an error.
+TEST(GenericFeatures, AStreamWithSomeOfTheLayoutsChannelsReadsTheOthersAsZero) {
+  const SkinLayout layout = make_strip_layout(3);
+  Recording full = blank_recording(layout, 20, 100.0);
+  for (int64_t k = 5; k < 15; ++k) full.streams[0].samples(k, 0) = static_cast<float>(k - 4);
+  Recording partial = full;
+  Stream& stream = partial.streams[0];
+  stream.samples = SampleMatrix(full.streams[0].samples.leftCols(2));
+  stream.channels = {layout.channels[1].name, layout.channels[0].name};  // out of order too
+  stream.units = {"", ""};
+  stream.samples.col(0) = full.streams[0].samples.col(1);
+  stream.samples.col(1) = full.streams[0].samples.col(0);
+  const auto extractor = make_generic_extractor({});
+  const FeatureResult expected = run(*extractor, full, layout, whole(full));
+  const FeatureResult got = run(*extractor, partial, layout, whole(partial));
+  ASSERT_TRUE(got.skip_reason.empty()) << got.skip_reason;
+  ASSERT_EQ(got.values.size(), expected.values.size());
+  for (size_t k = 0; k < got.values.size(); ++k)
+    EXPECT_TRUE(got.values[k] == expected.values[k] ||
+                (std::isnan(got.values[k]) && std::isnan(expected.values[k])))
+        << extractor->columns(layout)[k].name;
+  // A channel the layout lacks is still an error.
+  stream.channels[0] = "not-in-the-layout";
+  EXPECT_THROW(run(*extractor, partial, layout, whole(partial)), Error);
+}
+
 TEST(FeatureRegistry, ListsGenericAndNamesAnUnknownPipeline) {
   const std::vector<std::string> names = feature_pipelines();
   EXPECT_NE(std::find(names.begin(), names.end(), "generic"), names.end());

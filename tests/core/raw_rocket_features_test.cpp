@@ -316,5 +316,132 @@ TEST(RocketFeatures, TransformGivesTheStoredFeaturesBitForBit) {
   }
 }
 
+//---- the summary series (series=summary, rocket's series=auto on large maps)
+
+// A 9 x 9 grid (81 taxels, above generic's 64) with one sliding touch: channel `a` at 2, 1
+// then 0, channel `b` (its right neighbour) at 0, 1 then 2, in samples 1..3 of 5.
+Eigen::MatrixXd raw_test_slide(int a, int b) {
+  Eigen::MatrixXd points = Eigen::MatrixXd::Zero(5, 81);
+  points(1, a) = 2.0;
+  points(2, a) = 1.0;
+  points(2, b) = 1.0;
+  points(3, b) = 2.0;
+  return points;
+}
+
+TEST(RawSummary, SeriesAreNamedByModalityGroupKindAndRank) {
+  const SkinLayout layout = make_grid_layout(9, 9);
+  std::vector<int> channels(81);
+  for (int k = 0; k < 81; ++k) channels[static_cast<size_t>(k)] = k;
+  const RawSummaryPlan plan = plan_raw_summary(layout, channels);
+  const std::vector<std::string> expected = {
+      "value.total", "value.peak",  "value.active", "value.centroid_x", "value.centroid_y",
+      "value.row.1", "value.row.2", "value.row.3",  "value.row0",       "value.row1",
+      "value.row2",  "value.row3",  "value.row4",   "value.row5",       "value.row6",
+      "value.row7",  "value.row8",  "value.top.1",  "value.top.2",      "value.top.3",
+      "value.top.4", "value.top.5", "value.top.6",  "value.top.7",      "value.top.8"};
+  EXPECT_EQ(plan.names, expected);
+  EXPECT_EQ(plan.descriptions.size(), expected.size());
+}
+
+// Every series but the rows' own sums (which say where) is the same wherever the touch lands.
+TEST(RawSummary, ValuesAreCountedByHandAndTheSameWhereverTheTouchLands) {
+  const SkinLayout layout = make_grid_layout(9, 9);
+  std::vector<int> channels(81);
+  for (int k = 0; k < 81; ++k) channels[static_cast<size_t>(k)] = k;
+  const RawSummaryPlan plan = plan_raw_summary(layout, channels);
+  // Row 2, columns 3 -> 4; and row 6, columns 1 -> 2.
+  const Eigen::MatrixXd here = raw_summary(plan, raw_test_slide(2 * 9 + 3, 2 * 9 + 4));
+  const Eigen::MatrixXd there = raw_summary(plan, raw_test_slide(6 * 9 + 1, 6 * 9 + 2));
+  ASSERT_EQ(here.rows(), 5);
+  ASSERT_EQ(here.cols(), 25);
+  EXPECT_TRUE(here.leftCols(8).isApprox(there.leftCols(8))) << here << "\n\n" << there;
+  EXPECT_TRUE(here.rightCols(8).isApprox(there.rightCols(8))) << here << "\n\n" << there;
+  for (int row = 0; row < 9; ++row) {
+    const Eigen::VectorXd expected =
+        row == 2 ? Eigen::VectorXd(here.col(0)) : Eigen::VectorXd::Zero(5);
+    EXPECT_EQ(Eigen::VectorXd(here.col(8 + row)), expected) << "row " << row;
+    EXPECT_EQ(Eigen::VectorXd(there.col(8 + row)),
+              row == 6 ? Eigen::VectorXd(there.col(0)) : Eigen::VectorXd::Zero(5))
+        << "row " << row;
+  }
+  const Eigen::VectorXd zeros = Eigen::VectorXd::Zero(5);
+  EXPECT_EQ(Eigen::VectorXd(here.col(0)), (Eigen::VectorXd(5) << 0, 2, 2, 2, 0).finished());
+  EXPECT_EQ(Eigen::VectorXd(here.col(1)), (Eigen::VectorXd(5) << 0, 2, 1, 2, 0).finished());
+  // Active above 0.2 of the largest excursion (0.4): one, two, one of 81 channels.
+  EXPECT_NEAR(here(2, 2), 2.0 / 81.0, 1e-12);
+  EXPECT_NEAR(here(1, 2), 1.0 / 81.0, 1e-12);
+  // The centre moves 10 mm (one pitch) along x: -5, 0, +5 around its mean; 0 without contact.
+  EXPECT_NEAR(here(1, 3), -5.0, 1e-9);
+  EXPECT_NEAR(here(2, 3), 0.0, 1e-9);
+  EXPECT_NEAR(here(3, 3), 5.0, 1e-9);
+  EXPECT_EQ(here(0, 3), 0.0);
+  EXPECT_EQ(Eigen::VectorXd(here.col(4)), zeros);
+  // The touched row first, with the whole total; the other rows hold nothing.
+  EXPECT_EQ(Eigen::VectorXd(here.col(5)), Eigen::VectorXd(here.col(0)));
+  EXPECT_EQ(Eigen::VectorXd(here.col(6)), zeros);
+  // Both channels carry energy 5; the tie keeps layout order: a, then b.
+  EXPECT_EQ(Eigen::VectorXd(here.col(17)), (Eigen::VectorXd(5) << 0, 2, 1, 0, 0).finished());
+  EXPECT_EQ(Eigen::VectorXd(here.col(18)), (Eigen::VectorXd(5) << 0, 0, 1, 2, 0).finished());
+  EXPECT_EQ(Eigen::VectorXd(here.col(19)), zeros);
+}
+
+TEST(RawSummary, AutoReadsTheSummaryAboveSixtyFourTaxelsAndRawKeepsChannels) {
+  const SkinLayout large = make_grid_layout(9, 9);
+  const SkinLayout small = make_grid_layout(8, 8);
+  const auto rocket = make_rocket_extractor(Parameters::parse("features=840", "--params"));
+  EXPECT_EQ(rocket->columns(large).size(), 840u);
+  EXPECT_NE(rocket->columns(large).front().description.find("value."), std::string::npos);
+  EXPECT_EQ(rocket->columns(small).front().description.find("value."), std::string::npos);
+  const auto forced =
+      make_rocket_extractor(Parameters::parse("features=840,series=channels", "--params"));
+  EXPECT_EQ(forced->columns(large).front().description.find("value."), std::string::npos);
+  // raw keeps every channel unless asked (the raw-sample baseline of issue 26).
+  EXPECT_EQ(make_raw_extractor(Parameters::parse("samples=4", "--params"))->columns(large).size(),
+            81u * 4);
+  const auto summary =
+      make_raw_extractor(Parameters::parse("samples=4,series=summary", "--params"));
+  EXPECT_EQ(summary->columns(large).size(), 25u * 4);
+  EXPECT_EQ(summary->columns(large).front().name, "value.total.s0");
+  EXPECT_EQ(summary->columns(small).size(), 24u * 4);
+  try {
+    make_raw_extractor(Parameters::parse("series=sheets", "--params"));
+    ADD_FAILURE() << "series=sheets accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("series=sheets"), std::string::npos);
+  }
+}
+
+// End to end: two touches of one recording in different rows give the same row of features
+// when the layout has too many rows (30) for their sums to be series of their own.
+TEST(RawSummary, RawAndRocketRowsDoNotDependOnWhereTheTouchLanded) {
+  const SkinLayout layout = make_grid_layout(30, 3);
+  Recording recording = raw_test_recording(layout, 100, 3.0f);
+  for (int64_t k = 0; k < 10; ++k) {
+    const auto rising = static_cast<float>(k) / 9.0f;
+    recording.streams[0].samples(20 + k, 5 * 3 + 0) = 3.0f + 4.0f * (1.0f - rising);
+    recording.streams[0].samples(20 + k, 5 * 3 + 1) = 3.0f + 4.0f * rising;
+    recording.streams[0].samples(60 + k, 20 * 3 + 1) = 3.0f + 4.0f * (1.0f - rising);
+    recording.streams[0].samples(60 + k, 20 * 3 + 2) = 3.0f + 4.0f * rising;
+  }
+  for (const std::string pipeline : {"raw", "rocket"}) {
+    SCOPED_TRACE(pipeline);
+    const auto extractor =
+        pipeline == "raw"
+            ? make_raw_extractor(Parameters::parse("samples=16,series=summary", "--params"))
+            : make_rocket_extractor(Parameters::parse("features=840", "--params"));
+    const FeatureResult first =
+        raw_test_run(*extractor, recording, layout, raw_test_segment(0.15, 0.35));
+    const FeatureResult second =
+        raw_test_run(*extractor, recording, layout, raw_test_segment(0.55, 0.75));
+    ASSERT_TRUE(first.skip_reason.empty()) << first.skip_reason;
+    ASSERT_EQ(first.values.size(), extractor->columns(layout).size());
+    ASSERT_EQ(second.values.size(), first.values.size());
+    for (size_t k = 0; k < first.values.size(); ++k)
+      EXPECT_NEAR(first.values[k], second.values[k], 1e-9) << "column " << k;
+    EXPECT_NE(*std::max_element(first.values.begin(), first.values.end()), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace tactile

@@ -55,7 +55,7 @@ std::vector<double> resample_linear(std::span<const double> values, int64_t coun
 }
 
 RawReading read_raw_parameters(const Parameters& parameters, int64_t default_samples,
-                               int64_t minimum_samples) {
+                               int64_t minimum_samples, const std::string& default_series) {
   RawReading reading;
   reading.modality = parameters.text("modality", "all");
   reading.stream = parameters.text("stream", "");
@@ -82,6 +82,15 @@ RawReading read_raw_parameters(const Parameters& parameters, int64_t default_sam
                 "a pipeline offers none, global or channel");
   else
     throw Error(parameters.where(), "scale=" + scale + ": expected none, global or channel");
+  const std::string series = parameters.text("series", default_series);
+  if (series == "channels")
+    reading.series = RawSeries::channels;
+  else if (series == "summary")
+    reading.series = RawSeries::summary;
+  else if (series == "auto")
+    reading.series = RawSeries::automatic;
+  else
+    throw Error(parameters.where(), "series=" + series + ": expected channels, summary or auto");
   return reading;
 }
 
@@ -229,6 +238,202 @@ Eigen::MatrixXd raw_segment(const SegmentInput& input, const RawReading& reading
   return points;
 }
 
+//---- The summary series
+
+namespace {
+
+// Per layout channel, the index of the taxel that owns it (-1: none).
+std::vector<int> raw_summary_channel_taxels(const SkinLayout& layout) {
+  std::vector<int> owner(layout.channels.size(), -1);
+  for (size_t taxel = 0; taxel < layout.taxels.size(); ++taxel)
+    for (int channel : layout.taxels[taxel].channels)
+      if (channel >= 0 && static_cast<size_t>(channel) < owner.size())
+        owner[static_cast<size_t>(channel)] = static_cast<int>(taxel);
+  return owner;
+}
+
+}  // namespace
+
+bool raw_reads_summary(const SkinLayout& layout, const RawReading& reading,
+                       const std::vector<int>& channels) {
+  if (reading.series != RawSeries::automatic) return reading.series == RawSeries::summary;
+  const std::vector<int> owner = raw_summary_channel_taxels(layout);
+  std::vector<int> taxels;
+  for (int channel : channels)
+    if (owner[static_cast<size_t>(channel)] >= 0)
+      taxels.push_back(owner[static_cast<size_t>(channel)]);
+  std::sort(taxels.begin(), taxels.end());
+  taxels.erase(std::unique(taxels.begin(), taxels.end()), taxels.end());
+  return taxels.size() > kGridTaxelsForGeneric;
+}
+
+RawSummaryPlan plan_raw_summary(const SkinLayout& layout, const std::vector<int>& channels) {
+  const std::vector<int> owner = raw_summary_channel_taxels(layout);
+  std::vector<std::string> kinds;
+  for (const Group& group : layout.groups)
+    if (std::find(kinds.begin(), kinds.end(), group.kind) == kinds.end())
+      kinds.push_back(group.kind);
+  RawSummaryPlan plan;
+  for (size_t position = 0; position < channels.size(); ++position) {
+    const std::string& modality = layout.channels[static_cast<size_t>(channels[position])].modality;
+    auto block =
+        std::find_if(plan.blocks.begin(), plan.blocks.end(),
+                     [&](const RawSummaryPlan::Block& b) { return b.modality == modality; });
+    if (block == plan.blocks.end()) {
+      plan.blocks.push_back({});
+      plan.blocks.back().modality = modality;
+      block = plan.blocks.end() - 1;
+    }
+    block->members.push_back(static_cast<int>(position));
+    const int taxel = owner[static_cast<size_t>(channels[position])];
+    block->positions.push_back(taxel >= 0 ? layout.taxels[static_cast<size_t>(taxel)].position
+                                          : Point2{});
+  }
+  for (RawSummaryPlan::Block& block : plan.blocks) {
+    const std::string& m = block.modality;
+    plan.names.insert(plan.names.end(), {m + ".total", m + ".peak", m + ".active",
+                                         m + ".centroid_x", m + ".centroid_y"});
+    plan.descriptions.insert(
+        plan.descriptions.end(),
+        {"sum over the " + m + " channels of the excursion |x|",
+         "largest excursion |x| of a " + m + " channel",
+         "share of the " + m + " channels with |x| above 0.2 of the segment's largest",
+         "map x of the |x|-weighted centre of the active " + m +
+             " channels minus its mean over the segment, map units",
+         "map y of that centre minus its mean over the segment, map units"});
+    for (const std::string& kind : kinds) {
+      RawSummaryPlan::Kind entry;
+      for (const Group& group : layout.groups) {
+        if (group.kind != kind) continue;
+        std::vector<int> members;
+        for (size_t k = 0; k < block.members.size(); ++k) {
+          const int taxel =
+              owner[static_cast<size_t>(channels[static_cast<size_t>(block.members[k])])];
+          if (taxel >= 0 &&
+              std::find(group.taxels.begin(), group.taxels.end(),
+                        layout.taxels[static_cast<size_t>(taxel)].id) != group.taxels.end())
+            members.push_back(static_cast<int>(k));
+        }
+        if (members.empty()) continue;
+        entry.ids.push_back(group.id);
+        entry.groups.push_back(std::move(members));
+      }
+      entry.ranked = std::min<int>(kRawSummaryGroups, static_cast<int>(entry.groups.size()));
+      entry.placed = entry.groups.size() <= kRawSummaryPlacedGroups;
+      for (int rank = 1; rank <= entry.ranked; ++rank) {
+        plan.names.push_back(m + "." + kind + "." + std::to_string(rank));
+        plan.descriptions.push_back("sum of |x| over the " + m + " channels of the " + kind +
+                                    " with the " + std::to_string(rank) +
+                                    (rank == 1   ? "st"
+                                     : rank == 2 ? "nd"
+                                                 : "rd") +
+                                    " largest such sum over the segment");
+      }
+      if (entry.placed)
+        for (const std::string& id : entry.ids) {
+          plan.names.push_back(m + "." + id);
+          plan.descriptions.push_back("sum of |x| over the " + m + " channels of " + kind + " " +
+                                      id);
+        }
+      block.kinds.push_back(std::move(entry));
+    }
+    block.top_channels = std::min<int>(kRawSummaryChannels, static_cast<int>(block.members.size()));
+    for (int rank = 1; rank <= block.top_channels; ++rank) {
+      plan.names.push_back(m + ".top." + std::to_string(rank));
+      plan.descriptions.push_back("the " + m + " channel with the " + std::to_string(rank) +
+                                  (rank == 1   ? "st"
+                                   : rank == 2 ? "nd"
+                                   : rank == 3 ? "rd"
+                                               : "th") +
+                                  " largest sum of x^2 over the segment, x signed");
+    }
+  }
+  return plan;
+}
+
+Eigen::MatrixXd raw_summary(const RawSummaryPlan& plan, const Eigen::MatrixXd& points) {
+  const Eigen::Index samples = points.rows();
+  Eigen::MatrixXd series =
+      Eigen::MatrixXd::Zero(samples, static_cast<Eigen::Index>(plan.names.size()));
+  Eigen::Index out = 0;
+  // Ranks `totals` descending (ties: the lower index first) and returns the first `count`.
+  const auto ranked = [](const std::vector<double>& totals, int count) {
+    std::vector<int> order(totals.size());
+    for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+      return totals[static_cast<size_t>(a)] > totals[static_cast<size_t>(b)];
+    });
+    order.resize(static_cast<size_t>(count));
+    return order;
+  };
+  for (const RawSummaryPlan::Block& block : plan.blocks) {
+    const auto members = static_cast<Eigen::Index>(block.members.size());
+    Eigen::MatrixXd x(samples, members);
+    for (Eigen::Index k = 0; k < members; ++k)
+      x.col(k) = points.col(block.members[static_cast<size_t>(k)]);
+    const Eigen::MatrixXd e = x.cwiseAbs();
+    const double largest = members > 0 && samples > 0 ? e.maxCoeff() : 0.0;
+    const double level = kRawSummaryActive * largest;
+    Eigen::VectorXd cx = Eigen::VectorXd::Zero(samples), cy = Eigen::VectorXd::Zero(samples);
+    std::vector<bool> valid(static_cast<size_t>(samples), false);
+    double mean_x = 0.0, mean_y = 0.0;
+    int valid_count = 0;
+    for (Eigen::Index t = 0; t < samples; ++t) {
+      double weight = 0.0, wx = 0.0, wy = 0.0;
+      int active = 0;
+      for (Eigen::Index k = 0; k < members; ++k) {
+        const double value = e(t, k);
+        if (!(largest > 0.0) || value <= level) continue;
+        ++active;
+        weight += value;
+        wx += value * block.positions[static_cast<size_t>(k)].x;
+        wy += value * block.positions[static_cast<size_t>(k)].y;
+      }
+      series(t, out) = e.row(t).sum();
+      series(t, out + 1) = members > 0 ? e.row(t).maxCoeff() : 0.0;
+      series(t, out + 2) =
+          members > 0 ? static_cast<double>(active) / static_cast<double>(members) : 0.0;
+      if (weight > 0.0) {
+        cx[t] = wx / weight;
+        cy[t] = wy / weight;
+        valid[static_cast<size_t>(t)] = true;
+        mean_x += cx[t];
+        mean_y += cy[t];
+        ++valid_count;
+      }
+    }
+    if (valid_count > 0) {
+      mean_x /= valid_count;
+      mean_y /= valid_count;
+      for (Eigen::Index t = 0; t < samples; ++t)
+        if (valid[static_cast<size_t>(t)]) {
+          // On a grid of 1e-6 map units: a still contact reads exactly 0 wherever it lies,
+          // not rounding noise that rocket's biases (often exactly 0) would count.
+          series(t, out + 3) = std::round((cx[t] - mean_x) * 1e6) / 1e6;
+          series(t, out + 4) = std::round((cy[t] - mean_y) * 1e6) / 1e6;
+        }
+    }
+    out += 5;
+    for (const RawSummaryPlan::Kind& kind : block.kinds) {
+      Eigen::MatrixXd sums =
+          Eigen::MatrixXd::Zero(samples, static_cast<Eigen::Index>(kind.groups.size()));
+      std::vector<double> totals(kind.groups.size());
+      for (size_t g = 0; g < kind.groups.size(); ++g) {
+        for (int member : kind.groups[g]) sums.col(static_cast<Eigen::Index>(g)) += e.col(member);
+        totals[g] = sums.col(static_cast<Eigen::Index>(g)).sum();
+      }
+      for (int g : ranked(totals, kind.ranked)) series.col(out++) = sums.col(g);
+      if (kind.placed)
+        for (Eigen::Index g = 0; g < sums.cols(); ++g) series.col(out++) = sums.col(g);
+    }
+    std::vector<double> energy(static_cast<size_t>(members));
+    for (Eigen::Index k = 0; k < members; ++k)
+      energy[static_cast<size_t>(k)] = x.col(k).squaredNorm();
+    for (int k : ranked(energy, block.top_channels)) series.col(out++) = x.col(k);
+  }
+  return series;
+}
+
 //---- The extractor
 
 namespace {
@@ -251,14 +456,25 @@ class RawExtractor : public FeatureExtractor {
                                : reading_.scale == RawScale::global ? ", over the recording's scale"
                                                                     : ", over the channel's scale";
     const std::string referenced = reading_.subtract_rest ? " minus its rest level" : "";
-    for (int channel : raw_channels(layout, reading_, where_)) {
-      const Channel& info = layout.channels[static_cast<size_t>(channel)];
-      for (int64_t k = 0; k < reading_.samples; ++k)
-        columns.push_back({info.name + ".s" + std::to_string(k),
-                           info.name + referenced + scaled + ", point " + std::to_string(k) +
-                               " of " + std::to_string(reading_.samples) +
-                               " spread linearly over the segment"});
+    const std::vector<int> channels = raw_channels(layout, reading_, where_);
+    std::vector<std::string> names, whats;
+    if (raw_reads_summary(layout, reading_, channels)) {
+      const RawSummaryPlan plan = plan_raw_summary(layout, channels);
+      names = plan.names;
+      for (const std::string& description : plan.descriptions)
+        whats.push_back(description + " (channels" + referenced + scaled + ")");
+    } else {
+      for (int channel : channels) {
+        names.push_back(layout.channels[static_cast<size_t>(channel)].name);
+        whats.push_back(names.back() + referenced + scaled);
+      }
     }
+    for (size_t series = 0; series < names.size(); ++series)
+      for (int64_t k = 0; k < reading_.samples; ++k)
+        columns.push_back({names[series] + ".s" + std::to_string(k),
+                           whats[series] + ", point " + std::to_string(k) + " of " +
+                               std::to_string(reading_.samples) +
+                               " spread linearly over the segment"});
     return columns;
   }
 
@@ -268,9 +484,11 @@ class RawExtractor : public FeatureExtractor {
 
   FeatureResult extract(const SegmentInput& input) const override {
     std::string skip_reason;
-    const Eigen::MatrixXd points =
-        raw_segment(input, reading_, raw_channels(input.layout, reading_, where_), skip_reason);
+    const std::vector<int> channels = raw_channels(input.layout, reading_, where_);
+    Eigen::MatrixXd points = raw_segment(input, reading_, channels, skip_reason);
     if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
+    if (raw_reads_summary(input.layout, reading_, channels))
+      points = raw_summary(plan_raw_summary(input.layout, channels), points);
     // Column-major: channel by channel, as columns() names them.
     return {std::vector<double>(points.data(), points.data() + points.size()), {}};
   }
@@ -283,7 +501,7 @@ class RawExtractor : public FeatureExtractor {
 }  // namespace
 
 std::unique_ptr<FeatureExtractor> make_raw_extractor(const Parameters& parameters) {
-  parameters.expect_only({"modality", "stream", "samples", "baseline", "scale"});
+  parameters.expect_only({"modality", "stream", "samples", "baseline", "scale", "series"});
   return std::make_unique<RawExtractor>(read_raw_parameters(parameters, 32, 2), parameters.where());
 }
 

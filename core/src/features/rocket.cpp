@@ -8,6 +8,7 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -337,7 +338,13 @@ class RocketExtractor : public FeatureExtractor {
 
   std::vector<FeatureColumn> columns(const SkinLayout& layout) const override {
     const std::vector<int> channels = raw_channels(layout, reading_, where_);
-    const RocketPlan& plan = plan_for(static_cast<int64_t>(channels.size()));
+    std::vector<std::string> names;
+    if (raw_reads_summary(layout, reading_, channels))
+      names = plan_raw_summary(layout, channels).names;
+    else
+      for (int channel : channels)
+        names.push_back(layout.channels[static_cast<size_t>(channel)].name);
+    const RocketPlan& plan = plan_for(static_cast<int64_t>(names.size()));
     const std::vector<std::array<int, 3>> kernels = minirocket_kernels();
     std::vector<FeatureColumn> columns;
     size_t pair = 0, feature = 0;
@@ -345,9 +352,7 @@ class RocketExtractor : public FeatureExtractor {
       for (int kernel = 0; kernel < kRocketKernels; ++kernel, ++pair) {
         std::string summed;
         for (int channel : plan.channel_sets[pair])
-          summed +=
-              (summed.empty() ? "" : "+") +
-              layout.channels[static_cast<size_t>(channels[static_cast<size_t>(channel)])].name;
+          summed += (summed.empty() ? "" : "+") + names[static_cast<size_t>(channel)];
         const std::array<int, 3>& twos = kernels[static_cast<size_t>(kernel)];
         const bool padded = (static_cast<int>(dilation_index % 2) + kernel) % 2 == 0;
         for (int index = 0; index < plan.features_per_dilation[dilation_index]; ++index, ++feature)
@@ -365,7 +370,9 @@ class RocketExtractor : public FeatureExtractor {
   Recording preprocess(const Recording& recording, const SkinLayout& layout) const override {
     Recording prepared = add_raw_levels(recording, layout, reading_, where_);
     const std::vector<int> channels = raw_channels(layout, reading_, where_);
-    const RocketPlan& plan = plan_for(static_cast<int64_t>(channels.size()));
+    const std::optional<RawSummaryPlan> summary = summary_for(layout, channels);
+    const RocketPlan& plan = plan_for(summary ? static_cast<int64_t>(summary->names.size())
+                                              : static_cast<int64_t>(channels.size()));
     const Stream& stream = raw_stream(prepared, layout, reading_);
     const double start = stream.time_of(0);
     const double span = stream.duration() > 0.0 ? stream.duration() : 1.0;
@@ -375,8 +382,9 @@ class RocketExtractor : public FeatureExtractor {
       label.t0 = start + span * static_cast<double>(window) / kRocketFitWindows;
       label.t1 = start + span * static_cast<double>(window + 1) / kRocketFitWindows;
       std::string skip_reason;
-      const Eigen::MatrixXd points =
+      Eigen::MatrixXd points =
           raw_segment({prepared, layout, label}, reading_, channels, skip_reason);
+      if (skip_reason.empty() && summary) points = raw_summary(*summary, points);
       windows.push_back(skip_reason.empty() ? Eigen::MatrixXf(points.cast<float>())
                                             : Eigen::MatrixXf::Zero(plan.length, plan.channels));
     }
@@ -395,15 +403,18 @@ class RocketExtractor : public FeatureExtractor {
 
   FeatureResult extract(const SegmentInput& input) const override {
     const std::vector<int> channels = raw_channels(input.layout, reading_, where_);
-    const RocketPlan& plan = plan_for(static_cast<int64_t>(channels.size()));
+    const std::optional<RawSummaryPlan> summary = summary_for(input.layout, channels);
+    const RocketPlan& plan = plan_for(summary ? static_cast<int64_t>(summary->names.size())
+                                              : static_cast<int64_t>(channels.size()));
     const Stream* bias_stream = input.recording.find_stream(kRocketBiasStream);
     if (bias_stream == nullptr || bias_stream->channel_count() != plan.feature_count())
       return FeatureResult::skip(
           "rocket's biases are fitted on the recording by preprocess(), "
           "which has not run");
     std::string skip_reason;
-    const Eigen::MatrixXd points = raw_segment(input, reading_, channels, skip_reason);
+    Eigen::MatrixXd points = raw_segment(input, reading_, channels, skip_reason);
     if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
+    if (summary) points = raw_summary(*summary, points);
     FeatureResult result;
     result.values.resize(static_cast<size_t>(plan.feature_count()));
     rocket_transform(plan, points.cast<float>(),
@@ -414,7 +425,14 @@ class RocketExtractor : public FeatureExtractor {
   }
 
  private:
-  // The plan depends on the channel count only; drawn once per count (extract() runs per
+  // The summary's plan when the reading reads it (series=summary, or auto on a large map).
+  std::optional<RawSummaryPlan> summary_for(const SkinLayout& layout,
+                                            const std::vector<int>& channels) const {
+    if (!raw_reads_summary(layout, reading_, channels)) return std::nullopt;
+    return plan_raw_summary(layout, channels);
+  }
+
+  // The plan depends on the series count only; drawn once per count (extract() runs per
   // segment, possibly on several threads).
   const RocketPlan& plan_for(int64_t channels) const {
     const std::lock_guard lock(mutex_);
@@ -440,8 +458,8 @@ class RocketExtractor : public FeatureExtractor {
 
 std::unique_ptr<FeatureExtractor> make_rocket_extractor(const Parameters& parameters) {
   parameters.expect_only(
-      {"modality", "stream", "samples", "baseline", "scale", "features", "seed"});
-  RawReading reading = read_raw_parameters(parameters, 64, kRocketKernelLength);
+      {"modality", "stream", "samples", "baseline", "scale", "series", "features", "seed"});
+  RawReading reading = read_raw_parameters(parameters, 64, kRocketKernelLength, "auto");
   const int64_t features = parameters.integer("features", 10000);
   if (features < kRocketKernels || features > 1000000)
     throw Error(parameters.where(),
