@@ -116,13 +116,17 @@ TEST(RawFeatures, GlobalScaleIsPerModalityAndMissingChannelsReadAsZero) {
       raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60));
   ASSERT_TRUE(result.skip_reason.empty()) << result.skip_reason;
   EXPECT_NEAR(result.values.at(7), 7.0 / 18.0, 1e-6);  // channel 0's own 99th percentile
-  recording.streams[0].channels[1] = "not-in-the-layout";
+  // The stream holds the layout's first channel only.
+  Stream& stream = recording.streams[0];
+  stream.samples = SampleMatrix(stream.samples.leftCols(1));
+  stream.channels.resize(1);
+  stream.units.resize(1);
   const FeatureResult missing =
       raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60));
   ASSERT_TRUE(missing.skip_reason.empty()) << missing.skip_reason;
   EXPECT_NEAR(missing.values.at(7), 7.0 / 18.0, 1e-6);
   for (size_t k = 20; k < 40; ++k) EXPECT_EQ(missing.values.at(k), 0.0);
-  recording.streams[0].channels[0] = "neither";
+  stream.channels[0] = "neither";
   EXPECT_THROW(raw_test_run(*extractor, recording, layout, raw_test_segment(0.40, 0.60)), Error);
 }
 

@@ -110,38 +110,17 @@ std::vector<int> raw_channels(const SkinLayout& layout, const RawReading& readin
 
 const Stream& raw_stream(const Recording& recording, const SkinLayout& layout,
                          const RawReading& reading) {
-  const Stream* stream = reading.stream.empty()
-                             ? (recording.streams.empty() ? nullptr : &recording.streams.front())
-                             : recording.find_stream(reading.stream);
-  if (stream == nullptr)
-    throw Error("recording " + recording.id, reading.stream.empty()
-                                                 ? "has no streams"
-                                                 : "has no stream '" + reading.stream + "'");
-  if (stream->channels.empty() &&
-      stream->channel_count() != static_cast<int64_t>(layout.channels.size()))
-    throw Error("recording " + recording.id + " stream " + stream->name,
-                std::to_string(stream->channel_count()) + " unnamed channels, but layout " +
-                    layout.id + " has " + std::to_string(layout.channels.size()));
-  return *stream;
+  const Stream& stream = pipeline_stream(recording, reading.stream);
+  layout_columns(stream, layout);  // throws when the stream's channels are not the layout's
+  return stream;
 }
 
 std::vector<int64_t> raw_stream_columns(const Stream& stream, const SkinLayout& layout,
                                         const std::vector<int>& channels) {
+  const std::vector<int64_t> of_layout = layout_columns(stream, layout);
   std::vector<int64_t> columns;
-  bool any = false;
-  for (int channel : channels) {
-    int64_t column = -1;
-    if (stream.channels.empty()) {
-      column = channel;
-    } else {
-      const auto found = std::find(stream.channels.begin(), stream.channels.end(),
-                                   layout.channels[static_cast<size_t>(channel)].name);
-      if (found != stream.channels.end()) column = found - stream.channels.begin();
-    }
-    any = any || column >= 0;
-    columns.push_back(column);
-  }
-  if (!any)
+  for (int channel : channels) columns.push_back(of_layout[static_cast<size_t>(channel)]);
+  if (std::all_of(columns.begin(), columns.end(), [](int64_t column) { return column < 0; }))
     throw Error("stream " + stream.name,
                 "holds none of the chosen channels of layout " + layout.id);
   return columns;

@@ -62,14 +62,13 @@ RawReading read_raw_parameters(const Parameters& parameters, int64_t default_sam
 // when the layout has none of it.
 std::vector<int> raw_channels(const SkinLayout& layout, const RawReading& reading,
                               const std::string& where);
-// The stream the reading reads; Error naming it when missing, or when its channels are
-// unnamed and not as many as the layout's.
+// The stream the reading reads (pipeline_stream); Error naming it when missing, or when its
+// channels are not the layout's (layout_columns).
 const Stream& raw_stream(const Recording& recording, const SkinLayout& layout,
                          const RawReading& reading);
-// Each chosen layout channel's column in the stream, found by name (by index when the
-// stream's channels are unnamed); -1 for a channel the stream lacks (flux's virtual sums,
-// which its own preprocessing computes), whose values then read as 0. Error when the stream
-// holds none of them.
+// Each chosen layout channel's column in the stream (layout_columns); -1 for a channel the stream
+// lacks (flux's virtual sums, which its own preprocessing computes), whose values then read as 0.
+// Error when the stream holds none of them.
 std::vector<int64_t> raw_stream_columns(const Stream& stream, const SkinLayout& layout,
                                         const std::vector<int>& channels);
 // The recording with a two-row stream `levels_stream` added: per channel its rest level
