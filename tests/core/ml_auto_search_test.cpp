@@ -173,6 +173,44 @@ TEST(AutoBlocks, SearchesTheBlocksOfAStackedTableAndNamesTheChosenPipeline) {
   EXPECT_THROW(make_classifier("auto:blocks=generic:3-1"), Error);
 }
 
+// Column 0 tells the classes apart the same way for everyone, but blurred; column 1 tells
+// them apart perfectly within each subject, and for no one else. Inner folds that mix a
+// subject's rows favour column 1; when the outer evaluation leaves subjects out, so do auto's
+// inner folds, and it picks column 0, which holds for a subject it has not seen.
+TEST(AutoBlocks, InnerFoldsKeepTheOuterGroupsWhole) {
+  std::mt19937_64 engine(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Dataset dataset;
+  const int subjects = 6, per_subject = 24;
+  dataset.features.resize(subjects * per_subject, 2);
+  for (int subject = 0; subject < subjects; ++subject) {
+    // Each subject's own pair of levels, far from the others': a neighbour from another
+    // subject says nothing of the class.
+    const double a = 100.0 * subject, b = 100.0 * subject + 50.0;
+    for (int k = 0; k < per_subject; ++k) {
+      const int row = subject * per_subject + k, label = k % 2;
+      dataset.features(row, 0) = 1.5 * label + normal(engine);
+      dataset.features(row, 1) = (label == 1 ? a : b) + 0.01 * normal(engine);
+      dataset.classes.push_back(label == 0 ? "a" : "b");
+      dataset.subjects.push_back("s" + std::to_string(subject));
+      dataset.recordings.push_back("r" + std::to_string(subject));
+      dataset.segment_ids.push_back(row + 1);
+      dataset.metadata.emplace_back();
+    }
+  }
+  dataset.columns = {{"general/f0", ""}, {"personal/f1", ""}};
+  const std::string specification = "auto:candidates=knn:k=3,blocks=general:0-0|personal:1-1";
+  EXPECT_EQ(protocol_groups(dataset, Protocol::parse("loso")), dataset.subjects);
+  EXPECT_TRUE(protocol_groups(dataset, Protocol::parse("kfold:3")).empty());
+  const EvaluationResult by_subject = evaluate(dataset, specification, Protocol::parse("loso"), 3);
+  for (const std::string& model : by_subject.fold_models)
+    EXPECT_EQ(model.rfind("general/", 0), 0u) << model;
+  // Without groups held out, the personal column wins the inner folds.
+  const EvaluationResult mixed = evaluate(dataset, specification, Protocol::parse("kfold:3"), 3);
+  for (const std::string& model : mixed.fold_models)
+    EXPECT_EQ(model.rfind("personal/", 0), 0u) << model;
+}
+
 TEST(StackBlocks, NeedTwoPipelinesEachSideBySide) {
   const auto columns = [](std::vector<std::string> names) {
     std::vector<FeatureColumn> result;

@@ -63,7 +63,7 @@ Matrix rows_of(const Matrix& features, const std::vector<int64_t>& rows) {
 
 FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, int class_count,
                      const std::string& specification, const Fold& fold, uint64_t seed,
-                     bool with_scores) {
+                     bool with_scores, const std::vector<std::string>& groups) {
   FoldOutcome outcome;
   std::unique_ptr<Classifier> classifier = make_classifier(specification);
   std::vector<int> train_classes;
@@ -71,7 +71,13 @@ FoldOutcome run_fold(const Dataset& dataset, const std::vector<int>& classes, in
   for (int64_t row : fold.train) train_classes.push_back(classes[static_cast<size_t>(row)]);
   if (!with_scores) classifier->skip_scores();  // predict() only: no work for scores
   const Clock::time_point fit_start = Clock::now();
-  classifier->fit(rows_of(dataset.features, fold.train), train_classes, class_count, seed);
+  std::vector<std::string> train_groups;
+  if (!groups.empty())
+    for (int64_t row : fold.train) train_groups.push_back(groups[static_cast<size_t>(row)]);
+  {
+    const FitGroupsScope scope(groups.empty() ? nullptr : &train_groups);
+    classifier->fit(rows_of(dataset.features, fold.train), train_classes, class_count, seed);
+  }
   outcome.fit_seconds = seconds_since(fit_start);
   outcome.importances = classifier->feature_importances();
   const Clock::time_point predict_start = Clock::now();
@@ -187,6 +193,8 @@ namespace {
 
 // True on a thread that runs folds of an evaluation beside other such threads.
 thread_local bool tl_on_evaluation_worker = false;
+// fit_groups() of this thread; null: none.
+thread_local const std::vector<std::string>* tl_fit_groups = nullptr;
 
 class WorkerMark {
  public:
@@ -202,6 +210,17 @@ class WorkerMark {
 };
 
 }  // namespace
+
+const std::vector<std::string>& fit_groups() {
+  static const std::vector<std::string> kNone;
+  return tl_fit_groups ? *tl_fit_groups : kNone;
+}
+
+FitGroupsScope::FitGroupsScope(const std::vector<std::string>* groups) : previous_(tl_fit_groups) {
+  tl_fit_groups = groups;
+}
+
+FitGroupsScope::~FitGroupsScope() { tl_fit_groups = previous_; }
 
 EvaluationResult evaluate(const Dataset& dataset, const std::string& given_specification,
                           const Protocol& protocol, uint64_t seed,
@@ -226,6 +245,7 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& given_speci
   for (const std::string& name : dataset.classes) classes.push_back(index.at(name));
 
   const std::vector<Fold> folds = make_folds(dataset, protocol, seed);
+  const std::vector<std::string> groups = protocol_groups(dataset, protocol);
   const int fold_count = static_cast<int>(folds.size());
   std::vector<FoldOutcome> outcomes(folds.size());
 
@@ -253,7 +273,7 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& given_speci
       try {
         outcome = run_fold(dataset, classes, class_count, classifier_specification,
                            folds[static_cast<size_t>(fold)],
-                           derive_seed(seed, static_cast<uint64_t>(fold)), control.scores);
+                           derive_seed(seed, static_cast<uint64_t>(fold)), control.scores, groups);
       } catch (...) {
         outcome.failure = std::current_exception();
         failed.store(true);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <random>
+#include <set>
 
 #include "tactile/error.h"
 #include "tactile/features/stack.h"
@@ -41,21 +43,50 @@ std::string base_of_select(const std::string& specification) {
   return base;
 }
 
-// The training rows (all when `rows` is empty) as a table the evaluation takes.
-Dataset inner_dataset(const Matrix& x, const std::vector<int>& y,
-                      const std::vector<int64_t>& rows) {
+// The training rows (all when `rows` is empty) as a table the evaluation takes; with
+// `groups` (one per row of x), each row's group as its subject.
+Dataset inner_dataset(const Matrix& x, const std::vector<int>& y, const std::vector<int64_t>& rows,
+                      const std::vector<std::string>& groups = {}) {
   Dataset inner;
   if (rows.empty()) {
     inner.features = x;
     for (int label : y) inner.classes.push_back(std::to_string(label));
+    inner.subjects = groups;
     return inner;
   }
   inner.features.resize(static_cast<Eigen::Index>(rows.size()), x.cols());
   for (size_t i = 0; i < rows.size(); ++i) {
     inner.features.row(static_cast<Eigen::Index>(i)) = x.row(rows[i]);
     inner.classes.push_back(std::to_string(y[static_cast<size_t>(rows[i])]));
+    if (!groups.empty()) inner.subjects.push_back(groups[static_cast<size_t>(rows[i])]);
   }
   return inner;
+}
+
+size_t distinct_count(std::vector<std::string> values) {
+  std::sort(values.begin(), values.end());
+  return static_cast<size_t>(std::unique(values.begin(), values.end()) - values.begin());
+}
+
+// The fewest groups for which auto keeps its inner folds to whole groups.
+constexpr size_t kFewestInnerGroups = 3;
+
+// An early rung's one split of grouped rows: about 30 % of the groups (at least one, drawn
+// by `seed`) tested, the others trained on, as `split:auto_part=train/auto_part=test`.
+Protocol grouped_holdout(Dataset& inner, uint64_t seed) {
+  std::vector<std::string> names = inner.subjects;
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  std::mt19937_64 engine(seed);
+  shuffle(names, engine);
+  const size_t tested = std::max<size_t>(
+      1, static_cast<size_t>(std::llround(0.3 * static_cast<double>(names.size()))));
+  const std::set<std::string> test(names.begin(),
+                                   names.begin() + static_cast<std::ptrdiff_t>(tested));
+  inner.metadata.clear();
+  for (const std::string& subject : inner.subjects)
+    inner.metadata.push_back({{"auto_part", test.count(subject) ? "test" : "train"}});
+  return Protocol::parse("split:auto_part=train/auto_part=test");
 }
 
 }  // namespace
@@ -253,6 +284,10 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
     candidates_.push_back(
         {"select:" + columns + "k=" + std::to_string(k) + ",base=" + base, 0.0, 0});
   }
+  // The groups of the rows, when the outer evaluation holds groups out.
+  const std::vector<std::string>& groups = fit_groups();
+  const bool grouped = static_cast<int64_t>(groups.size()) == x.rows() &&
+                       distinct_count(groups) >= kFewestInnerGroups;
   // The candidates that run: all but those too wide to run whole.
   std::vector<size_t> alive;
   for (size_t i = 0; i < candidates_.size(); ++i)
@@ -280,12 +315,17 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
       rows.insert(rows.end(), members.begin(), members.begin() + static_cast<std::ptrdiff_t>(take));
     }
     std::sort(rows.begin(), rows.end());
-    const Dataset inner = inner_dataset(x, y, rows);
+    Dataset inner = inner_dataset(x, y, rows, grouped ? groups : std::vector<std::string>{});
     // The early rungs sort out the weak candidates on one stratified hold-out split each (a
-    // new split per rung); the last compares the few left by the inner protocol.
+    // new split per rung); the last compares the few left by the inner protocol. When the
+    // outer evaluation holds groups out (subjects, recordings), so do these: a hold-out of
+    // whole groups, and leave one group out at the last rung.
     const bool last = rung + 1 == sizes.size();
-    const Protocol protocol = last ? inner_ : Protocol::parse("holdout:0.3x1");
+    const bool rung_grouped = grouped && distinct_count(inner.subjects) >= kFewestInnerGroups;
     const uint64_t rung_seed = last ? inner_seed : derive_seed(seed, 2 + rung);
+    const Protocol protocol = last           ? (rung_grouped ? Protocol::parse("loso") : inner_)
+                              : rung_grouped ? grouped_holdout(inner, rung_seed)
+                                             : Protocol::parse("holdout:0.3x1");
     for (size_t i : alive) {
       if (cancel_requested()) throw Error("classifier auto", "cancelled");
       try {

@@ -223,6 +223,49 @@ std::vector<int64_t> rows_matching(const Dataset& dataset, const std::string& qu
 
 //---- Folds ----------------------------------------------------------------------------------
 
+std::vector<std::string> protocol_groups(const Dataset& dataset, const Protocol& protocol) {
+  const int64_t row_count = dataset.rows();
+  std::vector<std::string> values;
+  if (protocol.kind == Protocol::Kind::kLeaveOneSubjectOut) {
+    if (static_cast<int64_t>(dataset.subjects.size()) != row_count)
+      throw Error(kProtocolWhere, "loso needs a subject for every row; the dataset has none");
+    for (int64_t row = 0; row < row_count; ++row) {
+      const std::string& subject = dataset.subjects[static_cast<size_t>(row)];
+      if (subject.empty())
+        throw Error(kProtocolWhere,
+                    "loso needs a subject for every row; row " + std::to_string(row) +
+                        " (segment " +
+                        std::to_string(row < static_cast<int64_t>(dataset.segment_ids.size())
+                                           ? dataset.segment_ids[static_cast<size_t>(row)]
+                                           : row) +
+                        ") has none");
+      values.push_back(subject);
+    }
+  } else if (protocol.kind == Protocol::Kind::kLeaveOneGroupOut) {
+    // The column's value per row: the table's own columns first, then the metadata.
+    const std::string& column = protocol.group_column;
+    for (int64_t row = 0; row < row_count; ++row) {
+      const auto r = static_cast<size_t>(row);
+      std::string value;
+      if (column == "subject" && r < dataset.subjects.size()) {
+        value = dataset.subjects[r];
+      } else if (column == "recording" && r < dataset.recordings.size()) {
+        value = dataset.recordings[r];
+      } else if (column == "class") {
+        value = dataset.classes[r];
+      } else if (r < dataset.metadata.size()) {
+        const auto found = dataset.metadata[r].find(column);
+        if (found != dataset.metadata[r].end()) value = found->second;
+      }
+      if (value.empty())
+        throw Error(kProtocolWhere, protocol.to_string() + ": row " + std::to_string(row) +
+                                        " has no value in column '" + column + "'");
+      values.push_back(std::move(value));
+    }
+  }
+  return values;
+}
+
 std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, uint64_t seed) {
   const int64_t row_count = dataset.rows();
   if (row_count == 0) throw Error(kProtocolWhere, "the dataset has no rows");
@@ -254,53 +297,9 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
       if (row_count < 2) throw Error(kProtocolWhere, "loo needs at least 2 rows");
       for (int64_t row = 0; row < row_count; ++row) folds.push_back(fold_of_test({row}, row_count));
       break;
-    case Protocol::Kind::kLeaveOneSubjectOut: {
-      if (static_cast<int64_t>(dataset.subjects.size()) != row_count)
-        throw Error(kProtocolWhere, "loso needs a subject for every row; the dataset has none");
-      std::vector<std::string> order;
-      std::map<std::string, std::vector<int64_t>> rows_of;
-      for (int64_t row = 0; row < row_count; ++row) {
-        const std::string& subject = dataset.subjects[static_cast<size_t>(row)];
-        if (subject.empty())
-          throw Error(kProtocolWhere,
-                      "loso needs a subject for every row; row " + std::to_string(row) +
-                          " (segment " +
-                          std::to_string(row < static_cast<int64_t>(dataset.segment_ids.size())
-                                             ? dataset.segment_ids[static_cast<size_t>(row)]
-                                             : row) +
-                          ") has none");
-        auto& rows = rows_of[subject];
-        if (rows.empty()) order.push_back(subject);
-        rows.push_back(row);
-      }
-      if (order.size() < 2)
-        throw Error(kProtocolWhere,
-                    "loso needs at least 2 subjects; the dataset has only '" + order[0] + "'");
-      for (const std::string& subject : order)
-        folds.push_back(fold_of_test(rows_of[subject], row_count));
-      break;
-    }
+    case Protocol::Kind::kLeaveOneSubjectOut:
     case Protocol::Kind::kLeaveOneGroupOut: {
-      // The column's value per row: the table's own columns first, then the metadata.
-      const std::string& column = protocol.group_column;
-      std::vector<std::string> values(static_cast<size_t>(row_count));
-      for (int64_t row = 0; row < row_count; ++row) {
-        const auto r = static_cast<size_t>(row);
-        std::string value;
-        if (column == "subject" && r < dataset.subjects.size()) {
-          value = dataset.subjects[r];
-        } else if (column == "recording" && r < dataset.recordings.size()) {
-          value = dataset.recordings[r];
-        } else if (column == "class") {
-          value = dataset.classes[r];
-        } else if (r < dataset.metadata.size()) {
-          const auto found = dataset.metadata[r].find(column);
-          if (found != dataset.metadata[r].end()) value = found->second;
-        }
-        if (value.empty())
-          throw Error(kProtocolWhere, name + ": row " + std::to_string(row) + " has no value in column '" + column + "'");
-        values[r] = std::move(value);
-      }
+      const std::vector<std::string> values = protocol_groups(dataset, protocol);
       std::vector<std::string> order;
       std::map<std::string, std::vector<int64_t>> rows_of;
       for (int64_t row = 0; row < row_count; ++row) {
@@ -309,7 +308,11 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
         rows.push_back(row);
       }
       if (order.size() < 2)
-        throw Error(kProtocolWhere, name + " needs at least 2 groups; column '" + column + "' has only '" + order[0] + "'");
+        throw Error(kProtocolWhere,
+                    protocol.kind == Protocol::Kind::kLeaveOneSubjectOut
+                        ? "loso needs at least 2 subjects; the dataset has only '" + order[0] + "'"
+                        : name + " needs at least 2 groups; column '" + protocol.group_column +
+                              "' has only '" + order[0] + "'");
       for (const std::string& group : order) folds.push_back(fold_of_test(rows_of[group], row_count));
       break;
     }

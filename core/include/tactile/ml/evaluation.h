@@ -53,6 +53,27 @@ struct Fold {
 // the dataset cannot give (more folds than rows, loso without subjects, a query that
 // matches no row, a row in both halves of a split).
 std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, uint64_t seed);
+// The group each row belongs to under a protocol that holds groups out: its subject for
+// loso, its value of the column for group:COLUMN; empty for the other protocols. Throws as
+// make_folds on a row without one.
+std::vector<std::string> protocol_groups(const Dataset& dataset, const Protocol& protocol);
+
+// The groups of the training rows of the fit running on this thread (one per row of the
+// matrix fit() is given), when its evaluation holds groups out; empty otherwise. A search
+// inside the fit (auto) then keeps its inner folds to whole groups, as the outer ones are.
+const std::vector<std::string>& fit_groups();
+// Sets fit_groups() on this thread for its lifetime (and restores the one before).
+class FitGroupsScope {
+ public:
+  explicit FitGroupsScope(const std::vector<std::string>* groups);
+  ~FitGroupsScope();
+  FitGroupsScope(const FitGroupsScope&) = delete;
+  FitGroupsScope& operator=(const FitGroupsScope&) = delete;
+
+ private:
+  const std::vector<std::string>* previous_;
+};
+
 // Rows matching a query `key=value[,key=value]` (AND). Keys: class, subject, recording,
 // segment_id or any metadata key. Throws tactile::Error naming `where` and the query when it
 // is malformed, names a key no row has, or matches no row.
