@@ -96,6 +96,18 @@ Stream layout_ordered(const Stream& stream, const SkinLayout& layout) {
   return ordered;
 }
 
+const Stream& ordered_stream(const Recording& recording, const SkinLayout& layout,
+                             const std::string& name, const std::string& rate_need) {
+  const Stream& stream = pipeline_stream(recording, name);
+  const std::string where = "recording " + recording.id + " stream " + stream.name;
+  if (!in_layout_order(stream, layout))
+    throw Error(where, std::to_string(stream.channel_count()) + " channels, not layout " +
+                           layout.id + "'s " + std::to_string(layout.channels.size()) +
+                           " in order (preprocess() puts them in order)");
+  if (!(stream.rate_hz > 0.0)) throw Error(where, "no sample rate, which " + rate_need);
+  return stream;
+}
+
 Recording with_layout_stream(const Recording& recording, const SkinLayout& layout,
                              const std::string& name) {
   const Stream& stream = pipeline_stream(recording, name);

@@ -586,16 +586,7 @@ class GenericExtractor : public FeatureExtractor {
   }
 
   const Stream& find_stream(const Recording& recording, const SkinLayout& layout) const {
-    const Stream* stream = &pipeline_stream(recording, stream_);
-    if (!in_layout_order(*stream, layout))
-      throw Error("recording " + recording.id + " stream " + stream->name,
-                  std::to_string(stream->channel_count()) + " channels, not layout " + layout.id +
-                      "'s " + std::to_string(layout.channels.size()) +
-                      " in order (preprocess() puts them in order)");
-    if (!(stream->rate_hz > 0.0))
-      throw Error("recording " + recording.id + " stream " + stream->name,
-                  "no sample rate, which the integral needs");
-    return *stream;
+    return ordered_stream(recording, layout, stream_, "the integral needs");
   }
 
   // The contact features over the segment's region: the taxels of its layout group, or

@@ -537,16 +537,7 @@ class GridExtractor : public FeatureExtractor {
   }
 
   const Stream& find_stream(const Recording& recording, const SkinLayout& layout) const {
-    const Stream* stream = &pipeline_stream(recording, stream_);
-    if (!in_layout_order(*stream, layout))
-      throw Error("recording " + recording.id + " stream " + stream->name,
-                  std::to_string(stream->channel_count()) + " channels, not layout " + layout.id +
-                      "'s " + std::to_string(layout.channels.size()) +
-                      " in order (preprocess() puts them in order)");
-    if (!(stream->rate_hz > 0.0))
-      throw Error("recording " + recording.id + " stream " + stream->name,
-                  "no sample rate, which speeds need");
-    return *stream;
+    return ordered_stream(recording, layout, stream_, "speeds need");
   }
 
   std::string modality_;

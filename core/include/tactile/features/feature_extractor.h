@@ -74,6 +74,11 @@ bool in_layout_order(const Stream& stream, const SkinLayout& layout);
 // `stream` with one column per layout channel in the layout's order; a channel the stream
 // lacks (a virtual channel that a skin's own preprocessing computes) reads as 0.
 Stream layout_ordered(const Stream& stream, const SkinLayout& layout);
+// The pipeline stream of a preprocessed recording, which must be in the layout's order and
+// sampled regularly; Error naming the recording and stream otherwise (`rate_need`: what the
+// rate is needed for, e.g. "speeds need").
+const Stream& ordered_stream(const Recording& recording, const SkinLayout& layout,
+                             const std::string& name, const std::string& rate_need);
 // `recording` with its pipeline stream (as pipeline_stream finds it) in the layout's order.
 Recording with_layout_stream(const Recording& recording, const SkinLayout& layout,
                              const std::string& name);
