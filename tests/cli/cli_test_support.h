@@ -65,12 +65,14 @@ struct CommandResult {
 
 // Runs `<bin dir>/<program> <arguments>` through the shell, stdout and stderr captured
 // in files of `folder`.
+// `environment`: "NAME=value ..." set for the program alone.
 inline CommandResult run_program(const std::string& program, const std::string& arguments,
-                                 const TempFolder& folder) {
+                                 const TempFolder& folder, const std::string& environment = "") {
   const std::string out = folder.file(".stdout.txt");
   const std::string err = folder.file(".stderr.txt");
-  const std::string command = tactile::test::bin_dir() + "/" + program + " " + arguments +
-                              " >'" + out + "' 2>'" + err + "' </dev/null";
+  const std::string command = environment + (environment.empty() ? "" : " ") +
+                              tactile::test::bin_dir() + "/" + program + " " + arguments + " >'" +
+                              out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(command.c_str());
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

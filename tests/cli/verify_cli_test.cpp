@@ -113,5 +113,33 @@ TEST_F(VerifyCli, UpgradeRewritesFilesOfTheEarlierFormat) {
   EXPECT_EQ(tactile("upgrade " + old_recording).out, old_recording + ": already format 2\n");
 }
 
+TEST_F(VerifyCli, RepairMendsADamagedRecordingNamesWhatWasLostAndKeepsTheOriginal) {
+  const auto whole = tactile("repair " + recording);
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(whole.out, recording + ": whole, nothing to repair\n");
+  const auto size = std::filesystem::file_size(recording);
+  flip_byte(recording, static_cast<std::streamoff>(size / 2));
+  const auto repaired = tactile("repair " + recording);
+  EXPECT_EQ(repaired.exit_code, 0) << repaired.out << repaired.err;
+  EXPECT_EQ(
+      repaired.out.rfind(
+          recording + ": repaired; the damaged original is kept as " + recording + ".damaged\n", 0),
+      0u)
+      << repaired.out;
+  EXPECT_NE(repaired.out.find("  rebuilt: /streams/skin: the overview and the sample count"),
+            std::string::npos)
+      << repaired.out;
+  EXPECT_NE(repaired.out.find("  lost: /streams/skin channel "), std::string::npos) << repaired.out;
+  EXPECT_TRUE(std::filesystem::exists(recording + ".damaged"));
+  EXPECT_EQ(tactile("verify " + recording).exit_code, 0);
+  // A file that is no recording at all: refused, named, left as it was.
+  std::ofstream(folder.file("junk.h5")) << "junk";
+  const auto junk = tactile("repair " + folder.file("junk.h5"));
+  EXPECT_EQ(junk.exit_code, 1);
+  EXPECT_NE(junk.err.find(folder.file("junk.h5") + ": cannot be repaired"), std::string::npos)
+      << junk.err;
+  EXPECT_EQ(test::read_text(folder.file("junk.h5")), "junk");
+}
+
 }  // namespace
 }  // namespace tactile

@@ -37,6 +37,9 @@ struct Document {
   std::string labels_refused;
   // Labels shown but not stored: live decisions of an online model (their own lane).
   std::vector<Label> transient_labels;
+  // Why labels cannot be saved where they belong (a read-only folder or store), with the way
+  // out; "" when they can. The recording is viewed all the same; label_store() refuses.
+  std::string labels_read_only;
   // The recording id labels are made for when the source has none of its own (live).
   std::string live_recording_id;
 
@@ -46,6 +49,10 @@ struct Document {
   // The store, opened (or created beside the recording) on first need. Throws
   // tactile::Error.
   LabelStore& label_store();
+  // The user's own store for this recording's folder (docs/LABELS.md), and the switch to it:
+  // the read-only store's labels of this recording are copied in once. Throws tactile::Error.
+  std::string own_store_path() const;
+  void keep_labels_in_own_store();
   const std::string& recording_id() const {
     return live_recording_id.empty() ? source->info().recording_id : live_recording_id;
   }
@@ -56,6 +63,11 @@ struct DocumentOptions {
   std::string stream;       // "" = the first stream
   int64_t cache_bytes = int64_t{32} << 20;
 };
+
+// Faults of the disk, injected into every open recording's reads (`fault read` in scripts, for
+// tests and benchmarks): reads that hang, or that fail as on a pulled USB stick.
+enum class ReadFault { kNone, kHang, kFail };
+void inject_read_fault(ReadFault fault);
 
 // Opens a recording (HDF5) through a file-backed source, with its layout and labels.
 // Throws tactile::Error when the recording cannot be opened; damaged chunks read as

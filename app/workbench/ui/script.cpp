@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "document.h"
 #include "script_commands.h"
 #include "tactile/error.h"
 
@@ -426,6 +427,13 @@ void ScriptPlayer::write_state(const ScriptStep& step) {
   once([this, path = step.rest](Workbench&, ImGuiIO&) {
     pending_outputs_.emplace_back(path, false);
   });
+}
+
+void ScriptPlayer::inject_fault(const ScriptStep& step) {
+  const ReadFault fault = step.words[1] == "hang"   ? ReadFault::kHang
+                          : step.words[1] == "fail" ? ReadFault::kFail
+                                                    : ReadFault::kNone;
+  once([fault](Workbench&, ImGuiIO&) { inject_read_fault(fault); });
 }
 
 //---- Frames

@@ -73,6 +73,7 @@ class ScriptPlayer {
   void sleep_wall_clock(const ScriptStep& step);
   void write_screenshot(const ScriptStep& step);
   void write_state(const ScriptStep& step);
+  void inject_fault(const ScriptStep& step);
 
   std::deque<ScriptStep> steps_;
   std::deque<Action> actions_;

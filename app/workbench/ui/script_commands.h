@@ -61,6 +61,8 @@ inline constexpr size_t kAnyWords = std::numeric_limits<size_t>::max();
     1, 1, check_script_not_negative, play_recording)                                               \
   X("sleep SECONDS", "keep drawing frames for this much wall-clock time (live data arrives)",      \
     1, 1, check_script_not_negative, sleep_wall_clock)                                             \
+  X("fault read MODE", "make the open recording's reads hang, fail or work again",                  \
+    2, 2, check_script_fault_mode, inject_fault)                                                   \
   X("screenshot PATH", "write the window as PNG",                                                  \
     1, kAnyWords, nullptr, write_screenshot)                                                       \
   X("state PATH", "write the workbench's state as JSON",                                           \

@@ -129,6 +129,12 @@ void check_script_frame_count(const ScriptStep& step, const std::string& where) 
                     "(wall clock) or 'play' (recording time)");
 }
 
+void check_script_fault_mode(const ScriptStep& step, const std::string& where) {
+  const std::string& mode = step.words[1];
+  if (mode != "hang" && mode != "fail" && mode != "off")
+    throw Error(place_of(step, where), "fault read: " + mode + " is not hang, fail or off");
+}
+
 void check_script_key_chords(const ScriptStep& step, const std::string& where) {
   for (const std::string& word : step.words) {
     try {

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -146,6 +147,8 @@ bool Workbench::open(const std::string& path) {
     set_workspace(fs::path(state_.document->path).parent_path().string());
   state_.selection = {};
   choose_default_view();
+  if (!state_.document->labels_read_only.empty())
+    state_.notice = "read-only: " + state_.document->labels_read_only;
   return true;
 }
 
@@ -203,6 +206,14 @@ void Workbench::choose_default_view() {
 
 //---------------------------------------------------------------------------------------------
 void Workbench::frame(double seconds) {
+  const auto started = std::chrono::steady_clock::now();
+  frame_work(seconds);
+  state_.longest_frame_seconds =
+      std::max(state_.longest_frame_seconds,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+}
+
+void Workbench::frame_work(double seconds) {
   ++state_.frame;
   poll_live(state_, services_.live);
   if (!state_.live.connected) state_.clock.advance(seconds);
@@ -254,6 +265,7 @@ void Workbench::frame(double seconds) {
 }
 
 void Workbench::note_damage() {
+  state_.unavailable = state_.document ? state_.document->source->unavailable() : std::string();
   if (!state_.document) return;
   const std::vector<std::string> damage = state_.document->source->damage();
   if (damage.empty()) return;
@@ -572,6 +584,17 @@ void Workbench::draw_menu_bar() {
         ImGui::EndMenu();
       }
       remember_item(state_, "menu:Labels/Run segmenter");
+      if (ImGui::MenuItem("Keep labels in my own store", nullptr, false,
+                          !state_.document->labels_read_only.empty())) {
+        try {
+          state_.document->keep_labels_in_own_store();
+          state_.notice = "labels are kept in " + state_.document->labels_path;
+        } catch (const Error& failure) {
+          state_.error = failure.what();
+        }
+      }
+      remember_item(state_, "menu:Labels/Keep labels in my own store",
+                    "For a recording in a read-only folder: save labels in your own store instead");
       draw_labels_file_items(state_);
       ImGui::EndMenu();
     }
@@ -592,8 +615,15 @@ void Workbench::draw_menu_bar() {
 
 void Workbench::draw_status_bar() {
   if (draw_job_status(state_)) {
+  } else if (!state_.unavailable.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "file away: %s",
+                       state_.unavailable.c_str());
   } else if (!state_.error.empty()) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", state_.error.c_str());
+  } else if (state_.document && !state_.document->labels_read_only.empty() &&
+             state_.notice.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "read-only: %s",
+                       state_.document->labels_read_only.c_str());
   } else if (!state_.notice.empty()) {
     ImGui::TextUnformatted(state_.notice.c_str());
   } else if (state_.document && (state_.damaged.count(state_.document->path) > 0 ||
@@ -802,6 +832,10 @@ nlohmann::json Workbench::state_json() const {
   json["memory_bytes"] = document ? document->samples().memory_bytes() : 0;
   json["error"] = state_.error;
   json["notice"] = state_.notice;
+  json["unavailable"] = state_.unavailable;
+  json["labels_read_only"] = document ? document->labels_read_only : std::string();
+  json["labels_path"] = document ? document->labels_path : std::string();
+  json["longest_frame_seconds"] = state_.longest_frame_seconds;
   json["frame"] = state_.frame;
   nlohmann::json jobs = nlohmann::json::array();
   for (const WorkbenchState::JobRecord& record : state_.job_log)

@@ -59,6 +59,7 @@ class Workbench {
   nlohmann::json state_json() const;
 
  private:
+  void frame_work(double seconds);  // frame() without its timing
   void set_workspace(const std::string& folder);
   void select_stream(const std::string& stream);
   DocumentOptions document_options(const std::string& stream) const;

@@ -301,6 +301,9 @@ struct WorkbenchState {
   PanelSizes sizes;
   std::string error;   // the last error, shown in the status bar
   std::string notice;  // the last message (an export written, ...)
+  // Why the open recording cannot be read now (its disk went away): shown while it lasts.
+  std::string unavailable;
+  double longest_frame_seconds = 0.0;  // the UI's slowest frame so far (building it, not drawing)
   UiTargets targets;   // last frame's
   int64_t frame = 0;
   // The jobs, newest last: when each started and when it was applied, by frame.

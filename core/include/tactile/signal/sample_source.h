@@ -68,6 +68,10 @@ class SampleSource {
   // Places of the data found damaged so far and read as gaps (NaN) instead, each
   // "FILE:PLACE: what"; empty for a source that throws instead (the default).
   virtual std::vector<std::string> damage() const { return {}; }
+  // Why the data cannot be read now ("" when it can): a recording file deleted or moved, or on
+  // a network share or USB stick that went away. Views show what is cached meanwhile (the
+  // rest as gaps); the source reopens the file when it is back.
+  virtual std::string unavailable() const { return ""; }
 
   //---- Helpers over the virtual calls
   int channel_count() const { return static_cast<int>(info().channels.size()); }
@@ -135,6 +139,14 @@ struct FileSourceOptions {
   // listed by damage(), instead of throwing: a viewer keeps showing the rest of a
   // damaged file and names the damage.
   bool damaged_chunks_as_gaps = false;
+  // A read of the file waits at most this long: a file that stops answering (a hung network
+  // share) makes the source unavailable() instead of holding its caller (the UI's frame).
+  double read_budget_seconds = 0.5;
+  // While unavailable, the file is looked for again at most this often.
+  double retry_seconds = 1.0;
+  // Called on the reading thread before each read of the file: a fault injected by tests and
+  // benchmarks (it may block, or throw tactile::Error as a failing disk would).
+  std::function<void()> before_read;
 };
 
 class FileSampleSource final : public SampleSource {
@@ -162,9 +174,16 @@ class FileSampleSource final : public SampleSource {
   // Chunks read from the file since opening (cache misses), for tests and benchmarks.
   int64_t chunks_read() const;
   std::vector<std::string> damage() const override;
+  std::string unavailable() const override;
 
  private:
   struct Cache;
+  class Reader;
+  // Samples [first, first + count) of channels [channel_first, +channels) through the reader:
+  // true with `out` filled, false when the file is unavailable (why in unavailable_). Throws
+  // tactile::Error when the data is damaged. Caller holds mutex_.
+  bool read_file(int channel_first, int channels, int64_t first, int64_t count,
+                 SampleMatrix& out) const;
   // Copies samples [first, first + out.size()) of one channel out of the cache,
   // reading missing chunks. Caller holds mutex_.
   void copy_samples(int channel, int64_t first, std::span<float> out) const;
@@ -179,6 +198,12 @@ class FileSampleSource final : public SampleSource {
   bool damaged_as_gaps_ = false;
   std::vector<double> timestamps_;
   std::unique_ptr<Cache> cache_;
+  std::string path_;
+  double read_budget_ = 0.5, retry_seconds_ = 1.0;
+  std::function<void()> before_read_;
+  std::unique_ptr<Reader> reader_;
+  mutable std::string unavailable_;  // guarded by mutex_
+  mutable double last_look_ = 0.0;   // steady seconds of the last look for the file
   mutable std::mutex mutex_;
 };
 
