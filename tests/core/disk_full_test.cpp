@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -250,6 +251,9 @@ TEST(DiskFull, TheRecorderWarnsThenStopsWithAWholeFileBeforeTheDiskIsFull) {
   options.pretrigger_seconds = 10.0;
   options.lag_seconds = 0.0;
   options.warn_minutes = 0.05;  // 3 s
+  // Fed as fast as the test runs, but as a device would send it: a tenth of a second each.
+  auto now = std::make_shared<double>(0.0);
+  options.clock = [now] { return *now; };
   options.room = [](const std::string& file) {
     std::error_code error;
     const auto size = std::filesystem::file_size(file, error);
@@ -259,6 +263,7 @@ TEST(DiskFull, TheRecorderWarnsThenStopsWithAWholeFileBeforeTheDiskIsFull) {
   bool seen_plenty = false, seen_low = false;
   for (int tenth = 0; tenth < 4000 && !recorder.stopped(); ++tenth) {
     feed_tenth(source, next);
+    *now += 0.1;
     recorder.take(source);
     // The writer thread has its own pace; wait until it caught up with what was taken.
     for (int wait = 0; wait < 2000 && recorder.samples_on_disk() + 600 < recorder.samples_taken() && !recorder.stopped(); ++wait)

@@ -418,8 +418,13 @@ void draw_live_bar(WorkbenchState& state) {
                        format_seconds(static_cast<double>(live.recorded_samples) / source.rate_hz()).c_str());
     if (live.room.low) {
       ImGui::SameLine();
-      ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "disk: %.0f min left at %s/s (%s free)",
-                         std::floor(live.room.minutes_left), byte_text(static_cast<int64_t>(live.room.bytes_per_second)).c_str(),
+      const double left = live.room.minutes_left;
+      char time_left[32];
+      std::snprintf(time_left, sizeof time_left, left < 1.0 ? "%.0f s" : "%.0f min",
+                    left < 1.0 ? left * 60.0 : std::floor(left));
+      ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "disk: %s left at %s/s (%s free)",
+                         time_left,
+                         byte_text(static_cast<int64_t>(live.room.bytes_per_second)).c_str(),
                          byte_text(live.room.free_bytes).c_str());
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("The recording stops by itself, with a whole file, before its disk is full.");

@@ -1,6 +1,7 @@
 #include "tactile/live/live_recorder.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,9 +24,12 @@ LiveRecorder::LiveRecorder(const std::string& path, const LiveSampleSource& sour
                            const LiveRecorderOptions& options)
     : path_(path),
       lag_seconds_(std::max(0.0, options.lag_seconds)),
-      flush_seconds_(options.flush_seconds),
       warn_minutes_(options.warn_minutes),
-      room_probe_(options.room) {
+      room_probe_(options.room),
+      clock_(options.clock ? options.clock : [] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+      }) {
   if (!(options.pretrigger_seconds >= 0.0) || !std::isfinite(options.pretrigger_seconds))
     throw Error("pre-trigger", "must be a number of seconds, 0 or more");
   recording_id_ = std::filesystem::path(path).stem().string();
@@ -126,25 +130,32 @@ bool LiveRecorder::stopped() const {
   return !room_.stopped.empty();
 }
 
-void LiveRecorder::check_room(double seconds_on_disk) {
+void LiveRecorder::check_room() {
   const int64_t bytes = writer_->file_bytes();
+  const double now = clock_();
   const int64_t free = room_probe_ ? room_probe_(path_) : -1;
   RecorderRoom room = this->room();
   room.free_bytes = free;
-  if (seconds_on_disk > measured_seconds_ && bytes > 0) {
-    const double slope = static_cast<double>(bytes - measured_bytes_) / (seconds_on_disk - measured_seconds_);
-    // The first interval carries the file's own structure: a fair start, smoothed away after.
-    room.bytes_per_second = room.bytes_per_second > 0.0 ? 0.7 * room.bytes_per_second + 0.3 * slope : slope;
-    measured_bytes_ = bytes;
-    measured_seconds_ = seconds_on_disk;
+  if (measured_seconds_ >= 0.0 && now > measured_seconds_ && bytes > measured_bytes_) {
+    // The file's growth per second of the wall clock (a source replayed at 4x fills the disk
+    // four times as fast) and per flush (what the next one will take), smoothed; the first
+    // interval carries the file's own structure, a fair start, smoothed away after.
+    const double per_second =
+        static_cast<double>(bytes - measured_bytes_) / (now - measured_seconds_);
+    const double per_flush = static_cast<double>(bytes - measured_bytes_);
+    room.bytes_per_second =
+        room.bytes_per_second > 0.0 ? 0.7 * room.bytes_per_second + 0.3 * per_second : per_second;
+    bytes_per_flush_ =
+        bytes_per_flush_ > 0.0 ? 0.7 * bytes_per_flush_ + 0.3 * per_flush : per_flush;
   }
+  measured_bytes_ = bytes;
+  measured_seconds_ = now;
   if (free < 0 || !(room.bytes_per_second > 0.0)) {
     std::lock_guard lock(mutex_);
     room_ = room;
     return;
   }
-  const double reserve = kReserveFlushes * room.bytes_per_second * std::max(flush_seconds_, 0.25) +
-                         static_cast<double>(kClosingBytes);
+  const double reserve = kReserveFlushes * bytes_per_flush_ + static_cast<double>(kClosingBytes);
   room.minutes_left = std::max(0.0, (static_cast<double>(free) - reserve) / room.bytes_per_second / 60.0);
   room.low = room.minutes_left < warn_minutes_;
   if (static_cast<double>(free) < reserve) {
@@ -155,7 +166,8 @@ void LiveRecorder::check_room(double seconds_on_disk) {
       failure = error.what();
     }
     char seconds[32];
-    std::snprintf(seconds, sizeof(seconds), "%.1f", seconds_on_disk);
+    std::snprintf(seconds, sizeof(seconds), "%.1f",
+                  static_cast<double>(writer_->samples_on_disk()) / writer_rate_);
     room.stopped = "stopped recording: " + byte_text(free) + " left on the disk of " + path_ +
                    ", too little for more at " + byte_text(static_cast<int64_t>(room.bytes_per_second)) +
                    "/s; the file is closed whole with " + seconds + " s";
@@ -187,7 +199,7 @@ void LiveRecorder::run() {
         std::lock_guard lock(mutex_);
         on_disk_ = after;
       }
-      if (after != before) check_room(static_cast<double>(after) / writer_rate_);
+      if (after != before) check_room();
       if (stopped()) return;
     } catch (const std::exception& failure) {
       std::lock_guard lock(mutex_);

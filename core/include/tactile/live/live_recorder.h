@@ -33,12 +33,13 @@ struct LiveRecorderOptions {
   // are left) it stops by itself and closes a whole file (room().stopped).
   double warn_minutes = 10.0;
   std::function<int64_t(const std::string&)> room = room_to_grow;  // bytes; -1 unknown
+  std::function<double()> clock;  // seconds, for the rate; empty: the steady clock
 };
 
 // The recorder's view of its disk, as of the last flush.
 struct RecorderRoom {
   int64_t free_bytes = -1;        // the disk's room for the file (-1: unknown)
-  double bytes_per_second = 0.0;  // the file's growth at the current rate
+  double bytes_per_second = 0.0;  // the file's growth per second of the wall clock
   double minutes_left = -1.0;     // until the recorder stops by itself (-1: unknown)
   bool low = false;               // less than warn_minutes left
   std::string stopped;            // why the recorder stopped by itself ("" while it records)
@@ -75,7 +76,7 @@ class LiveRecorder {
  private:
   void run();
   // After a flush, on the writer thread: the room left, and the clean stop when it is short.
-  void check_room(double seconds_on_disk);
+  void check_room();
 
   std::string path_;
   std::string recording_id_;
@@ -91,13 +92,14 @@ class LiveRecorder {
   bool finished_ = false;
   std::string error_;
   int64_t on_disk_ = 0;
-  double flush_seconds_;
   double writer_rate_ = 1.0;
   double warn_minutes_;
   std::function<int64_t(const std::string&)> room_probe_;
   RecorderRoom room_;
-  int64_t measured_bytes_ = 0;     // file size at the last flush
-  double measured_seconds_ = 0.0;  // seconds of samples on disk then
+  std::function<double()> clock_;
+  int64_t measured_bytes_ = 0;      // file size at the last flush
+  double measured_seconds_ = -1.0;  // the clock then (-1: no flush yet)
+  double bytes_per_flush_ = 0.0;    // the file's growth per flush, smoothed
   std::thread thread_;
 };
 
