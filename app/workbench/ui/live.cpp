@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "tactile/error.h"
+#include "tactile/io/disk_room.h"
 #include "tactile/signal/display_scale.h"
 #include "tactile/signal/taxel_values.h"
 #include "tactile/skins/skin.h"
@@ -281,8 +282,13 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
   if (services.recorder) {
     services.recorder->take(source);
     live.recorded_samples = services.recorder->samples_taken();
+    live.room = services.recorder->room();
     if (const std::string failure = services.recorder->error(); !failure.empty()) {
-      state.error = "recording failed: " + failure;
+      state.error = "recording failed: " + failure + ". What was flushed is in the file; `tactile repair " +
+                    services.recorder->path() + "` rebuilds the rest and says what was lost";
+      stop_recording(state, services);
+    } else if (services.recorder->stopped()) {
+      state.error = live.room.stopped;
       stop_recording(state, services);
     }
   }
@@ -435,6 +441,14 @@ void draw_live_bar(WorkbenchState& state) {
     ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %s %s",
                        fs::path(live.recording).filename().c_str(),
                        format_seconds(static_cast<double>(live.recorded_samples) / source.rate_hz()).c_str());
+    if (live.room.low) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "disk: %.0f min left at %s/s (%s free)",
+                         std::floor(live.room.minutes_left), byte_text(static_cast<int64_t>(live.room.bytes_per_second)).c_str(),
+                         byte_text(live.room.free_bytes).c_str());
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("The recording stops by itself, with a whole file, before its disk is full.");
+    }
   }
 }
 
@@ -467,6 +481,9 @@ nlohmann::json live_json(const WorkbenchState& state) {
                        : nlohmann::json(nullptr);
   json["recording"] = live.recording.empty() ? nlohmann::json(nullptr) : nlohmann::json(live.recording);
   json["recorded_samples"] = live.recording.empty() ? 0 : live.recorded_samples;
+  json["disk_free_bytes"] = live.room.free_bytes;
+  json["disk_minutes_left"] = live.room.minutes_left;
+  json["disk_low"] = live.room.low;
   json["recorded"] = live.recorded;
   json["failure"] = live.failure;
   json["model"] = live.model_path;

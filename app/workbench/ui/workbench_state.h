@@ -23,6 +23,7 @@
 #include "tactile/labels/quality.h"
 #include "tactile/labels/training_job.h"
 #include "tactile/live/live_receiver.h"
+#include "tactile/live/live_recorder.h"
 #include "tactile/live/online_classifier.h"
 #include "tactile/live/playback.h"
 #include "tactile/ml/evaluation.h"
@@ -204,6 +205,7 @@ struct LiveState {
   bool channels_chosen = false;  // the moving channels are picked once data has arrived
   std::string recording;            // the file being recorded; "" when not recording
   int64_t recorded_samples = 0;     // taken into it so far
+  RecorderRoom room;                // its disk, as of the recorder's last flush
   bool recorder_automatic = false;  // started by a contact: stops after a quiet time
   std::string record_folder;        // "" = the workspace
   float pretrigger_seconds = 5.0f;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -101,7 +102,9 @@ hsize_t agreeing_count(hid_t group, hid_t samples, hsize_t channels, hsize_t blo
   } catch (const Error&) {
     return count;
   }
-  auto same = [](float left, float right) { return std::memcmp(&left, &right, sizeof left) == 0; };
+  auto same = [](float left, float right) {
+    return std::memcmp(&left, &right, sizeof left) == 0 || (std::isnan(left) && std::isnan(right));
+  };
   std::vector<MinMax> ranges(channels);
   hsize_t agreeing = first;
   for (hsize_t sample = 0; sample < length; ++sample) {
@@ -109,7 +112,10 @@ hsize_t agreeing_count(hid_t group, hid_t samples, hsize_t channels, hsize_t blo
     for (hsize_t channel = 0; channel < channels; ++channel) {
       MinMax& range = ranges[channel];
       range.add(values[channel * length + sample]);
-      all = all && same(range.min, low[channel]) && same(range.max, high[channel]);
+      // Nothing but gaps so far: stored as NaN.
+      const float nothing = std::numeric_limits<float>::quiet_NaN();
+      all = all && same(range.empty() ? nothing : range.min, low[channel]) &&
+            same(range.empty() ? nothing : range.max, high[channel]);
     }
     if (all) agreeing = first + sample + 1;
   }
@@ -132,8 +138,19 @@ hsize_t summarised_count(hid_t group, hid_t samples, hsize_t channels, hsize_t b
   return count;
 }
 
+// A dataset that grows (written by RecordingWriter as it happened), as opposed to one written
+// whole at its final size.
+bool grows(hid_t dataset) {
+  Object space(H5Dget_space(dataset), H5Sclose);
+  hsize_t shape[2] = {0, 0}, limit[2] = {0, 0};
+  return space.valid() && H5Sget_simple_extent_ndims(space.id()) == 2 &&
+         H5Sget_simple_extent_dims(space.id(), shape, limit) == 2 && limit[1] == H5S_UNLIMITED;
+}
+
+// `cut_off` in: the file was not closed by its writer; out: also when its writer failed
+// mid-flush (a full disk) and closed it, so samples and overview disagree at the end.
 StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::string& path,
-                            int format_version, bool cut_off, int64_t& overview_block) {
+                            int format_version, bool& cut_off, int64_t& overview_block) {
   const std::string where = path + ":/streams/" + name;
   Object group = hdf5::open_group(streams, name, where);
   StreamInfo info;
@@ -173,10 +190,13 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
   auto samples_count = shape[1];
   hdf5::check_declared_size(samples.id(), 4.0 * channels * samples_count, where + "/samples");
   const auto block_size = static_cast<hsize_t>(block);
-  if (cut_off) {
-    // A recording whose writer stopped mid-way (killed, power lost): the samples and the
-    // overview were appended in turns, so one may be a flush ahead. The samples both cover
-    // are the recording.
+  // A recording whose writer stopped mid-way (killed, power lost, or a write that failed on a
+  // full disk): the samples and the overview were appended in turns, so one may be a flush
+  // ahead. The samples both cover and agree on are the recording. A whole growing file agrees
+  // at its end (one block read to see it).
+  const bool growing = !cut_off && grows(samples.id());
+  if (cut_off || growing) {
+    const hsize_t extent = samples_count;
     for (const char* overview : {"overview_min", "overview_max"}) {
       Object dataset = hdf5::open_dataset(group.id(), overview, where + "/" + overview);
       const std::vector<hsize_t> covered = hdf5::dataset_shape(dataset.id(), where + "/" + overview);
@@ -184,6 +204,7 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
     }
     samples_count = summarised_count(group.id(), samples.id(), channels, block_size, samples_count,
                                      where);
+    if (growing && samples_count != extent) cut_off = true;
   }
   info.sample_count = static_cast<int64_t>(samples_count);
 
@@ -201,7 +222,7 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
   const hsize_t blocks = (samples_count + block_size - 1) / block_size;
   for (const char* overview : {"overview_min", "overview_max"}) {
     const std::string place = where + "/" + overview;
-    Object dataset = cut_off ? hdf5::open_dataset(group.id(), overview, place)
+    Object dataset = cut_off || growing ? hdf5::open_dataset(group.id(), overview, place)
                              : open_checked(group.id(), overview, {channels, blocks}, place);
     hdf5::check_declared_size(dataset.id(), 4.0 * channels * blocks, place);
   }
@@ -253,39 +274,6 @@ RecordingFile::RecordingFile(const std::string& path)
 
 namespace {
 
-// The end of file address of an HDF5 superblock (format spec, "Superblock": versions 0-3),
-// absolute; nothing when no superblock is found where HDF5 looks for one (offset 0, 512,
-// 1024, ...) or its fields do not fit.
-std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
-  static const uint8_t kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
-  auto little_endian = [&](size_t at, size_t size) -> std::optional<uint64_t> {
-    if (size == 0 || size > 8 || at > image.size() || image.size() - at < size) return {};
-    uint64_t value = 0;
-    for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
-    return value;
-  };
-  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at) {
-    if (!std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
-      continue;
-    const uint8_t version = image[at + 8];
-    size_t offsets = 0, base_at = 0;
-    if (version == 0 || version == 1) {
-      offsets = image[at + 13];
-      base_at = at + (version == 0 ? 24 : 28);
-    } else if (version == 2 || version == 3) {
-      offsets = image[at + 9];
-      base_at = at + 12;
-    } else {
-      return {};
-    }
-    const auto base = little_endian(base_at, offsets);
-    const auto end = little_endian(base_at + 2 * offsets, offsets);
-    if (!base || !end || *end > UINT64_MAX - *base) return {};
-    return *base + *end;
-  }
-  return {};
-}
-
 }  // namespace
 
 RecordingFile RecordingFile::from_image(std::span<const uint8_t> image, const std::string& name) {
@@ -308,7 +296,7 @@ RecordingFile RecordingFile::from_image(std::span<const uint8_t> image, const st
     throw Error(name, "cannot open HDF5 file (" + hdf5::last_error() + ")");
   // On disk HDF5 refuses a file shorter than its superblock's end of file address; from
   // memory it reads zeros past the end instead, so the check is made here.
-  const std::optional<uint64_t> end = superblock_end_of_file(image);
+  const std::optional<uint64_t> end = hdf5::superblock_end_of_file(image);
   if (end && *end > image.size())
     throw Error(name, "truncated file: " + std::to_string(image.size()) + " bytes of the " +
                           std::to_string(*end) + " its superblock declares");

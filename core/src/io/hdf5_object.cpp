@@ -2,13 +2,40 @@
 
 #include <algorithm>
 #include <cstring>
+#include <cstdio>
+#include <filesystem>
 #include <map>
+#include <optional>
+#include <span>
 
 namespace tactile::hdf5 {
 
-void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void silence_errors() {
+  // Per thread in a thread-safe libhdf5: once on each thread that touches a file (the UI,
+  // a job, a recorder's writer), so HDF5 never prints its error stack to a user.
+  thread_local bool silenced = false;
+  if (silenced) return;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  silenced = true;
+}
 
 namespace {
+
+// The file driver's message for a failed read or write spans lines ("file write failed: time =
+// ..., errno = 28, error message = 'No space left on device', buf = ..."): what happened is
+// the system's message, which is what a user is shown.
+std::string one_line(std::string message) {
+  const size_t quoted = message.find("error message = '");
+  if (quoted != std::string::npos) {
+    const size_t begin = quoted + 17, end = message.find('\'', begin);
+    const std::string action = message.rfind("file read failed", 0) == 0 ? "cannot read the file: " : message.rfind("file write failed", 0) == 0 ? "cannot write the file: " : "";
+    if (end != std::string::npos) return action + message.substr(begin, end - begin);
+  }
+  const size_t line = message.find('\n');
+  if (line != std::string::npos) message.erase(line);
+  while (!message.empty() && (message.back() == ',' || message.back() == ' ')) message.pop_back();
+  return message;
+}
 
 herr_t keep_innermost(unsigned index, const H5E_error2_t* error, void* data) {
   // Walking upward, index 0 is the function that detected the error: the message
@@ -23,7 +50,7 @@ std::string last_error() {
   std::string message;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &message);
   H5Eclear2(H5E_DEFAULT);
-  return message;
+  return one_line(std::move(message));
 }
 
 void fail(const std::string& where, const std::string& what) {
@@ -386,6 +413,54 @@ std::vector<std::string> read_strings(hid_t location, const std::string& name,
     values.emplace_back(begin, strnlen(begin, size));
   }
   return values;
+}
+
+// The end of file address of an HDF5 superblock (format spec, "Superblock": versions 0-3),
+// absolute; nothing when no superblock is found where HDF5 looks for one (offset 0, 512,
+// 1024, ...) or its fields do not fit.
+std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
+  static const uint8_t kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  auto little_endian = [&](size_t at, size_t size) -> std::optional<uint64_t> {
+    if (size == 0 || size > 8 || at > image.size() || image.size() - at < size) return {};
+    uint64_t value = 0;
+    for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
+    return value;
+  };
+  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at) {
+    if (!std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
+      continue;
+    const uint8_t version = image[at + 8];
+    size_t offsets = 0, base_at = 0;
+    if (version == 0 || version == 1) {
+      offsets = image[at + 13];
+      base_at = at + (version == 0 ? 24 : 28);
+    } else if (version == 2 || version == 3) {
+      offsets = image[at + 9];
+      base_at = at + 12;
+    } else {
+      return {};
+    }
+    const auto base = little_endian(base_at, offsets);
+    const auto end = little_endian(base_at + 2 * offsets, offsets);
+    if (!base || !end || *end > UINT64_MAX - *base) return {};
+    return *base + *end;
+  }
+  return {};
+}
+
+
+bool pad_to_declared_end(const std::string& path) {
+  std::vector<uint8_t> head(4096);
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return false;
+  head.resize(std::fread(head.data(), 1, head.size(), file));
+  std::fclose(file);
+  const std::optional<uint64_t> end = superblock_end_of_file(head);
+  std::error_code error;
+  const uintmax_t size = std::filesystem::file_size(path, error);
+  if (!end || error || *end <= size) return false;
+  std::filesystem::resize_file(path, *end, error);
+  return !error;
 }
 
 }  // namespace tactile::hdf5

@@ -6,6 +6,8 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,7 +21,8 @@ namespace tactile::hdf5 {
 inline constexpr const char* kFormatName = "tactile-workbench";
 
 // Turns off HDF5's automatic printing of its error stack. The library is built
-// thread-safe here, where the setting is per thread, so every entry point calls it.
+// thread-safe here, where the setting is per thread, so every entry point calls it (free
+// after the first call on a thread).
 void silence_errors();
 
 // The most specific message on HDF5's error stack (then clears the stack), or "" .
@@ -27,6 +30,17 @@ std::string last_error();
 
 // Throws tactile::Error(where, what + ": " + HDF5's message).
 [[noreturn]] void fail(const std::string& where, const std::string& what);
+
+// The end of file address of an HDF5 superblock (format spec, "Superblock": versions 0-3),
+// absolute; nothing when no superblock is found where HDF5 looks for one (offset 0, 512,
+// 1024, ...) or its fields do not fit.
+std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image);
+
+// A file whose writer failed to write its last allocations (a full disk) is shorter than its
+// superblock declares, and HDF5 refuses to open it. Extends it (sparse: no room needed) to the
+// declared end; the missing bytes read as zeros, which the checksums of what they held refuse.
+// True when the file was extended.
+bool pad_to_declared_end(const std::string& path);
 
 // Owns one hid_t and closes it with the function that matches its kind.
 class Object {

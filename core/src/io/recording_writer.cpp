@@ -30,6 +30,10 @@ Object growing_dataset(hid_t group, const char* name, hsize_t channels, hsize_t 
   Object properties = hdf5::untimed_dataset_properties(where);
   const hsize_t chunk[2] = {1, chunk_columns};
   hdf5::add_chunked_storage(properties.id(), 2, chunk, compress, where);
+  // What no flush wrote reads as a gap, never as numbers: after a failed flush the extent may
+  // already cover samples whose chunks never reached the disk (`tactile repair` cuts them).
+  const float gap = std::numeric_limits<float>::quiet_NaN();
+  if (H5Pset_fill_value(properties.id(), H5T_NATIVE_FLOAT, &gap) < 0) fail(where, "cannot set the fill value");
   // Every channel's chunk being filled stays in the cache between flushes.
   Object access = checked(H5Pcreate(H5P_DATASET_ACCESS), H5Pclose, where, "property list");
   if (H5Pset_chunk_cache(access.id(), 12421, cache_bytes, 1.0) < 0) fail(where, "cannot size the chunk cache");
@@ -113,6 +117,7 @@ RecordingWriter::RecordingWriter(const std::string& path, const std::string& rec
 }
 
 RecordingWriter::~RecordingWriter() {
+  hdf5::silence_errors();
   try {
     finish();
   } catch (const std::exception&) {
@@ -123,6 +128,7 @@ RecordingWriter::~RecordingWriter() {
 bool RecordingWriter::finished() const { return !handles_; }
 
 void RecordingWriter::append(const SampleMatrix& rows) {
+  hdf5::silence_errors();  // appends may come from a thread of their own (a live recorder's)
   if (!handles_) throw Error(path_, "the recording is finished");
   if (rows.cols() != channels_)
     throw Error(handles_->where, std::to_string(rows.cols()) + " values per sample for " +
@@ -136,6 +142,7 @@ void RecordingWriter::append(const SampleMatrix& rows) {
 
 void RecordingWriter::flush() {
   if (!handles_) return;
+  hdf5::silence_errors();
   const std::string& where = handles_->where;
   const auto channels = static_cast<hsize_t>(channels_);
   if (pending_count_ > 0) {
@@ -147,6 +154,10 @@ void RecordingWriter::flush() {
             pending_[static_cast<size_t>(sample * channels_ + channel)];
     append_columns(handles_->samples.id(), channels, static_cast<hsize_t>(written_),
                    static_cast<hsize_t>(pending_count_), columns.data(), where + "/samples");
+    // The samples reach the disk before their overview does: when a write fails (a full
+    // disk), the overview on disk summarises only samples that are there, and a reader ends
+    // the recording where the two agree.
+    if (H5Dflush(handles_->samples.id()) < 0) fail(where + "/samples", "cannot flush");
     // The overview blocks these samples touch: the one being filled goes on from before.
     const int64_t first_block = written_ / kOverviewBlock;
     const int64_t end_block = (written_ + pending_count_ + kOverviewBlock - 1) / kOverviewBlock;
@@ -159,8 +170,9 @@ void RecordingWriter::flush() {
         if (index % kOverviewBlock == 0) range = MinMax{};
         range.add(columns[static_cast<size_t>(channel * pending_count_ + sample)]);
         const size_t slot = static_cast<size_t>(channel * blocks + index / kOverviewBlock - first_block);
-        minima[slot] = range.min;
-        maxima[slot] = range.max;
+        // A block of nothing but gaps is NaN, as write_recording stores it.
+        minima[slot] = range.empty() ? std::numeric_limits<float>::quiet_NaN() : range.min;
+        maxima[slot] = range.empty() ? std::numeric_limits<float>::quiet_NaN() : range.max;
       }
       // Carried into the next flush unless the block is complete.
       const bool complete = (written_ + pending_count_) % kOverviewBlock == 0;
@@ -176,15 +188,21 @@ void RecordingWriter::flush() {
     pending_count_ = 0;
   }
   if (H5Fflush(handles_->file.id(), H5F_SCOPE_GLOBAL) < 0) fail(path_, "cannot flush");
+  hsize_t size = 0;
+  if (H5Fget_filesize(handles_->file.id(), &size) >= 0) file_bytes_ = static_cast<int64_t>(size);
 }
 
 void RecordingWriter::finish() {
   if (!handles_) return;
+  hdf5::silence_errors();
   std::unique_ptr<Handles> handles;
   try {
     flush();
   } catch (...) {
     handles_.reset();
+    // The allocations whose writes failed are past the end of the file: without them HDF5
+    // would not open it at all.
+    hdf5::pad_to_declared_end(path_);
     throw;
   }
   handles = std::move(handles_);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "tactile/error.h"
@@ -9,9 +10,22 @@
 
 namespace tactile {
 
+namespace {
+
+// What must stay free for a clean close: the next flushes (a chunk being filled is written
+// again at each) and the file's closing metadata.
+constexpr int64_t kClosingBytes = int64_t{256} << 10;
+constexpr int kReserveFlushes = 3;
+
+}  // namespace
+
 LiveRecorder::LiveRecorder(const std::string& path, const LiveSampleSource& source,
                            const LiveRecorderOptions& options)
-    : path_(path), lag_seconds_(std::max(0.0, options.lag_seconds)) {
+    : path_(path),
+      lag_seconds_(std::max(0.0, options.lag_seconds)),
+      flush_seconds_(options.flush_seconds),
+      warn_minutes_(options.warn_minutes),
+      room_probe_(options.room) {
   if (!(options.pretrigger_seconds >= 0.0) || !std::isfinite(options.pretrigger_seconds))
     throw Error("pre-trigger", "must be a number of seconds, 0 or more");
   recording_id_ = std::filesystem::path(path).stem().string();
@@ -22,12 +36,18 @@ LiveRecorder::LiveRecorder(const std::string& path, const LiveSampleSource& sour
   first_ = std::max<int64_t>(first_, 0);
   next_ = first_;
   start_time_ = count > 0 ? source.time_of(first_) : source.start_time();
+  if (room_probe_) {
+    const int64_t free = room_probe_(path);
+    if (free >= 0 && free < 2 * kClosingBytes)
+      throw Error(path, "only " + byte_text(free) + " left on its disk: too little to record");
+  }
   RecordingWriterOptions writer_options;
   writer_options.flush_seconds = options.flush_seconds;
   Metadata metadata = options.metadata;
   metadata["source"] = metadata.count("source") ? metadata["source"] : "live";
   writer_ = std::make_unique<RecordingWriter>(path, recording_id_, info.layout_id, metadata, info.stream.empty() ? "skin" : info.stream,
                                               info.rate_hz, start_time_, info.channels, info.units, writer_options);
+  writer_rate_ = info.rate_hz;
   thread_ = std::thread([this] { run(); });
 }
 
@@ -46,7 +66,7 @@ LiveRecorder::~LiveRecorder() {
 }
 
 void LiveRecorder::take(const LiveSampleSource& source) {
-  if (finished_) return;
+  if (finished_ || stopped()) return;
   const int64_t lag = static_cast<int64_t>(std::llround(lag_seconds_ * source.rate_hz()));
   const int64_t until = source.sample_count() - lag;
   if (until <= next_) return;
@@ -96,6 +116,59 @@ std::string LiveRecorder::error() const {
   return error_;
 }
 
+RecorderRoom LiveRecorder::room() const {
+  std::lock_guard lock(mutex_);
+  return room_;
+}
+
+bool LiveRecorder::stopped() const {
+  std::lock_guard lock(mutex_);
+  return !room_.stopped.empty();
+}
+
+void LiveRecorder::check_room(double seconds_on_disk) {
+  const int64_t bytes = writer_->file_bytes();
+  const int64_t free = room_probe_ ? room_probe_(path_) : -1;
+  RecorderRoom room = this->room();
+  room.free_bytes = free;
+  if (seconds_on_disk > measured_seconds_ && bytes > 0) {
+    const double slope = static_cast<double>(bytes - measured_bytes_) / (seconds_on_disk - measured_seconds_);
+    // The first interval carries the file's own structure: a fair start, smoothed away after.
+    room.bytes_per_second = room.bytes_per_second > 0.0 ? 0.7 * room.bytes_per_second + 0.3 * slope : slope;
+    measured_bytes_ = bytes;
+    measured_seconds_ = seconds_on_disk;
+  }
+  if (free < 0 || !(room.bytes_per_second > 0.0)) {
+    std::lock_guard lock(mutex_);
+    room_ = room;
+    return;
+  }
+  const double reserve = kReserveFlushes * room.bytes_per_second * std::max(flush_seconds_, 0.25) +
+                         static_cast<double>(kClosingBytes);
+  room.minutes_left = std::max(0.0, (static_cast<double>(free) - reserve) / room.bytes_per_second / 60.0);
+  room.low = room.minutes_left < warn_minutes_;
+  if (static_cast<double>(free) < reserve) {
+    std::string failure;
+    try {
+      writer_->finish();
+    } catch (const std::exception& error) {
+      failure = error.what();
+    }
+    char seconds[32];
+    std::snprintf(seconds, sizeof(seconds), "%.1f", seconds_on_disk);
+    room.stopped = "stopped recording: " + byte_text(free) + " left on the disk of " + path_ +
+                   ", too little for more at " + byte_text(static_cast<int64_t>(room.bytes_per_second)) +
+                   "/s; the file is closed whole with " + seconds + " s";
+    std::lock_guard lock(mutex_);
+    room_ = room;
+    if (!failure.empty()) error_ = failure;
+    queue_.clear();
+    return;
+  }
+  std::lock_guard lock(mutex_);
+  room_ = room;
+}
+
 void LiveRecorder::run() {
   for (;;) {
     SampleMatrix rows;
@@ -107,9 +180,15 @@ void LiveRecorder::run() {
       queue_.pop_front();
     }
     try {
+      const int64_t before = writer_->samples_on_disk();
       writer_->append(rows);
-      std::lock_guard lock(mutex_);
-      on_disk_ = writer_->samples_on_disk();
+      const int64_t after = writer_->samples_on_disk();
+      {
+        std::lock_guard lock(mutex_);
+        on_disk_ = after;
+      }
+      if (after != before) check_room(static_cast<double>(after) / writer_rate_);
+      if (stopped()) return;
     } catch (const std::exception& failure) {
       std::lock_guard lock(mutex_);
       error_ = failure.what();

@@ -67,8 +67,10 @@ class RecordingFile {
   const std::string& path() const { return path_; }
   // The file's format_version: 1 (no checksums) or 2.
   int format_version() const { return format_version_; }
-  // The file was not closed by its writer: a live recording still being written, or one
-  // whose writer was killed. Its streams hold the samples written up to the last flush.
+  // The file was not closed by its writer (a live recording still being written, or one whose
+  // writer was killed), or its writer failed mid-flush (a full disk) and claimed samples it
+  // never wrote. Its streams hold the samples written up to the last flush; `tactile repair`
+  // makes it a whole file again.
   bool cut_off() const { return cut_off_; }
   const std::string& layout_id() const { return layout_id_; }
   const std::string& recording_id() const { return recording_id_; }

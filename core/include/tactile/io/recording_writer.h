@@ -47,6 +47,8 @@ class RecordingWriter {
   int64_t samples() const { return appended_; }       // appended so far
   int64_t samples_on_disk() const { return written_; }  // as of the last flush
   int64_t chunk_samples() const { return chunk_; }
+  // The file's size as of the last flush (what the recording has taken of its disk so far).
+  int64_t file_bytes() const { return file_bytes_; }
   bool finished() const;
 
  private:
@@ -61,6 +63,7 @@ class RecordingWriter {
   int64_t pending_count_ = 0;
   int64_t appended_ = 0;
   int64_t written_ = 0;
+  int64_t file_bytes_ = 0;
   // The overview block being filled (per channel) and the first block not yet final on disk.
   std::vector<float> block_min_, block_max_;
 };

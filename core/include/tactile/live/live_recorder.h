@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -15,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "tactile/io/disk_room.h"
 #include "tactile/io/recording.h"
 #include "tactile/io/recording_writer.h"
 #include "tactile/live/live_source.h"
@@ -26,6 +28,20 @@ struct LiveRecorderOptions {
   double lag_seconds = 0.2;         // stay this far behind the newest sample (late packets)
   double flush_seconds = 1.0;
   Metadata metadata;
+  // Room on the recording's disk, asked after every flush: below `warn_minutes` at the current
+  // rate the recorder says so (room().low); before it runs out (a few flushes and the closing
+  // are left) it stops by itself and closes a whole file (room().stopped).
+  double warn_minutes = 10.0;
+  std::function<int64_t(const std::string&)> room = room_to_grow;  // bytes; -1 unknown
+};
+
+// The recorder's view of its disk, as of the last flush.
+struct RecorderRoom {
+  int64_t free_bytes = -1;        // the disk's room for the file (-1: unknown)
+  double bytes_per_second = 0.0;  // the file's growth at the current rate
+  double minutes_left = -1.0;     // until the recorder stops by itself (-1: unknown)
+  bool low = false;               // less than warn_minutes left
+  std::string stopped;            // why the recorder stopped by itself ("" while it records)
 };
 
 class LiveRecorder {
@@ -41,7 +57,8 @@ class LiveRecorder {
   // writer thread. Samples that left the buffer before they were taken are written as gaps.
   void take(const LiveSampleSource& source);
   // Takes everything left (no lag), writes it and closes the file. Throws tactile::Error when
-  // the writer failed (what was flushed before stays in the file).
+  // the writer failed (what was flushed before stays in the file; `tactile repair` rebuilds the
+  // rest). After a stop for room the file is already closed and whole: nothing is thrown.
   void finish(const LiveSampleSource& source);
 
   const std::string& path() const { return path_; }
@@ -50,10 +67,15 @@ class LiveRecorder {
   int64_t samples_taken() const { return next_ - first_; }
   int64_t samples_on_disk() const;
   std::string error() const;  // the writer's failure, "" while all is well
+  RecorderRoom room() const;
+  // True once the recorder stopped by itself for room (room().stopped says why).
+  bool stopped() const;
   bool finished() const { return finished_; }
 
  private:
   void run();
+  // After a flush, on the writer thread: the room left, and the clean stop when it is short.
+  void check_room(double seconds_on_disk);
 
   std::string path_;
   std::string recording_id_;
@@ -69,6 +91,13 @@ class LiveRecorder {
   bool finished_ = false;
   std::string error_;
   int64_t on_disk_ = 0;
+  double flush_seconds_;
+  double writer_rate_ = 1.0;
+  double warn_minutes_;
+  std::function<int64_t(const std::string&)> room_probe_;
+  RecorderRoom room_;
+  int64_t measured_bytes_ = 0;     // file size at the last flush
+  double measured_seconds_ = 0.0;  // seconds of samples on disk then
   std::thread thread_;
 };
 
