@@ -1,7 +1,8 @@
 // `tactile stream-listen --skin ID --from udp://HOST:PORT --duration S [--idle S]
-//  [--out FILE.h5]`: receives live packets (docs/PACKETS.md) for S seconds (or until the
-// stream has been silent for --idle seconds), decodes and checks them, reports loss and rate,
-// and optionally writes what arrived as a recording.
+//  [--out FILE.h5] [--json]`: receives live packets (docs/PACKETS.md) for S seconds (or until
+// the stream has been silent for --idle seconds), decodes and checks them, reports loss,
+// restarts, stalls, clock jumps and rate, and optionally writes what arrived as a recording
+// (on the stream's clock: a sender's restart or clock jump does not move it; docs/LIVE.md).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "commands.h"
@@ -29,6 +31,7 @@ struct StreamListenOptions {
   double duration = 0.0;
   double idle = 0.0;  // 0: listen for the whole duration
   std::string out;
+  bool json = false;
 };
 
 void run_stream_listen(const StreamListenOptions& options) {
@@ -45,6 +48,7 @@ void run_stream_listen(const StreamListenOptions& options) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                    std::chrono::duration<double>(options.duration));
+  const Clock::time_point start = Clock::now();
   Clock::time_point first_arrival, last_arrival;
   int64_t oversized = 0;
   // Larger than any datagram UDP can carry, so a size above it cannot happen unnoticed.
@@ -57,6 +61,8 @@ void run_stream_listen(const StreamListenOptions& options) {
       left =
           std::min(left, options.idle - std::chrono::duration<double>(now - last_arrival).count());
     if (left <= 0.0) break;
+    // A silence is counted as a stall when the stream resumes after it (the one that ends
+    // --idle is the end, not a stall).
     const std::optional<size_t> size = socket.receive(buffer, left);
     if (!size) continue;  // the loop head decides whether time is up
     last_arrival = Clock::now();
@@ -65,29 +71,55 @@ void run_stream_listen(const StreamListenOptions& options) {
       ++oversized;
       continue;
     }
-    collector.add(std::span<const uint8_t>(buffer.data(), *size));
+    collector.add(std::span<const uint8_t>(buffer.data(), *size),
+                  std::chrono::duration<double>(last_arrival - start).count());
   }
 
   const SequenceTracker& sequence = collector.sequence();
   const double seconds = std::chrono::duration<double>(last_arrival - first_arrival).count();
   // N datagrams arriving over `seconds` span N - 1 intervals.
   const double rate = seconds > 0.0 ? static_cast<double>(sequence.received() - 1) / seconds : 0.0;
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(3);
-  out << "stream-listen: " << options.skin << " on " << local.url() << "\n"
-      << "datagrams: " << sequence.received() << "\n"
-      << "bytes: " << collector.bytes() << "\n"
-      << "samples: " << collector.samples() << " (device time " << collector.first_time() << " to "
-      << collector.end_time() << " s)\n"
-      << "lost: " << sequence.lost() << "\n"
-      << "duplicated: " << sequence.duplicated() << "\n"
-      << "reordered: " << sequence.reordered() << "\n"
-      << "broken: " << collector.broken() + oversized << "\n"
-      << "saturated: " << collector.saturated() << "\n"
-      << "seconds: " << seconds << "\n"
-      << std::setprecision(1) << "rate: " << rate << " datagrams/s\n";
-  if (sequence.restarts() > 0) out << "restarts: " << sequence.restarts() << "\n";
-  std::cout << out.str();
+  const LiveTimeline& timeline = collector.timeline();
+  if (options.json) {
+    nlohmann::json report = {{"skin", options.skin},
+                             {"from", local.url()},
+                             {"datagrams", sequence.received()},
+                             {"bytes", collector.bytes()},
+                             {"samples", collector.samples()},
+                             {"first_time", collector.first_time()},
+                             {"end_time", collector.end_time()},
+                             {"lost", sequence.lost()},
+                             {"duplicated", sequence.duplicated()},
+                             {"reordered", sequence.reordered()},
+                             {"broken", collector.broken() + oversized},
+                             {"saturated", collector.saturated()},
+                             {"restarts", sequence.restarts()},
+                             {"stalls", timeline.stalls()},
+                             {"clock_jumps", timeline.clock_jumps()},
+                             {"late_dropped", timeline.late_dropped()},
+                             {"seconds", seconds},
+                             {"rate", rate}};
+    std::cout << report.dump(2) << "\n";
+  } else {
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(3);
+    out << "stream-listen: " << options.skin << " on " << local.url() << "\n"
+        << "datagrams: " << sequence.received() << "\n"
+        << "bytes: " << collector.bytes() << "\n"
+        << "samples: " << collector.samples() << " (stream time " << collector.first_time()
+        << " to " << collector.end_time() << " s)\n"
+        << "lost: " << sequence.lost() << "\n"
+        << "duplicated: " << sequence.duplicated() << "\n"
+        << "reordered: " << sequence.reordered() << "\n"
+        << "broken: " << collector.broken() + oversized << "\n"
+        << "saturated: " << collector.saturated() << "\n"
+        << "restarts: " << sequence.restarts() << "\n"
+        << "stalls: " << timeline.stalls() << "\n"
+        << "clock jumps: " << timeline.clock_jumps() << "\n"
+        << "seconds: " << seconds << "\n"
+        << std::setprecision(1) << "rate: " << rate << " datagrams/s\n";
+    std::cout << out.str();
+  }
   if (collector.broken() > 0)
     std::cerr << "tactile: " << collector.broken()
               << " broken datagrams, the last: " << collector.last_error() << "\n";
@@ -100,7 +132,7 @@ void run_stream_listen(const StreamListenOptions& options) {
     Recording recording = collector.recording(id);
     recording.metadata["source"] = local.url();
     write_recording(options.out, recording);
-    std::cout << "written: " << options.out << "\n";
+    if (!options.json) std::cout << "written: " << options.out << "\n";
   }
 }
 
@@ -116,6 +148,7 @@ void register_stream_listen(CLI::App& app) {
   command->add_option("--idle", options->idle,
                       "Stop once no datagram has come for this many seconds (default: never)");
   command->add_option("--out", options->out, "Write what arrived as a recording (.h5)");
+  command->add_flag("--json", options->json, "Print the report as JSON");
   command->callback([options] { run_stream_listen(*options); });
 }
 

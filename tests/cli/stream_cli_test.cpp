@@ -114,6 +114,47 @@ INSTANTIATE_TEST_SUITE_P(Skins, StreamCli,
                                            std::make_pair(std::string("flux"), 100)),
                          [](const auto& info) { return info.param.first; });
 
+// A sender stopped and started again a second later counts from 0 with its clock from 0: the
+// listener reports one restart and one stall, nothing lost, duplicated or reordered, and the
+// recording holds both runs with the silence between them as a gap.
+TEST(StreamCliFaults, ASenderRestartedAfterAPauseIsOneRestartAndOneStall) {
+  const TempFolder listen_folder("tactile-listen-restart"), send_folder("tactile-send-restart");
+  const uint16_t port = free_port();
+  const std::string url = "udp://127.0.0.1:" + std::to_string(port);
+  const std::string out = listen_folder.file("restarted.h5");
+  std::future<CommandResult> listening = std::async(std::launch::async, [&] {
+    return run_program("tactile",
+                       "stream-listen --skin fur --from " + url +
+                           " --duration 30 --idle 4 --json --out '" + out + "'",
+                       listen_folder);
+  });
+  ASSERT_TRUE(wait_until_bound(port, std::chrono::seconds(10)));
+  for (int run = 0; run < 2; ++run) {
+    if (run > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    const CommandResult sender = run_program(
+        "tactile", "stream-sim --skin fur --to " + url + " --rate-factor 1 --duration 1",
+        send_folder);
+    ASSERT_EQ(sender.exit_code, 0) << sender.err;
+  }
+  const CommandResult listener = listening.get();
+  ASSERT_EQ(listener.exit_code, 0) << listener.err;
+  const nlohmann::json report = nlohmann::json::parse(listener.out);
+  EXPECT_EQ(report["datagrams"], 30) << listener.out;
+  EXPECT_EQ(report["restarts"], 1) << listener.out;
+  EXPECT_EQ(report["stalls"], 1) << listener.out;
+  EXPECT_EQ(report["lost"], 0) << listener.out;
+  EXPECT_EQ(report["duplicated"], 0) << listener.out;
+  EXPECT_EQ(report["reordered"], 0) << listener.out;
+  EXPECT_EQ(report["clock_jumps"], 0) << listener.out;
+  // Both seconds, in order, with at least the 1.5 s pause between them.
+  EXPECT_EQ(report["samples"], 30);
+  EXPECT_GT(report["end_time"].get<double>() - report["first_time"].get<double>(), 3.4);
+  const TempFolder info_folder("tactile-info-restart");
+  const CommandResult info = run_program("tactile", "info --json '" + out + "'", info_folder);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["streams"][0]["samples"], 30);
+}
+
 TEST(StreamCliUrls, BadUrlsAndPortsAreRefusedNamingTheOption) {
   const TempFolder folder("tactile-urls");
   for (const std::string url :

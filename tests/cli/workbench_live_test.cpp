@@ -2,7 +2,10 @@
 // headless workbench driven by a script, which shows the skin live (pixels checked),
 // records a file (read back), classifies online with a saved model (decisions in `state`),
 // and labels while recording (into the recording's label database). Every wait is bounded.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -16,7 +19,11 @@
 #include "png_test_support.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/layout/skin_layout.h"
+#include "tactile/live/packets.h"
 #include "tactile/live/udp.h"
+#include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
 
 namespace tactile {
 namespace {
@@ -133,6 +140,82 @@ TEST_F(WorkbenchLive, ThePlotFollowsTheActiveChannels) {
     seen.insert(at["plotted"].dump());
   }
   EXPECT_GE(seen.size(), 2u) << "the plotted channels never changed while the skin was touched";
+}
+
+// A serial device (a pty behind a stable symlink) unplugged while the workbench shows it and
+// records: `state` says it is gone and which path is waited for, the session goes on, and
+// once it is plugged back the stream resumes, the unplug counted and the recording whole.
+TEST_F(WorkbenchLive, AnUnpluggedSerialDeviceIsWaitedForShownAndResumes) {
+  const std::string link = folder.file("usb-fur-if00");
+  int master = -1;
+  const auto plug = [&] {
+    // Not inherited by the workbench: a copy of the master there would keep the port up.
+    master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+    ASSERT_GE(master, 0);
+    ASSERT_EQ(grantpt(master), 0);
+    ASSERT_EQ(unlockpt(master), 0);
+    ASSERT_EQ(symlink(ptsname(master), link.c_str()), 0);
+  };
+  plug();
+  const SkinLayout layout = load_layout("fur");
+  SimulationOptions options;
+  options.subjects = 1;
+  const Stream stream =
+      skin_record("fur").simulate(layout, options, 0, 0).recording.streams.front();
+  uint32_t sequence = 0;
+  const auto datagrams = PacketEncoder(layout, stream).encode(0, 15, sequence);  // a second
+  const auto send = [&] {
+    for (const auto& datagram : datagrams)
+      ASSERT_EQ(write(master, datagram.data(), datagram.size()),
+                static_cast<ssize_t>(datagram.size()));
+  };
+  const std::string record = folder.file("unplugged.h5");
+  std::future<CommandResult> workbench = std::async(std::launch::async, [&] {
+    return run_program(
+        "tactile-workbench-headless",
+        "--connect serial://" + link + " --skin fur --record " + record +
+            " --size 1000x700 --settings " + folder.file("settings.json") + " --script " +
+            script("state @open.json\nsleep 2\nstate @gone.json\nsleep 3\nstate @back.json\n"),
+        folder);
+  });
+  const auto appears = [&](const std::string& name) {
+    for (int waited = 0; waited < 600 && !std::filesystem::exists(folder.file(name)); ++waited)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    return std::filesystem::exists(folder.file(name));
+  };
+  ASSERT_TRUE(appears("open.json")) << "the workbench drew no frame in 30 s";
+  send();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  close(master);  // unplugged
+  unlink(link.c_str());
+  ASSERT_TRUE(appears("gone.json"));
+  plug();  // plugged back; the workbench reopens the path within 0.25 s
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  send();  // the device started over: the same numbers and times again
+  ASSERT_EQ(workbench.wait_for(std::chrono::seconds(60)), std::future_status::ready);
+  const CommandResult shown = workbench.get();
+  close(master);
+  unlink(link.c_str());
+  ASSERT_EQ(shown.exit_code, 0) << shown.err << shown.out;
+
+  const nlohmann::json gone = state("gone.json")["live"];
+  EXPECT_NE(gone["gone"].get<std::string>().find(link), std::string::npos) << gone.dump();
+  EXPECT_EQ(gone["unplugs"], 1);
+  EXPECT_EQ(gone["failure"], "");
+  EXPECT_EQ(gone["received"], 15);
+  const nlohmann::json back = state("back.json")["live"];
+  EXPECT_EQ(back["gone"], "") << back.dump();
+  EXPECT_EQ(back["unplugs"], 1);
+  EXPECT_EQ(back["replugs"], 1);
+  EXPECT_EQ(back["restarts"], 1);
+  EXPECT_EQ(back["received"], 30);
+  EXPECT_EQ(back["lost"], 0);
+  EXPECT_EQ(back["duplicated"], 0);
+  EXPECT_GE(back["gap_samples"], 15);  // away for more than a second at 15 Hz
+  EXPECT_EQ(back["samples"], 30 + back["gap_samples"].get<int64_t>());
+  // The recording holds both seconds and the gap between (finished when the script ended).
+  const RecordingFile file(record);
+  EXPECT_EQ(file.streams().front().sample_count, back["samples"].get<int64_t>());
 }
 
 TEST_F(WorkbenchLive, RefusesABadSourceWithTheReason) {

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <thread>
@@ -199,6 +200,197 @@ TEST(SerialInput, RefusesAFileThatIsNotAPort) {
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("not a serial port"), std::string::npos) << error.what();
   }
+}
+
+//---- Devices that go away and come back
+
+// A serial device behind a stable path (like /dev/serial/by-id/...): a pseudo-terminal whose
+// master is the device's end, the path a symlink to its slave. Unplugging closes the master
+// (the slave hangs up) and removes the link; plugging in makes a new pair and links again.
+class PluggableDevice {
+ public:
+  explicit PluggableDevice(std::string path) : path_(std::move(path)) { plug(); }
+  ~PluggableDevice() { unplug(); }
+  void plug() {
+    master_ = posix_openpt(O_RDWR | O_NOCTTY);
+    ASSERT_GE(master_, 0);
+    ASSERT_EQ(grantpt(master_), 0);
+    ASSERT_EQ(unlockpt(master_), 0);
+    ASSERT_EQ(symlink(ptsname(master_), path_.c_str()), 0);
+  }
+  void unplug() {
+    if (master_ < 0) return;
+    close(master_);
+    master_ = -1;
+    unlink(path_.c_str());
+  }
+  void send(const std::vector<uint8_t>& bytes) {
+    ASSERT_EQ(write(master_, bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int master_ = -1;
+};
+
+// Waits (at most 10 s) until `done` holds; false when it never did.
+template <typename Condition>
+bool eventually(Condition done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
+
+TEST(SerialInput, AnUnpluggedPortIsWaitedForAndNeverBlocksLongerThanItsTimeout) {
+  testing::TemporaryDirectory directory;
+  PluggableDevice device(directory.file("usb-tactile-if00"));
+  const std::unique_ptr<DatagramInput> input = open_live_input(
+      parse_live_address("serial://" + device.path() + "?baud=115200", "--connect"));
+  const auto datagrams = fur_datagrams(3);
+  device.send(datagrams[0]);
+  std::vector<uint8_t> datagram;
+  ASSERT_TRUE(eventually([&] { return input->next(datagram, 0.05); }));
+  EXPECT_EQ(datagram, datagrams[0]);
+  device.unplug();
+  // Each call returns with nothing (no exception) while the device is away, saying so.
+  for (int call = 0; call < 10; ++call) EXPECT_FALSE(input->next(datagram, 0.05));
+  EXPECT_EQ(input->unplugs(), 1);
+  EXPECT_EQ(input->replugs(), 0);
+  EXPECT_NE(input->gone().find(device.path()), std::string::npos) << input->gone();
+  device.plug();
+  ASSERT_TRUE(eventually([&] {
+    input->next(datagram, 0.05);
+    return input->replugs() == 1;
+  }));
+  EXPECT_EQ(input->gone(), "");
+  device.send(datagrams[1]);
+  ASSERT_TRUE(eventually([&] { return input->next(datagram, 0.05); }));
+  EXPECT_EQ(datagram, datagrams[1]);  // raw mode again: the bytes arrive as sent
+  EXPECT_EQ(input->broken(), 0);
+}
+
+TEST(SerialInput, APathThatDoesNotExistAtTheStartIsStillAnError) {
+  testing::TemporaryDirectory directory;
+  try {
+    open_live_input(parse_live_address("serial://" + directory.file("no-such-port"), "--connect"));
+    FAIL() << "a missing port opened";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("cannot open"), std::string::npos) << error.what();
+  }
+}
+
+TEST(LiveReceiver, ARepluggedDeviceResumesAfterAGapWithEverySampleFromBeforeTheUnplug) {
+  testing::TemporaryDirectory directory;
+  PluggableDevice device(directory.file("usb-tactile-if00"));
+  const SkinLayout layout = load_layout("fur");
+  LiveReceiver receiver(
+      open_live_input(parse_live_address("serial://" + device.path(), "--connect")), layout);
+  const Stream stream = fur_stream();
+  const auto datagrams = fur_datagrams(20);
+  for (const auto& datagram : datagrams) device.send(datagram);
+  ASSERT_TRUE(eventually([&] { return receiver.counters().datagrams == 20; }));
+  device.unplug();
+  ASSERT_TRUE(eventually([&] { return !receiver.counters().gone.empty(); }));
+  EXPECT_NE(receiver.counters().gone.find(device.path()), std::string::npos);
+  EXPECT_TRUE(receiver.failure().empty());  // the session goes on
+  device.plug();
+  ASSERT_TRUE(eventually([&] { return receiver.counters().replugs == 1; }));
+  // The device started again: its count and its clock from 0.
+  for (const auto& datagram : datagrams) device.send(datagram);
+  ASSERT_TRUE(eventually([&] { return receiver.counters().datagrams == 40; }));
+  receiver.stop();
+  const LiveCounters counters = receiver.counters();
+  EXPECT_EQ(counters.unplugs, 1);
+  EXPECT_EQ(counters.replugs, 1);
+  EXPECT_EQ(counters.restarts, 1);
+  EXPECT_EQ(counters.lost + counters.duplicated + counters.reordered + counters.broken, 0);
+  EXPECT_EQ(counters.gone, "");
+  LiveSampleSource source(receiver.source_info(), 10000);
+  receiver.ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
+  // 20 samples, the time the device was away as a gap, 20 samples again.
+  const int64_t gap = source.gap_samples();
+  EXPECT_GE(gap, 3);  // away for at least one reopening attempt, 0.25 s
+  EXPECT_EQ(source.sample_count(), 40 + gap);
+  for (int64_t row = 0; row < 20; ++row) {
+    EXPECT_NEAR(source.values_at(row)[7], stream.samples(row, 7), 0.02) << row;
+    EXPECT_NEAR(source.values_at(20 + gap + row)[7], stream.samples(row, 7), 0.02) << row;
+  }
+  for (int64_t row = 20; row < 20 + gap; ++row) EXPECT_TRUE(std::isnan(source.values_at(row)[0]));
+}
+
+TEST(LiveReceiver, AUdpSenderRestartedAfterAPauseIsARestartAndAStallNotLossOrDuplicates) {
+  const SkinLayout layout = load_layout("fur");
+  uint16_t port = 0;
+  {
+    UdpSocket probe = UdpSocket::bind_to({"127.0.0.1", 0});
+    port = probe.local_port();
+  }
+  LiveReceiver receiver(
+      open_live_input(parse_live_address("udp://:" + std::to_string(port), "--connect")), layout);
+  const auto datagrams = fur_datagrams(30);
+  {
+    UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", port});
+    for (const auto& datagram : datagrams) sender.send(datagram);
+    ASSERT_TRUE(eventually([&] { return receiver.counters().datagrams == 30; }));
+  }
+  // Silent for longer than the stall time (10 datagram periods, 0.67 s at 15 Hz) ...
+  ASSERT_TRUE(eventually([&] { return receiver.counters().stalled; }));
+  EXPECT_EQ(receiver.counters().stalls, 1);
+  // ... then a new sender process: the same numbers and times again, from 0.
+  UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", port});
+  for (int k = 0; k < 10; ++k) sender.send(datagrams[static_cast<size_t>(k)]);
+  ASSERT_TRUE(eventually([&] { return receiver.counters().datagrams == 40; }));
+  receiver.stop();
+  const LiveCounters counters = receiver.counters();
+  EXPECT_EQ(counters.restarts, 1);
+  EXPECT_EQ(counters.stalls, 1);
+  EXPECT_FALSE(counters.stalled);
+  EXPECT_EQ(counters.lost + counters.duplicated + counters.reordered + counters.clock_jumps, 0);
+  LiveSampleSource source(receiver.source_info(), 10000);
+  receiver.ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
+  EXPECT_GE(source.gap_samples(), 10);  // the pause, by the arrival clock
+  EXPECT_EQ(source.sample_count(), 40 + source.gap_samples());
+}
+
+TEST(LiveReceiver, ASenderWhoseClockJumpsForwardAndBackIsRecordedWithoutAJumpOrAGap) {
+  const SkinLayout layout = load_layout("fur");
+  uint16_t port = 0;
+  {
+    UdpSocket probe = UdpSocket::bind_to({"127.0.0.1", 0});
+    port = probe.local_port();
+  }
+  LiveReceiver receiver(
+      open_live_input(parse_live_address("udp://:" + std::to_string(port), "--connect")), layout);
+  auto datagrams = fur_datagrams(30);
+  // The header's time stamp (f64 at byte 12; the CRC covers the payload only): an NTP step
+  // of an hour forward at datagram 10, and back to 0 at datagram 20.
+  for (size_t k = 10; k < 30; ++k) {
+    double time = 0.0;
+    std::memcpy(&time, datagrams[k].data() + 12, 8);
+    time = k < 20 ? time + 3600.0 : time - 20.0 / 15.0;
+    std::memcpy(datagrams[k].data() + 12, &time, 8);
+  }
+  UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", port});
+  for (const auto& datagram : datagrams) sender.send(datagram);
+  ASSERT_TRUE(eventually([&] { return receiver.counters().datagrams == 30; }));
+  receiver.stop();
+  const LiveCounters counters = receiver.counters();
+  EXPECT_EQ(counters.clock_jumps, 2);
+  EXPECT_EQ(counters.lost + counters.restarts + counters.late_dropped, 0);
+  LiveSampleSource source(receiver.source_info(), 10000);
+  receiver.ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
+  EXPECT_EQ(source.sample_count(), 30);
+  EXPECT_EQ(source.gap_samples(), 0);
+  const Stream stream = fur_stream();
+  for (int64_t row = 0; row < 30; ++row)
+    EXPECT_NEAR(source.values_at(row)[3], stream.samples(row, 3), 0.02);
 }
 
 TEST(LiveReceiver, TheSimulatorStreamsAtItsRateIntoTheBuffer) {

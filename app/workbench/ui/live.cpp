@@ -411,6 +411,31 @@ void draw_live_bar(WorkbenchState& state) {
     ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "behind: %lld samples dropped",
                        static_cast<long long>(counters.overflow));
   }
+  // Faults of the device and the sender: only once one happened, so a calm stream stays calm.
+  if (counters.unplugs + counters.restarts + counters.stalls + counters.clock_jumps > 0) {
+    ImGui::SameLine();
+    ImGui::TextColored(
+        ImVec4(1.0f, 0.65f, 0.2f, 1.0f),
+        "unplugged %lld   replugged %lld   restarts %lld   stalls %lld   clock jumps %lld",
+        static_cast<long long>(counters.unplugs), static_cast<long long>(counters.replugs),
+        static_cast<long long>(counters.restarts), static_cast<long long>(counters.stalls),
+        static_cast<long long>(counters.clock_jumps));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "unplugged/replugged: the device went away and came back\n"
+          "restarts: the sender's count started over\n"
+          "stalls: silences longer than ten datagram periods\n"
+          "clock jumps: the sender's time stamps jumped; its samples were placed by their sequence "
+          "numbers");
+  }
+  if (!counters.gone.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
+                       "device gone, waiting for it to come back: %s", counters.gone.c_str());
+  } else if (counters.stalled) {
+    ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f),
+                       "no data from %s for a while: waiting (the gap will show)",
+                       live.url.c_str());
+  }
   if (recording) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %s %s",
@@ -445,6 +470,14 @@ nlohmann::json live_json(const WorkbenchState& state) {
   json["reordered"] = counters.reordered;
   json["broken"] = counters.broken;
   json["behind"] = counters.overflow;
+  json["restarts"] = counters.restarts;
+  json["unplugs"] = counters.unplugs;
+  json["replugs"] = counters.replugs;
+  json["stalls"] = counters.stalls;
+  json["stalled"] = counters.stalled;
+  json["clock_jumps"] = counters.clock_jumps;
+  json["late_dropped"] = counters.late_dropped;
+  json["gone"] = counters.gone;
   json["gap_samples"] = state.document ? static_cast<const LiveSampleSource&>(*state.document->source).gap_samples() : 0;
   json["follow"] = live.follow;
   json["buffer_seconds"] = live.buffer_seconds;

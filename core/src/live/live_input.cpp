@@ -100,64 +100,124 @@ speed_t baud_constant(int baud, const std::string& where) {
   return found->second;
 }
 
+// A serial port that survives being unplugged: when the line fails (a hang-up, EIO, an end
+// of file, the device node gone) the port is closed and counted as gone, and the same path
+// is opened again every kRetrySeconds (with its baud rate set again) until it is back. A
+// path that cannot be opened when the input is made is still an error.
 class SerialInput final : public DatagramInput {
  public:
-  SerialInput(const std::string& device, int baud) : where_("serial://" + device) {
-    const speed_t speed = baud_constant(baud, where_);
-    descriptor_ = ::open(device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    if (descriptor_ < 0) throw Error(where_, system_error("cannot open"));
-    termios settings{};
-    if (::tcgetattr(descriptor_, &settings) < 0) {
-      const std::string why = system_error("not a serial port");
-      ::close(descriptor_);
-      throw Error(where_, why);
-    }
-    ::cfmakeraw(&settings);  // bytes as they come: no echo, no line editing, 8 bits, no parity
-    settings.c_cflag |= CLOCAL | CREAD;
-    ::cfsetispeed(&settings, speed);
-    ::cfsetospeed(&settings, speed);
-    if (::tcsetattr(descriptor_, TCSANOW, &settings) < 0) {
-      const std::string why = system_error("cannot set the port to raw mode");
-      ::close(descriptor_);
-      throw Error(where_, why);
-    }
+  static constexpr double kRetrySeconds = 0.25;
+
+  SerialInput(const std::string& device, int baud)
+      : device_(device), where_("serial://" + device), speed_(baud_constant(baud, where_)) {
+    std::string why;
+    descriptor_ = open_port(why);
+    if (descriptor_ < 0) throw Error(where_, why);
   }
-  ~SerialInput() override { ::close(descriptor_); }
+  ~SerialInput() override {
+    if (descriptor_ >= 0) ::close(descriptor_);
+  }
 
   bool next(std::vector<uint8_t>& out, double timeout_seconds) override {
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                              std::chrono::duration<double>(timeout_seconds));
     uint8_t chunk[4096];
     for (;;) {
-      if (framer_.next(out)) return true;
-      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-      if (left <= 0) return false;
+      if (descriptor_ >= 0 && framer_.next(out)) return true;
+      const Clock::time_point now = Clock::now();
+      if (now >= deadline) return false;
+      if (descriptor_ < 0) {
+        if (now >= retry_at_) reopen();
+        if (descriptor_ < 0) {
+          std::this_thread::sleep_until(std::min(deadline, retry_at_));
+          continue;
+        }
+      }
+      const double left = std::chrono::duration<double>(deadline - now).count();
       pollfd request{descriptor_, POLLIN, 0};
       const int ready = ::poll(&request, 1, static_cast<int>(std::ceil(left * 1000.0)));
       if (ready == 0) return false;
       if (ready < 0) {
         if (errno == EINTR) continue;
-        throw Error(where_, system_error("cannot wait for bytes"));
+        went_away(system_error("cannot wait for bytes"));
+        continue;
       }
-      if (request.revents & (POLLHUP | POLLERR | POLLNVAL))
-        if (!(request.revents & POLLIN)) throw Error(where_, "the port was closed or went away");
+      if ((request.revents & (POLLHUP | POLLERR | POLLNVAL)) && !(request.revents & POLLIN)) {
+        went_away("the port hung up");
+        continue;
+      }
       const ssize_t size = ::read(descriptor_, chunk, sizeof chunk);
       if (size > 0) {
         framer_.feed(std::span<const uint8_t>(chunk, static_cast<size_t>(size)));
       } else if (size == 0) {
-        throw Error(where_, "the port was closed");
+        went_away("the port was closed");
       } else if (errno != EINTR && errno != EAGAIN) {
-        throw Error(where_, system_error("cannot read"));
+        went_away(system_error("cannot read"));
       }
     }
   }
   int64_t broken() const override { return framer_.broken(); }
+  int64_t unplugs() const override { return unplugs_; }
+  int64_t replugs() const override { return replugs_; }
+  std::string gone() const override { return gone_; }
   std::string describe() const override { return where_; }
 
  private:
+  // Opens and configures the port; -1 with the reason in `why` when it cannot.
+  int open_port(std::string& why) const {
+    const int descriptor = ::open(device_.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (descriptor < 0) {
+      why = system_error("cannot open");
+      return -1;
+    }
+    termios settings{};
+    if (::tcgetattr(descriptor, &settings) < 0) {
+      why = system_error("not a serial port");
+      ::close(descriptor);
+      return -1;
+    }
+    ::cfmakeraw(&settings);  // bytes as they come: no echo, no line editing, 8 bits, no parity
+    settings.c_cflag |= CLOCAL | CREAD;
+    ::cfsetispeed(&settings, speed_);
+    ::cfsetospeed(&settings, speed_);
+    if (::tcsetattr(descriptor, TCSANOW, &settings) < 0) {
+      why = system_error("cannot set the port to raw mode");
+      ::close(descriptor);
+      return -1;
+    }
+    return descriptor;
+  }
+  void went_away(const std::string& why) {
+    ::close(descriptor_);
+    descriptor_ = -1;
+    framer_.reset();  // a datagram cut by the unplug never completes
+    ++unplugs_;
+    gone_ = device_ + " (" + why + ")";
+    retry_at_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(kRetrySeconds));
+  }
+  void reopen() {
+    std::string why;
+    descriptor_ = open_port(why);
+    if (descriptor_ >= 0) {
+      ++replugs_;
+      gone_.clear();
+      return;
+    }
+    gone_ = device_ + " (" + why + ")";
+    retry_at_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(kRetrySeconds));
+  }
+
+  std::string device_;
   std::string where_;
+  speed_t speed_;
   int descriptor_ = -1;
   PacketFramer framer_;
+  int64_t unplugs_ = 0;
+  int64_t replugs_ = 0;
+  std::string gone_;
+  Clock::time_point retry_at_;
 };
 
 //---- Paced: datagrams made here, handed out when their device time is due
@@ -449,6 +509,13 @@ void PacketFramer::feed(std::span<const uint8_t> bytes) {
     start_ = 0;
   }
   buffer_.insert(buffer_.end(), bytes.begin(), bytes.end());
+}
+
+void PacketFramer::reset() {
+  if (buffer_.size() > start_ && !skipping_) ++broken_;
+  buffer_.clear();
+  start_ = 0;
+  skipping_ = false;
 }
 
 void PacketFramer::skip(size_t bytes) {

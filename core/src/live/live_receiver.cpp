@@ -1,9 +1,11 @@
 #include "tactile/live/live_receiver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "tactile/error.h"
+#include "tactile/live/live_timeline.h"
 #include "tactile/live/packets.h"
 
 namespace tactile {
@@ -46,16 +48,38 @@ std::string LiveReceiver::failure() const {
 }
 
 void LiveReceiver::run() {
-  SequenceTracker tracker;
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point began = Clock::now();
+  const auto seconds_now = [&] {
+    return std::chrono::duration<double>(Clock::now() - began).count();
+  };
+  const PacketFormatInfo format = packet_format_info(layout_.id);
+  LiveTimeline timeline(
+      {.rate_hz = format.sample_rate_hz, .samples_per_datagram = format.samples_per_datagram});
   std::vector<uint8_t> datagram;
   std::vector<float> row;
   int64_t refused_count = 0;  // by the decoder; the input counts what its framing threw away
+  int64_t replugs = 0;
+  const auto count_input = [&] {  // caller holds mutex_
+    counters_.broken = refused_count + input_->broken();
+    counters_.unplugs = input_->unplugs();
+    counters_.replugs = input_->replugs();
+    counters_.gone = input_->gone();
+    counters_.stalls = timeline.stalls();
+    counters_.stalled = timeline.stalled();
+  };
   while (!stop_) {
     try {
-      if (!input_->next(datagram, 0.05)) {
+      const bool arrived = input_->next(datagram, 0.05);
+      if (input_->replugs() != replugs) {
+        replugs = input_->replugs();
+        timeline.reconnected();
+      }
+      if (!arrived) {
         if (input_->ended()) break;
+        timeline.idle(seconds_now());
         std::lock_guard lock(mutex_);
-        counters_.broken = refused_count + input_->broken();
+        count_input();
         continue;
       }
     } catch (const std::exception& error) {
@@ -63,6 +87,7 @@ void LiveReceiver::run() {
       failure_ = error.what();
       break;
     }
+    const double arrival = seconds_now();
     PacketBatch batch;
     std::string refused;
     try {
@@ -71,15 +96,17 @@ void LiveReceiver::run() {
       refused = error.what();
     }
     int64_t pushed = 0, overflow = 0;
-    bool duplicate = false;
+    bool delivered = false;
     if (refused.empty()) {
-      duplicate = !tracker.accept(batch.sequence);
-      if (!duplicate) {
+      const LiveTimeline::Placement placement =
+          timeline.place(batch.sequence, batch.time, batch.samples.rows(), arrival);
+      delivered = placement.deliver;
+      if (delivered) {
         row.resize(static_cast<size_t>(batch.samples.cols()));
         for (Eigen::Index sample = 0; sample < batch.samples.rows(); ++sample) {
           for (Eigen::Index column = 0; column < batch.samples.cols(); ++column)
             row[static_cast<size_t>(column)] = batch.samples(sample, column);
-          const double time = batch.time + static_cast<double>(sample) / info_.rate_hz;
+          const double time = placement.time + static_cast<double>(sample) / info_.rate_hz;
           if (ring_->push(time, row))
             ++pushed;
           else
@@ -91,17 +118,24 @@ void LiveReceiver::run() {
     ++counters_.datagrams;
     counters_.samples += pushed;
     counters_.overflow += overflow;
+    const SequenceTracker& tracker = timeline.sequence();
     counters_.lost = tracker.lost();
     counters_.duplicated = tracker.duplicated();
     counters_.reordered = tracker.reordered();
     counters_.restarts = tracker.restarts();
+    counters_.clock_jumps = timeline.clock_jumps();
+    counters_.late_dropped = timeline.late_dropped();
     if (!refused.empty()) {
       ++refused_count;
       counters_.last_error = refused;
-    } else if (batch.saturated && !duplicate) {
+    } else if (batch.saturated && delivered) {
       ++counters_.saturated;
     }
-    counters_.broken = refused_count + input_->broken();
+    count_input();
+  }
+  {
+    std::lock_guard lock(mutex_);
+    counters_.gone.clear();
   }
   ended_ = true;
 }

@@ -10,12 +10,25 @@ namespace tactile {
 
 //---- Receiving -------------------------------------------------------------------------
 
-PacketCollector::PacketCollector(SkinLayout layout, bool keep_samples)
-    : layout_(std::move(layout)), keep_samples_(keep_samples) {
-  device_channels(layout_);  // refuses a layout without a packet format now, not per datagram
+namespace {
+
+LiveTimelineOptions collector_timeline(const SkinLayout& layout) {
+  device_channels(layout);  // refuses a layout without a packet format now, not per datagram
+  const PacketFormatInfo format = packet_format_info(layout.id);
+  return {.rate_hz = format.sample_rate_hz, .samples_per_datagram = format.samples_per_datagram};
 }
 
-bool PacketCollector::add(std::span<const uint8_t> datagram) {
+}  // namespace
+
+PacketCollector::PacketCollector(SkinLayout layout, bool keep_samples)
+    : layout_(std::move(layout)),
+      keep_samples_(keep_samples),
+      timeline_(collector_timeline(layout_)) {}
+
+bool PacketCollector::add(std::span<const uint8_t> datagram, double arrival) {
+  const PacketFormatInfo format = packet_format_info(layout_.id);
+  if (arrival < 0.0) arrival = last_arrival_ + format.samples_per_datagram / format.sample_rate_hz;
+  last_arrival_ = std::max(last_arrival_, arrival);
   ++datagrams_;
   bytes_ += static_cast<int64_t>(datagram.size());
   PacketBatch batch;
@@ -26,10 +39,12 @@ bool PacketCollector::add(std::span<const uint8_t> datagram) {
     last_error_ = error.what();
     return false;
   }
-  if (!tracker_.accept(batch.sequence)) return false;
   const int64_t rows = batch.samples.rows();
-  const double end =
-      batch.time + static_cast<double>(rows) / packet_format_info(layout_.id).sample_rate_hz;
+  const LiveTimeline::Placement placement =
+      timeline_.place(batch.sequence, batch.time, rows, arrival);
+  if (!placement.deliver) return false;
+  batch.time = placement.time;
+  const double end = batch.time + static_cast<double>(rows) / format.sample_rate_hz;
   if (samples_ == 0) {
     first_time_ = batch.time;
     end_time_ = end;
@@ -82,7 +97,7 @@ Recording PacketCollector::recording(const std::string& id) const {
   recording.id = id;
   recording.layout_id = layout_.id;
   recording.metadata["source"] = "udp";
-  recording.metadata["datagrams_lost"] = std::to_string(tracker_.lost());
+  recording.metadata["datagrams_lost"] = std::to_string(timeline_.sequence().lost());
   recording.streams.push_back(std::move(stream));
   return recording;
 }

@@ -1,6 +1,17 @@
+#include <algorithm>
+
 #include "tactile/live/packets.h"
 
 namespace tactile {
+
+SequenceTracker::SequenceTracker(uint32_t restart_behind)
+    : restart_behind_(std::clamp<uint32_t>(restart_behind, 1, kWindow)) {}
+
+void SequenceTracker::restart_at(uint32_t sequence) {
+  ++restarts_;
+  start_at(sequence);
+  ++received_;
+}
 
 void SequenceTracker::start_at(uint32_t sequence) {
   started_ = true;
@@ -33,11 +44,9 @@ bool SequenceTracker::accept(uint32_t sequence) {
     return true;
   }
   const uint32_t behind = next_ - sequence;  // >= 1
-  if (behind > kWindow) {
+  if (behind > restart_behind_) {
     // Far older than any late datagram on a network: the sender started counting again.
-    ++restarts_;
-    start_at(sequence);
-    ++received_;
+    restart_at(sequence);
     return true;
   }
   if (behind > next_ - first_) {

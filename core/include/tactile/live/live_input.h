@@ -16,7 +16,7 @@ namespace tactile {
 
 // A parsed live source address:
 //   udp://HOST:PORT        HOST a dotted IPv4 address; udp://:PORT listens on loopback only
-//   serial:///dev/ttyUSB0?baud=921600
+//   serial:///dev/ttyUSB0?baud=921600  (unplugged, it is reopened every 0.25 s until back)
 //   sim://SKIN?seed=1&rate=1&trials=N the skin's simulator, `rate` times the device's speed,
 //                                     trial after trial (N trials, then it ends; default endless)
 //   replay:///path/file.h5?speed=1&seconds=60   a recording (its first 60 s), 0.25-4 times
@@ -42,9 +42,16 @@ class DatagramInput {
  public:
   virtual ~DatagramInput() = default;
   // Waits up to `timeout_seconds` for the next datagram and puts its bytes in `out`; false on
-  // timeout or when the input has ended (see ended()). Throws tactile::Error when the input
-  // fails for good (a port that went away).
+  // timeout or when the input has ended (see ended()). Never blocks longer than the timeout,
+  // also while its device is gone. Throws tactile::Error when the input fails for good (a
+  // socket error); a serial port that goes away is not that: it is waited for (gone()).
   virtual bool next(std::vector<uint8_t>& out, double timeout_seconds) = 0;
+  // A device that went away and came back (a serial port unplugged and plugged in again):
+  // how often it went, how often it came back, and while it is away what is waited for
+  // ("" while it is there). Sockets never go away.
+  virtual int64_t unplugs() const { return 0; }
+  virtual int64_t replugs() const { return 0; }
+  virtual std::string gone() const { return ""; }
   // True once an input with an end (a replay) has delivered everything.
   virtual bool ended() const { return false; }
   // Damaged stretches the input itself threw away (serial framing), counted as broken.
@@ -70,6 +77,9 @@ class PacketFramer {
   void feed(std::span<const uint8_t> bytes);
   // The next whole datagram, if one is complete.
   bool next(std::vector<uint8_t>& out);
+  // Forgets what is buffered (the line was cut: a partial datagram never completes), counted
+  // as one broken datagram when there was something.
+  void reset();
   int64_t broken() const { return broken_; }
   size_t buffered() const { return buffer_.size() - start_; }
 

@@ -2,7 +2,9 @@
 // LiveReceiver: one thread that takes datagrams from a DatagramInput, decodes them against
 // the skin's layout, tracks their sequence numbers and hands each sample to the UI thread
 // through a SampleRing. Nothing it receives can stop it: a broken datagram is counted and
-// its error kept; only an input that fails for good ends it (failure()).
+// its error kept; a device that goes away is waited for (the input reopens it); only an
+// input that fails for good ends it (failure()). Samples go to the ring at the stream times
+// LiveTimeline gives them (live_timeline.h), not at the sender's raw time stamps.
 
 #include <atomic>
 #include <cstdint>
@@ -28,6 +30,13 @@ struct LiveCounters {
   int64_t overflow = 0;    // samples the ring had no room for (the UI fell behind)
   int64_t restarts = 0;    // the sender's count started over
   int64_t saturated = 0;   // datagrams flagged as clamped by the device
+  int64_t unplugs = 0;     // the device went away (a serial port unplugged)
+  int64_t replugs = 0;     // ... and came back
+  int64_t stalls = 0;      // silences longer than LiveTimeline's stall time
+  int64_t clock_jumps = 0;   // the sender's time stamps jumped (placed by sequence instead)
+  int64_t late_dropped = 0;  // late datagrams whose place was no longer free
+  bool stalled = false;      // silent for longer than the stall time now
+  std::string gone;          // while the device is away: what the input waits for; else ""
   std::string last_error;  // of the last broken datagram, "where: what"
 };
 

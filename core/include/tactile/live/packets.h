@@ -126,14 +126,23 @@ PacketBatch decode_packet(std::span<const uint8_t> datagram, const SkinLayout& l
 // Counts lost, duplicated and reordered datagrams from their sequence numbers (u32, wrapping).
 // A number ahead of the next expected one marks the gap as lost; when a missing number arrives
 // later it is counted as reordered and no longer as lost. A number already seen within the
-// last kWindow numbers is a duplicate. A number more than kWindow behind cannot be a late
-// datagram on any real network: the sender restarted its count, and tracking starts over.
+// last kWindow numbers is a duplicate. A number more than `restart_behind` (at most kWindow)
+// behind cannot be a late datagram on any real network: the sender restarted its count, and
+// tracking starts over (LiveTimeline sets it to a second of datagrams).
 class SequenceTracker {
  public:
   static constexpr uint32_t kWindow = 4096;
 
+  explicit SequenceTracker(uint32_t restart_behind = kWindow);
+
   // Returns true when the datagram is new (deliver it), false for a duplicate (drop it).
   bool accept(uint32_t sequence);
+  // The sender started over (its device was unplugged, it was restarted): counts a restart
+  // and accepts `sequence` as the first number of the new count.
+  void restart_at(uint32_t sequence);
+  // True once a number was accepted; next() is one past the highest accepted number.
+  bool started() const { return started_; }
+  uint32_t next() const { return next_; }
 
   int64_t received() const { return received_; }  // accepted datagrams
   int64_t lost() const { return lost_; }          // skipped and still missing
@@ -144,6 +153,7 @@ class SequenceTracker {
  private:
   void start_at(uint32_t sequence);
 
+  uint32_t restart_behind_;
   bool started_ = false;
   uint32_t first_ = 0;  // lowest number accepted since the (re)start
   uint32_t next_ = 0;   // one past the highest number accepted
