@@ -187,7 +187,7 @@ bool remove_selected_label(WorkbenchState& state) {
   if (!own(state, *selected))
     return fail(state, "only labels of your own lane (" + state.labelling.annotator +
                            ") are removed with Delete");
-  if (!apply_command(state, remove_edit(selected->id))) return false;
+  if (!apply_command(state, remove_edit(*selected))) return false;
   after_edit(state, 0, "removed label " + std::to_string(selected->id));
   return true;
 }
@@ -290,7 +290,7 @@ bool reject_suggestion(WorkbenchState& state) {
   const std::optional<Label> selected = selected_label(state);
   if (!selected || selected->source != LabelSource::kSegmenter)
     return fail(state, "select a suggestion (a segmenter's label) to reject");
-  if (!apply_command(state, reject_edit(selected->id))) return false;
+  if (!apply_command(state, reject_edit(*selected))) return false;
   after_edit(state, 0, "rejected the suggestion at " + format_seconds(selected->t0));
   select_next_suggestion(state, selected->annotator, selected->t0);
   return true;

@@ -29,7 +29,10 @@ namespace {
 // check() compares.
 // Version 3: table rejections (suggestions an annotator rejected, so that a rerun of
 // the segmenter does not bring them back).
-constexpr int64_t kSchemaVersion = 3;
+// Version 4: a revision column in labels (covered by the row's checksum, label_rows::
+// add_revisions): every edit states the revision its editor saw, so that an edit of a label
+// someone else changed meanwhile is refused instead of overwriting it.
+constexpr int64_t kSchemaVersion = 4;
 
 constexpr const char* kAddRejections = R"sql(
 CREATE TABLE rejections (
@@ -90,7 +93,8 @@ void create_schema(sqlite3* database, const std::string& path) {
   sqlite::execute(database, path, kCreateSchemaVersion1);
   label_rows::add_checksums(database, path);
   sqlite::execute(database, path, kAddRejections);
-  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (3)");
+  label_rows::add_revisions(database, path);
+  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (4)");
 }
 
 // The schema every store of the current version has: (type, name, table, sql).
@@ -190,8 +194,9 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
       throw Error(path, "label store schema version " + std::to_string(version) + " is invalid");
     if (version == 1) label_rows::add_checksums(database, path);
     if (version <= 2) sqlite::execute(database, path, kAddRejections);
+    if (version <= 3) label_rows::add_revisions(database, path);
     if (version < kSchemaVersion)
-      sqlite::execute(database, path, "UPDATE store_schema SET version = 3");
+      sqlite::execute(database, path, "UPDATE store_schema SET version = 4");
   }
   transaction.commit();
   return found;
@@ -202,6 +207,7 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
 int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch,
                    const std::string& time, const std::string& by = {}) {
   label.id = 0;
+  label.revision = 1;
   label.created = label.modified = time.empty() ? label_rows::now_utc() : time;
   label.id = label_rows::store(database, path, label);
   label_rows::write_journal(database, path, batch, by.empty() ? label.annotator : by, "insert",
@@ -216,6 +222,7 @@ void update_existing(sqlite3* database, const std::string& path, const Label& be
   Label after = label;
   after.created = before.created;
   after.modified = label_rows::now_utc();
+  after.revision = before.revision + 1;
   label_rows::store(database, path, after);
   label_rows::write_journal(database, path, batch, by.empty() ? after.annotator : by, "update",
                             after.id, label_rows::state_json(before),
@@ -367,18 +374,16 @@ void LabelStore::update(const Label& label) {
   const std::string where = label_rows::where_label(path_, label.id);
   label_rows::validate(label, where);
   sqlite::Transaction transaction(database_, path_);
-  const std::optional<Label> before = label_rows::load(database_, path_, label.id);
-  if (!before) throw Error(where, "no such label to update");
-  update_existing(database_, path_, *before, label, label_rows::next_batch(database_, path_));
+  const Label before = label_rows::require_seen(database_, path_, ref_of(label), "update");
+  update_existing(database_, path_, before, label, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
   transaction.commit();
 }
 
-void LabelStore::remove(int64_t id, const std::string& annotator) {
+void LabelStore::remove(const LabelRef& label, const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
-  const std::optional<Label> before = label_rows::load(database_, path_, id);
-  if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
-  delete_existing(database_, path_, *before, annotator, label_rows::next_batch(database_, path_));
+  const Label before = label_rows::require_seen(database_, path_, label, "remove");
+  delete_existing(database_, path_, before, annotator, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
   transaction.commit();
 }
@@ -414,17 +419,18 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
   if (edit.empty()) return ids;
   sqlite::Transaction transaction(database_, path_);
   const int64_t batch = label_rows::next_batch(database_, path_);
-  for (const int64_t id : edit.remove) {
-    const std::optional<Label> before = label_rows::load(database_, path_, id);
-    if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
-    delete_existing(database_, path_, *before, by, batch);
+  // Any refusal below throws before the commit: the whole edit or nothing.
+  for (const LabelRef& seen : edit.remove) {
+    const Label before = label_rows::require_seen(database_, path_, seen, "remove");
+    delete_existing(database_, path_, before, by, batch);
   }
-  for (const int64_t id : edit.reject) {
+  for (const LabelRef& seen : edit.reject) {
     // The suggestion goes and its span is remembered, journalled as a "reject": its undo
     // brings the suggestion back and forgets the rejection.
-    const std::optional<Label> suggestion = label_rows::load(database_, path_, id);
+    const int64_t id = seen.id;
+    const std::optional<Label> suggestion =
+        label_rows::require_seen(database_, path_, seen, "reject");
     const std::string where = label_rows::where_label(path_, id);
-    if (!suggestion) throw Error(where, "no such label to reject");
     if (suggestion->source != LabelSource::kSegmenter)
       throw Error(where, "only a segmenter's suggestion can be rejected");
     label_rows::remember_rejection(database_, path_, *suggestion, by);
@@ -433,9 +439,8 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
                               label_rows::state_json(suggestion), "");
   }
   for (const Label& label : edit.update) {
-    const std::optional<Label> before = label_rows::load(database_, path_, label.id);
-    if (!before) throw Error(label_rows::where_label(path_, label.id), "no such label to update");
-    update_existing(database_, path_, *before, label, batch, by);
+    const Label before = label_rows::require_seen(database_, path_, ref_of(label), "update");
+    update_existing(database_, path_, before, label, batch, by);
   }
   ids.reserve(edit.add.size());
   for (const Label& label : edit.add)
@@ -508,9 +513,9 @@ int64_t LabelStore::count(const std::string& recording) const {
 
 //---- Suggestions
 
-void LabelStore::reject(int64_t label_id, const std::string& annotator) {
+void LabelStore::reject(const LabelRef& suggestion, const std::string& annotator) {
   LabelEdit edit;
-  edit.reject = {label_id};
+  edit.reject = {suggestion};
   apply(edit, annotator);
 }
 
