@@ -34,6 +34,7 @@ std::unique_ptr<Document> open_document(const std::string& path, const DocumentO
     // A damaged label store costs the labels, not the recording.
     try {
       document->store = std::make_unique<LabelStore>(document->labels_path);
+      document->mark_store_seen();
       const std::vector<std::string> vocabulary = document->store->classes(document->layout.id);
       if (!vocabulary.empty()) document->classes = vocabulary;
     } catch (const Error& failure) {
@@ -69,11 +70,18 @@ void Document::reload_labels() {
   labels_version = ++reloads;
 }
 
+void Document::mark_store_seen() {
+  if (!store) return;
+  store_changes = store->change_count();
+  journal_seen = store->last_sequence();
+}
+
 LabelStore& Document::label_store() {
   if (!labels_refused.empty()) throw Error("labels", labels_refused);
   if (!store) {
     if (labels_path.empty()) labels_path = (fs::path(path).parent_path() / "labels.db").string();
     store = std::make_unique<LabelStore>(labels_path);
+    mark_store_seen();
     if (!layout.classes.empty() && store->classes(layout.id).empty())
       store->set_classes(layout.id, layout.classes);
   }
