@@ -269,6 +269,7 @@ LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
       sqlite::execute(database_, path_, "PRAGMA synchronous = FULL");
     }
     opened_version_ = prepare_schema(database_, path_, read_only);
+    known_sequence_ = last_sequence();
   } catch (...) {
     sqlite3_close_v2(database_);
     database_ = nullptr;
@@ -283,7 +284,9 @@ LabelStore::LabelStore(LabelStore&& other) noexcept
       path_(std::move(other.path_)),
       fixed_time_(std::move(other.fixed_time_)),
       problems_(std::move(other.problems_)),
-      opened_version_(other.opened_version_) {}
+      opened_version_(other.opened_version_),
+      known_sequence_(other.known_sequence_),
+      others_commits_(other.others_commits_) {}
 
 LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
   if (this != &other) {
@@ -293,6 +296,8 @@ LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
     fixed_time_ = std::move(other.fixed_time_);
     problems_ = std::move(other.problems_);
     opened_version_ = other.opened_version_;
+    known_sequence_ = other.known_sequence_;
+    others_commits_ = other.others_commits_;
   }
   return *this;
 }
@@ -347,9 +352,11 @@ std::string LabelStore::integrity_check() const {
 int64_t LabelStore::add(const Label& label) {
   label_rows::validate(label, path_ + " new label");
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const int64_t id = insert_new(database_, path_, label, label_rows::next_batch(database_, path_),
                                   fixed_time_);
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return id;
 }
@@ -363,9 +370,11 @@ std::vector<int64_t> LabelStore::add_many(const std::vector<Label>& labels) {
   if (labels.empty()) return ids;
   ids.reserve(labels.size());
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const int64_t batch = label_rows::next_batch(database_, path_);
   for (const Label& label : labels) ids.push_back(insert_new(database_, path_, label, batch, fixed_time_));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return ids;
 }
@@ -374,22 +383,27 @@ void LabelStore::update(const Label& label) {
   const std::string where = label_rows::where_label(path_, label.id);
   label_rows::validate(label, where);
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const Label before = label_rows::require_seen(database_, path_, ref_of(label), "update");
   update_existing(database_, path_, before, label, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
 }
 
 void LabelStore::remove(const LabelRef& label, const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const Label before = label_rows::require_seen(database_, path_, label, "remove");
   delete_existing(database_, path_, before, annotator, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
 }
 
 int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const label_rows::FilterClause clause = label_rows::filter_clause(filter);
   std::vector<Label> doomed;
   {
@@ -404,6 +418,7 @@ int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& a
   const int64_t batch = label_rows::next_batch(database_, path_);
   for (const Label& label : doomed) delete_existing(database_, path_, label, annotator, batch);
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return static_cast<int64_t>(doomed.size());
 }
@@ -418,6 +433,7 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
   std::vector<int64_t> ids;
   if (edit.empty()) return ids;
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const int64_t batch = label_rows::next_batch(database_, path_);
   // Any refusal below throws before the commit: the whole edit or nothing.
   for (const LabelRef& seen : edit.remove) {
@@ -446,6 +462,7 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
   for (const Label& label : edit.add)
     ids.push_back(insert_new(database_, path_, label, batch, fixed_time_, by));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return ids;
 }

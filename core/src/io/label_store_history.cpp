@@ -88,6 +88,7 @@ void move_label(sqlite3* database, const std::string& path, const EditRow& row,
 
 bool LabelStore::undo(const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   int64_t target_batch = 0;
   {
     sqlite::Statement find(database_, path_,
@@ -106,12 +107,14 @@ bool LabelStore::undo(const std::string& annotator) {
                annotator);
     label_rows::set_undone(database_, path_, row.sequence, true, undo_batch);
   }
+  note_own_commit();
   transaction.commit();
   return true;
 }
 
 bool LabelStore::redo(const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   int64_t undo_batch = 0;
   {
     // The batch undone most recently is the one whose undo has the highest batch.
@@ -129,6 +132,7 @@ bool LabelStore::redo(const std::string& annotator) {
                annotator);
     label_rows::set_undone(database_, path_, row.sequence, false, std::nullopt);
   }
+  note_own_commit();
   transaction.commit();
   return true;
 }

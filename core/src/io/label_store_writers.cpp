@@ -93,8 +93,16 @@ Label require_seen(sqlite3* database, const std::string& path, const LabelRef& s
 int64_t LabelStore::change_count() const {
   sqlite::Statement version(database_, path_, "PRAGMA data_version");
   version.step();
-  return version.integer(0);
+  return version.integer(0) + others_commits_;
 }
+
+void LabelStore::note_others_commits() {
+  const int64_t newest = last_sequence();
+  if (newest != known_sequence_) ++others_commits_;
+  known_sequence_ = newest;
+}
+
+void LabelStore::note_own_commit() { known_sequence_ = last_sequence(); }
 
 std::vector<JournalEntry> LabelStore::journal_after(int64_t sequence) const {
   sqlite::Statement select(database_, path_,

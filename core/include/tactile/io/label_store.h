@@ -170,7 +170,10 @@ class LabelStore {
 
   // A number that changes whenever another connection (another process, another LabelStore)
   // has committed to the database since this one last asked; this store's own commits do not
-  // change it. PRAGMA data_version: a few microseconds, cheap enough for every frame.
+  // change it. PRAGMA data_version (a few microseconds, cheap enough for every frame), plus the
+  // other writers' commits this store's own edits found in the journal (which data_version
+  // misses when an edit's transaction begins right after them). It may also change without
+  // news (then journal_after() has nothing new).
   int64_t change_count() const;
   // The journal rows after `sequence`, oldest first (what the other writers did since a
   // journal row one has seen); damaged rows are left out (in problems()).
@@ -228,12 +231,20 @@ class LabelStore {
 
  private:
   void note_problems(const std::vector<StoreProblem>& problems) const;
+  // An edit's transaction that begins after another writer's commit makes SQLite's data_version
+  // skip that commit: each edit notes, once its transaction holds the lock, whether the journal
+  // grew since this connection last wrote (a change for change_count()), and after its writes
+  // the journal's end as its own.
+  void note_others_commits();
+  void note_own_commit();
 
   sqlite3* database_ = nullptr;
   std::string path_;
   std::string fixed_time_;  // "" = the wall clock
   mutable std::vector<StoreProblem> problems_;
   int64_t opened_version_ = 0;
+  int64_t known_sequence_ = 0;  // the journal's newest row as of this connection's last edit
+  int64_t others_commits_ = 0;  // commits of other writers noticed by this connection's edits
 };
 
 }  // namespace tactile
