@@ -121,7 +121,8 @@ void follow_other_writers(WorkbenchState& state) {
   try {
     if (!document.store) {
       // Another writer may create the store beside the recording: look now and then.
-      if (!document.labels_refused.empty() || state.frame % 30 != 0) return;
+      if (!document.labels_refused.empty() || document.path.empty() || state.frame % 30 != 0)
+        return;
       const std::string beside =
           document.labels_path.empty()
               ? (std::filesystem::path(document.path).parent_path() / "labels.db").string()
