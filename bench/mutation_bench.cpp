@@ -107,7 +107,7 @@ void edit_store(const std::string& path) {
     edited.note = "checked";
     store.update(edited);
   }
-  if (labels.size() > 2) store.remove(labels[1].id, "operator");
+  if (labels.size() > 2) store.remove(ref_of(labels[1]), "operator");
   store.undo();
   store.redo();
   store.undo();

@@ -104,7 +104,7 @@ TEST_F(VerifyCli, UpgradeRewritesFilesOfTheEarlierFormat) {
   ASSERT_EQ(before.exit_code, 0) << before.err;
   const auto upgraded = tactile("upgrade " + old_recording + " " + old_store);
   EXPECT_EQ(upgraded.exit_code, 0) << upgraded.err;
-  EXPECT_EQ(upgraded.out, old_recording + ": format 1 -> 2\n" + old_store + ": schema 1 -> 3\n");
+  EXPECT_EQ(upgraded.out, old_recording + ": format 1 -> 2\n" + old_store + ": schema 1 -> 4\n");
   const auto verified = tactile("verify " + old_recording + " " + old_store);
   EXPECT_EQ(verified.exit_code, 0) << verified.out;
   const auto after = tactile("export " + old_recording + " --csv " + folder.file("after.csv"));

@@ -274,7 +274,7 @@ TEST_F(WorkbenchFiles, UpgradeRewritesTheOpenRecordingAndOpensItAgain) {
   // is the upgrade's.
   EXPECT_EQ(
       after["files"]["report"]["text"],
-      old_recording + ": format 1 -> 2\n" + folder.file("old/labels.db") + ": already schema 3\n");
+      old_recording + ": format 1 -> 2\n" + folder.file("old/labels.db") + ": already schema 4\n");
   EXPECT_EQ(after["error"], "");
   EXPECT_EQ(after["path"], old_recording);
   EXPECT_EQ(after["labels"], state("before.json")["labels"]);

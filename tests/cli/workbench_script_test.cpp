@@ -156,8 +156,8 @@ TEST_F(WorkbenchScript, ArgumentsThatFitNoFormOfTheCommandNameTheFormsItHas) {
       {"drag foo 1 2\n",
        "script.txt:1: drag: expected 'drag time T0 T1 [in VIEW]' or 'drag taxel A B'"},
       {"wait 1 2\n",
-       "script.txt:1: wait: wrong number of arguments, expected 'wait N', 'wait training' or "
-       "'wait jobs'"}};
+       "script.txt:1: wait: wrong number of arguments, expected 'wait N', 'wait training', "
+       "'wait jobs' or 'wait labels N'"}};
   for (const auto& [text, error] : cases) {
     const auto result = run("--script " + script(text));
     EXPECT_NE(result.exit_code, 0) << text;

@@ -67,7 +67,7 @@ TEST_F(LabelStoreTest, AnEditIsOneBatchThatOneUndoTakesBackAndRedoBringsBack) {
   const std::vector<Row> before = table(store);
 
   LabelEdit edit;
-  edit.remove = {gone};
+  edit.remove = {{gone, 1}};
   Label update = *store.get(changed);
   update.class_name = "slap";
   edit.update = {update};
@@ -107,7 +107,7 @@ TEST_F(LabelStoreTest, AnEditWithABadPartChangesNothing) {
   const int64_t journal_rows = static_cast<int64_t>(store.journal(-1).size());
 
   LabelEdit missing;
-  missing.remove = {id, id + 100};
+  missing.remove = {{id, 1}, {id + 100, 1}};
   missing.add = {make_label("r1", 2.0, 3.0, "poke")};
   try {
     store.apply(missing, "ana");
@@ -117,7 +117,7 @@ TEST_F(LabelStoreTest, AnEditWithABadPartChangesNothing) {
         << error.what();
   }
   LabelEdit invalid;
-  invalid.remove = {id};
+  invalid.remove = {{id, 1}};
   invalid.add = {make_label("r1", 3.0, 2.0, "poke")};  // ends before it starts
   EXPECT_THROW(store.apply(invalid, "ana"), Error);
 
@@ -134,7 +134,7 @@ TEST_F(LabelStoreTest, UndoOfASegmenterRerunRestoresTheLaneBeforeIt) {
   store.apply(first.edit, "ana");
   const std::vector<Label> lane = store.list();
   ASSERT_EQ(lane.size(), 50u);
-  store.reject(lane[6].id, "ana");
+  store.reject(ref_of(lane[6]), "ana");
   const std::vector<Row> before = table(store);
 
   const SegmenterRun second = segmenter_run(store, "r1", "adaptive", suggestions("adaptive", 50));
@@ -177,8 +177,8 @@ TEST_F(LabelStoreTest, ASegmenterRunNamesUnknownClassesAndKeepsOtherMethodsAndLa
   const SegmenterRun run = segmenter_run(store, "r1", "adaptive", suggestions("adaptive", 4));
   EXPECT_EQ(run.annotator, "segmenter:adaptive");
   EXPECT_EQ(run.replaced, 4u);
-  for (const int64_t id : run.edit.remove)
-    EXPECT_EQ(store.get(id)->annotator, "segmenter:adaptive");
+  for (const LabelRef& seen : run.edit.remove)
+    EXPECT_EQ(store.get(seen.id)->annotator, "segmenter:adaptive");
   for (const Label& label : run.edit.add) EXPECT_EQ(label.class_name, kUnknownClass);
   store.apply(run.edit, "ana");
   LabelFilter threshold;
@@ -240,7 +240,7 @@ TEST_F(LabelStoreTest, ARejectsUndoForgetsTheRejectionAndItsRedoRemembersIt) {
   const std::vector<Row> before = table(store);
   const int64_t second = store.list()[1].id;
   LabelEdit edit;
-  edit.reject = {second};
+  edit.reject = {{second, 1}};
   store.apply(edit, "ana");
   EXPECT_FALSE(store.get(second));
   ASSERT_EQ(store.rejections("r1").size(), 1u);
@@ -259,7 +259,7 @@ TEST_F(LabelStoreTest, ARejectsUndoForgetsTheRejectionAndItsRedoRemembersIt) {
   EXPECT_TRUE(store.check().empty());
   // Not a suggestion: refused, nothing changed.
   const int64_t own = store.add(make_label("r1", 20.0, 21.0, "pat"));
-  edit.reject = {own};
+  edit.reject = {{own, 1}};
   EXPECT_THROW(store.apply(edit, "ana"), Error);
   EXPECT_TRUE(store.get(own));
 }

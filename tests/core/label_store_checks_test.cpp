@@ -73,12 +73,12 @@ TEST_F(LabelStoreChecks, AChangedValueIsNamedLeftOutAndNeverOverwritten) {
   Label edit = make_label("rec", 1.0, 2.5, "pat");
   edit.id = 1;
   EXPECT_THROW(store.update(edit), Error);
-  EXPECT_THROW(store.remove(1), Error);
+  EXPECT_THROW(store.remove({1, 1}), Error);
   EXPECT_THROW(store.remove_where(of("rec")), Error);
   // The rest stays usable.
   const int64_t added = store.add(make_label("rec", 5.0, 6.0, "pat"));
   EXPECT_EQ(store.get(added)->t1, 6.0);
-  store.remove(2);
+  store.remove({2, 1});
   EXPECT_EQ(store.list(of("other")).size(), 1u);
 }
 
@@ -121,7 +121,7 @@ TEST_F(LabelStoreChecks, UndoAndRedoKeepEveryChecksum) {
     Label edit = *store.get(1);
     edit.class_name = "slap";
     store.update(edit);
-    store.remove(3);
+    store.remove({3, 1});
     ASSERT_TRUE(store.undo());
     ASSERT_TRUE(store.undo());
     ASSERT_TRUE(store.redo());
@@ -222,8 +222,8 @@ TEST_F(LabelStoreChecks, ARejectedSuggestionIsRemovedRememberedAndLeftOutOfAReru
   suggestion.source = LabelSource::kSegmenter;
   suggestion.annotator = "segmenter:threshold";
   const int64_t id = store.add(suggestion);
-  EXPECT_THROW(store.reject(1, "ana"), Error);  // a manual label is not a suggestion
-  store.reject(id, "ana");
+  EXPECT_THROW(store.reject({1, 1}, "ana"), Error);  // a manual label is not a suggestion
+  store.reject({id, 1}, "ana");
   EXPECT_FALSE(store.get(id).has_value());
   const std::vector<Rejection> rejections = store.rejections("rec");
   ASSERT_EQ(rejections.size(), 1u);

@@ -30,7 +30,7 @@ TEST_F(LabelStoreTest, UndoOfDeleteRestoresTheSameIdAndLaterIdsDoNotReuseIt) {
   Label newest = make_label("r1", 1.0, 2.0, "poke");
   newest.note = "keep me";
   const int64_t id = store.add(newest);
-  store.remove(id, "bo");
+  store.remove({id, 1}, "bo");
   // The highest id was freed: a fresh add must not take it, or undo could not restore it.
   const int64_t fresh = store.add(make_label("r1", 3.0, 4.0, "rub"));
   EXPECT_GT(fresh, id);
@@ -137,7 +137,7 @@ TEST_F(LabelStoreTest, JournalRecordsWhoDidWhatNewestFirst) {
   changed.class_name = "slap";
   changed.annotator = "bo";
   store.update(changed);
-  store.remove(id, "carla");
+  store.remove({id, 2}, "carla");
   ASSERT_TRUE(store.undo("carla"));
 
   const std::vector<JournalEntry> journal = store.journal();
@@ -184,7 +184,7 @@ TEST_F(LabelStoreTest, UndoHistorySurvivesReopening) {
   {
     LabelStore store(path_);
     id = store.add(make_label("r1", 0.0, 1.0, "pat"));
-    store.remove(id);
+    store.remove({id, 1});
   }
   LabelStore reopened(path_);
   ASSERT_TRUE(reopened.undo());

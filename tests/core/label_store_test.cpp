@@ -72,7 +72,7 @@ TEST_F(LabelStoreTest, UpdateOrRemoveOfMissingIdNamesTheLabel) {
     EXPECT_EQ(error.where(), path_ + " label 17");
   }
   try {
-    store.remove(17);
+    store.remove({17, 1});
     FAIL() << "remove of a missing label must throw";
   } catch (const Error& error) {
     EXPECT_EQ(error.where(), path_ + " label 17");
@@ -84,7 +84,7 @@ TEST_F(LabelStoreTest, RemoveDeletesOnlyThatLabel) {
   LabelStore store(path_);
   const int64_t first = store.add(make_label("r1", 0.0, 1.0, "pat"));
   const int64_t second = store.add(make_label("r1", 1.0, 2.0, "poke"));
-  store.remove(first);
+  store.remove({first, 1});
   EXPECT_FALSE(store.get(first));
   EXPECT_TRUE(store.get(second));
   EXPECT_EQ(store.count(), 1);

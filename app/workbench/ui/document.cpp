@@ -96,6 +96,7 @@ std::unique_ptr<Document> open_document(const std::string& path, const DocumentO
       document->store = std::make_unique<LabelStore>(
           document->labels_path,
           read_only.empty() ? LabelStore::OpenMode::kCreate : LabelStore::OpenMode::kReadOnly);
+      document->mark_store_seen();
       const std::vector<std::string> vocabulary = document->store->classes(document->layout.id);
       if (!vocabulary.empty()) document->classes = vocabulary;
     } catch (const Error& failure) {
@@ -131,6 +132,12 @@ void Document::reload_labels() {
   labels_version = ++reloads;
 }
 
+void Document::mark_store_seen() {
+  if (!store) return;
+  store_changes = store->change_count();
+  journal_seen = store->last_sequence();
+}
+
 LabelStore& Document::label_store() {
   if (!labels_refused.empty()) throw Error("labels", labels_refused);
   // Refused before anything is written: nothing half-written in a read-only folder.
@@ -138,6 +145,7 @@ LabelStore& Document::label_store() {
   if (!store) {
     if (labels_path.empty()) labels_path = (fs::path(path).parent_path() / "labels.db").string();
     store = std::make_unique<LabelStore>(labels_path);
+    mark_store_seen();
     if (!layout.classes.empty() && store->classes(layout.id).empty())
       store->set_classes(layout.id, layout.classes);
   }
@@ -166,6 +174,7 @@ void Document::keep_labels_in_own_store() {
   store = std::move(mine);
   labels_path = own;
   labels_read_only.clear();
+  mark_store_seen();  // the copy is ours, not another writer's news
   reload_labels();
 }
 

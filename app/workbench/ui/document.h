@@ -27,6 +27,11 @@ struct Document {
   // The label store, open while the document is (every edit is one transaction in it);
   // null until there is one (created beside the recording by the first edit).
   std::unique_ptr<LabelStore> store;
+  // What of the store this document has seen: its change count (LabelStore::change_count,
+  // moved on by other writers' commits) and its newest journal row, so that the others'
+  // edits are reloaded and named (follow_other_writers, labelling.h).
+  int64_t store_changes = 0;
+  int64_t journal_seen = 0;
   // The skin's class vocabulary: the store's for this layout, else the layout's own.
   std::vector<std::string> classes;
   // Damaged label rows left out of `labels`, or why the label store did not open,
@@ -46,6 +51,8 @@ struct Document {
   const SampleSource& samples() const { return *source; }
   // Re-reads this recording's labels from the store and rebuilds the lanes.
   void reload_labels();
+  // Takes the store's change count and newest journal row as seen.
+  void mark_store_seen();
   // The store, opened (or created beside the recording) on first need. Throws
   // tactile::Error.
   LabelStore& label_store();

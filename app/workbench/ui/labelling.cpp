@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <utility>
 
 #include "jobs.h"
@@ -50,12 +53,107 @@ bool own(const WorkbenchState& state, const Label& label) {
   return label.source == LabelSource::kManual && label.annotator == state.labelling.annotator;
 }
 
+// The labels as the store has them now (after another writer's commit or a refused edit): the
+// selection keeps the labels that still exist, the cursor and the marks stay.
+void reload_keeping_selection(WorkbenchState& state) {
+  Document& document = *state.document;
+  document.reload_labels();
+  std::erase_if(state.selection.labels, [&document](int64_t id) {
+    return std::none_of(document.labels.begin(), document.labels.end(),
+                        [id](const Label& label) { return label.id == id; });
+  });
+}
+
+// The recording a journal row is about (its label before or after), "" when unreadable.
+std::string journal_recording(const JournalEntry& entry) {
+  for (const std::string* text : {&entry.after_json, &entry.before_json}) {
+    if (text->empty()) continue;
+    const nlohmann::json object = nlohmann::json::parse(*text, nullptr, false);
+    if (object.is_object() && object.contains("recording") && object["recording"].is_string())
+      return object["recording"].get<std::string>();
+  }
+  return {};
+}
+
+// "bob added 2 labels, changed 1; carla removed 1": the others' journal rows about this
+// recording (the operator's own rows, from a job of this workbench, are not news).
+std::string others_news(const std::vector<JournalEntry>& entries, const std::string& recording,
+                        const std::string& operator_name) {
+  static const std::map<std::string, std::string> kVerbs = {
+      {"insert", "added"},    {"update", "changed"}, {"delete", "removed"},
+      {"reject", "rejected"}, {"undo", "undid"},     {"redo", "redid"}};
+  std::vector<std::pair<std::string, std::vector<std::pair<std::string, int>>>> people;
+  for (const JournalEntry& entry : entries) {
+    if (entry.annotator == operator_name || journal_recording(entry) != recording) continue;
+    const auto verb = kVerbs.find(entry.action);
+    if (verb == kVerbs.end()) continue;
+    auto person = std::find_if(people.begin(), people.end(),
+                               [&](const auto& known) { return known.first == entry.annotator; });
+    if (person == people.end()) person = people.insert(people.end(), {entry.annotator, {}});
+    auto counted = std::find_if(person->second.begin(), person->second.end(),
+                                [&](const auto& known) { return known.first == verb->second; });
+    if (counted == person->second.end())
+      person->second.push_back({verb->second, 1});
+    else
+      ++counted->second;
+  }
+  std::string news;
+  for (const auto& [annotator, counts] : people) {
+    news += (news.empty() ? "" : "; ") + annotator;
+    for (size_t k = 0; k < counts.size(); ++k)
+      news += (k == 0 ? " " : ", ") + counts[k].first + " " + std::to_string(counts[k].second) +
+              (k == 0 ? (counts[k].second == 1 ? " label" : " labels") : "");
+  }
+  return news;
+}
+
+// A refused edit: nothing of it was written; the view shows the store as it is now.
+bool refuse(WorkbenchState& state, const EditConflict& conflict) {
+  reload_keeping_selection(state);
+  return fail(state, conflict.message());
+}
+
 }  // namespace
+
+void follow_other_writers(WorkbenchState& state) {
+  if (!state.document) return;
+  Document& document = *state.document;
+  try {
+    if (!document.store) {
+      // Another writer may create the store beside the recording: look now and then.
+      if (!document.labels_refused.empty() || document.path.empty() || state.frame % 30 != 0)
+        return;
+      const std::string beside =
+          document.labels_path.empty()
+              ? (std::filesystem::path(document.path).parent_path() / "labels.db").string()
+              : document.labels_path;
+      std::error_code missing;
+      if (!std::filesystem::exists(beside, missing)) return;
+      document.label_store();
+      document.journal_seen = 0;  // everything in it is news
+      document.store_changes = document.store->change_count() - 1;
+    }
+    const int64_t changes = document.store->change_count();
+    if (changes == document.store_changes) return;
+    document.store_changes = changes;
+    const std::vector<JournalEntry> entries = document.store->journal_after(document.journal_seen);
+    if (!entries.empty()) document.journal_seen = entries.back().sequence;
+    reload_keeping_selection(state);
+    const std::string news =
+        others_news(entries, document.recording_id(), state.labelling.annotator);
+    if (!news.empty()) state.notice = news;
+  } catch (const Error& error) {
+    fail(state, error.what());
+  }
+}
 
 std::optional<std::vector<int64_t>> apply_command(WorkbenchState& state, const LabelEdit& edit) {
   try {
     std::vector<int64_t> ids = state.document->label_store().apply(edit, state.labelling.annotator);
     return ids;
+  } catch (const EditConflict& conflict) {
+    refuse(state, conflict);
+    return std::nullopt;
   } catch (const Error& error) {
     fail(state, error.what());
     return std::nullopt;
@@ -187,7 +285,7 @@ bool remove_selected_label(WorkbenchState& state) {
   if (!own(state, *selected))
     return fail(state, "only labels of your own lane (" + state.labelling.annotator +
                            ") are removed with Delete");
-  if (!apply_command(state, remove_edit(selected->id))) return false;
+  if (!apply_command(state, remove_edit(*selected))) return false;
   after_edit(state, 0, "removed label " + std::to_string(selected->id));
   return true;
 }
@@ -199,6 +297,8 @@ bool undo_edit(WorkbenchState& state, bool redo) {
     const bool done = redo ? store.redo(state.labelling.annotator)
                            : store.undo(state.labelling.annotator);
     if (!done) return fail(state, redo ? "nothing to redo" : "nothing to undo");
+  } catch (const EditConflict& conflict) {
+    return refuse(state, conflict);
   } catch (const Error& error) {
     return fail(state, error.what());
   }
@@ -290,7 +390,7 @@ bool reject_suggestion(WorkbenchState& state) {
   const std::optional<Label> selected = selected_label(state);
   if (!selected || selected->source != LabelSource::kSegmenter)
     return fail(state, "select a suggestion (a segmenter's label) to reject");
-  if (!apply_command(state, reject_edit(selected->id))) return false;
+  if (!apply_command(state, reject_edit(*selected))) return false;
   after_edit(state, 0, "rejected the suggestion at " + format_seconds(selected->t0));
   select_next_suggestion(state, selected->annotator, selected->t0);
   return true;

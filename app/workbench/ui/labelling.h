@@ -25,9 +25,18 @@ void apply_dragged_bounds(WorkbenchState& state);
 // type part of a name, Enter takes the first match as the class. Drawn every frame.
 void draw_class_picker(WorkbenchState& state);
 
+// Several writers of one store (two workbenches, a workbench and `tactile segment` or
+// `predict`): once a frame, the store's change count (microseconds) says whether another
+// writer committed; then the labels are reloaded (the selection kept where its labels still
+// exist, the cursor where it is) and the notice names who did what ("bob added 2 labels").
+// A store created beside the recording by another writer is opened (checked every 30 frames).
+void follow_other_writers(WorkbenchState& state);
+
 // Carries out one command (tactile/labels/commands.h): the edit written in one transaction
 // and one journal batch under the operator, so Ctrl+Z takes it back whole. Returns the new
-// labels' ids; nothing when the store refused (the reason in state.error).
+// labels' ids; nothing when the store refused (the reason in state.error). An edit of a label
+// another writer changed or removed meanwhile is refused whole (EditConflict): the error names
+// the label and the other annotator, and the view reloads to show the other's state.
 std::optional<std::vector<int64_t>> apply_command(WorkbenchState& state, const LabelEdit& edit);
 
 // The edits the keys make; also for mouse actions. Each reports failure in

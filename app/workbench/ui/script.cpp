@@ -381,6 +381,16 @@ void ScriptPlayer::wait_jobs(const ScriptStep& step) {
              "a view's job still running after 10 minutes", step);
 }
 
+void ScriptPlayer::wait_labels(const ScriptStep& step) {
+  const size_t wanted = static_cast<size_t>(std::stod(step.words[1]));
+  draw_until(
+      [wanted](Workbench& workbench) {
+        const Document* document = workbench.state().document.get();
+        return document && document->labels.size() == wanted;
+      },
+      "the recording does not show " + step.words[1] + " labels after 10 minutes", step);
+}
+
 void ScriptPlayer::play_recording(const ScriptStep& step) {
   auto remaining = std::make_shared<double>(std::stod(step.words[0]));
   auto started = std::make_shared<bool>(false);

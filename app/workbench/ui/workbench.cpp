@@ -230,6 +230,7 @@ void Workbench::frame_work(double seconds) {
   poll_jobs(state_);
   poll_demo();
   poll_file_jobs(state_);
+  follow_other_writers(state_);
   apply_dragged_bounds(state_);
   // A dialog or the file browser with the keyboard keeps its keys (Escape, Enter, digits).
   if (!files_have_keys(state_)) handle_keys(state_);

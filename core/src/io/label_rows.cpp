@@ -17,13 +17,23 @@ namespace {
 
 using row_checksum::Field;
 
-std::vector<Field> label_fields(const Label& label, const std::string& source) {
-  return {{"recording", label.recording}, {"t0", label.t0},
-          {"t1", label.t1},               {"region", label.region},
-          {"class", label.class_name},    {"annotator", label.annotator},
-          {"source", source},             {"confidence", label.confidence},
-          {"note", label.note},           {"created", label.created},
-          {"modified", label.modified}};
+// The fields a labels row's checksum covers: schema 4 added the revision at the end (a row
+// of schema 2 or 3 is checked without it, by add_checksums and add_revisions).
+std::vector<Field> label_fields(const Label& label, const std::string& source,
+                                bool with_revision = true) {
+  std::vector<Field> fields = {{"recording", label.recording},
+                               {"t0", label.t0},
+                               {"t1", label.t1},
+                               {"region", label.region},
+                               {"class", label.class_name},
+                               {"annotator", label.annotator},
+                               {"source", source},
+                               {"confidence", label.confidence},
+                               {"note", label.note},
+                               {"created", label.created},
+                               {"modified", label.modified}};
+  if (with_revision) fields.push_back({"revision", label.revision});
+  return fields;
 }
 
 std::string label_checksum(const Label& label) {
@@ -143,6 +153,7 @@ CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& 
   row.id = label.id;
   row.recording = label.recording;
   row.checksum = statement.text(12);
+  label.revision = statement.integer(13);
   row.problem = checksum_problem("labels", label.id, label_fields(label, source), row.checksum);
   if (row.problem) return row;
   // Intact as written; still, only valid values pass as labels.
@@ -158,7 +169,10 @@ CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& 
     row.problem = row_problem("labels", label.id, "", error.message());
     return row;
   }
-  if (classes.count(label.class_name) == 0)
+  if (label.revision < 1)
+    row.problem = row_problem("labels", label.id, "revision",
+                              std::to_string(label.revision) + " is not a revision (1 or more)");
+  else if (classes.count(label.class_name) == 0)
     row.problem = row_problem("labels", label.id, "class",
                               "'" + label.class_name + "' is in no vocabulary of the store");
   else if (!is_iso_time(label.created))
@@ -210,6 +224,8 @@ Label from_json(const nlohmann::json& object, const std::string& where) {
     label.note = object.at("note").get<std::string>();
     label.created = object.at("created").get<std::string>();
     label.modified = object.at("modified").get<std::string>();
+    // Journal rows of schema 4 carry the revision; the export and older rows do not.
+    label.revision = object.value("revision", int64_t{0});
     return label;
   } catch (const nlohmann::json::exception& error) {
     throw Error(where, std::string("malformed label JSON: ") + error.what());
@@ -280,7 +296,7 @@ int64_t store(sqlite3* database, const std::string& path, const Label& label) {
   if (label.id != 0) forget_row(database, path, label.id);
   sqlite::Statement upsert(database, where_label(path, label.id),
                            std::string("INSERT OR REPLACE INTO labels (") + kColumns +
-                               ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                               ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   // Id 0 means "new": a NULL id lets AUTOINCREMENT pick one that was never used,
   // so an id freed by a delete stays free for that label's undo. The checksum
   // covers the id, so a new row gets its checksum once the id is known.
@@ -298,7 +314,8 @@ int64_t store(sqlite3* database, const std::string& path, const Label& label) {
       .bind(9, label.confidence)
       .bind(10, label.note)
       .bind(11, label.created)
-      .bind(12, label.modified);
+      .bind(12, label.modified)
+      .bind(14, label.revision);
   upsert.run();
   Label stored = label;
   if (stored.id == 0) {
@@ -405,6 +422,13 @@ void compare_digests(const std::map<std::string, Digest>& found,
 //---- Journal
 
 std::string state_json(const std::optional<Label>& label) {
+  if (!label) return {};
+  nlohmann::json object = to_json(*label);
+  object["revision"] = label->revision;
+  return object.dump();
+}
+
+std::string content_json(const std::optional<Label>& label) {
   return label ? to_json(*label).dump() : std::string();
 }
 
@@ -640,8 +664,10 @@ INSERT OR IGNORE INTO label_classes (name) SELECT DISTINCT class FROM labels;
 )sql");
   std::vector<std::pair<Label, std::string>> labels;
   {
+    // The columns of schema 1 (no revision yet; add_revisions adds it).
     sqlite::Statement select(database, path,
-                             std::string("SELECT ") + kColumns + " FROM labels ORDER BY id");
+                             "SELECT id, recording, t0, t1, region, class, annotator, source, "
+                             "confidence, note, created, modified FROM labels ORDER BY id");
     while (select.step()) {
       std::string source;
       Label label = label_from_row(select, source);
@@ -651,7 +677,7 @@ INSERT OR IGNORE INTO label_classes (name) SELECT DISTINCT class FROM labels;
   sqlite::Statement update(database, path, "UPDATE labels SET checksum = ? WHERE id = ?");
   for (const auto& [label, source] : labels) {
     const std::string checksum =
-        row_checksum::compute("labels", label.id, label_fields(label, source));
+        row_checksum::compute("labels", label.id, label_fields(label, source, false));
     update.reset();
     update.bind(1, checksum).bind(2, label.id);
     update.run();
@@ -669,6 +695,43 @@ INSERT OR IGNORE INTO label_classes (name) SELECT DISTINCT class FROM labels;
     }
   }
   for (const auto& [entry, undone_by] : entries) seal_journal_row(database, path, entry, undone_by);
+}
+
+void add_revisions(sqlite3* database, const std::string& path) {
+  sqlite::execute(database, path,
+                  "ALTER TABLE labels ADD COLUMN revision INTEGER NOT NULL DEFAULT 1");
+  // Every row's checksum gains the revision's CRC, and its recording's digest the new row
+  // hash. A row that is damaged already stays as it is (its checksum still names the field).
+  struct Row {
+    Label label;
+    std::string source, checksum;
+  };
+  std::vector<Row> rows;
+  {
+    sqlite::Statement select(database, path,
+                             std::string("SELECT ") + kColumns + " FROM labels ORDER BY id");
+    while (select.step()) {
+      Row row;
+      row.label = label_from_row(select, row.source);
+      row.label.revision = select.integer(13);
+      row.checksum = select.text(12);
+      rows.push_back(std::move(row));
+    }
+  }
+  sqlite::Statement update(database, path, "UPDATE labels SET checksum = ? WHERE id = ?");
+  for (const Row& row : rows) {
+    const std::vector<Field> old_fields = label_fields(row.label, row.source, false);
+    if (!row_checksum::mismatches("labels", row.label.id, old_fields, row.checksum).empty())
+      continue;
+    const std::string checksum =
+        row_checksum::compute("labels", row.label.id, label_fields(row.label, row.source));
+    update.reset();
+    update.bind(1, checksum).bind(2, row.label.id);
+    update.run();
+    adjust_digest(database, path, label_scope(row.label.recording), 0,
+                  row_checksum::row_hash(row.label.id, checksum) -
+                      row_checksum::row_hash(row.label.id, row.checksum));
+  }
 }
 
 }  // namespace tactile::label_rows

@@ -19,10 +19,10 @@
 namespace tactile::label_rows {
 
 // The labels table's columns in the order read_label() expects (schema 2: with the
-// row's checksum, row_checksum.h).
+// row's checksum, row_checksum.h; schema 4: with the revision).
 inline constexpr const char* kColumns =
     "id, recording, t0, t1, region, class, annotator, source, confidence, note, created, "
-    "modified, checksum";
+    "modified, checksum, revision";
 
 // Class names a label read back may carry: the skins' vocabularies and every class
 // ever written to the store (a damaged name is none of them).
@@ -99,8 +99,11 @@ void compare_digests(const std::map<std::string, Digest>& found,
 
 //---- Journal
 
-// A label's state for the journal: its JSON, or "" when it does not exist.
+// A label's state for the journal: its JSON with its revision, or "" when it does not exist.
 std::string state_json(const std::optional<Label>& label);
+// The same without the revision (what an undo compares: the revision moves on at every
+// undo and redo, the values come back).
+std::string content_json(const std::optional<Label>& label);
 std::optional<Label> state_from_json(const std::string& text, const std::string& where);
 
 // The number shared by the journal rows of one call.
@@ -138,8 +141,24 @@ CheckedJournal read_journal(const sqlite::Statement& statement);
 void set_undone(sqlite3* database, const std::string& path, int64_t sequence, bool undone,
                 std::optional<int64_t> undone_by);
 
+//---- Several writers (label_store_writers.cpp)
+
+// The refusal of an edit of label `id` that someone else changed or removed since its editor
+// read it: names the label (id, class, span) and the last journal row's annotator and action.
+// `consequence` ends the message: "your edit was not saved", "nothing was undone".
+EditConflict conflict(sqlite3* database, const std::string& path, int64_t id,
+                      const std::string& consequence);
+// The label `seen` names, read inside the caller's (immediate) transaction, when its revision is
+// still the one seen; otherwise the conflict (or tactile::Error "no such label to VERB" for an
+// id never used). `verb`: "update", "remove", "reject".
+Label require_seen(sqlite3* database, const std::string& path, const LabelRef& seen,
+                   const char* verb);
+
 // Schema 1 to 2: checksums for every row, digests, the classes written. Inside the
 // caller's transaction.
 void add_checksums(sqlite3* database, const std::string& path);
+// Schema 3 to 4: a revision for every label (1), covered by its checksum. Inside the
+// caller's transaction.
+void add_revisions(sqlite3* database, const std::string& path);
 
 }  // namespace tactile::label_rows

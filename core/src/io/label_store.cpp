@@ -29,7 +29,10 @@ namespace {
 // check() compares.
 // Version 3: table rejections (suggestions an annotator rejected, so that a rerun of
 // the segmenter does not bring them back).
-constexpr int64_t kSchemaVersion = 3;
+// Version 4: a revision column in labels (covered by the row's checksum, label_rows::
+// add_revisions): every edit states the revision its editor saw, so that an edit of a label
+// someone else changed meanwhile is refused instead of overwriting it.
+constexpr int64_t kSchemaVersion = 4;
 
 constexpr const char* kAddRejections = R"sql(
 CREATE TABLE rejections (
@@ -90,7 +93,8 @@ void create_schema(sqlite3* database, const std::string& path) {
   sqlite::execute(database, path, kCreateSchemaVersion1);
   label_rows::add_checksums(database, path);
   sqlite::execute(database, path, kAddRejections);
-  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (3)");
+  label_rows::add_revisions(database, path);
+  sqlite::execute(database, path, "INSERT INTO store_schema (version) VALUES (4)");
 }
 
 // The schema every store of the current version has: (type, name, table, sql).
@@ -122,6 +126,15 @@ int64_t single_integer(sqlite3* database, const std::string& where, const std::s
   sqlite::Statement select(database, where, sql);
   select.step();
   return select.integer(0);
+}
+
+// SQLite's own busy timeout sleeps in growing steps up to 100 ms: a writer waiting for another
+// that commits often sleeps past one commit after another (label_writers_bench saw its commits
+// wait and its view lag by up to ~0.5 s). Retries every millisecond, for at least kBusyTimeout.
+int wait_for_lock(void*, int attempts) {
+  if (attempts >= static_cast<int>(kBusyTimeout.count())) return 0;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  return 1;
 }
 
 // Switching a new database to WAL takes an exclusive lock without calling the
@@ -190,8 +203,9 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
       throw Error(path, "label store schema version " + std::to_string(version) + " is invalid");
     if (version == 1) label_rows::add_checksums(database, path);
     if (version <= 2) sqlite::execute(database, path, kAddRejections);
+    if (version <= 3) label_rows::add_revisions(database, path);
     if (version < kSchemaVersion)
-      sqlite::execute(database, path, "UPDATE store_schema SET version = 3");
+      sqlite::execute(database, path, "UPDATE store_schema SET version = 4");
   }
   transaction.commit();
   return found;
@@ -202,6 +216,7 @@ int64_t prepare_schema(sqlite3* database, const std::string& path, bool read_onl
 int64_t insert_new(sqlite3* database, const std::string& path, Label label, int64_t batch,
                    const std::string& time, const std::string& by = {}) {
   label.id = 0;
+  label.revision = 1;
   label.created = label.modified = time.empty() ? label_rows::now_utc() : time;
   label.id = label_rows::store(database, path, label);
   label_rows::write_journal(database, path, batch, by.empty() ? label.annotator : by, "insert",
@@ -216,6 +231,7 @@ void update_existing(sqlite3* database, const std::string& path, const Label& be
   Label after = label;
   after.created = before.created;
   after.modified = label_rows::now_utc();
+  after.revision = before.revision + 1;
   label_rows::store(database, path, after);
   label_rows::write_journal(database, path, batch, by.empty() ? after.annotator : by, "update",
                             after.id, label_rows::state_json(before),
@@ -252,7 +268,7 @@ LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
     if (code != SQLITE_OK) sqlite::fail(database_, path_, "cannot open", code);
     sqlite3_extended_result_codes(database_, 1);
     // Another process writing waits up to 5 s for us, and we for it.
-    sqlite3_busy_timeout(database_, static_cast<int>(kBusyTimeout.count()));
+    sqlite3_busy_handler(database_, wait_for_lock, nullptr);
     if (!read_only) {
       // The first read of the file: a file that is not a database fails here.
       enable_wal(database_, path_);
@@ -262,6 +278,7 @@ LabelStore::LabelStore(const std::string& path, OpenMode mode) : path_(path) {
       sqlite::execute(database_, path_, "PRAGMA synchronous = FULL");
     }
     opened_version_ = prepare_schema(database_, path_, read_only);
+    known_sequence_ = last_sequence();
   } catch (...) {
     sqlite3_close_v2(database_);
     database_ = nullptr;
@@ -276,7 +293,9 @@ LabelStore::LabelStore(LabelStore&& other) noexcept
       path_(std::move(other.path_)),
       fixed_time_(std::move(other.fixed_time_)),
       problems_(std::move(other.problems_)),
-      opened_version_(other.opened_version_) {}
+      opened_version_(other.opened_version_),
+      known_sequence_(other.known_sequence_),
+      others_commits_(other.others_commits_) {}
 
 LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
   if (this != &other) {
@@ -286,6 +305,8 @@ LabelStore& LabelStore::operator=(LabelStore&& other) noexcept {
     fixed_time_ = std::move(other.fixed_time_);
     problems_ = std::move(other.problems_);
     opened_version_ = other.opened_version_;
+    known_sequence_ = other.known_sequence_;
+    others_commits_ = other.others_commits_;
   }
   return *this;
 }
@@ -340,9 +361,11 @@ std::string LabelStore::integrity_check() const {
 int64_t LabelStore::add(const Label& label) {
   label_rows::validate(label, path_ + " new label");
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const int64_t id = insert_new(database_, path_, label, label_rows::next_batch(database_, path_),
                                   fixed_time_);
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return id;
 }
@@ -356,9 +379,11 @@ std::vector<int64_t> LabelStore::add_many(const std::vector<Label>& labels) {
   if (labels.empty()) return ids;
   ids.reserve(labels.size());
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const int64_t batch = label_rows::next_batch(database_, path_);
   for (const Label& label : labels) ids.push_back(insert_new(database_, path_, label, batch, fixed_time_));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return ids;
 }
@@ -367,24 +392,27 @@ void LabelStore::update(const Label& label) {
   const std::string where = label_rows::where_label(path_, label.id);
   label_rows::validate(label, where);
   sqlite::Transaction transaction(database_, path_);
-  const std::optional<Label> before = label_rows::load(database_, path_, label.id);
-  if (!before) throw Error(where, "no such label to update");
-  update_existing(database_, path_, *before, label, label_rows::next_batch(database_, path_));
+  note_others_commits();
+  const Label before = label_rows::require_seen(database_, path_, ref_of(label), "update");
+  update_existing(database_, path_, before, label, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
 }
 
-void LabelStore::remove(int64_t id, const std::string& annotator) {
+void LabelStore::remove(const LabelRef& label, const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
-  const std::optional<Label> before = label_rows::load(database_, path_, id);
-  if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
-  delete_existing(database_, path_, *before, annotator, label_rows::next_batch(database_, path_));
+  note_others_commits();
+  const Label before = label_rows::require_seen(database_, path_, label, "remove");
+  delete_existing(database_, path_, before, annotator, label_rows::next_batch(database_, path_));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
 }
 
 int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const label_rows::FilterClause clause = label_rows::filter_clause(filter);
   std::vector<Label> doomed;
   {
@@ -399,6 +427,7 @@ int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& a
   const int64_t batch = label_rows::next_batch(database_, path_);
   for (const Label& label : doomed) delete_existing(database_, path_, label, annotator, batch);
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return static_cast<int64_t>(doomed.size());
 }
@@ -413,18 +442,20 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
   std::vector<int64_t> ids;
   if (edit.empty()) return ids;
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   const int64_t batch = label_rows::next_batch(database_, path_);
-  for (const int64_t id : edit.remove) {
-    const std::optional<Label> before = label_rows::load(database_, path_, id);
-    if (!before) throw Error(label_rows::where_label(path_, id), "no such label to remove");
-    delete_existing(database_, path_, *before, by, batch);
+  // Any refusal below throws before the commit: the whole edit or nothing.
+  for (const LabelRef& seen : edit.remove) {
+    const Label before = label_rows::require_seen(database_, path_, seen, "remove");
+    delete_existing(database_, path_, before, by, batch);
   }
-  for (const int64_t id : edit.reject) {
+  for (const LabelRef& seen : edit.reject) {
     // The suggestion goes and its span is remembered, journalled as a "reject": its undo
     // brings the suggestion back and forgets the rejection.
-    const std::optional<Label> suggestion = label_rows::load(database_, path_, id);
+    const int64_t id = seen.id;
+    const std::optional<Label> suggestion =
+        label_rows::require_seen(database_, path_, seen, "reject");
     const std::string where = label_rows::where_label(path_, id);
-    if (!suggestion) throw Error(where, "no such label to reject");
     if (suggestion->source != LabelSource::kSegmenter)
       throw Error(where, "only a segmenter's suggestion can be rejected");
     label_rows::remember_rejection(database_, path_, *suggestion, by);
@@ -433,14 +464,14 @@ std::vector<int64_t> LabelStore::apply(const LabelEdit& edit, const std::string&
                               label_rows::state_json(suggestion), "");
   }
   for (const Label& label : edit.update) {
-    const std::optional<Label> before = label_rows::load(database_, path_, label.id);
-    if (!before) throw Error(label_rows::where_label(path_, label.id), "no such label to update");
-    update_existing(database_, path_, *before, label, batch, by);
+    const Label before = label_rows::require_seen(database_, path_, ref_of(label), "update");
+    update_existing(database_, path_, before, label, batch, by);
   }
   ids.reserve(edit.add.size());
   for (const Label& label : edit.add)
     ids.push_back(insert_new(database_, path_, label, batch, fixed_time_, by));
   label_rows::clear_redo_chain(database_, path_);
+  note_own_commit();
   transaction.commit();
   return ids;
 }
@@ -508,9 +539,9 @@ int64_t LabelStore::count(const std::string& recording) const {
 
 //---- Suggestions
 
-void LabelStore::reject(int64_t label_id, const std::string& annotator) {
+void LabelStore::reject(const LabelRef& suggestion, const std::string& annotator) {
   LabelEdit edit;
-  edit.reject = {label_id};
+  edit.reject = {suggestion};
   apply(edit, annotator);
 }
 

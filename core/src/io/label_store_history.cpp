@@ -1,11 +1,13 @@
 // The LabelStore's undo, redo and journal. Every edit writes journal rows with
 // the label's state before and after; undo walks them back, redo forward.
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
 #include "label_rows.h"
 #include "row_checksum.h"
 #include "sqlite_statement.h"
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
-#include <nlohmann/json.hpp>
 
 namespace tactile {
 
@@ -41,26 +43,32 @@ std::vector<EditRow> edit_rows(sqlite3* database, const std::string& path,
 
 // Moves one label from the state `expected_json` to `target_json` and journals
 // it as `verb` ("undo" or "redo"). A label that is no longer in the expected
-// state was changed by a later edit; overwriting it would silently lose that
-// edit, so this refuses instead.
+// state was changed by a later edit (another annotator's, another writer's);
+// overwriting it would silently lose that edit, so this refuses instead, naming
+// the label and who changed it. The label moved gets a new revision, so that an
+// editor who saw it before the undo or redo is refused in turn.
 void move_label(sqlite3* database, const std::string& path, const EditRow& row,
                 const std::string& expected_json, const std::string& target_json, const char* verb,
                 int64_t batch, const std::string& annotator) {
   const std::string where = label_rows::where_label(path, row.label_id);
-  const std::string current_json =
-      label_rows::state_json(label_rows::load(database, path, row.label_id));
-  // Both sides re-serialised the same way, so equal labels give equal text.
+  const std::optional<Label> current = label_rows::load(database, path, row.label_id);
+  // Both sides re-serialised the same way, so equal labels give equal text. The revision is
+  // left out: it moves on at every undo and redo while the values come back.
   const std::string expected_state =
-      label_rows::state_json(label_rows::state_from_json(expected_json, where));
-  if (current_json != expected_state)
-    throw Error(where, std::string("cannot ") + verb + " the " + row.action + " of journal entry " +
-                           std::to_string(row.sequence) +
-                           ": the label was changed since by another edit");
-  const std::optional<Label> target = label_rows::state_from_json(target_json, where);
-  if (target)
+      label_rows::content_json(label_rows::state_from_json(expected_json, where));
+  if (label_rows::content_json(current) != expected_state)
+    throw label_rows::conflict(database, path, row.label_id,
+                               std::string("cannot ") + verb + " the " + row.action +
+                                   " of journal entry " + std::to_string(row.sequence) +
+                                   ", nothing was " +
+                                   (verb == std::string("undo") ? "undone" : "redone"));
+  std::optional<Label> target = label_rows::state_from_json(target_json, where);
+  if (target) {
+    target->revision = std::max(current ? current->revision : 0, target->revision) + 1;
     label_rows::store(database, path, *target);
-  else
+  } else {
     label_rows::erase(database, path, row.label_id);
+  }
   // A reject also remembered the suggestion's span: forgotten when it comes back, remembered
   // again when it goes (by whom the reject was journalled).
   if (row.action == "reject") {
@@ -72,13 +80,15 @@ void move_label(sqlite3* database, const std::string& path, const EditRow& row,
                                      row.annotator);
   }
   label_rows::write_journal(database, path, batch, annotator.empty() ? row.annotator : annotator,
-                            verb, row.label_id, current_json, target_json);
+                            verb, row.label_id, label_rows::state_json(current),
+                            label_rows::state_json(target));
 }
 
 }  // namespace
 
 bool LabelStore::undo(const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   int64_t target_batch = 0;
   {
     sqlite::Statement find(database_, path_,
@@ -97,12 +107,14 @@ bool LabelStore::undo(const std::string& annotator) {
                annotator);
     label_rows::set_undone(database_, path_, row.sequence, true, undo_batch);
   }
+  note_own_commit();
   transaction.commit();
   return true;
 }
 
 bool LabelStore::redo(const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
+  note_others_commits();
   int64_t undo_batch = 0;
   {
     // The batch undone most recently is the one whose undo has the highest batch.
@@ -120,6 +132,7 @@ bool LabelStore::redo(const std::string& annotator) {
                annotator);
     label_rows::set_undone(database_, path_, row.sequence, false, std::nullopt);
   }
+  note_own_commit();
   transaction.commit();
   return true;
 }

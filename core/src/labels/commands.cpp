@@ -28,15 +28,15 @@ LabelEdit add_edit(Label label) {
   return edit;
 }
 
-LabelEdit remove_edit(int64_t id) {
+LabelEdit remove_edit(const Label& label) {
   LabelEdit edit;
-  edit.remove = {id};
+  edit.remove = {ref_of(label)};
   return edit;
 }
 
-LabelEdit reject_edit(int64_t id) {
+LabelEdit reject_edit(const Label& suggestion) {
   LabelEdit edit;
-  edit.reject = {id};
+  edit.reject = {ref_of(suggestion)};
   return edit;
 }
 
@@ -61,7 +61,7 @@ LabelEdit ground_truth_import(const LabelStore& store, const std::string& record
   previous.recording = recording;
   previous.source = LabelSource::kGroundTruth;
   LabelEdit edit;
-  for (const Label& label : store.list(previous)) edit.remove.push_back(label.id);
+  for (const Label& label : store.list(previous)) edit.remove.push_back(ref_of(label));
   edit.add = labels;
   return edit;
 }

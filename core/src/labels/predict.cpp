@@ -229,7 +229,7 @@ LabelEdit prediction_edit(const LabelStore& store, const std::string& recording,
   earlier.recording = recording;
   earlier.source = LabelSource::kModel;
   LabelEdit edit;
-  for (const Label& label : store.list(earlier)) edit.remove.push_back(label.id);
+  for (const Label& label : store.list(earlier)) edit.remove.push_back(ref_of(label));
   if (replaced != nullptr) *replaced = edit.remove.size();
   edit.add = predictions;
   return edit;

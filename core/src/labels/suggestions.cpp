@@ -34,7 +34,7 @@ SegmenterRun segmenter_run(const LabelStore& store, const std::string& recording
     earlier.recording = recording;
     earlier.source = LabelSource::kSegmenter;
     earlier.annotator = run.annotator;
-    for (const Label& label : store.list(earlier)) run.edit.remove.push_back(label.id);
+    for (const Label& label : store.list(earlier)) run.edit.remove.push_back(ref_of(label));
     run.replaced = run.edit.remove.size();
   }
   run.edit.add = std::move(segments);

@@ -32,6 +32,10 @@ struct Label {
   std::string note;
   std::string created;   // ISO 8601 UTC, set by the store
   std::string modified;  // ISO 8601 UTC, set by the store
+  // Set by the store: 1 when added, one more at every change (an edit, an undo, a redo). An
+  // edit of the label states the revision its editor last saw, and the store refuses it when
+  // someone else changed the label since (LabelStore::apply).
+  int64_t revision = 0;
 };
 
 }  // namespace tactile

@@ -7,12 +7,21 @@
 // share one database: writers wait for each other (busy timeout) instead of
 // failing. One LabelStore is one connection: use it from one thread at a time
 // (open one per thread for parallel work).
+//
+// Several writers (two workbenches, a workbench and `tactile segment`): every label carries a
+// revision, and every update or removal states the revision its editor last saw. An edit of a
+// label that someone else changed or removed since is refused whole (EditConflict, naming the
+// label and who did what), so no edit is lost; undo and redo refuse the same way. A writer
+// notices the others' commits with change_count() (microseconds) and reads what they did with
+// journal_after().
 
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "tactile/error.h"
 #include "tactile/io/label.h"
 
 struct sqlite3;
@@ -63,15 +72,45 @@ struct StoreProblem {
   std::string where(const std::string& path) const;
 };
 
+// A label as its editor last saw it: the id, and the revision (Label::revision) read with it.
+struct LabelRef {
+  int64_t id = 0;
+  int64_t revision = 0;
+};
+inline LabelRef ref_of(const Label& label) { return {label.id, label.revision}; }
+
+// An edit, undo or redo refused because another writer changed or removed a label since its
+// editor read it: "label 42 (pat, 12.30-12.85 s) was changed by bob meanwhile; your edit was
+// not saved". Nothing of the refused edit is written.
+class EditConflict : public Error {
+ public:
+  EditConflict(std::string where, std::string message, int64_t label_id, std::string annotator,
+               std::string action)
+      : Error(std::move(where), std::move(message)),
+        label_id_(label_id),
+        annotator_(std::move(annotator)),
+        action_(std::move(action)) {}
+  int64_t label_id() const { return label_id_; }
+  // Who changed the label last, and how ("changed", "removed", "rejected", ...).
+  const std::string& annotator() const { return annotator_; }
+  const std::string& action() const { return action_; }
+
+ private:
+  int64_t label_id_;
+  std::string annotator_, action_;
+};
+
 // One user action on the labels, as a whole (the command of the workbench and the command
 // line): the labels it removes, rejects, changes and adds. A segmenter run removes its earlier
 // suggestions and adds new ones; a prediction replaces the model's lane; an accept adds one
 // label. LabelStore::apply writes it as one journal batch, so one undo reverts it all.
+// Removals, updates and rejections state the revision their editor last saw (LabelRef,
+// Label::revision); additions never conflict.
 struct LabelEdit {
-  std::vector<int64_t> remove;  // ids of existing labels
-  std::vector<Label> add;       // new labels (id and times are assigned by the store)
-  std::vector<Label> update;    // existing labels (by id) with their new values
-  std::vector<int64_t> reject;  // suggestions rejected: removed, their spans remembered
+  std::vector<LabelRef> remove;  // existing labels
+  std::vector<Label> add;        // new labels (id, times and revision are assigned by the store)
+  std::vector<Label> update;     // existing labels (by id and revision) with their new values
+  std::vector<LabelRef> reject;  // suggestions rejected: removed, their spans remembered
   bool empty() const { return remove.empty() && add.empty() && update.empty() && reject.empty(); }
 };
 
@@ -105,10 +144,12 @@ class LabelStore {
   // instead of the wall clock: for outputs that must be reproducible, such as simulated
   // ground truth (same seed, same bytes). "" returns to the wall clock.
   void use_fixed_time(std::string iso_time) { fixed_time_ = std::move(iso_time); }
-  // Replaces the label with id label.id (keeping its created time); throws if absent.
+  // Replaces the label with id label.id (keeping its created time); throws if absent, and
+  // EditConflict unless label.revision is the label's revision (nobody changed it since).
   void update(const Label& label);
-  // `annotator` is who removed it, for the journal; "" = the label's own annotator.
-  void remove(int64_t id, const std::string& annotator = {});
+  // Removes the label as last seen (EditConflict when changed or removed since). `annotator`
+  // is who removed it, for the journal; "" = the label's own annotator.
+  void remove(const LabelRef& label, const std::string& annotator = {});
   std::optional<Label> get(int64_t id) const;
   // Ordered by recording, t0, id.
   std::vector<Label> list(const LabelFilter& filter = {}) const;
@@ -122,13 +163,28 @@ class LabelStore {
   // journalled under `by` (the person or program that made the edit), so that undo(by)
   // reverts exactly this edit, whichever lanes it touched. Removals first, then rejections,
   // updates and insertions; returns the new labels' ids in the order of edit.add. Throws naming the
-  // first label that is invalid or no longer exists, leaving the store unchanged.
+  // first label that is invalid or no longer exists, leaving the store unchanged; EditConflict
+  // when a removed, rejected or updated label's revision is not the one stated (someone else
+  // changed or removed it since), leaving the store unchanged too.
   std::vector<int64_t> apply(const LabelEdit& edit, const std::string& by);
+
+  // A number that changes whenever another connection (another process, another LabelStore)
+  // has committed to the database since this one last asked; this store's own commits do not
+  // change it. PRAGMA data_version (a few microseconds, cheap enough for every frame), plus the
+  // other writers' commits this store's own edits found in the journal (which data_version
+  // misses when an edit's transaction begins right after them). It may also change without
+  // news (then journal_after() has nothing new).
+  int64_t change_count() const;
+  // The journal rows after `sequence`, oldest first (what the other writers did since a
+  // journal row one has seen); damaged rows are left out (in problems()).
+  std::vector<JournalEntry> journal_after(int64_t sequence) const;
+  // The newest journal row's sequence (0 for an empty journal).
+  int64_t last_sequence() const;
 
   // Rejects a suggestion: removes the segmenter's label and remembers its span, one edit
   // journalled under the annotator (its undo brings the label back and forgets the span).
   // Throws when the label is not a segmenter's. The same as apply() with edit.reject.
-  void reject(int64_t label_id, const std::string& annotator);
+  void reject(const LabelRef& suggestion, const std::string& annotator);
   // The rejections of a recording's suggestions (damaged rows left out, in problems()).
   std::vector<Rejection> rejections(const std::string& recording) const;
 
@@ -142,8 +198,9 @@ class LabelStore {
   // annotator's when given) and returns false when there is none; redo()
   // re-applies the most recently undone batch. Both are journalled and each is
   // its own transaction; any new edit clears the redo chain. Throws
-  // tactile::Error when the label was changed since by an edit that is not
-  // undone (possible with per-annotator undo), leaving the store unchanged.
+  // EditConflict when a label was changed since by another edit (another
+  // annotator's, with per-annotator undo), naming the label and who changed it,
+  // leaving the store unchanged: an undo never takes back someone else's work.
   bool undo(const std::string& annotator = {});
   bool redo(const std::string& annotator = {});
   // The newest `limit` journal rows, newest first (a negative limit: all rows).
@@ -174,12 +231,20 @@ class LabelStore {
 
  private:
   void note_problems(const std::vector<StoreProblem>& problems) const;
+  // An edit's transaction that begins after another writer's commit makes SQLite's data_version
+  // skip that commit: each edit notes, once its transaction holds the lock, whether the journal
+  // grew since this connection last wrote (a change for change_count()), and after its writes
+  // the journal's end as its own.
+  void note_others_commits();
+  void note_own_commit();
 
   sqlite3* database_ = nullptr;
   std::string path_;
   std::string fixed_time_;  // "" = the wall clock
   mutable std::vector<StoreProblem> problems_;
   int64_t opened_version_ = 0;
+  int64_t known_sequence_ = 0;  // the journal's newest row as of this connection's last edit
+  int64_t others_commits_ = 0;  // commits of other writers noticed by this connection's edits
 };
 
 }  // namespace tactile

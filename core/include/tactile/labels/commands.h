@@ -7,9 +7,9 @@
 //
 //   commit a label      add_edit(label)
 //   change its class    class_edit(label, class)     a dragged edge: bounds_edit(label, t0, t1)
-//   delete              remove_edit(id)
+//   delete              remove_edit(label)
 //   accept / confirm    adopt_edit(suggestion or prediction, class, annotator)
-//   reject              reject_edit(id)
+//   reject              reject_edit(suggestion)
 //   segmenter run       segmenter_run(...).edit          (suggestions.h)
 //   predict             prediction_edit(...)             (predict.h)
 //   import              ground_truth_import(...)
@@ -28,10 +28,12 @@ namespace tactile {
 Label adopted_label(const Label& label, const std::string& class_name, const std::string& annotator);
 LabelEdit adopt_edit(const Label& label, const std::string& class_name, const std::string& annotator);
 
-// One label added, removed, or rejected (a suggestion: removed and its span remembered).
+// One label added, removed, or rejected (a suggestion: removed and its span remembered). A
+// removal or rejection, like a change below, names the label as its editor last read it (id and
+// revision): the store refuses it when someone else changed the label since.
 LabelEdit add_edit(Label label);
-LabelEdit remove_edit(int64_t id);
-LabelEdit reject_edit(int64_t id);
+LabelEdit remove_edit(const Label& label);
+LabelEdit reject_edit(const Label& suggestion);
 
 // A changed copy of `label` as an edit of it: its class, or its bounds (a dragged edge).
 LabelEdit class_edit(Label label, const std::string& class_name);
