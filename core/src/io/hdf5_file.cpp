@@ -237,6 +237,16 @@ double StreamInfo::duration() const {
   return rate_hz > 0 ? static_cast<double>(sample_count) / rate_hz : 0.0;
 }
 
+Stream StreamInfo::empty_stream() const {
+  Stream stream;
+  stream.name = name;
+  stream.rate_hz = rate_hz;
+  stream.start_time = start_time;
+  stream.channels = channels;
+  stream.units = units;
+  return stream;
+}
+
 RecordingFile::RecordingFile(const std::string& path)
     : path_(path), file_(std::make_unique<Handle>()) {
   hdf5::silence_errors();
@@ -458,12 +468,7 @@ Recording RecordingFile::read_all(const std::function<void(double)>& step) const
   recording.layout_id = layout_id_;
   recording.metadata = metadata_;
   for (const StreamInfo& info : streams_) {
-    Stream stream;
-    stream.name = info.name;
-    stream.rate_hz = info.rate_hz;
-    stream.start_time = info.start_time;
-    stream.channels = info.channels;
-    stream.units = info.units;
+    Stream stream = info.empty_stream();
     if (!step) {
       stream.samples = read(info.name, 0, info.sample_count);
     } else {

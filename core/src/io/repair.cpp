@@ -134,12 +134,7 @@ void copy_whole(const RecordingFile& file, const std::string& target, RepairRepo
   for (const StreamInfo& info : file.streams()) {
     StreamReader reader(file, info, report.lost);
     int64_t count = kept_count(info, reader, report.lost);
-    Stream stream;
-    stream.name = info.name;
-    stream.rate_hz = info.rate_hz;
-    stream.start_time = info.start_time;
-    stream.channels = info.channels;
-    stream.units = info.units;
+    Stream stream = info.empty_stream();
     if (info.has_timestamps) {
       try {
         stream.timestamps = file.read_timestamps(info.name);

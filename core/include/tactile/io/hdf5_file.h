@@ -48,6 +48,8 @@ struct StreamInfo {
   double last_timestamp = 0.0;
   // Seconds covered, as Stream::duration() of the same stream.
   double duration() const;
+  // A Stream of this name, rate, start, channels and units, without samples (to be read in).
+  Stream empty_stream() const;
 };
 
 class RecordingFile {
