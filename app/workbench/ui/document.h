@@ -56,8 +56,9 @@ struct Document {
   // The store, opened (or created beside the recording) on first need. Throws
   // tactile::Error.
   LabelStore& label_store();
-  // The user's own store for this recording's folder (docs/LABELS.md), and the switch to it:
-  // the read-only store's labels of this recording are copied in once. Throws tactile::Error.
+  // The user's own store for this recording's folder (docs/FILE_FORMAT.md, "Read-only folders
+  // and stores"), and the switch to it: the read-only store's labels of this recording are
+  // copied in once. Throws tactile::Error.
   std::string own_store_path() const;
   void keep_labels_in_own_store();
   const std::string& recording_id() const {
