@@ -397,7 +397,12 @@ TEST(LiveReceiver, TheSimulatorStreamsAtItsRateIntoTheBuffer) {
   // fur at 15 Hz, 8 times as fast: about 120 samples a second.
   LiveReceiver receiver(open_live_input(parse_live_address("sim://fur?rate=8", "--connect")), load_layout("fur"));
   LiveSampleSource source(receiver.source_info(), 10000);
+  // A second and a half of it; the simulator's first trial may take longer to make on a slow
+  // or busy machine (a sanitizer build): then until 60 have come, 20 s at most.
+  const auto began = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  while (receiver.counters().samples <= 60 && std::chrono::steady_clock::now() - began < std::chrono::seconds(20))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
   // Stopped before counting: a sample arriving between the drain and the count would make
   // them differ by one (it did under the sanitizers, which slow the reader down).
   receiver.stop();
