@@ -56,13 +56,6 @@ std::vector<std::string> full_channels() {
   return names;
 }
 
-std::string full_file_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 struct FilledRun {
   int64_t flushed = 0;  // as the writer last reported
   std::string error;    // the writer's error message
@@ -105,11 +98,11 @@ FilledRun fill_until_it_fails(const std::string& path, int64_t limit) {
   waitpid(child, &status, 0);
   FilledRun run;
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the writer crashed";
-  std::istringstream in(full_file_text(report));
+  std::istringstream in(testing::read_text(report));
   in >> run.flushed;
   in.get();
   std::getline(in, run.error, '\0');
-  run.stderr_text = full_file_text(errors);
+  run.stderr_text = testing::read_text(errors);
   return run;
 }
 
@@ -220,7 +213,7 @@ TEST(DiskFull, RepairOfAFileThatDoesNotOpenSaysSoAndLeavesItAlone) {
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("cannot be repaired"), std::string::npos) << error.what();
   }
-  EXPECT_EQ(full_file_text(path), "not a recording");
+  EXPECT_EQ(testing::read_text(path), "not a recording");
   EXPECT_EQ(directory.entry_count(), 1);
 }
 

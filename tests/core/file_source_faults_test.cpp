@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <thread>
 
 #include "io_test_files.h"
@@ -37,6 +38,18 @@ std::string write_away_recording(const testing::TemporaryDirectory& directory) {
 }
 
 bool all_gaps(const SampleMatrix& samples) { return samples.array().isNaN().all(); }
+
+// Reads that fail as on a pulled USB stick while `failing` is set; the file looked for again
+// at every read.
+FileSourceOptions failing_reads(const std::string& path,
+                                std::shared_ptr<std::atomic<bool>> failing) {
+  FileSourceOptions options;
+  options.retry_seconds = 0.0;
+  options.before_read = [failing, path] {
+    if (failing->load()) throw Error(path, "cannot read the file: Input/output error");
+  };
+  return options;
+}
 
 TEST(FileSourceFaults, AReadThatHangsLeavesTheCallerWithinItsBudgetAndTheFileReturns) {
   testing::TemporaryDirectory directory;
@@ -88,11 +101,7 @@ TEST(FileSourceFaults, ReadsThatFailWithAnIoErrorShowTheCacheAndSayWhyUntilTheFi
   testing::TemporaryDirectory directory;
   const std::string path = write_away_recording(directory);
   auto failing = std::make_shared<std::atomic<bool>>(false);
-  FileSourceOptions options;
-  options.retry_seconds = 0.0;
-  options.before_read = [failing, path] {
-    if (failing->load()) throw Error(path, "cannot read the file: Input/output error");
-  };
+  const FileSourceOptions options = failing_reads(path, failing);
   FileSampleSource source(path, options);
   const std::vector<int> both{0, 3};
   const SampleMatrix before = source.read(both, 100, 50);
@@ -113,11 +122,7 @@ TEST(FileSourceFaults, AFileMovedAwayIsLookedForAgainAndReopenedWhereItWas) {
   testing::TemporaryDirectory directory;
   const std::string path = write_away_recording(directory);
   auto failing = std::make_shared<std::atomic<bool>>(false);
-  FileSourceOptions options;
-  options.retry_seconds = 0.0;
-  options.before_read = [failing, path] {
-    if (failing->load()) throw Error(path, "cannot read the file: Input/output error");
-  };
+  const FileSourceOptions options = failing_reads(path, failing);
   FileSampleSource source(path, options);
   const std::vector<int> channel{2};
   failing->store(true);
