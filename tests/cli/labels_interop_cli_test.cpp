@@ -51,7 +51,7 @@ class LabelsInteropCommandTest : public ::testing::Test {
   }
   // The store's labels, every field but id and the store's times, one line each, sorted (labels
   // starting together come back in the file's order, not the store's ids).
-  static std::string content_of(const std::string& database) {
+  static std::string store_content_of(const std::string& database) {
     std::vector<std::string> lines;
     for (const Label& label : LabelStore(database, LabelStore::OpenMode::kExisting).list())
       lines.push_back(label.recording + "|" + std::to_string(label.t0) + "|" +
@@ -87,8 +87,8 @@ TEST_F(LabelsInteropCommandTest, ElanExportOfOneRecordingImportsBackEqual) {
   ASSERT_EQ(run("labels import '" + copy + "' '" + eaf + "'"), 0) << result_.err;
   EXPECT_EQ(result_.out, "imported 4 labels into " + copy + "\n");
   // Every time is on a millisecond, so the copy is equal field by field.
-  const std::string original = content_of(database_);
-  EXPECT_EQ(content_of(copy), original.substr(0, original.find("nao/s02")));
+  const std::string original = store_content_of(database_);
+  EXPECT_EQ(store_content_of(copy), original.substr(0, original.find("nao/s02")));
 }
 
 TEST_F(LabelsInteropCommandTest, LabelStudioExportOfEveryRecordingImportsBackEqual) {
@@ -98,7 +98,7 @@ TEST_F(LabelsInteropCommandTest, LabelStudioExportOfEveryRecordingImportsBackEqu
   const std::string copy = (directory_ / "copy.db").string();
   ASSERT_EQ(run("labels import '" + copy + "' '" + json + "'"), 0) << result_.err;
   EXPECT_EQ(result_.out, "imported 5 labels into " + copy + "\n");
-  EXPECT_EQ(content_of(copy), content_of(database_));
+  EXPECT_EQ(store_content_of(copy), store_content_of(database_));
 }
 
 TEST_F(LabelsInteropCommandTest, ImportMapsTiersAndUsersAndRefusesUnalignedAnnotations) {
@@ -109,7 +109,7 @@ TEST_F(LabelsInteropCommandTest, ImportMapsTiersAndUsersAndRefusesUnalignedAnnot
             0)
       << result_.err;
   EXPECT_EQ(result_.out, "imported 4 labels into " + copy + "\n");
-  EXPECT_EQ(content_of(copy),
+  EXPECT_EQ(store_content_of(copy),
             "nao/s07|0.120000|0.870000|all|stroke|ana|ground-truth|1.000000|\n"
             "nao/s07|0.140000|0.905000|all|stroke|ben|manual|1.000000|\n"
             "nao/s07|1.500000|2.250000|all|pat|ana|ground-truth|1.000000|\n"
@@ -125,7 +125,7 @@ TEST_F(LabelsInteropCommandTest, ImportMapsTiersAndUsersAndRefusesUnalignedAnnot
             0)
       << result_.err;
   EXPECT_EQ(result_.out, "imported 5 labels into " + other + "\n");
-  EXPECT_EQ(content_of(other),
+  EXPECT_EQ(store_content_of(other),
             "s07|0.120000|0.870000|all|stroke|ana|manual|1.000000|\n"
             "s07|0.140500|0.905000|all|stroke|ben|ground-truth|1.000000|\n"
             "s07|1.500000|2.250000|all|pat|ana|manual|1.000000|light, two fingers\n"

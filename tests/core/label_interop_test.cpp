@@ -69,7 +69,7 @@ void expect_same_labels(const std::vector<Label>& expected, const std::vector<La
   }
 }
 
-std::string error_of(const std::function<void()>& call) {
+std::string interop_error_of(const std::function<void()>& call) {
   try {
     call();
   } catch (const Error& error) {
@@ -124,14 +124,16 @@ TEST_F(LabelStoreTest, ElanTiersChosenByNameAreMappedToLanes) {
   EXPECT_EQ(labels[2].annotator, "ben-model");
   EXPECT_EQ(labels[3].note, "very short, maybe a tap");
   options.tiers = {{"Touch (Carl)", ""}};
-  EXPECT_EQ(error_of([&] { parse_eaf(read_text(kInteropData + "session.eaf"), "s.eaf", options); }),
+  EXPECT_EQ(interop_error_of(
+                [&] { parse_eaf(read_text(kInteropData + "session.eaf"), "s.eaf", options); }),
             "s.eaf: no tier named 'Touch (Carl)' (--tier)");
 }
 
 TEST_F(LabelStoreTest, ElanUnalignedAnnotationIsRefusedNamingTierAndId) {
-  EXPECT_EQ(error_of([&] { parse_eaf(read_text(kInteropData + "unaligned.eaf"), "u.eaf"); }),
-            "u.eaf tier 'Touch (Ben)' annotation 'a4': unaligned: time slot 'ts9' has no time "
-            "value (align it in ELAN first)");
+  EXPECT_EQ(
+      interop_error_of([&] { parse_eaf(read_text(kInteropData + "unaligned.eaf"), "u.eaf"); }),
+      "u.eaf tier 'Touch (Ben)' annotation 'a4': unaligned: time slot 'ts9' has no time "
+      "value (align it in ELAN first)");
 }
 
 TEST_F(LabelStoreTest, ElanExportOfEveryLaneReadsBackEqualToTheMillisecond) {
@@ -185,34 +187,35 @@ TEST_F(LabelStoreTest, ElanRefusesALabelShorterThanAMillisecondAndTwoRecordings)
   std::vector<Label> labels = every_lane();
   labels[1].t1 = labels[1].t0 + 0.0002;
   labels[1].id = 7;
-  EXPECT_EQ(error_of([&] { labels_eaf(labels); }),
+  EXPECT_EQ(interop_error_of([&] { labels_eaf(labels); }),
             "ELAN export label 7: spans less than a millisecond (0.512-0.5122 s): ELAN counts "
             "whole milliseconds");
   labels = every_lane();
   labels[2].recording = "nao/s02";
-  EXPECT_NE(error_of([&] { labels_eaf(labels); }).find("one .eaf holds one recording"),
+  EXPECT_NE(interop_error_of([&] { labels_eaf(labels); }).find("one .eaf holds one recording"),
             std::string::npos);
 }
 
 TEST_F(LabelStoreTest, ElanMalformedDocumentsAreRefusedByPlace) {
-  EXPECT_NE(
-      error_of([] { parse_eaf("<ANNOTATION_DOCUMENT><TIER>", "x.eaf"); }).find("x.eaf:1: not XML"),
-      std::string::npos);
-  EXPECT_EQ(error_of([] { parse_eaf("<DOC/>", "x.eaf"); }),
+  EXPECT_NE(interop_error_of([] {
+              parse_eaf("<ANNOTATION_DOCUMENT><TIER>", "x.eaf");
+            }).find("x.eaf:1: not XML"),
+            std::string::npos);
+  EXPECT_EQ(interop_error_of([] { parse_eaf("<DOC/>", "x.eaf"); }),
             "x.eaf: expected an ELAN document (ANNOTATION_DOCUMENT)");
   const std::string head =
       "<ANNOTATION_DOCUMENT><HEADER><PROPERTY NAME=\"tactile:recording\">r</PROPERTY></HEADER>"
       "<TIME_ORDER><TIME_SLOT TIME_SLOT_ID=\"ts1\" TIME_VALUE=\"500\"/>"
       "<TIME_SLOT TIME_SLOT_ID=\"ts2\" TIME_VALUE=\"100\"/></TIME_ORDER><TIER TIER_ID=\"ana\">"
       "<ANNOTATION><ALIGNABLE_ANNOTATION ANNOTATION_ID=\"a9\" TIME_SLOT_REF1=\"ts1\" ";
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(interop_error_of([&] {
               parse_eaf(head +
                             "TIME_SLOT_REF2=\"ts2\"><ANNOTATION_VALUE>pat</ANNOTATION_VALUE>"
                             "</ALIGNABLE_ANNOTATION></ANNOTATION></TIER></ANNOTATION_DOCUMENT>",
                         "x.eaf");
             }),
             "x.eaf tier 'ana' annotation 'a9': ends at 0.1 s, not after its start 0.5 s");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(interop_error_of([&] {
               parse_eaf(head +
                             "TIME_SLOT_REF2=\"ts7\"><ANNOTATION_VALUE>pat</ANNOTATION_VALUE>"
                             "</ALIGNABLE_ANNOTATION></ANNOTATION></TIER></ANNOTATION_DOCUMENT>",
@@ -221,7 +224,7 @@ TEST_F(LabelStoreTest, ElanMalformedDocumentsAreRefusedByPlace) {
             "x.eaf tier 'ana' annotation 'a9': time slot 'ts7' is not in the TIME_ORDER");
   InteropImport named;
   named.recording = "r";
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(interop_error_of([&] {
               parse_eaf(
                   "<ANNOTATION_DOCUMENT><TIME_ORDER><TIME_SLOT TIME_SLOT_ID=\"ts1\" "
                   "TIME_VALUE=\"-4\"/></TIME_ORDER></ANNOTATION_DOCUMENT>",
@@ -285,28 +288,28 @@ TEST_F(LabelStoreTest, LabelStudioExportOfEveryLaneReadsBackExactly) {
 TEST_F(LabelStoreTest, LabelStudioMalformedResultsAreRefusedNamingTaskAndId) {
   const std::string task = R"([{"id": 5, "data": {"csv": "r.csv"}, "annotations": [{"id": 9,
       "completed_by": 1, "result": [{"id": "abc", "type": "timeserieslabels", "value": )";
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(interop_error_of([&] {
               parse_label_studio(task + R"({"start": 1, "end": 1, "instant": true,
                   "timeserieslabels": ["pat"]}}]}]}])",
                                  "ls.json");
             }),
             "ls.json task 5 annotation 9 result 'abc': an instant, not a span: a label needs a "
             "start and an end");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(interop_error_of([&] {
               parse_label_studio(task + R"({"start": "2024-05-01 10:00:00", "end": 2,
                   "timeserieslabels": ["pat"]}}]}]}])",
                                  "ls.json");
             }),
             "ls.json task 5 annotation 9 result 'abc': 'start' is not a number (a time column "
             "of dates? give times in seconds)");
-  EXPECT_EQ(error_of([&] {
+  EXPECT_EQ(interop_error_of([&] {
               parse_label_studio(task + R"({"start": 1, "end": 2,
                   "timeserieslabels": ["pat", "poke"]}}]}]}])",
                                  "ls.json");
             }),
             "ls.json task 5 annotation 9 result 'abc': 'timeserieslabels' must hold exactly one "
             "label name");
-  EXPECT_EQ(error_of([] { parse_label_studio(R"([{"id": 3, "data": {}}])", "ls.json"); }),
+  EXPECT_EQ(interop_error_of([] { parse_label_studio(R"([{"id": 3, "data": {}}])", "ls.json"); }),
             "ls.json task 3: its data names no file: give --recording");
   EXPECT_FALSE(is_label_studio_json(R"({"labels": []})"));
 }

@@ -15,8 +15,10 @@ namespace tactile {
 
 namespace {
 
-// Our names for what Label Studio does not hold: it keeps unknown keys of a result, and we read
-// them back so that our own exports return every field.
+// Our keys for what Label Studio has no field for (the annotator's name, the skin region): read
+// back so that our own exports return every field. Whether Label Studio keeps them through its
+// own import and export is not checked here; without them a label comes back under
+// "label-studio:USER" (or --annotator's name) and region "all".
 constexpr const char* kStudioAnnotatorKey = "tactile_annotator";
 constexpr const char* kStudioRegionKey = "tactile_region";
 
