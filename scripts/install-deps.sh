@@ -9,6 +9,7 @@ packages=(
   ninja-build mold lld ccache  # the build's generator, linker and compiler cache (README, "Tests and CI")
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libhdf5-dev libsqlite3-dev zlib1g-dev libsvm-dev
+  libtinyxml2-dev  # ELAN .eaf label files (docs/INTEROP.md)
   libxgboost-dev  # the boosted-trees preset (XGBoost's C API)
   libimgui-dev libstb-dev libglfw3-dev libgl-dev libgl1-mesa-dri libosmesa6-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev

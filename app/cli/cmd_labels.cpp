@@ -1,5 +1,8 @@
 // `tactile labels`: read a label database from the command line.
-//   tactile labels export DB --csv OUT | --json OUT [--recording R] [--source S]
+//   tactile labels export DB --csv OUT | --json OUT | --eaf OUT | --label-studio OUT
+//                            [--recording R] [--source S] [--skin S]
+//   tactile labels import DB FILE.csv|.json|.eaf [--recording R] [--tier T[=LANE]]...
+//                            [--annotator USER=LANE]...
 //   tactile labels list DB [--recording R] [--json]
 //   tactile labels classes DB SKIN
 // Every subcommand opens an existing database only: a mistyped path must not
@@ -26,7 +29,8 @@ namespace tactile::cli {
 namespace {
 
 struct LabelsOptions {
-  std::string database, csv, json, recording, source, skin, file;
+  std::string database, csv, json, eaf, label_studio, recording, source, skin, file;
+  std::vector<std::string> tiers, annotators;
   std::string a, b, recordings;
   double iou = 0.5;
   bool as_json = false;
@@ -93,9 +97,28 @@ void report_damage(const std::string& database, const std::vector<std::string>& 
 void report_damage(const LabelStore& store) { report_damage(store.path(), damage_lines(store)); }
 
 void run_export(const LabelsOptions& options) {
-  if (options.csv.empty() == options.json.empty())
-    throw Error("--csv/--json", "give exactly one of --csv OUT or --json OUT");
+  const int outputs = !options.csv.empty() + !options.json.empty() + !options.eaf.empty() +
+                      !options.label_studio.empty();
+  if (outputs != 1)
+    throw Error("--csv/--json/--eaf/--label-studio",
+                "give exactly one of --csv OUT, --json OUT, --eaf OUT or --label-studio OUT");
   const LabelFilter filter = filter_from(options);
+  if (!options.eaf.empty() || !options.label_studio.empty()) {
+    std::vector<std::string> vocabulary;
+    if (!options.skin.empty()) {
+      const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
+      vocabulary = store.classes(options.skin);
+      if (vocabulary.empty())
+        throw Error("--skin",
+                    "no class vocabulary for skin '" + options.skin + "' in " + options.database);
+    }
+    const bool elan = !options.eaf.empty();
+    const LabelExport written = export_interop(
+        options.database, elan ? options.eaf : options.label_studio,
+        elan ? InteropFormat::kElan : InteropFormat::kLabelStudio, filter, vocabulary);
+    report_damage(options.database, written.damaged);
+    return;
+  }
   const bool json = options.csv.empty();
   const LabelExport written =
       export_labels(options.database, json ? options.json : options.csv, json, filter);
@@ -115,7 +138,21 @@ void run_list(const LabelsOptions& options) {
 
 // All or nothing: the file is read and checked whole, then added in one transaction.
 void run_import(const LabelsOptions& options) {
-  std::cout << imported_labels_line(import_label_file(options.database, options.file),
+  InteropImport interop;
+  interop.recording = options.recording;
+  // --tier NAME or NAME=LANE; --annotator USER=LANE.
+  for (const std::string& tier : options.tiers) {
+    const size_t equals = tier.find('=');
+    interop.tiers[tier.substr(0, equals)] =
+        equals == std::string::npos ? std::string() : tier.substr(equals + 1);
+  }
+  for (const std::string& annotator : options.annotators) {
+    const size_t equals = annotator.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == annotator.size())
+      throw Error("--annotator", "expected USER=LANE, got '" + annotator + "'");
+    interop.annotators[annotator.substr(0, equals)] = annotator.substr(equals + 1);
+  }
+  std::cout << imported_labels_line(import_label_file(options.database, options.file, interop),
                                     options.database)
             << "\n";
 }
@@ -187,6 +224,12 @@ void register_labels(CLI::App& app) {
   export_command->add_option("db", options->database, "Label database (SQLite)")->required();
   export_command->add_option("--csv", options->csv, "Write CSV to this file");
   export_command->add_option("--json", options->json, "Write JSON to this file");
+  export_command->add_option("--eaf", options->eaf,
+                             "Write an ELAN .eaf (one recording: a tier per lane)");
+  export_command->add_option("--label-studio", options->label_studio,
+                             "Write Label Studio's JSON (a task per recording)");
+  export_command->add_option("--skin", options->skin,
+                             "ELAN: this skin's class vocabulary as the controlled vocabulary");
   export_command->add_option("--recording", options->recording, "Only this recording's labels");
   export_command->add_option("--source", options->source,
                              "Only labels from manual, segmenter, model or ground-truth");
@@ -201,12 +244,24 @@ void register_labels(CLI::App& app) {
   list_command->callback([options] { run_list(*options); });
 
   CLI::App* import_command = labels->add_subcommand(
-      "import", "Add the labels of a CSV or JSON file as `labels export` writes it");
+      "import",
+      "Add the labels of a file `labels export` writes, an ELAN .eaf or a Label Studio "
+      "JSON export");
   import_command->add_option("db", options->database, "Label database (created if missing)")
       ->required();
-  import_command->add_option("file", options->file, "FILE.csv or FILE.json")
+  import_command->add_option("file", options->file, "FILE.csv, FILE.json or FILE.eaf")
       ->required()
       ->check(CLI::ExistingFile);
+  import_command->add_option("--recording", options->recording,
+                             "The labels' recording (ELAN, Label Studio: when the file does not "
+                             "say, or to override it)");
+  import_command->add_option("--tier", options->tiers,
+                             "ELAN: import this tier (NAME, or NAME=LANE: ground-truth, an "
+                             "annotator, segmenter:METHOD, model:NAME); repeat; default every "
+                             "top-level tier");
+  import_command->add_option("--annotator", options->annotators,
+                             "Label Studio: USER=LANE, a user (completed_by id or email) or "
+                             "model_version mapped to a lane; repeat");
   import_command->callback([options] { run_import(*options); });
 
   CLI::App* check_command = labels->add_subcommand(

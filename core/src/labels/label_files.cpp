@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_import.h"
 #include "tactile/labels/lanes.h"
@@ -78,9 +79,45 @@ LabelExport export_labels(const std::string& database, const std::string& out, b
   return written;
 }
 
-size_t import_label_file(const std::string& database, const std::string& file) {
+LabelExport export_interop(const std::string& database, const std::string& out,
+                           InteropFormat format, const LabelFilter& filter,
+                           const std::vector<std::string>& vocabulary) {
+  const LabelStore store(database, LabelStore::OpenMode::kExisting);
+  const std::vector<Label> labels = store.list(filter);
+  if (format == InteropFormat::kElan) {
+    std::vector<std::string> recordings;
+    for (const Label& label : labels)
+      if (recordings.empty() || recordings.back() != label.recording)
+        recordings.push_back(label.recording);
+    if (recordings.size() > 1)
+      throw Error("--recording", "one .eaf holds one recording; " + database + " has " +
+                                     std::to_string(recordings.size()) + " (" + recordings.front() +
+                                     ", " + recordings[1] + (recordings.size() > 2 ? ", ..." : "") +
+                                     ")");
+    write_file_atomically(out, labels_eaf(labels, vocabulary), "ELAN export");
+  } else {
+    write_file_atomically(out, labels_label_studio(labels), "Label Studio export");
+  }
+  LabelExport written;
+  written.labels = labels.size();
+  written.damaged = damage_lines(store);
+  return written;
+}
+
+size_t import_label_file(const std::string& database, const std::string& file,
+                         const InteropImport& options) {
   // All or nothing: the file is read and checked whole, then added in one transaction.
-  const std::vector<Label> labels = read_label_file(file);
+  std::string extension = std::filesystem::path(file).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::vector<Label> labels;
+  if (extension == ".eaf") {
+    labels = parse_eaf(read_interop_text(file), file, options);
+  } else if (const std::string text = extension == ".json" ? read_interop_text(file) : "";
+             is_label_studio_json(text)) {
+    labels = parse_label_studio(text, file, options);
+  } else {
+    labels = read_label_file(file);
+  }
   LabelStore store(database);
   store.add_many(labels);
   return labels.size();

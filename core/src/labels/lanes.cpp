@@ -32,6 +32,14 @@ LaneKey lane_of(const Label& label) {
   return {label.source, label.annotator};
 }
 
+LaneKey lane_from_id(const std::string& id) {
+  if (id == "ground-truth") return {LabelSource::kGroundTruth, ""};
+  if (id.starts_with("manual:")) return {LabelSource::kManual, id.substr(7)};
+  if (id.starts_with("segmenter:")) return {LabelSource::kSegmenter, id};
+  if (id.starts_with("model:")) return {LabelSource::kModel, id.substr(6)};
+  return {LabelSource::kManual, id};
+}
+
 LaneIndex::LaneIndex(std::vector<Label> labels) : labels_(std::move(labels)) {
   std::stable_sort(labels_.begin(), labels_.end(), [](const Label& a, const Label& b) {
     return std::tie(a.t0, a.t1, a.id) < std::tie(b.t0, b.t1, b.id);

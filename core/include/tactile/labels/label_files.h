@@ -13,6 +13,7 @@
 #include "tactile/io/label.h"
 #include "tactile/io/label_store.h"
 #include "tactile/labels/agreement.h"
+#include "tactile/labels/label_interop.h"
 
 namespace tactile {
 
@@ -34,9 +35,21 @@ struct LabelExport {
 LabelExport export_labels(const std::string& database, const std::string& out, bool json,
                           const LabelFilter& filter = {});
 
+// The formats of other tools (label_interop.h, docs/INTEROP.md).
+enum class InteropFormat { kElan, kLabelStudio };
+// The labels the filter matches as an ELAN .eaf (one recording: refused naming the recordings
+// when the filter matches several) or a Label Studio JSON, in one rename. `vocabulary` is the
+// ELAN controlled vocabulary (a skin's classes).
+LabelExport export_interop(const std::string& database, const std::string& out,
+                           InteropFormat format, const LabelFilter& filter = {},
+                           const std::vector<std::string>& vocabulary = {});
+
 // The labels of a CSV or JSON file as export_labels writes them, checked whole and added in
 // one transaction (created when missing). Returns how many.
-size_t import_label_file(const std::string& database, const std::string& file);
+// FILE.eaf (ELAN) and a Label Studio JSON export (a list of tasks) are read as
+// label_interop.h says, with `options` (recording, tier and annotator mappings).
+size_t import_label_file(const std::string& database, const std::string& file,
+                         const InteropImport& options = {});
 // "imported N label(s) into DB", as `tactile labels import` prints it.
 std::string imported_labels_line(size_t labels, const std::string& database);
 

@@ -26,6 +26,9 @@ struct LaneKey {
 };
 
 LaneKey lane_of(const Label& label);
+// The lane a lane id names (LaneKey::id's inverse): "ground-truth", "manual:NAME",
+// "segmenter:METHOD", "model:NAME"; anything else is a manual annotator of that name.
+LaneKey lane_from_id(const std::string& id);
 
 // One lane's labels sorted by start, with the running maximum of their ends, so that
 // the labels meeting a time range are found by two binary searches.

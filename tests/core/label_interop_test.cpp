@@ -1,0 +1,329 @@
+// ELAN .eaf and Label Studio JSON, both ways: hand-written files of those tools read value by
+// value, our exports read back equal, malformed elements refused by name.
+#include "tactile/labels/label_interop.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "label_store_fixture.h"
+#include "tactile/error.h"
+#include "tactile/io/label_store.h"
+#include "tactile/labels/label_files.h"
+#include "test_paths.h"
+
+namespace tactile {
+namespace {
+
+const std::string kInteropData = test::test_data_dir() + "/interop/";
+
+// Every lane a store holds: ground truth, two annotators, a segmenter, a model; regions,
+// notes with awkward text, confidences, times that are not whole milliseconds apart.
+std::vector<Label> every_lane() {
+  auto label = [](double t0, double t1, const std::string& class_name, const std::string& annotator,
+                  LabelSource source) {
+    Label made;
+    made.recording = "nao/s01";
+    made.t0 = t0;
+    made.t1 = t1;
+    made.class_name = class_name;
+    made.annotator = annotator;
+    made.source = source;
+    return made;
+  };
+  std::vector<Label> labels;
+  labels.push_back(label(0.5, 1.25, "stroke", "protocol", LabelSource::kGroundTruth));
+  labels.back().region = "head";
+  labels.push_back(label(0.512, 1.3, "stroke", "ana", LabelSource::kManual));
+  labels.back().note = "two fingers, <light> & \"slow\"\nthen stop";
+  labels.push_back(label(2.0, 2.25, "poke", "ana", LabelSource::kManual));
+  labels.push_back(label(0.498, 1.27, "pat", "ben", LabelSource::kManual));
+  labels.back().confidence = 0.5;
+  labels.push_back(
+      label(0.49, 1.31, kUnknownClass, "segmenter:threshold", LabelSource::kSegmenter));
+  labels.back().confidence = 0.875;
+  labels.push_back(label(2.001, 2.249, "poke", "svm", LabelSource::kModel));
+  labels.back().confidence = 0.64;
+  labels.back().region = "back";
+  return labels;
+}
+
+// Labels compared as the store lists them (recording, t0, id), every field but the store's.
+void expect_same_labels(const std::vector<Label>& expected, const std::vector<Label>& actual,
+                        double time_tolerance) {
+  ASSERT_EQ(expected.size(), actual.size());
+  for (size_t k = 0; k < expected.size(); ++k) {
+    SCOPED_TRACE("label " + std::to_string(k));
+    EXPECT_EQ(actual[k].recording, expected[k].recording);
+    EXPECT_NEAR(actual[k].t0, expected[k].t0, time_tolerance);
+    EXPECT_NEAR(actual[k].t1, expected[k].t1, time_tolerance);
+    EXPECT_EQ(actual[k].region, expected[k].region);
+    EXPECT_EQ(actual[k].class_name, expected[k].class_name);
+    EXPECT_EQ(actual[k].annotator, expected[k].annotator);
+    EXPECT_EQ(actual[k].source, expected[k].source);
+    EXPECT_EQ(actual[k].confidence, expected[k].confidence);
+    EXPECT_EQ(actual[k].note, expected[k].note);
+  }
+}
+
+std::string interop_error_of(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+//---- ELAN
+
+TEST_F(LabelStoreTest, ElanSessionOfTwoAnnotatorsIsReadValueByValue) {
+  const std::vector<Label> labels =
+      parse_eaf(read_text(kInteropData + "session.eaf"), "session.eaf");
+  ASSERT_EQ(labels.size(), 5u);
+  // Tier "Touch (Ana)": not a lane id, so its ANNOTATOR; the recording from the media's name.
+  EXPECT_EQ(labels[0].recording, "s07");
+  EXPECT_EQ(labels[0].annotator, "ana");
+  EXPECT_EQ(labels[0].source, LabelSource::kManual);
+  EXPECT_EQ(labels[0].class_name, "stroke");
+  EXPECT_DOUBLE_EQ(labels[0].t0, 0.12);
+  EXPECT_DOUBLE_EQ(labels[0].t1, 0.87);
+  EXPECT_EQ(labels[1].class_name, "pat");
+  EXPECT_DOUBLE_EQ(labels[1].t0, 1.5);
+  EXPECT_DOUBLE_EQ(labels[1].t1, 2.25);
+  EXPECT_EQ(labels[2].annotator, "ben");
+  EXPECT_DOUBLE_EQ(labels[2].t0, 0.14);
+  EXPECT_DOUBLE_EQ(labels[2].t1, 0.905);
+  EXPECT_EQ(labels[2].note, "");
+  // The comments tier depends on Ben's tier: its text is the note of annotation a4.
+  EXPECT_EQ(labels[3].class_name, "poke");
+  EXPECT_DOUBLE_EQ(labels[3].t0, 3.001);
+  EXPECT_DOUBLE_EQ(labels[3].t1, 3.999);
+  EXPECT_EQ(labels[3].note, "very short, maybe a tap");
+  // The tier named "ground-truth" is the ground truth lane; its region from "ground-truth/region".
+  EXPECT_EQ(labels[4].source, LabelSource::kGroundTruth);
+  EXPECT_EQ(labels[4].annotator, "protocol");
+  EXPECT_EQ(labels[4].region, "head");
+  EXPECT_EQ(labels[3].region, "all");
+  for (const Label& label : labels) EXPECT_EQ(label.confidence, 1.0);
+}
+
+TEST_F(LabelStoreTest, ElanTiersChosenByNameAreMappedToLanes) {
+  InteropImport options;
+  options.recording = "nao/s07";
+  options.tiers = {{"Touch (Ben)", "model:ben-model"}, {"Touch (Ana)", "ground-truth"}};
+  const std::vector<Label> labels =
+      parse_eaf(read_text(kInteropData + "session.eaf"), "session.eaf", options);
+  ASSERT_EQ(labels.size(), 4u);  // the "ground-truth" tier was not chosen
+  EXPECT_EQ(labels[0].source, LabelSource::kGroundTruth);
+  EXPECT_EQ(labels[0].recording, "nao/s07");
+  EXPECT_EQ(labels[2].source, LabelSource::kModel);
+  EXPECT_EQ(labels[2].annotator, "ben-model");
+  EXPECT_EQ(labels[3].note, "very short, maybe a tap");
+  options.tiers = {{"Touch (Carl)", ""}};
+  EXPECT_EQ(interop_error_of(
+                [&] { parse_eaf(read_text(kInteropData + "session.eaf"), "s.eaf", options); }),
+            "s.eaf: no tier named 'Touch (Carl)' (--tier)");
+}
+
+TEST_F(LabelStoreTest, ElanUnalignedAnnotationIsRefusedNamingTierAndId) {
+  EXPECT_EQ(
+      interop_error_of([&] { parse_eaf(read_text(kInteropData + "unaligned.eaf"), "u.eaf"); }),
+      "u.eaf tier 'Touch (Ben)' annotation 'a4': unaligned: time slot 'ts9' has no time "
+      "value (align it in ELAN first)");
+}
+
+TEST_F(LabelStoreTest, ElanExportOfEveryLaneReadsBackEqualToTheMillisecond) {
+  const std::vector<Label> labels = every_lane();
+  const std::string eaf = labels_eaf(labels, {"pat", "poke", "stroke", "tap"});
+  // A tier per lane, the vocabulary with the classes beyond it, dependent tiers.
+  for (const char* part :
+       {"TIER_ID=\"ground-truth\"", "TIER_ID=\"manual:ana\"", "TIER_ID=\"manual:ben\"",
+        "TIER_ID=\"segmenter:threshold\"", "TIER_ID=\"model:svm\"",
+        "PARENT_REF=\"manual:ana\" TIER_ID=\"manual:ana/note\"", "TIER_ID=\"ground-truth/region\"",
+        "TIER_ID=\"manual:ben/confidence\"",
+        "<CVE_VALUE DESCRIPTION=\"\" LANG_REF=\"eng\">tap</CVE_VALUE>",
+        "<CVE_VALUE DESCRIPTION=\"\" LANG_REF=\"eng\">unknown</CVE_VALUE>",
+        "CONSTRAINTS=\"Symbolic_Association\""})
+    EXPECT_NE(eaf.find(part), std::string::npos) << part;
+  std::vector<Label> read = parse_eaf(eaf, "export.eaf");
+  // Both sides in the store's order.
+  LabelStore first((directory_ / "a.db").string()), second((directory_ / "b.db").string());
+  first.add_many(labels);
+  second.add_many(read);
+  expect_same_labels(first.list(), second.list(), 0.0005);
+  // Times on a millisecond come back exactly.
+  EXPECT_EQ(second.list().front().t0, 0.49);
+}
+
+TEST_F(LabelStoreTest, ElanExportOfUnixTimesKeepsThemThroughAnOrigin) {
+  std::vector<Label> labels = every_lane();
+  for (Label& label : labels) {
+    label.t0 += 1714550400.0;
+    label.t1 += 1714550400.0;
+  }
+  const std::string eaf = labels_eaf(labels);
+  EXPECT_NE(eaf.find("<PROPERTY NAME=\"tactile:time-origin\">1714550400</PROPERTY>"),
+            std::string::npos);
+  const std::vector<Label> read = parse_eaf(eaf, "unix.eaf");
+  ASSERT_EQ(read.size(), labels.size());
+  double worst = 0.0;
+  for (const Label& label : read) {
+    bool found = false;
+    for (const Label& original : labels)
+      if (original.annotator == label.annotator && std::abs(original.t0 - label.t0) < 0.0005 &&
+          std::abs(original.t1 - label.t1) < 0.0005)
+        found = true;
+    EXPECT_TRUE(found) << label.annotator << " " << label.t0;
+    worst = std::max(worst, label.t0);
+  }
+  EXPECT_GT(worst, 1714550400.0);
+}
+
+TEST_F(LabelStoreTest, ElanRefusesALabelShorterThanAMillisecondAndTwoRecordings) {
+  std::vector<Label> labels = every_lane();
+  labels[1].t1 = labels[1].t0 + 0.0002;
+  labels[1].id = 7;
+  EXPECT_EQ(interop_error_of([&] { labels_eaf(labels); }),
+            "ELAN export label 7: spans less than a millisecond (0.512-0.5122 s): ELAN counts "
+            "whole milliseconds");
+  labels = every_lane();
+  labels[2].recording = "nao/s02";
+  EXPECT_NE(interop_error_of([&] { labels_eaf(labels); }).find("one .eaf holds one recording"),
+            std::string::npos);
+}
+
+TEST_F(LabelStoreTest, ElanMalformedDocumentsAreRefusedByPlace) {
+  EXPECT_NE(interop_error_of([] {
+              parse_eaf("<ANNOTATION_DOCUMENT><TIER>", "x.eaf");
+            }).find("x.eaf:1: not XML"),
+            std::string::npos);
+  EXPECT_EQ(interop_error_of([] { parse_eaf("<DOC/>", "x.eaf"); }),
+            "x.eaf: expected an ELAN document (ANNOTATION_DOCUMENT)");
+  const std::string head =
+      "<ANNOTATION_DOCUMENT><HEADER><PROPERTY NAME=\"tactile:recording\">r</PROPERTY></HEADER>"
+      "<TIME_ORDER><TIME_SLOT TIME_SLOT_ID=\"ts1\" TIME_VALUE=\"500\"/>"
+      "<TIME_SLOT TIME_SLOT_ID=\"ts2\" TIME_VALUE=\"100\"/></TIME_ORDER><TIER TIER_ID=\"ana\">"
+      "<ANNOTATION><ALIGNABLE_ANNOTATION ANNOTATION_ID=\"a9\" TIME_SLOT_REF1=\"ts1\" ";
+  EXPECT_EQ(interop_error_of([&] {
+              parse_eaf(head +
+                            "TIME_SLOT_REF2=\"ts2\"><ANNOTATION_VALUE>pat</ANNOTATION_VALUE>"
+                            "</ALIGNABLE_ANNOTATION></ANNOTATION></TIER></ANNOTATION_DOCUMENT>",
+                        "x.eaf");
+            }),
+            "x.eaf tier 'ana' annotation 'a9': ends at 0.1 s, not after its start 0.5 s");
+  EXPECT_EQ(interop_error_of([&] {
+              parse_eaf(head +
+                            "TIME_SLOT_REF2=\"ts7\"><ANNOTATION_VALUE>pat</ANNOTATION_VALUE>"
+                            "</ALIGNABLE_ANNOTATION></ANNOTATION></TIER></ANNOTATION_DOCUMENT>",
+                        "x.eaf");
+            }),
+            "x.eaf tier 'ana' annotation 'a9': time slot 'ts7' is not in the TIME_ORDER");
+  InteropImport named;
+  named.recording = "r";
+  EXPECT_EQ(interop_error_of([&] {
+              parse_eaf(
+                  "<ANNOTATION_DOCUMENT><TIME_ORDER><TIME_SLOT TIME_SLOT_ID=\"ts1\" "
+                  "TIME_VALUE=\"-4\"/></TIME_ORDER></ANNOTATION_DOCUMENT>",
+                  "x.eaf", named);
+            }),
+            "x.eaf time slot 'ts1' (line 1): TIME_VALUE '-4' is not a whole number of "
+            "milliseconds in 0..4294967295");
+}
+
+//---- Label Studio
+
+TEST_F(LabelStoreTest, LabelStudioExportOfTwoTasksIsReadValueByValue) {
+  InteropImport options;
+  options.annotators = {{"1", "ana"}};
+  const std::vector<Label> labels =
+      parse_label_studio(read_text(kInteropData + "label_studio.json"), "ls.json", options);
+  // The cancelled annotation and the choices result are not labels.
+  ASSERT_EQ(labels.size(), 5u);
+  EXPECT_EQ(labels[0].recording, "s07");
+  EXPECT_EQ(labels[0].annotator, "ana");
+  EXPECT_EQ(labels[0].source, LabelSource::kManual);
+  EXPECT_EQ(labels[0].class_name, "stroke");
+  EXPECT_EQ(labels[0].t0, 0.12);
+  EXPECT_EQ(labels[0].t1, 0.87);
+  EXPECT_EQ(labels[1].class_name, "pat");
+  EXPECT_EQ(labels[1].note, "light, two fingers");
+  EXPECT_EQ(labels[1].t1, 2.25);
+  // User 2's ground truth annotation: ground truth, the user named as Label Studio's.
+  EXPECT_EQ(labels[2].source, LabelSource::kGroundTruth);
+  EXPECT_EQ(labels[2].annotator, "label-studio:2");
+  EXPECT_EQ(labels[2].t0, 0.1405);
+  // The prediction: a model, its result's score as the confidence.
+  EXPECT_EQ(labels[3].source, LabelSource::kModel);
+  EXPECT_EQ(labels[3].annotator, "svm-2024-04");
+  EXPECT_EQ(labels[3].confidence, 0.64);
+  EXPECT_EQ(labels[3].t0, 3.001);
+  // The second task: its own recording, user 2 not mapped.
+  EXPECT_EQ(labels[4].recording, "s08");
+  EXPECT_EQ(labels[4].annotator, "label-studio:2");
+  EXPECT_EQ(labels[4].source, LabelSource::kManual);
+  EXPECT_EQ(labels[4].t0, 10.25);
+  EXPECT_EQ(labels[4].t1, 11.0);
+}
+
+TEST_F(LabelStoreTest, LabelStudioExportOfEveryLaneReadsBackExactly) {
+  std::vector<Label> labels = every_lane();
+  Label other = labels[1];
+  other.recording = "nao/s02";
+  other.t0 = 0.1 + 0.2;  // not a short decimal
+  other.t1 = 1.0 / 3.0;
+  labels.push_back(other);
+  const std::string json = labels_label_studio(labels);
+  ASSERT_TRUE(is_label_studio_json(json));
+  const std::vector<Label> read = parse_label_studio(json, "export.json");
+  LabelStore first((directory_ / "a.db").string()), second((directory_ / "b.db").string());
+  first.add_many(labels);
+  second.add_many(read);
+  expect_same_labels(first.list(), second.list(), 0.0);
+}
+
+TEST_F(LabelStoreTest, LabelStudioMalformedResultsAreRefusedNamingTaskAndId) {
+  const std::string task = R"([{"id": 5, "data": {"csv": "r.csv"}, "annotations": [{"id": 9,
+      "completed_by": 1, "result": [{"id": "abc", "type": "timeserieslabels", "value": )";
+  EXPECT_EQ(interop_error_of([&] {
+              parse_label_studio(task + R"({"start": 1, "end": 1, "instant": true,
+                  "timeserieslabels": ["pat"]}}]}]}])",
+                                 "ls.json");
+            }),
+            "ls.json task 5 annotation 9 result 'abc': an instant, not a span: a label needs a "
+            "start and an end");
+  EXPECT_EQ(interop_error_of([&] {
+              parse_label_studio(task + R"({"start": "2024-05-01 10:00:00", "end": 2,
+                  "timeserieslabels": ["pat"]}}]}]}])",
+                                 "ls.json");
+            }),
+            "ls.json task 5 annotation 9 result 'abc': 'start' is not a number (a time column "
+            "of dates? give times in seconds)");
+  EXPECT_EQ(interop_error_of([&] {
+              parse_label_studio(task + R"({"start": 1, "end": 2,
+                  "timeserieslabels": ["pat", "poke"]}}]}]}])",
+                                 "ls.json");
+            }),
+            "ls.json task 5 annotation 9 result 'abc': 'timeserieslabels' must hold exactly one "
+            "label name");
+  EXPECT_EQ(interop_error_of([] { parse_label_studio(R"([{"id": 3, "data": {}}])", "ls.json"); }),
+            "ls.json task 3: its data names no file: give --recording");
+  EXPECT_FALSE(is_label_studio_json(R"({"labels": []})"));
+}
+
+//---- Into a store, all or nothing
+
+TEST_F(LabelStoreTest, InteropImportAddsAllOrNothing) {
+  EXPECT_EQ(import_label_file(path_, kInteropData + "session.eaf"), 5u);
+  EXPECT_THROW(import_label_file(path_, kInteropData + "unaligned.eaf"), Error);
+  EXPECT_EQ(import_label_file(path_, kInteropData + "label_studio.json"), 5u);
+  LabelStore store(path_);
+  EXPECT_EQ(store.count(), 10);
+  EXPECT_EQ(store.count("s08"), 1);
+}
+
+}  // namespace
+}  // namespace tactile
