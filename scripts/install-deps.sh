@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libhdf5-dev libsqlite3-dev zlib1g-dev libsvm-dev
   libtinyxml2-dev  # ELAN .eaf label files (docs/INTEROP.md)
+  libmatio-dev libedf-dev libxdf-dev  # MATLAB .mat, EDF+/BDF+ and XDF recordings (docs/IMPORT.md)
   libxgboost-dev  # the boosted-trees preset (XGBoost's C API)
   libimgui-dev libstb-dev libglfw3-dev libgl-dev libgl1-mesa-dri libosmesa6-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
