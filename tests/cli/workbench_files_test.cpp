@@ -90,6 +90,62 @@ TEST_F(WorkbenchFiles, OpenFolderMakesTheChosenFolderTheWorkspace) {
   EXPECT_GT(opened["labels"].get<int>(), 0);
 }
 
+TEST_F(WorkbenchFiles, ElanAndLabelStudioExportsAreTheCommandLinesAndImportMapsTiers) {
+  // An ELAN file of another lab's session: two annotators' tiers, a ground-truth tier.
+  std::filesystem::copy_file(test::test_data_dir() + "/interop/session.eaf",
+                             folder.file("session.eaf"));
+  const auto run =
+      workbench(recording(),
+                "wait 2\nmenu File/Export labels...\nclick item radio:export-labels/ELAN\n"
+                "click item button:export-labels/Export...\nwait 1\n"
+                "click item browser:OK\nwait jobs\n"
+                "menu File/Export labels...\nclick item radio:export-labels/Label Studio\n"
+                "click item radio:export-labels/every recording\n"
+                "click item button:export-labels/Export...\nclick item browser:OK\nwait jobs\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  ASSERT_EQ(tactile("labels export " + database() + " --eaf " + folder.file("cli.eaf") +
+                    " --recording fur-s01-t01 --skin fur")
+                .exit_code,
+            0);
+  EXPECT_TRUE(test::read_text(folder.file("ws/fur-s01-t01-labels.eaf")) ==
+              test::read_text(folder.file("cli.eaf")));
+  ASSERT_EQ(tactile("labels export " + database() + " --label-studio " + folder.file("cli.json"))
+                .exit_code,
+            0);
+  EXPECT_TRUE(test::read_text(folder.file("ws/labels-label-studio.json")) ==
+              test::read_text(folder.file("cli.json")));
+
+  const auto import = workbench(
+      recording(),
+      "wait 2\nmenu Labels/Import labels...\nclick item browser:path\ntype " +
+          folder.file("session.eaf") +
+          "\nclick item browser:OK\nwait jobs\nwait 1\nstate @choosing.json\n"
+          "click item checkbox:import-labels/ground-truth\n"
+          "click item input:import-labels/lane Touch (Ben)\nkey Ctrl+A\ntype model:ben-model\n"
+          "click item button:import-labels/Import\nwait jobs\nwait 1\nstate @imported.json\n");
+  ASSERT_EQ(import.exit_code, 0) << import.err;
+
+  // The tiers shown with their lanes; the open recording proposed for the labels.
+  const nlohmann::json dialogs = state("choosing.json")["files"]["dialogs"];
+  EXPECT_NE(std::find(dialogs.begin(), dialogs.end(), "import labels"), dialogs.end()) << dialogs;
+  EXPECT_EQ(state("imported.json")["labels"].get<int>(),
+            state("choosing.json")["labels"].get<int>() + 4);
+  // Ana's tier to her lane, Ben's to a model's, the unchecked ground-truth tier left out.
+  const auto listed = tactile("labels export " + database() + " --csv " + folder.file("in.csv") +
+                              " --recording fur-s01-t01 --source model");
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  const std::string models = test::read_text(folder.file("in.csv"));
+  EXPECT_NE(models.find("ben-model"), std::string::npos) << models;
+  EXPECT_NE(models.find("very short, maybe a tap"), std::string::npos) << models;
+  ASSERT_EQ(tactile("labels export " + database() + " --csv " + folder.file("ana.csv") +
+                    " --recording fur-s01-t01 --source manual")
+                .exit_code,
+            0);
+  const std::string manual = test::read_text(folder.file("ana.csv"));
+  EXPECT_NE(manual.find(",0.12,0.87,"), std::string::npos) << manual;
+  EXPECT_EQ(manual.find("protocol"), std::string::npos) << manual;
+}
+
 TEST_F(WorkbenchFiles, ExportedLabelsAndFeaturesAreTheCommandLinesBytes) {
   const auto run = workbench(
       recording(),

@@ -129,6 +129,26 @@ TEST_F(LabelStoreTest, ElanTiersChosenByNameAreMappedToLanes) {
             "s.eaf: no tier named 'Touch (Carl)' (--tier)");
 }
 
+TEST_F(LabelStoreTest, InteropSourcesListTiersAndAnnotatorsWithTheirLanesAndCounts) {
+  auto text = [](const InteropSources& found) {
+    std::string listed = found.recording + ":";
+    for (const InteropSource& source : found.sources)
+      listed +=
+          " [" + source.name + " -> " + source.lane + " " + std::to_string(source.labels) + "]";
+    return listed;
+  };
+  // Dependent tiers (comments, regions) are not sources of labels.
+  EXPECT_EQ(text(eaf_sources(read_text(kInteropData + "session.eaf"), "session.eaf")),
+            "s07: [Touch (Ana) -> ana 2] [Touch (Ben) -> ben 2] [ground-truth -> ground-truth 1]");
+  // User 2 gave the ground truth of task 41 and a plain annotation of task 42; the cancelled
+  // annotation and the choices result count for nothing.
+  EXPECT_EQ(text(label_studio_sources(read_text(kInteropData + "label_studio.json"), "ls.json")),
+            "s07,s08: [1 -> manual:label-studio:1 2] [2 -> ground-truth 1]"
+            " [svm-2024-04 -> model:svm-2024-04 1] [2 -> manual:label-studio:2 1]");
+  EXPECT_EQ(interop_error_of([] { eaf_sources("<a/>", "x.eaf"); }),
+            "x.eaf: expected an ELAN document (ANNOTATION_DOCUMENT)");
+}
+
 TEST_F(LabelStoreTest, ElanUnalignedAnnotationIsRefusedNamingTierAndId) {
   EXPECT_EQ(
       interop_error_of([&] { parse_eaf(read_text(kInteropData + "unaligned.eaf"), "u.eaf"); }),

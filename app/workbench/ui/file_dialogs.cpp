@@ -10,6 +10,7 @@
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/atomic_file.h"
+#include "tactile/labels/label_files.h"
 #include "tactile/skins/skin.h"
 #include "views.h"
 
@@ -86,34 +87,55 @@ void draw_labels_export_dialog(WorkbenchState& state) {
     return;
   }
   if (!begin_file_dialog("Export labels###export labels", dialog.open, dialog.focus,
-                         ImVec2(560, 220)))
+                         ImVec2(640, 220)))
     return;
   dialog_keys(state, dialog.open);
   ImGui::TextDisabled("as tactile labels export: %s", state.document->labels_path.empty()
                                                           ? "(no label store beside the recording)"
                                                           : state.document->labels_path.c_str());
+  using Format = LabelsExportDialog::Format;
+  // An ELAN document holds one recording's tiers.
+  const bool elan = dialog.format == Format::kElan;
+  if (elan) dialog.every_recording = false;
   if (radio_item(state, "radio:export-labels/this recording",
                  ("this recording (" + state.document->recording_id() + ")").c_str(),
                  !dialog.every_recording))
     dialog.every_recording = false;
   ImGui::SameLine();
+  ImGui::BeginDisabled(elan);
   if (radio_item(state, "radio:export-labels/every recording", "every recording of the store",
                  dialog.every_recording))
     dialog.every_recording = true;
+  ImGui::EndDisabled();
   source_choice(state, "export-labels", dialog.source, true);
-  if (radio_item(state, "radio:export-labels/CSV", "CSV (RFC 4180)", !dialog.json))
-    dialog.json = false;
-  ImGui::SameLine();
-  if (radio_item(state, "radio:export-labels/JSON", "JSON", dialog.json)) dialog.json = true;
+  struct FormatChoice {
+    Format format;
+    const char* item;  // after "radio:export-labels/"
+    const char* text;
+    const char* extension;
+  };
+  static constexpr FormatChoice kFormats[] = {
+      {Format::kCsv, "CSV", "CSV (RFC 4180)", ".csv"},
+      {Format::kJson, "JSON", "JSON", ".json"},
+      {Format::kElan, "ELAN", "ELAN .eaf (one tier per lane)", ".eaf"},
+      {Format::kLabelStudio, "Label Studio", "Label Studio JSON", ".json"}};
+  const char* extension = ".csv";
+  for (const FormatChoice& choice : kFormats) {
+    if (choice.format != Format::kCsv) ImGui::SameLine();
+    if (radio_item(state, std::string("radio:export-labels/") + choice.item, choice.text,
+                   dialog.format == choice.format))
+      dialog.format = choice.format;
+    if (dialog.format == choice.format) extension = choice.extension;
+  }
   ImGui::Separator();
   AnyJob* running = running_file_job(state, "export labels");
   ImGui::BeginDisabled(running != nullptr);
   if (ImGui::Button("Export...")) {
-    const std::string stem =
+    std::string stem =
         dialog.every_recording ? std::string("labels") : state.document->recording_id() + "-labels";
-    state.file_browser.open(save_request(state, "export labels", "Export labels to",
-                                         stem + (dialog.json ? ".json" : ".csv"),
-                                         {dialog.json ? ".json" : ".csv"}));
+    if (dialog.format == Format::kLabelStudio) stem += "-label-studio";
+    state.file_browser.open(
+        save_request(state, "export labels", "Export labels to", stem + extension, {extension}));
   }
   remember_item(state, "button:export-labels/Export...",
                 "Choose the file and write the labels to it");
@@ -122,6 +144,142 @@ void draw_labels_export_dialog(WorkbenchState& state) {
     ImGui::SameLine();
     ImGui::ProgressBar(static_cast<float>(running->progress()), ImVec2(-1, 0), "writing");
   }
+  ImGui::End();
+}
+
+//---- Labels > Import labels... of ELAN and Label Studio
+
+void open_labels_import_dialog(WorkbenchState& state, const std::string& file) {
+  LabelsImportDialog& dialog = state.files.labels_import;
+  dialog.open = dialog.focus = true;
+  dialog.file = file;
+  dialog.sources.reset();
+  dialog.failure.clear();
+  dialog.choices.clear();
+  dialog.recording = {};
+  // Read on a worker: the file may be large or on a disk that hangs.
+  dialog.read_job =
+      std::make_unique<Job<InteropSources>>("read labels file", [file](JobProgress& progress) {
+        progress.report(0.0, "reading " + file);
+        return interop_sources(file);
+      });
+}
+
+void take_labels_import_sources(WorkbenchState& state) {
+  LabelsImportDialog& dialog = state.files.labels_import;
+  if (!dialog.read_job || dialog.read_job->status() == JobStatus::kRunning) return;
+  std::optional<InteropSources> sources = dialog.read_job->take();
+  if (!sources) dialog.failure = dialog.read_job->error();
+  dialog.read_job.reset();
+  if (!sources) return;
+  if (sources->format.empty()) {
+    // Our own JSON: nothing to choose.
+    dialog.open = false;
+    start_labels_import(state, dialog.file);
+    return;
+  }
+  for (const InteropSource& source : sources->sources) {
+    LabelsImportDialog::Choice choice;
+    set_field(choice.lane, source.lane);
+    dialog.choices.push_back(choice);
+  }
+  // An ELAN document is of one recording: the open one unless the user says otherwise. Label
+  // Studio's tasks name their own files.
+  if (sources->format == "ELAN" && state.document)
+    set_field(dialog.recording, state.document->recording_id());
+  dialog.sources = std::move(*sources);
+}
+
+void draw_labels_import_dialog(WorkbenchState& state) {
+  LabelsImportDialog& dialog = state.files.labels_import;
+  if (!dialog.open) return;
+  if (!state.document) {
+    dialog.open = false;
+    return;
+  }
+  take_labels_import_sources(state);
+  if (!dialog.open) return;
+  if (!begin_file_dialog("Import labels###import labels", dialog.open, dialog.focus,
+                         ImVec2(640, 360)))
+    return;
+  dialog_keys(state, dialog.open);
+  ImGui::TextDisabled("as tactile labels import: %s", dialog.file.c_str());
+  if (dialog.read_job) {
+    ImGui::ProgressBar(static_cast<float>(dialog.read_job->progress()), ImVec2(-1, 0), "reading");
+  } else if (!dialog.failure.empty() || !dialog.sources) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", dialog.failure.c_str());
+    ImGui::PopTextWrapPos();
+  } else {
+    const InteropSources& sources = *dialog.sources;
+    const bool elan = sources.format == "ELAN";
+    ImGui::Text("%s: %zu %s%s%s", sources.format.c_str(), sources.sources.size(),
+                elan ? "tiers" : "annotators and models",
+                sources.recording.empty() ? "" : ", recording ", sources.recording.c_str());
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted("--recording");
+    ImGui::SameLine(150);
+    ImGui::SetNextItemWidth(280);
+    ImGui::InputTextWithHint("##recording", "default: the file's own", dialog.recording.data(),
+                             dialog.recording.size());
+    remember_item(state, "input:import-labels/--recording",
+                  "The recording the labels belong to (empty: the one the file names)");
+    ImGui::TextDisabled(elan ? "Each chosen tier goes to the lane given (--tier NAME=LANE):"
+                             : "Each annotator and model goes to the lane given (--annotator):");
+    const ImGuiTableFlags flags =
+        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY;
+    if (ImGui::BeginTable("sources", 3, flags,
+                          ImVec2(0, -ImGui::GetFrameHeightWithSpacing() * 1.6f))) {
+      ImGui::TableSetupColumn(elan ? "tier" : "annotator or model");
+      ImGui::TableSetupColumn("labels", ImGuiTableColumnFlags_WidthFixed, 60);
+      ImGui::TableSetupColumn("lane", ImGuiTableColumnFlags_WidthFixed, 240);
+      ImGui::TableHeadersRow();
+      for (size_t k = 0; k < sources.sources.size(); ++k) {
+        const InteropSource& source = sources.sources[k];
+        LabelsImportDialog::Choice& choice = dialog.choices[k];
+        ImGui::PushID(static_cast<int>(k));
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        if (elan) {
+          ImGui::Checkbox(source.name.c_str(), &choice.chosen);
+          remember_item(state, "checkbox:import-labels/" + source.name, "Import this tier");
+        } else {
+          ImGui::TextUnformatted(source.name.c_str());
+        }
+        ImGui::TableNextColumn();
+        ImGui::Text("%zu", source.labels);
+        ImGui::TableNextColumn();
+        ImGui::SetNextItemWidth(-1);
+        ImGui::InputText("##lane", choice.lane.data(), choice.lane.size());
+        remember_item(state, "input:import-labels/lane " + source.name,
+                      "ground-truth, manual:NAME (or NAME), segmenter:METHOD or model:NAME");
+        ImGui::PopID();
+      }
+      ImGui::EndTable();
+    }
+  }
+  AnyJob* running = running_file_job(state, "import labels");
+  ImGui::BeginDisabled(running != nullptr || !dialog.sources);
+  if (ImGui::Button("Import")) {
+    InteropImport options;
+    options.recording = trimmed_field(dialog.recording.data());
+    const bool elan = dialog.sources->format == "ELAN";
+    for (size_t k = 0; k < dialog.sources->sources.size(); ++k) {
+      const InteropSource& source = dialog.sources->sources[k];
+      const std::string lane = trimmed_field(dialog.choices[k].lane.data());
+      if (elan && dialog.choices[k].chosen) options.tiers[source.name] = lane;
+      if (!elan && lane != source.lane) options.annotators[source.name] = lane;
+    }
+    if (elan && options.tiers.empty()) {
+      state.error = "import labels: no tier chosen";
+    } else {
+      start_labels_import(state, dialog.file, options);
+      dialog.open = false;
+    }
+  }
+  remember_item(state, "button:import-labels/Import",
+                "Add the chosen labels to the open recording's label store");
+  ImGui::EndDisabled();
   ImGui::End();
 }
 

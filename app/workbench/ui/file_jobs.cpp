@@ -128,26 +128,36 @@ void start_labels_export(WorkbenchState& state, const std::string& out) {
     fail(state, failure.what());
     return;
   }
-  const bool json = dialog.json;
-  start_file_job(state, "export labels", [database, out, json, filter](JobProgress& progress) {
-    progress.report(0.0, "writing " + out);
-    const LabelExport written = export_labels(database, out, json, filter);
-    FileOutcome outcome;
-    outcome.notice = "wrote " + out + ": " + std::to_string(written.labels) + " labels";
-    if (!written.damaged.empty())
-      outcome.problem = database + ": " + std::to_string(written.damaged.size()) +
-                        " damaged row(s) left out of " + out + " (" + written.damaged.front() + ")";
-    return outcome;
-  });
+  using Format = LabelsExportDialog::Format;
+  const Format format = dialog.format;
+  const std::vector<std::string> vocabulary = state.document->classes;
+  start_file_job(
+      state, "export labels", [database, out, format, filter, vocabulary](JobProgress& progress) {
+        progress.report(0.0, "writing " + out);
+        const LabelExport written =
+            format == Format::kElan
+                ? export_interop(database, out, InteropFormat::kElan, filter, vocabulary)
+            : format == Format::kLabelStudio
+                ? export_interop(database, out, InteropFormat::kLabelStudio, filter)
+                : export_labels(database, out, format == Format::kJson, filter);
+        FileOutcome outcome;
+        outcome.notice = "wrote " + out + ": " + std::to_string(written.labels) + " labels";
+        if (!written.damaged.empty())
+          outcome.problem = database + ": " + std::to_string(written.damaged.size()) +
+                            " damaged row(s) left out of " + out + " (" + written.damaged.front() +
+                            ")";
+        return outcome;
+      });
 }
 
-void start_labels_import(WorkbenchState& state, const std::string& file) {
+void start_labels_import(WorkbenchState& state, const std::string& file,
+                         const InteropImport& options) {
   if (!state.document) return;
   const std::string database = label_store_path(state);
-  start_file_job(state, "import labels", [database, file](JobProgress& progress) {
+  start_file_job(state, "import labels", [database, file, options](JobProgress& progress) {
     progress.report(0.0, "reading " + file);
     FileOutcome outcome;
-    outcome.notice = imported_labels_line(import_label_file(database, file), database);
+    outcome.notice = imported_labels_line(import_label_file(database, file, options), database);
     outcome.reload_labels = true;
     return outcome;
   });

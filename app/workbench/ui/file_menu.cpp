@@ -34,11 +34,6 @@ void browse(WorkbenchState& state, BrowseMode mode, const std::string& purpose,
   state.file_browser.open(std::move(request));
 }
 
-template <size_t Size>
-void set_field(std::array<char, Size>& field, const std::string& text) {
-  std::snprintf(field.data(), field.size(), "%s", text.c_str());
-}
-
 void save_report(WorkbenchState& state, const std::string& path) {
   const ReportWindow& report = state.files.report;
   const bool json = fs::path(path).extension() == ".json" && !report.json.empty();
@@ -103,7 +98,7 @@ void draw_file_export_items(WorkbenchState& state) {
 void draw_labels_file_items(WorkbenchState& state) {
   if (ImGui::MenuItem("Import labels..."))
     browse(state, BrowseMode::kOpenFile, "import labels",
-           "Import labels (as tactile labels export writes them)", {".csv", ".json"});
+           "Import labels (ours, ELAN .eaf, Label Studio JSON)", {".csv", ".json", ".eaf"});
   remember_item(state, "menu:Labels/Import labels...");
   if (ImGui::MenuItem("Agreement report...")) {
     AgreementDialog& dialog = state.files.agreement;
@@ -155,7 +150,10 @@ void take_browser_choice(WorkbenchState& state, const BrowseChoice& choice) {
   } else if (purpose == "export features") {
     start_features_export(state, choice.path);
   } else if (purpose == "import labels") {
-    start_labels_import(state, choice.path);
+    if (fs::path(choice.path).extension() == ".csv")
+      start_labels_import(state, choice.path);
+    else
+      open_labels_import_dialog(state, choice.path);
   } else if (purpose == "verify") {
     start_verify(state, {choice.path});
   } else if (purpose == "upgrade") {
@@ -171,6 +169,7 @@ void draw_file_dialogs(WorkbenchState& state) {
   state.files.has_keys = state.file_browser.is_open();
   draw_import_dialog(state);
   draw_labels_export_dialog(state);
+  draw_labels_import_dialog(state);
   draw_features_export_dialog(state);
   draw_agreement_dialog(state);
   draw_report_window(state);
@@ -191,6 +190,7 @@ nlohmann::json files_json(const WorkbenchState& state) {
   nlohmann::json dialogs = nlohmann::json::array();
   if (files.import.open) dialogs.push_back("import");
   if (files.labels_export.open) dialogs.push_back("export labels");
+  if (files.labels_import.open) dialogs.push_back("import labels");
   if (files.features_export.open) dialogs.push_back("export features");
   if (files.agreement.open) dialogs.push_back("agreement");
   if (files.report.open) dialogs.push_back("report");

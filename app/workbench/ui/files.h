@@ -9,12 +9,15 @@
 //   file_dialogs.cpp  the export and agreement dialogs, the report window
 //   file_jobs.cpp     the jobs and how their outcomes are applied
 
+#include <array>
+#include <cstdio>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "file_browser.h"
 #include "tactile/labels/import_files.h"
+#include "tactile/labels/label_interop.h"
 #include "workbench_state.h"
 
 namespace tactile {
@@ -37,6 +40,14 @@ bool files_have_keys(const WorkbenchState& state);
 nlohmann::json files_json(const WorkbenchState& state);
 
 //---- Dialogs (import_dialog.cpp, file_dialogs.cpp)
+// A text field of a dialog set to `text` (cut to its size).
+template <size_t Size>
+void set_field(std::array<char, Size>& field, const std::string& text) {
+  std::snprintf(field.data(), field.size(), "%s", text.c_str());
+}
+// A field's text without the spaces and tabs around it.
+std::string trimmed_field(const char* text);
+
 void open_import_dialog(WorkbenchState& state);
 void draw_import_dialog(WorkbenchState& state);
 // The import's options from the dialog's fields, with the window's defaults for what was left
@@ -45,6 +56,11 @@ void draw_import_dialog(WorkbenchState& state);
 bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
                        std::string& refusal);
 void draw_labels_export_dialog(WorkbenchState& state);
+// Labels > Import labels... of an .eaf or a .json: what the file holds is read on a worker;
+// an ELAN or Label Studio file shows its tiers or annotators to choose and map to lanes, our
+// own JSON is imported at once.
+void open_labels_import_dialog(WorkbenchState& state, const std::string& file);
+void draw_labels_import_dialog(WorkbenchState& state);
 void draw_features_export_dialog(WorkbenchState& state);
 void draw_agreement_dialog(WorkbenchState& state);
 void draw_report_window(WorkbenchState& state);
@@ -57,7 +73,8 @@ void start_import_preview(WorkbenchState& state, const FileImportOptions& option
                           const std::string& fields);
 void start_labels_export(WorkbenchState& state, const std::string& out);
 void start_features_export(WorkbenchState& state, const std::string& out);
-void start_labels_import(WorkbenchState& state, const std::string& file);
+void start_labels_import(WorkbenchState& state, const std::string& file,
+                         const InteropImport& options = {});
 void start_agreement(WorkbenchState& state);
 void start_verify(WorkbenchState& state, const std::vector<std::string>& paths);
 void start_upgrade(WorkbenchState& state, const std::vector<std::string>& paths);

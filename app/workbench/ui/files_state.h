@@ -9,9 +9,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tactile/jobs/job.h"
 #include "tactile/labels/import_files.h"
+#include "tactile/labels/label_interop.h"
 
 namespace tactile {
 
@@ -50,7 +52,25 @@ struct LabelsExportDialog {
   bool open = false, focus = false;
   bool every_recording = false;  // the whole store, not only the open recording's labels
   std::string source;  // "" = every source, else manual / segmenter / model / ground-truth
-  bool json = false;   // else CSV
+  // CSV, JSON ({"labels": [...]}), ELAN .eaf (this recording) or Label Studio JSON
+  // (docs/INTEROP.md)
+  enum class Format { kCsv, kJson, kElan, kLabelStudio } format = Format::kCsv;
+};
+
+// Labels > Import labels... of an ELAN .eaf or a Label Studio JSON: its tiers or annotators,
+// each chosen or not and mapped to a lane, and the recording they belong to.
+struct LabelsImportDialog {
+  bool open = false, focus = false;
+  std::string file;
+  std::unique_ptr<Job<InteropSources>> read_job;  // what the file holds, read on a worker
+  std::optional<InteropSources> sources;
+  std::string failure;  // the file could not be read
+  struct Choice {
+    bool chosen = true;
+    std::array<char, 128> lane{};
+  };
+  std::vector<Choice> choices;  // one per source
+  std::array<char, 256> recording{};
 };
 
 // File > Export features...: `tactile features` for the open recording or its workspace.
@@ -79,6 +99,7 @@ struct ReportWindow {
 struct FilesState {
   ImportDialog import;
   LabelsExportDialog labels_export;
+  LabelsImportDialog labels_import;
   FeaturesExportDialog features_export;
   AgreementDialog agreement;
   ReportWindow report;

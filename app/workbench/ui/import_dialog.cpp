@@ -24,13 +24,6 @@ namespace {
 constexpr float kImportLabelWidth = 190.0f;
 constexpr int kImportPreviewChannels = 16;  // columns of the preview table at most
 
-std::string trimmed_field(const char* text) {
-  std::string value(text);
-  const size_t first = value.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return value.substr(first, value.find_last_not_of(" \t") - first + 1);
-}
-
 std::vector<std::string> comma_list(const char* text) {
   std::vector<std::string> items;
   std::string item;
@@ -169,6 +162,13 @@ BrowseRequest import_browse_request(const WorkbenchState& state, BrowseMode mode
 }
 
 }  // namespace
+
+std::string trimmed_field(const char* text) {
+  std::string value(text);
+  const size_t first = value.find_first_not_of(" \t");
+  if (first == std::string::npos) return {};
+  return value.substr(first, value.find_last_not_of(" \t") - first + 1);
+}
 
 void open_import_dialog(WorkbenchState& state) {
   ImportDialog& dialog = state.files.import;

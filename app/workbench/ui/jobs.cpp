@@ -43,7 +43,8 @@ std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
            state.labelling.segment_job.get(), state.analysis.predict_job.get(),
            state.analysis.som_job.get(), state.analysis.scatter_job.get(),
            state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get(),
-           state.demo_job.get(), state.files.import.preview_job.get()})
+           state.demo_job.get(), state.files.import.preview_job.get(),
+           state.files.labels_import.read_job.get()})
     if (job) jobs.push_back(job);
   for (const auto& [kind, job] : state.files.jobs)
     if (job) jobs.push_back(job.get());

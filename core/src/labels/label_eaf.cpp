@@ -122,7 +122,47 @@ std::string eaf_recording_from_header(const tinyxml2::XMLElement* root, double& 
   return recording;
 }
 
+// A tier's lane unless mapped: the tier id when it names a lane ("ground-truth", "manual:ana"),
+// else the tier's ANNOTATOR, else the tier id as a person's name.
+std::string eaf_default_lane(const std::string& id, const std::string& annotator) {
+  if (id != "ground-truth" && id.find(':') == std::string::npos && !annotator.empty())
+    return annotator;
+  return id;
+}
+
+const tinyxml2::XMLElement* eaf_root(tinyxml2::XMLDocument& document, const std::string& text,
+                                     const std::string& where) {
+  if (document.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw Error(where + ":" + std::to_string(document.ErrorLineNum()),
+                std::string("not XML: ") + document.ErrorStr());
+  const tinyxml2::XMLElement* root = document.RootElement();
+  if (!root || std::string(root->Name()) != "ANNOTATION_DOCUMENT")
+    throw Error(where, "expected an ELAN document (ANNOTATION_DOCUMENT)");
+  return root;
+}
+
 }  // namespace
+
+InteropSources eaf_sources(const std::string& text, const std::string& where) {
+  tinyxml2::XMLDocument document;
+  const tinyxml2::XMLElement* root = eaf_root(document, text, where);
+  InteropSources sources;
+  sources.format = "ELAN";
+  double origin = 0.0;
+  sources.recording = eaf_recording_from_header(root, origin, where);
+  for (const tinyxml2::XMLElement* tier = root->FirstChildElement("TIER"); tier;
+       tier = tier->NextSiblingElement("TIER")) {
+    if (tier->Attribute("PARENT_REF")) continue;  // regions, confidences, notes
+    InteropSource source;
+    source.name = eaf_attribute_or(tier, "TIER_ID");
+    source.lane = eaf_default_lane(source.name, eaf_attribute_or(tier, "ANNOTATOR"));
+    for (const tinyxml2::XMLElement* annotation = tier->FirstChildElement("ANNOTATION"); annotation;
+         annotation = annotation->NextSiblingElement("ANNOTATION"))
+      ++source.labels;
+    sources.sources.push_back(std::move(source));
+  }
+  return sources;
+}
 
 std::string read_interop_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
@@ -293,12 +333,7 @@ std::string labels_eaf(const std::vector<Label>& labels,
 std::vector<Label> parse_eaf(const std::string& text, const std::string& where,
                              const InteropImport& options) {
   tinyxml2::XMLDocument document;
-  if (document.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS)
-    throw Error(where + ":" + std::to_string(document.ErrorLineNum()),
-                std::string("not XML: ") + document.ErrorStr());
-  const tinyxml2::XMLElement* root = document.RootElement();
-  if (!root || std::string(root->Name()) != "ANNOTATION_DOCUMENT")
-    throw Error(where, "expected an ELAN document (ANNOTATION_DOCUMENT)");
+  const tinyxml2::XMLElement* root = eaf_root(document, text, where);
   const EafSlots slots = eaf_time_slots(root, where);
   double origin = 0.0;
   std::string recording = eaf_recording_from_header(root, origin, where);
@@ -361,11 +396,7 @@ std::vector<Label> parse_eaf(const std::string& text, const std::string& where,
     if (!chosen) continue;
     // The lane: the option's, else the tier id when it names a lane, else the tier's annotator.
     std::string lane_id = options.tiers.count(id) ? options.tiers.at(id) : std::string();
-    if (lane_id.empty()) {
-      lane_id = id;
-      if (id != "ground-truth" && id.find(':') == std::string::npos && !tier.annotator.empty())
-        lane_id = tier.annotator;
-    }
+    if (lane_id.empty()) lane_id = eaf_default_lane(id, tier.annotator);
     const LaneKey lane = lane_from_id(lane_id);
     for (const tinyxml2::XMLElement* annotation = tier.element->FirstChildElement("ANNOTATION");
          annotation; annotation = annotation->NextSiblingElement("ANNOTATION")) {

@@ -104,20 +104,43 @@ LabelExport export_interop(const std::string& database, const std::string& out,
   return written;
 }
 
+namespace {
+
+// ELAN by the extension, Label Studio by the shape of a .json (text read once); else "".
+std::string interop_format_of(const std::string& file, std::string& text) {
+  std::string extension = std::filesystem::path(file).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".eaf") {
+    text = read_interop_text(file);
+    return "ELAN";
+  }
+  if (extension != ".json") return "";
+  text = read_interop_text(file);
+  return is_label_studio_json(text) ? "Label Studio" : "";
+}
+
+}  // namespace
+
+InteropSources interop_sources(const std::string& file) {
+  std::string text;
+  const std::string format = interop_format_of(file, text);
+  if (format == "ELAN") return eaf_sources(text, file);
+  if (format == "Label Studio") return label_studio_sources(text, file);
+  return {};
+}
+
 size_t import_label_file(const std::string& database, const std::string& file,
                          const InteropImport& options) {
   // All or nothing: the file is read and checked whole, then added in one transaction.
-  std::string extension = std::filesystem::path(file).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string text;
+  const std::string format = interop_format_of(file, text);
   std::vector<Label> labels;
-  if (extension == ".eaf") {
-    labels = parse_eaf(read_interop_text(file), file, options);
-  } else if (const std::string text = extension == ".json" ? read_interop_text(file) : "";
-             is_label_studio_json(text)) {
+  if (format == "ELAN")
+    labels = parse_eaf(text, file, options);
+  else if (format == "Label Studio")
     labels = parse_label_studio(text, file, options);
-  } else {
+  else
     labels = read_label_file(file);
-  }
   LabelStore store(database);
   store.add_many(labels);
   return labels.size();

@@ -194,6 +194,72 @@ std::string labels_label_studio(const std::vector<Label>& labels) {
   return tasks.dump(2) + "\n";
 }
 
+InteropSources label_studio_sources(const std::string& text, const std::string& where) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(where, std::string("not JSON: ") + error.what());
+  }
+  if (document.is_object()) document = nlohmann::json::array({document});
+  if (!document.is_array())
+    throw Error(where, "expected Label Studio's JSON export: a list of tasks");
+  InteropSources found;
+  found.format = "Label Studio";
+  std::vector<std::string> recordings;
+  // The same names and default lanes parse_label_studio gives, counted per source.
+  auto count = [&found](const std::string& name, const std::string& lane,
+                        const nlohmann::json& owner) {
+    auto source =
+        std::find_if(found.sources.begin(), found.sources.end(),
+                     [&](const InteropSource& s) { return s.name == name && s.lane == lane; });
+    if (source == found.sources.end()) source = found.sources.insert(source, {name, lane, 0});
+    if (owner.contains("result") && owner["result"].is_array())
+      for (const nlohmann::json& result : owner["result"])
+        if (result.is_object() && result.contains("type") && result["type"] == "timeserieslabels")
+          ++source->labels;
+  };
+  for (const nlohmann::json& task : document) {
+    if (!task.is_object()) continue;
+    if (task.contains("data")) {
+      const std::string recording = studio_recording_of(task["data"]);
+      if (!recording.empty() &&
+          std::find(recordings.begin(), recordings.end(), recording) == recordings.end())
+        recordings.push_back(recording);
+    }
+    if (task.contains("annotations") && task["annotations"].is_array())
+      for (const nlohmann::json& annotation : task["annotations"]) {
+        if (!annotation.is_object()) continue;
+        if (annotation.contains("was_cancelled") && annotation["was_cancelled"] == true) continue;
+        const std::string user = studio_user_of(annotation);
+        const std::string annotator =
+            annotation.contains(kStudioAnnotatorKey) && annotation[kStudioAnnotatorKey].is_string()
+                ? annotation[kStudioAnnotatorKey].get<std::string>()
+                : std::string();
+        const std::string name = !annotator.empty() ? annotator : user;
+        const bool ground_truth =
+            annotation.contains("ground_truth") && annotation["ground_truth"] == true;
+        count(name,
+              ground_truth ? std::string("ground-truth")
+                           : "manual:" + (annotator.empty() ? "label-studio:" + user : annotator),
+              annotation);
+      }
+    if (task.contains("predictions") && task["predictions"].is_array())
+      for (const nlohmann::json& prediction : task["predictions"]) {
+        if (!prediction.is_object() || !prediction.contains("model_version") ||
+            !prediction["model_version"].is_string())
+          continue;
+        const std::string version = prediction["model_version"].get<std::string>();
+        const LaneKey lane = lane_from_id(version);
+        count(version, lane.source == LabelSource::kManual ? "model:" + version : version,
+              prediction);
+      }
+  }
+  for (const std::string& recording : recordings)
+    found.recording += (found.recording.empty() ? "" : ",") + recording;
+  return found;
+}
+
 bool is_label_studio_json(const std::string& text) {
   for (char c : text) {
     if (c == ' ' || c == '\t' || c == '\r' || c == '\n') continue;

@@ -50,6 +50,9 @@ LabelExport export_interop(const std::string& database, const std::string& out,
 // label_interop.h says, with `options` (recording, tier and annotator mappings).
 size_t import_label_file(const std::string& database, const std::string& file,
                          const InteropImport& options = {});
+// The tiers (ELAN) or annotators and models (Label Studio) of a file import_label_file reads
+// through `options`; format "" for a file of our own CSV or JSON, which has none to choose.
+InteropSources interop_sources(const std::string& file);
 // "imported N label(s) into DB", as `tactile labels import` prints it.
 std::string imported_labels_line(size_t labels, const std::string& database);
 

@@ -50,6 +50,24 @@ std::string labels_label_studio(const std::vector<Label>& labels);
 std::vector<Label> parse_label_studio(const std::string& text, const std::string& where,
                                       const InteropImport& options = {});
 
+// What a file holds, for choosing before an import: ELAN's top-level tiers (dependent ones
+// carry regions, confidences and notes), Label Studio's annotators (completed_by, or our name)
+// and model versions. `lane` is where a source's labels go unless mapped.
+struct InteropSource {
+  std::string name;   // the tier id; the annotator (our name, else the user's id or email);
+                      // the prediction's model_version
+  std::string lane;   // "ground-truth", "manual:NAME" or NAME, "segmenter:METHOD", "model:NAME"
+  size_t labels = 0;  // annotations (ELAN) or results (Label Studio)
+};
+struct InteropSources {
+  std::string format;     // "ELAN", "Label Studio"
+  std::string recording;  // the file's own (ELAN: its property or media; Label Studio: the
+                          // tasks', comma-separated); "" when it names none
+  std::vector<InteropSource> sources;
+};
+InteropSources eaf_sources(const std::string& text, const std::string& where);
+InteropSources label_studio_sources(const std::string& text, const std::string& where);
+
 // True for a .json file in Label Studio's shape (a list of tasks, or one task), not
 // {"labels": [...]} as `labels export --json` writes.
 bool is_label_studio_json(const std::string& text);
