@@ -128,6 +128,8 @@ TEST_F(WorkbenchFiles, ElanAndLabelStudioExportsAreTheCommandLinesAndImportMapsT
   // The tiers shown with their lanes; the open recording proposed for the labels.
   const nlohmann::json dialogs = state("choosing.json")["files"]["dialogs"];
   EXPECT_NE(std::find(dialogs.begin(), dialogs.end(), "import labels"), dialogs.end()) << dialogs;
+  EXPECT_EQ(state("imported.json")["notice"],
+            "imported 4 labels into " + folder.file("ws/labels.db"));
   EXPECT_EQ(state("imported.json")["labels"].get<int>(),
             state("choosing.json")["labels"].get<int>() + 4);
   // Ana's tier to her lane, Ben's to a model's, the unchecked ground-truth tier left out.

@@ -45,6 +45,8 @@ void apply_file_outcome(WorkbenchState& state, FileOutcome outcome) {
     try {
       state.document->label_store();  // the store the labels went into, if it is new
       state.document->reload_labels();
+      // Our own import, not another writer's edit: its notice stays.
+      state.document->mark_store_seen();
     } catch (const Error& failure) {
       state.error = failure.what();
     }
