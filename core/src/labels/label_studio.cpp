@@ -150,6 +150,20 @@ void studio_read_results(const nlohmann::json& results, const std::string& at_ow
   }
 }
 
+// The export's list of tasks (one task alone is taken as a list of one).
+nlohmann::json studio_tasks(const std::string& text, const std::string& where) {
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& error) {
+    throw Error(where, std::string("not JSON: ") + error.what());
+  }
+  if (document.is_object()) document = nlohmann::json::array({document});
+  if (!document.is_array())
+    throw Error(where, "expected Label Studio's JSON export: a list of tasks");
+  return document;
+}
+
 }  // namespace
 
 std::string labels_label_studio(const std::vector<Label>& labels) {
@@ -195,15 +209,7 @@ std::string labels_label_studio(const std::vector<Label>& labels) {
 }
 
 InteropSources label_studio_sources(const std::string& text, const std::string& where) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& error) {
-    throw Error(where, std::string("not JSON: ") + error.what());
-  }
-  if (document.is_object()) document = nlohmann::json::array({document});
-  if (!document.is_array())
-    throw Error(where, "expected Label Studio's JSON export: a list of tasks");
+  const nlohmann::json document = studio_tasks(text, where);
   InteropSources found;
   found.format = "Label Studio";
   std::vector<std::string> recordings;
@@ -277,15 +283,7 @@ bool is_label_studio_json(const std::string& text) {
 
 std::vector<Label> parse_label_studio(const std::string& text, const std::string& where,
                                       const InteropImport& options) {
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& error) {
-    throw Error(where, std::string("not JSON: ") + error.what());
-  }
-  if (document.is_object()) document = nlohmann::json::array({document});
-  if (!document.is_array())
-    throw Error(where, "expected Label Studio's JSON export: a list of tasks");
+  const nlohmann::json document = studio_tasks(text, where);
   std::vector<Label> labels;
   for (size_t t = 0; t < document.size(); ++t) {
     const nlohmann::json& task = document[t];
