@@ -99,6 +99,14 @@ TEST_F(EdfImport, TheHeaderFieldsBecomeMetadata) {
   EXPECT_EQ(metadata.at("equipment"), "TouchRig 2");
   EXPECT_EQ(metadata.at("recording_additional"), "forearm session");
   EXPECT_EQ(metadata.count("patient"), 0u) << "EDF+ splits the patient field";
+
+  EdfTestFile unknown = testing::edf_test_bdf_file();
+  unknown.header_fields = false;  // EDFlib writes "X", EDF+'s unknown, in every subfield
+  testing::write_edf_test_file(bdf_path, unknown);
+  const Metadata bare = import_edf(bdf_path, load_layout("strip:2")).recording.metadata;
+  EXPECT_EQ(bare.count("patient_name"), 0u);
+  EXPECT_EQ(bare.count("patient_code"), 0u);
+  EXPECT_EQ(bare.at("edf_format"), "BDF+");
 }
 
 TEST_F(EdfImport, AnnotationsBecomeGroundTruthLabelsOfTheirText) {

@@ -120,9 +120,10 @@ void edf_metadata(const edf_hdr_struct& header, Metadata& metadata) {
     start += digits;
   }
   metadata["start_time"] = start;
+  // EDF+ writes "X" for a subfield nobody knows: left out like an empty one.
   const auto put = [&](const char* key, const char* value) {
     const std::string text = edf_trimmed(value);
-    if (!text.empty()) metadata[key] = text;
+    if (!text.empty() && !(plus && text == "X")) metadata[key] = text;
   };
   if (!plus) {
     put("patient", header.patient);
