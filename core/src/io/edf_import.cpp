@@ -281,7 +281,7 @@ ImportedRecording import_edf(const std::string& path, const SkinLayout& layout,
   if (options.annotation_seconds &&
       (!(*options.annotation_seconds > 0.0) || !std::isfinite(*options.annotation_seconds)))
     throw Error("--annotation-seconds", "a length above 0 seconds is needed");
-  // The header, read here and checked before EDFlib sees the file: EDFlib trusts the sizes.
+  // The header, read here and checked before EDFlib sees the file (edf_import.h says why).
   std::error_code size_error;
   const auto file_size = static_cast<long long>(fs::file_size(path, size_error));
   if (size_error) throw Error(path, "cannot read: " + size_error.message());

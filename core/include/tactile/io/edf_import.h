@@ -7,10 +7,12 @@
 // as many as the layout has channels. Values are the physical ones (digital scaled by the
 // signal's physical and digital range), units the signals' physical dimensions.
 //
-// EDFlib checks a header's fields but reads sizes the header declares; before the file reaches
-// it, the header is read here and every size it declares (header bytes, samples per record,
-// data records) is checked against the bytes the file holds, and EDF+D is refused (EDFlib does
-// not give the onsets of its data records, so the gaps between them cannot be placed).
+// Before the file reaches EDFlib, the header is read here and every size it declares (header
+// bytes, samples per record, data records) is checked against the bytes the file holds, and
+// EDF+D is refused (EDFlib does not give the onsets of its data records, so the gaps between
+// them cannot be placed). EDFlib 1.23 refuses these files too, but as "format errors" without
+// saying where; the checks here name the field and its byte offset, and do not depend on the
+// library's version to keep a lying header from sizing an allocation.
 
 #include <optional>
 #include <string>
