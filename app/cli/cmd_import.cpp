@@ -1,6 +1,6 @@
 // `tactile import FILE --layout ID --out FILE.h5|FOLDER [--labels DB]`: a recording from
 // what other programs publish (docs/IMPORT.md): long or wide CSV (a class column, grouping
-// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file.
+// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, EDF+/BDF+.
 // The import itself is core's (tactile/labels/import_files.h), shared with the workbench.
 #include <iostream>
 #include <memory>
@@ -35,12 +35,14 @@ void run_import(ImportArguments& arguments) {
   const FileImportReport report = import_file(
       options, {}, [](const ImportedFile& file) { std::cout << imported_file_line(file) << "\n"; });
   if (report.labels == 0) return;
+  const std::string kind =
+      options.annotator.empty() ? "ground-truth labels" : "labels of " + options.annotator;
   if (options.labels.empty()) {
-    std::cerr << "tactile import: " << report.labels
-              << " ground-truth labels not stored: no --labels database given\n";
+    std::cerr << "tactile import: " << report.labels << " " << kind
+              << " not stored: no --labels database given\n";
     return;
   }
-  std::cout << "stored " << report.stored << " ground-truth labels in " << options.labels << "\n";
+  std::cout << "stored " << report.stored << " " << kind << " in " << options.labels << "\n";
 }
 
 }  // namespace
@@ -48,10 +50,13 @@ void run_import(ImportArguments& arguments) {
 void register_import(CLI::App& app) {
   auto arguments = std::make_shared<ImportArguments>();
   FileImportOptions* options = &arguments->options;
-  CLI::App* command = app.add_subcommand(
-      "import", "Convert other programs' data (CSV, NumPy .npy/.npz, JSON frames, HDF5 datasets) to recordings");
-  command->add_option("FILE", options->file,
-                      "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json or .h5")
+  CLI::App* command = app.add_subcommand("import",
+                                         "Convert other programs' data (CSV, NumPy .npy/.npz, JSON "
+                                         "frames, HDF5 datasets, EDF+/BDF+) to recordings");
+  command
+      ->add_option("FILE", options->file,
+                   "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json, .h5, "
+                   ".edf or .bdf")
       ->required();
   command
       ->add_option("--layout", options->layout,
@@ -101,6 +106,21 @@ void register_import(CLI::App& app) {
                       "Label database (SQLite) for the ground-truth labels (--wide, --class-column, --class-array)");
   command->add_option("--recording-id", options->recording_id,
                       "Recording id (default: the output file's stem)");
+  command
+      ->add_option(
+          "--signals", options->signals,
+          "EDF/BDF: the signals by label, comma-separated, in channel order (default: every "
+          "signal but the annotations)")
+      ->delimiter(',');
+  command
+      ->add_option(
+          "--annotation-seconds", options->annotation_seconds,
+          "EDF/BDF: the length of annotations of zero or unknown duration (default: refused)")
+      ->check(CLI::PositiveNumber);
+  command->add_option(
+      "--annotator", options->annotator,
+      "Store the file's labels as this annotator's (replacing theirs of the recording) "
+      "instead of the ground truth");
   command->callback([arguments] { run_import(*arguments); });
 }
 

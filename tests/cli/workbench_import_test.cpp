@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "../core/edf_test_files.h"
 #include "cli_test_support.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
@@ -45,6 +46,7 @@ class WorkbenchImport : public ::testing::Test {
                       : "rub")
           << "\n";
     csv.close();
+    testing::write_edf_test_file(folder.file("session.edf"), testing::edf_test_plus_file());
     std::filesystem::create_directories(folder.file("ws"));
   }
   std::string script(const std::string& text) { return test::write_script(folder, text); }
@@ -147,6 +149,14 @@ TEST_F(WorkbenchImport, EachFormatImportsFromTheDialogAsTheCommandLineDoes) {
        "foreign",
        50,
        2},
+      {"EDF+ with annotations",
+       folder.file("session.edf"),
+       {{"--layout", "strip:4"}, {"--signals", "Fz,Cz,Pz,Oz"}, {"--annotation-seconds", "0.5"}},
+       {},
+       "--layout strip:4 --signals Fz,Cz,Pz,Oz --annotation-seconds 0.5",
+       "session",
+       300,
+       3},
   };
   for (size_t k = 0; k < cases.size(); ++k) {
     const ImportCase& c = cases[k];

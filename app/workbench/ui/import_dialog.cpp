@@ -70,7 +70,9 @@ std::string preview_fields(const FileImportOptions& options) {
   text += (options.class_names ? joined(*options.class_names, ",") : "-") + '\n';
   text += options.dataset + '\n' + options.key + '\n' + options.class_array + '\n';
   text += options.value_key + '\n' + options.class_key + '\n';
-  text += options.class_column + '\n' + joined(options.group_columns, ",");
+  text += options.class_column + '\n' + joined(options.group_columns, ",") + '\n';
+  text += joined(options.signals, ",") + '\n';
+  text += options.annotation_seconds ? shortest_text(*options.annotation_seconds) : "-";
   return text;
 }
 
@@ -195,7 +197,8 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
   };
   const std::string rate = trimmed_field(dialog.rate.data());
   double value = 0.0;
-  if (!rate.empty()) {
+  // An EDF or BDF file states its rate: the field is hidden for one, and not read.
+  if (!rate.empty() && format != ".edf" && format != ".bdf") {
     if (!positive(rate, "--rate", value)) return false;
     options.rate_hz = value;
   }
@@ -218,6 +221,13 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
     } else {
       options.class_column = trimmed_field(dialog.class_column.data());
       options.group_columns = comma_list(dialog.group_columns.data());
+    }
+  } else if (format == ".edf" || format == ".bdf") {
+    options.signals = comma_list(dialog.signals.data());
+    const std::string seconds = trimmed_field(dialog.annotation_seconds.data());
+    if (!seconds.empty()) {
+      if (!positive(seconds, "--annotation-seconds", value)) return false;
+      options.annotation_seconds = value;
     }
   } else if (!format.empty()) {
     if (format == ".npz" || format == ".h5") options.dataset = trimmed_field(dialog.dataset.data());
@@ -245,6 +255,7 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
         ((grouped ? fs::path(options.out) : fs::path(options.out).parent_path()) / "labels.db")
             .string();
   options.recording_id = trimmed_field(dialog.recording_id.data());
+  options.annotator = trimmed_field(dialog.annotator.data());
   return true;
 }
 
@@ -269,18 +280,22 @@ void draw_import_dialog(WorkbenchState& state) {
   dialog_keys(state, open);
   const std::string file = trimmed_field(dialog.file.data());
   const std::string format = import_format_of(file);
-  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json or .h5 file", -90.0f);
+  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json, .h5, .edf or .bdf file",
+               -90.0f);
   if (import_browse(state, "FILE")) {
     BrowseRequest request = import_browse_request(state, BrowseMode::kOpenFile, "import file",
                                                   "Import: the file to read");
-    request.extensions = {".csv", ".txt", ".npy", ".npz", ".json", ".h5", ".hdf5", ".hdf"};
+    request.extensions = {".csv", ".txt",  ".npy", ".npz", ".json",
+                          ".h5",  ".hdf5", ".hdf", ".edf", ".bdf"};
     state.file_browser.open(std::move(request));
   }
   const std::string layouts = joined(known_layout_ids()) + ", grid:RxC, strip:N";
   import_field(state, "--layout", dialog.layout, layouts.c_str(), 440.0f);
-  import_field(state, "--rate", dialog.rate,
-               format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
-               320.0f);
+  const bool edf = format == ".edf" || format == ".bdf";
+  if (!edf)  // an EDF or BDF file states its rate
+    import_field(state, "--rate", dialog.rate,
+                 format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
+                 320.0f);
   if (format == "CSV") {
     ImGui::SetCursorPosX(kImportLabelWidth);
     ImGui::Checkbox("--wide: one capture per row, with a labels file", &dialog.wide);
@@ -304,6 +319,11 @@ void draw_import_dialog(WorkbenchState& state) {
       import_field(state, "--group-columns", dialog.group_columns,
                    "e.g. subject,capture: one recording per group", 320.0f);
     }
+  } else if (edf) {
+    import_field(state, "--signals", dialog.signals,
+                 "labels in channel order, e.g. Fz,Cz (default: every signal)", 440.0f);
+    import_field(state, "--annotation-seconds", dialog.annotation_seconds,
+                 "length of annotations without one (default: refused)", 320.0f);
   } else if (!format.empty()) {
     if (format == ".npz" || format == ".h5")
       import_field(state, "--dataset", dialog.dataset,
@@ -355,6 +375,8 @@ void draw_import_dialog(WorkbenchState& state) {
   import_field(state, "--recording-id", dialog.recording_id,
                grouped ? "(one per group: STEM-VALUE-VALUE)" : "default: the output's stem",
                320.0f);
+  import_field(state, "--annotator", dialog.annotator,
+               "store the file's labels as this annotator's (default: the ground truth)", 320.0f);
 
   ImGui::Separator();
   ImGui::TextUnformatted("Preview");

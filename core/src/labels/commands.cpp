@@ -66,4 +66,16 @@ LabelEdit ground_truth_import(const LabelStore& store, const std::string& record
   return edit;
 }
 
+LabelEdit annotator_import(const LabelStore& store, const std::string& recording,
+                           const std::string& annotator, const std::vector<Label>& labels) {
+  LabelFilter previous;
+  previous.recording = recording;
+  previous.annotator = annotator;
+  previous.source = LabelSource::kManual;
+  LabelEdit edit;
+  for (const Label& label : store.list(previous)) edit.remove.push_back(ref_of(label));
+  edit.add = labels;
+  return edit;
+}
+
 }  // namespace tactile

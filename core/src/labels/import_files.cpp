@@ -9,6 +9,7 @@
 #include "tactile/error.h"
 #include "tactile/io/array_import.h"
 #include "tactile/io/csv.h"
+#include "tactile/io/edf_import.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/labels/commands.h"
@@ -62,7 +63,7 @@ ImportedArray array_in(const std::string& path, const std::string& name, const s
       throw Error(name_option, "names the dataset of " + path + " to read (e.g. /data/pressure)");
     return read_hdf5_dataset(path, name);
   }
-  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5)");
+  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5, .edf, .bdf)");
 }
 
 // What the file holds, read into recordings of the layout; `shape` gets an array's shape.
@@ -70,6 +71,24 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
                                                  const SkinLayout& layout,
                                                  std::vector<int64_t>* shape) {
   const std::string extension = lower_extension(options.file);
+  if (extension == ".edf" || extension == ".bdf") {
+    // A recording with its own rate, signal names and annotations: no array or CSV options.
+    if (options.rate_hz)
+      throw Error("--rate", "an EDF or BDF file states its own rate; leave --rate out");
+    if (!options.dataset.empty() || !options.key.empty() || !options.value_key.empty() ||
+        !options.class_key.empty() || !options.class_array.empty() || options.captures ||
+        !options.class_column.empty() || options.wide || !options.group_columns.empty())
+      throw Error(
+          "--dataset/--key/--value-key/--class-key/--class-array/--captures/--class-column/"
+          "--wide/--group-columns",
+          "are not for EDF or BDF files (--signals chooses their signals)");
+    EdfImportOptions edf;
+    edf.signals = options.signals;
+    edf.annotation_seconds = options.annotation_seconds;
+    return {import_edf(options.file, layout, edf)};
+  }
+  if (!options.signals.empty() || options.annotation_seconds)
+    throw Error("--signals/--annotation-seconds", "are for EDF and BDF files");
   if (extension == ".csv" || extension == ".txt") {
     if (!options.dataset.empty() || !options.key.empty() || !options.class_array.empty() ||
         options.captures)
@@ -157,7 +176,7 @@ std::string import_format_of(const std::string& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".csv" || extension == ".txt") return "CSV";
   if (extension == ".hdf5" || extension == ".hdf") return ".h5";
-  for (const char* known : {".npy", ".npz", ".json", ".h5"})
+  for (const char* known : {".npy", ".npz", ".json", ".h5", ".edf", ".bdf"})
     if (extension == known) return known;
   return "";
 }
@@ -213,7 +232,14 @@ FileImportReport import_file(const FileImportOptions& options,
       recording.id = options.recording_id.empty() ? fs::path(options.out).stem().string()
                                                   : options.recording_id;
     }
-    for (Label& label : imported.labels) label.recording = recording.id;
+    for (Label& label : imported.labels) {
+      label.recording = recording.id;
+      if (!options.annotator.empty()) {
+        // --annotator: the file's labels are this person's, not the ground truth.
+        label.annotator = options.annotator;
+        label.source = LabelSource::kManual;
+      }
+    }
     write_recording(out, recording);
     const Stream& stream = recording.streams.front();
     ImportedFile file{out,
@@ -228,9 +254,12 @@ FileImportReport import_file(const FileImportOptions& options,
     result.labels += imported.labels.size();
     if (!imported.labels.empty() && !options.labels.empty()) {
       if (!store) store = std::make_unique<LabelStore>(options.labels);
-      // Importing the same file again replaces its ground truth instead of doubling it; one
-      // command, so `undo` by "import" takes back the whole import.
-      store->apply(ground_truth_import(*store, recording.id, imported.labels), "import");
+      // Importing the same file again replaces its ground truth (or the --annotator's labels)
+      // instead of doubling them; one command, so `undo` by "import" takes back the whole import.
+      store->apply(options.annotator.empty()
+                       ? ground_truth_import(*store, recording.id, imported.labels)
+                       : annotator_import(*store, recording.id, options.annotator, imported.labels),
+                   "import");
       result.stored += imported.labels.size();
     }
   }
@@ -250,7 +279,9 @@ ImportPreview preview_import(const FileImportOptions& options, int frames,
     const std::vector<ImportedRecording> recordings = read_import_input(options, layout, &shape);
     report(step, 1.0);
     const std::string format = import_format_of(options.file);
-    if (format != "CSV")
+    if (format == ".edf" || format == ".bdf")
+      preview.format = format + " recording";
+    else if (format != "CSV")
       preview.format = format + " array";
     else if (options.wide)
       preview.format = "wide CSV";

@@ -12,7 +12,7 @@
 //   reject              reject_edit(suggestion)
 //   segmenter run       segmenter_run(...).edit          (suggestions.h)
 //   predict             prediction_edit(...)             (predict.h)
-//   import              ground_truth_import(...)
+//   import              ground_truth_import(...), annotator_import(...) (--annotator)
 
 #include <string>
 #include <vector>
@@ -43,5 +43,9 @@ LabelEdit bounds_edit(Label label, double t0, double t1);
 // imported labels added, as one edit (importing the same file again replaces, never doubles).
 LabelEdit ground_truth_import(const LabelStore& store, const std::string& recording,
                               const std::vector<Label>& labels);
+// The same for one annotator's lane: `annotator`'s earlier labels of the recording (their own,
+// kManual) removed and the imported labels added, as one edit.
+LabelEdit annotator_import(const LabelStore& store, const std::string& recording,
+                           const std::string& annotator, const std::vector<Label>& labels);
 
 }  // namespace tactile

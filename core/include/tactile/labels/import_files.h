@@ -10,6 +10,7 @@
 //   wide CSV   wide: one capture per row, with a labels file
 //   .npy .npz .json .h5   an array (dataset / key), classes from class_array, captures; JSON
 //              frames given as objects through value_key (and class_key for their classes)
+//   .edf .bdf  EDF+/BDF+ signals chosen by label, annotations as labels (io/edf_import.h)
 
 #include <cstdint>
 #include <functional>
@@ -40,6 +41,13 @@ struct FileImportOptions {
   std::string out;                         // --out: the .h5 file, or the folder with group_columns
   std::string labels;        // --labels: the label store; "" = the ground truth is not stored
   std::string recording_id;  // --recording-id: "" = the output file's stem
+  // EDF+ / BDF+ only: the signals by label, in channel order (empty: every ordinary signal), and
+  // the length of annotations of zero or unknown duration (unset: they are refused).
+  std::vector<std::string> signals;          // --signals
+  std::optional<double> annotation_seconds;  // --annotation-seconds
+  // Any format: the file's labels stored as this annotator's (replacing their labels of the
+  // recording on a second import) instead of the ground truth; "" = the ground truth.
+  std::string annotator;  // --annotator
 };
 
 // One recording written.
@@ -97,7 +105,7 @@ ImportPreview preview_import(const FileImportOptions& options, int frames = 10,
                              const std::function<void(double)>& step = {});
 
 // The format an import reads a file as, by its extension: "CSV", ".npy", ".npz", ".json",
-// ".h5"; "" for one it does not read.
+// ".h5", ".edf", ".bdf"; "" for one it does not read.
 std::string import_format_of(const std::string& path);
 
 }  // namespace tactile
