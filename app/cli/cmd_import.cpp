@@ -1,6 +1,6 @@
 // `tactile import FILE --layout ID --out FILE.h5|FOLDER [--labels DB]`: a recording from
 // what other programs publish (docs/IMPORT.md): long or wide CSV (a class column, grouping
-// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file.
+// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, an XDF stream.
 // The import itself is core's (tactile/labels/import_files.h), shared with the workbench.
 #include <iostream>
 #include <memory>
@@ -48,10 +48,13 @@ void run_import(ImportArguments& arguments) {
 void register_import(CLI::App& app) {
   auto arguments = std::make_shared<ImportArguments>();
   FileImportOptions* options = &arguments->options;
-  CLI::App* command = app.add_subcommand(
-      "import", "Convert other programs' data (CSV, NumPy .npy/.npz, JSON frames, HDF5 datasets) to recordings");
-  command->add_option("FILE", options->file,
-                      "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json or .h5")
+  CLI::App* command = app.add_subcommand("import",
+                                         "Convert other programs' data (CSV, NumPy .npy/.npz, JSON "
+                                         "frames, HDF5 datasets, XDF) to recordings");
+  command
+      ->add_option(
+          "FILE", options->file,
+          "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json, .h5 or .xdf")
       ->required();
   command
       ->add_option("--layout", options->layout,
@@ -101,6 +104,14 @@ void register_import(CLI::App& app) {
                       "Label database (SQLite) for the ground-truth labels (--wide, --class-column, --class-array)");
   command->add_option("--recording-id", options->recording_id,
                       "Recording id (default: the output file's stem)");
+  command->add_option(
+      "--stream", options->stream,
+      "XDF: the data stream, NAME or type:TYPE (default: the only numeric stream with a "
+      "nominal rate)");
+  command->add_option(
+      "--markers", options->markers,
+      "XDF: the markers stream whose markers become ground-truth labels, NAME or type:TYPE "
+      "(default: the only markers stream)");
   command->callback([arguments] { run_import(*arguments); });
 }
 

@@ -11,6 +11,7 @@
 #include "tactile/io/csv.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/io/xdf_import.h"
 #include "tactile/labels/commands.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
@@ -32,6 +33,9 @@ void check_import_options(const FileImportOptions& options) {
   if (options.samples_per_capture) throw Error("--samples-per-capture", "only with --wide");
   if (options.labels_file) throw Error("--labels-file", "only with --wide");
   if (options.class_names) throw Error("--class-names", "only with --wide");
+  if ((!options.stream.empty() || !options.markers.empty()) &&
+      import_format_of(options.file) != ".xdf")
+    throw Error("--stream/--markers", "are for XDF files");
 }
 
 std::string lower_extension(const std::string& path) {
@@ -62,7 +66,7 @@ ImportedArray array_in(const std::string& path, const std::string& name, const s
       throw Error(name_option, "names the dataset of " + path + " to read (e.g. /data/pressure)");
     return read_hdf5_dataset(path, name);
   }
-  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5)");
+  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5, .xdf)");
 }
 
 // What the file holds, read into recordings of the layout; `shape` gets an array's shape.
@@ -70,6 +74,17 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
                                                  const SkinLayout& layout,
                                                  std::vector<int64_t>* shape) {
   const std::string extension = lower_extension(options.file);
+  if (extension == ".xdf") {
+    // The rate and the classes come from the file's streams.
+    if (options.rate_hz)
+      throw Error("--rate", "an XDF stream is resampled to its own nominal rate");
+    if (options.wide || !options.group_columns.empty() || !options.class_column.empty() ||
+        !options.dataset.empty() || !options.key.empty() || !options.class_array.empty() ||
+        !options.value_key.empty() || !options.class_key.empty() || options.captures)
+      throw Error("--wide/--group-columns/--class-column/--dataset/--key/--class-array/--captures",
+                  "are not for XDF files (--stream and --markers choose its streams)");
+    return {import_xdf(options.file, layout, XdfImportOptions{options.stream, options.markers})};
+  }
   if (extension == ".csv" || extension == ".txt") {
     if (!options.dataset.empty() || !options.key.empty() || !options.class_array.empty() ||
         options.captures)
@@ -157,7 +172,7 @@ std::string import_format_of(const std::string& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".csv" || extension == ".txt") return "CSV";
   if (extension == ".hdf5" || extension == ".hdf") return ".h5";
-  for (const char* known : {".npy", ".npz", ".json", ".h5"})
+  for (const char* known : {".npy", ".npz", ".json", ".h5", ".xdf"})
     if (extension == known) return known;
   return "";
 }
@@ -250,7 +265,10 @@ ImportPreview preview_import(const FileImportOptions& options, int frames,
     const std::vector<ImportedRecording> recordings = read_import_input(options, layout, &shape);
     report(step, 1.0);
     const std::string format = import_format_of(options.file);
-    if (format != "CSV")
+    if (format == ".xdf")
+      preview.format =
+          "XDF stream " + in_quotes(recordings.front().recording.metadata.at("xdf_stream"));
+    else if (format != "CSV")
       preview.format = format + " array";
     else if (options.wide)
       preview.format = "wide CSV";

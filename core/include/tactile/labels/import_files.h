@@ -10,6 +10,7 @@
 //   wide CSV   wide: one capture per row, with a labels file
 //   .npy .npz .json .h5   an array (dataset / key), classes from class_array, captures; JSON
 //              frames given as objects through value_key (and class_key for their classes)
+//   .xdf       a numeric stream (stream) resampled to its nominal rate, a markers stream's labels
 
 #include <cstdint>
 #include <functional>
@@ -40,6 +41,9 @@ struct FileImportOptions {
   std::string out;                         // --out: the .h5 file, or the folder with group_columns
   std::string labels;        // --labels: the label store; "" = the ground truth is not stored
   std::string recording_id;  // --recording-id: "" = the output file's stem
+  // XDF only (refused for other files): NAME or type:TYPE; "" = the only candidate.
+  std::string stream;   // --stream: the data stream
+  std::string markers;  // --markers: the markers stream whose markers become labels
 };
 
 // One recording written.
@@ -97,7 +101,7 @@ ImportPreview preview_import(const FileImportOptions& options, int frames = 10,
                              const std::function<void(double)>& step = {});
 
 // The format an import reads a file as, by its extension: "CSV", ".npy", ".npz", ".json",
-// ".h5"; "" for one it does not read.
+// ".h5", ".xdf"; "" for one it does not read.
 std::string import_format_of(const std::string& path);
 
 }  // namespace tactile
