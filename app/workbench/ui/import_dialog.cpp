@@ -78,6 +78,7 @@ std::string preview_fields(const FileImportOptions& options) {
   text += options.dataset + '\n' + options.key + '\n' + options.class_array + '\n';
   text += options.value_key + '\n' + options.class_key + '\n';
   text += options.class_column + '\n' + joined(options.group_columns, ",");
+  text += '\n' + options.stream + '\n' + options.markers;
   return text;
 }
 
@@ -193,7 +194,7 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
     }
     return true;
   };
-  const std::string rate = trimmed_field(dialog.rate.data());
+  const std::string rate = format == ".xdf" ? "" : trimmed_field(dialog.rate.data());
   double value = 0.0;
   if (!rate.empty()) {
     if (!positive(rate, "--rate", value)) return false;
@@ -219,6 +220,9 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
       options.class_column = trimmed_field(dialog.class_column.data());
       options.group_columns = comma_list(dialog.group_columns.data());
     }
+  } else if (format == ".xdf") {
+    options.stream = trimmed_field(dialog.stream.data());
+    options.markers = trimmed_field(dialog.markers.data());
   } else if (!format.empty()) {
     if (format == ".npz" || format == ".h5") options.dataset = trimmed_field(dialog.dataset.data());
     if (format == ".json") {
@@ -269,18 +273,19 @@ void draw_import_dialog(WorkbenchState& state) {
   dialog_keys(state, open);
   const std::string file = trimmed_field(dialog.file.data());
   const std::string format = import_format_of(file);
-  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json or .h5 file", -90.0f);
+  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json, .h5 or .xdf file", -90.0f);
   if (import_browse(state, "FILE")) {
     BrowseRequest request = import_browse_request(state, BrowseMode::kOpenFile, "import file",
                                                   "Import: the file to read");
-    request.extensions = {".csv", ".txt", ".npy", ".npz", ".json", ".h5", ".hdf5", ".hdf"};
+    request.extensions = {".csv", ".txt", ".npy", ".npz", ".json", ".h5", ".hdf5", ".hdf", ".xdf"};
     state.file_browser.open(std::move(request));
   }
   const std::string layouts = joined(known_layout_ids()) + ", grid:RxC, strip:N";
   import_field(state, "--layout", dialog.layout, layouts.c_str(), 440.0f);
-  import_field(state, "--rate", dialog.rate,
-               format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
-               320.0f);
+  if (format != ".xdf")  // an XDF stream has its own nominal rate
+    import_field(state, "--rate", dialog.rate,
+                 format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
+                 320.0f);
   if (format == "CSV") {
     ImGui::SetCursorPosX(kImportLabelWidth);
     ImGui::Checkbox("--wide: one capture per row, with a labels file", &dialog.wide);
@@ -304,6 +309,11 @@ void draw_import_dialog(WorkbenchState& state) {
       import_field(state, "--group-columns", dialog.group_columns,
                    "e.g. subject,capture: one recording per group", 320.0f);
     }
+  } else if (format == ".xdf") {
+    import_field(state, "--stream", dialog.stream,
+                 "NAME or type:TYPE (default: the only numeric stream with a rate)", 440.0f);
+    import_field(state, "--markers", dialog.markers,
+                 "NAME or type:TYPE (default: the only markers stream)", 440.0f);
   } else if (!format.empty()) {
     if (format == ".npz" || format == ".h5")
       import_field(state, "--dataset", dialog.dataset,
@@ -363,7 +373,7 @@ void draw_import_dialog(WorkbenchState& state) {
   if (file.empty()) {
     ImGui::TextDisabled(
         "Choose a file: long or wide CSV, NumPy .npy / .npz, JSON frames, another program's "
-        ".h5 (docs/IMPORT.md).");
+        ".h5, an XDF recording (docs/IMPORT.md).");
   } else if (!parsed) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "refused: %s", refusal.c_str());
   } else {
