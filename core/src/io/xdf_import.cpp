@@ -462,8 +462,13 @@ ImportedRecording import_xdf(const std::string& path, const SkinLayout& layout,
     throw Error(path, "libxdf could not read the checked copy of stream " + in_quotes(data->name));
   const Xdf::Stream& loaded = xdf.streams.front();
   std::vector<double> stamps(loaded.time_stamps.size());
-  for (size_t k = 0; k < stamps.size(); ++k)
+  for (size_t k = 0; k < stamps.size(); ++k) {
     stamps[k] = clock_corrected(loaded.time_stamps[k], data->clock_offsets);
+    if (!std::isfinite(stamps[k]))
+      throw Error(data_where + " sample " + std::to_string(k),
+                  "time stamp " + shortest_text(loaded.time_stamps[k]) +
+                      " with its clock offset is no finite time");
+  }
   SampleMatrix samples(data->samples, channels);
   for (int64_t column = 0; column < channels; ++column) {
     const std::vector<float>& values = loaded.time_series[static_cast<size_t>(column)];
