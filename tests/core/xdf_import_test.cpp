@@ -315,6 +315,22 @@ TEST(XdfClock, OffsetsAreInterpolatedBetweenMeasurementsAndHeldOutside) {
   EXPECT_EQ(clock_corrected(3.0, {}), 3.0);
 }
 
+TEST(XdfClock, OffsetsWrittenOutOfOrderAreUsedInTheOrderOfTheirCollectionTimes) {
+  TemporaryDirectory folder;
+  XdfWriter writer;
+  writer.stream_header(1, "TactileGlove", "Tactile", 8, 100.0, "float32");
+  writer.clock_offset(1, 20.0, 2.0);
+  writer.clock_offset(1, 10.0, 1.0);
+  writer.float_samples(1, {15.0}, {std::vector<float>(8, 1.0f)});
+  writer.save(folder.file("late.xdf"));
+  const std::vector<XdfStreamInfo> streams = scan_xdf(folder.file("late.xdf"));
+  ASSERT_EQ(streams.front().clock_offsets.size(), 2u);
+  EXPECT_EQ(streams.front().clock_offsets.front(), std::make_pair(10.0, 1.0));
+  // 15 s is half way: offset 1.5 s.
+  const ImportedRecording imported = import_xdf(folder.file("late.xdf"), glove_layout(), {});
+  EXPECT_EQ(imported.recording.metadata.at("xdf_first_timestamp"), "16.5");
+}
+
 TEST(XdfResample, TwoSamplesUpToOneAndAHalfStepsApartAreInterpolatedFurtherIsAGap) {
   SampleMatrix values(2, 1);
   values << 0.0f, 3.0f;

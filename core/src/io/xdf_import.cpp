@@ -410,6 +410,10 @@ std::vector<XdfStreamInfo> scan_xdf(const std::string& path) {
     // sees them.
     offset = next;
   }
+  // Offsets by collection time (a recorder writes them in order; clock_corrected needs it).
+  for (XdfStreamInfo& stream : streams)
+    std::stable_sort(stream.clock_offsets.begin(), stream.clock_offsets.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
   return streams;
 }
 

@@ -45,7 +45,8 @@ struct XdfStreamInfo {
   int64_t channels = 0;
   double rate_hz = 0.0;                                  // nominal; 0: irregular (markers)
   int64_t samples = 0;                                   // in all its sample chunks
-  std::vector<std::pair<double, double>> clock_offsets;  // (collection time, offset value)
+  // (collection time, offset value), by collection time.
+  std::vector<std::pair<double, double>> clock_offsets;
   // Where its sample chunks are: byte offset and size of each whole chunk.
   std::vector<std::pair<uint64_t, uint64_t>> sample_chunks;
 };
