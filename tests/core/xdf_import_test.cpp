@@ -236,6 +236,27 @@ TEST(XdfImport, SeveralCandidateStreamsAreListedAndOneIsChosenByNameOrType) {
             std::string::npos);
 }
 
+TEST(XdfImport, EmptyTicksOfAMarkersStreamWithARateAreNoMarkers) {
+  TemporaryDirectory folder;
+  XdfWriter writer;
+  writer.stream_header(1, "TactileGlove", "Tactile", 8, 100.0, "float32");
+  writer.stream_header(2, "Ticks", "Markers", 1, 10.0, "string");
+  std::vector<double> stamps;
+  std::vector<std::vector<float>> values;
+  for (int k = 0; k <= 100; ++k) {
+    stamps.push_back(0.01 * k);
+    values.emplace_back(8, 0.0f);
+  }
+  writer.float_samples(1, stamps, values);
+  writer.string_samples(2, {0.0, 0.1, 0.2, 0.3, 0.4, 0.5}, {"", "pat", "", "", "none", ""});
+  writer.save(folder.file("ticks.xdf"));
+  const ImportedRecording imported = import_xdf(folder.file("ticks.xdf"), glove_layout(), {});
+  ASSERT_EQ(imported.labels.size(), 1u);
+  EXPECT_EQ(imported.labels[0].class_name, "pat");
+  EXPECT_NEAR(imported.labels[0].t0, 0.1, 1e-9);
+  EXPECT_NEAR(imported.labels[0].t1, 0.4, 1e-9);  // "none" ends it, not the empty ticks
+}
+
 std::vector<Label> paired(const std::vector<XdfMarker>& markers, double end = 10.0) {
   return labels_from_markers(markers, end, "m");
 }

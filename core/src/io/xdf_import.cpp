@@ -511,6 +511,9 @@ ImportedRecording import_xdf(const std::string& path, const SkinLayout& layout,
     std::vector<XdfMarker> events;
     for (const auto& [event, stream_index] : xdf.eventMap) {
       if (stream_index != 1) continue;
+      // A markers stream with a rate sends a sample every tick, an empty one when nothing
+      // happened: those are no markers (on an irregular stream an empty marker ends a label).
+      if (markers->rate_hz > 0.0 && event.first.empty()) continue;
       const double time = clock_corrected(event.second, markers->clock_offsets) - first;
       if (!std::isfinite(time))
         throw Error(path + " stream " + in_quotes(markers->name),
