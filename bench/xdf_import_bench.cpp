@@ -41,14 +41,20 @@ void write_session(const std::string& path, int minutes, bool nul_after_xml) {
     std::vector<std::vector<float>> values;
     for (int64_t k = chunk * 100; k < std::min(samples, (chunk + 1) * 100); ++k) {
       if (k % 60000 < 100 && k >= 60000) continue;  // a 1 s dropout every 10 minutes
-      stamps.push_back(100.0 + 0.01 * static_cast<double>(k) + 0.001 * static_cast<double>((k * 7) % 5 - 2));
+      stamps.push_back(100.0 + 0.01 * static_cast<double>(k) +
+                       0.001 * static_cast<double>((k * 7) % 5 - 2));
       std::vector<float> row(8);
-      for (int c = 0; c < 8; ++c) row[static_cast<size_t>(c)] = std::sin(0.01f * static_cast<float>(k + 10 * c));
+      for (int c = 0; c < 8; ++c)
+        row[static_cast<size_t>(c)] = std::sin(0.01f * static_cast<float>(k + 10 * c));
       values.push_back(std::move(row));
     }
     if (!stamps.empty()) writer.float_samples(1, stamps, values);
-    if (chunk % 2 == 0) writer.string_samples(2, {100.0 + static_cast<double>(chunk) + 0.3}, {classes[chunk / 2 % 4]});
-    if (chunk % 5 == 0) writer.clock_offset(1, 100.0 + static_cast<double>(chunk), 0.25 + 1e-6 * static_cast<double>(chunk));
+    if (chunk % 2 == 0)
+      writer.string_samples(2, {100.0 + static_cast<double>(chunk) + 0.3},
+                            {classes[chunk / 2 % 4]});
+    if (chunk % 5 == 0)
+      writer.clock_offset(1, 100.0 + static_cast<double>(chunk),
+                          0.25 + 1e-6 * static_cast<double>(chunk));
     if (chunk % 5 == 0) writer.clock_offset(2, 100.0 + static_cast<double>(chunk), 0.3);
   }
   writer.save(path);
@@ -59,7 +65,8 @@ double median_ms(int repeat, const std::function<void()>& run) {
   for (int k = 0; k < repeat; ++k) {
     const auto begin = std::chrono::steady_clock::now();
     run();
-    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
+                     .count());
   }
   std::sort(ms.begin(), ms.end());
   return ms[ms.size() / 2];
@@ -94,8 +101,8 @@ int main(int argc, char** argv) {
     rows = imported.recording.streams.front().sample_count();
     labels = imported.labels.size();
   });
-  std::printf("session: %d min, %.1f MB, %lld grid rows, %zu labels; median of %d runs\n", minutes, megabytes,
-              static_cast<long long>(rows), labels, repeat);
+  std::printf("session: %d min, %.1f MB, %lld grid rows, %zu labels; median of %d runs\n", minutes,
+              megabytes, static_cast<long long>(rows), labels, repeat);
   std::printf("| step | ms | x libxdf alone | MB/s |\n|---|---|---|---|\n");
   for (const auto& [name, ms] : {std::pair<const char*, double>{"libxdf alone (load_xdf)", alone},
                                  {"scan_xdf (checks only)", scan},

@@ -43,8 +43,8 @@ struct XdfStreamInfo {
   std::string name, type;
   std::string format;  // int8, int16, int32, int64, float32, double64 or string
   int64_t channels = 0;
-  double rate_hz = 0.0;                                  // nominal; 0: irregular (markers)
-  int64_t samples = 0;                                   // in all its sample chunks
+  double rate_hz = 0.0;  // nominal; 0: irregular (markers)
+  int64_t samples = 0;   // in all its sample chunks
   // (collection time, offset value), by collection time.
   std::vector<std::pair<double, double>> clock_offsets;
   // Where its sample chunks are: byte offset and size of each whole chunk.
