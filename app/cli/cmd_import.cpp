@@ -1,6 +1,7 @@
 // `tactile import FILE --layout ID --out FILE.h5|FOLDER [--labels DB]`: a recording from
 // what other programs publish (docs/IMPORT.md): long or wide CSV (a class column, grouping
-// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, EDF+/BDF+.
+// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, EDF+/BDF+,
+// an XDF stream.
 // The import itself is core's (tactile/labels/import_files.h), shared with the workbench.
 #include <iostream>
 #include <memory>
@@ -52,11 +53,11 @@ void register_import(CLI::App& app) {
   FileImportOptions* options = &arguments->options;
   CLI::App* command = app.add_subcommand("import",
                                          "Convert other programs' data (CSV, NumPy .npy/.npz, JSON "
-                                         "frames, HDF5 datasets, EDF+/BDF+) to recordings");
+                                         "frames, HDF5 datasets, EDF+/BDF+, XDF) to recordings");
   command
       ->add_option("FILE", options->file,
                    "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json, .h5, "
-                   ".edf or .bdf")
+                   ".edf, .bdf or .xdf")
       ->required();
   command
       ->add_option("--layout", options->layout,
@@ -121,6 +122,14 @@ void register_import(CLI::App& app) {
       "--annotator", options->annotator,
       "Store the file's labels as this annotator's (replacing theirs of the recording) "
       "instead of the ground truth");
+  command->add_option(
+      "--stream", options->stream,
+      "XDF: the data stream, NAME or type:TYPE (default: the only numeric stream with a "
+      "nominal rate)");
+  command->add_option(
+      "--markers", options->markers,
+      "XDF: the markers stream whose markers become ground-truth labels, NAME or type:TYPE "
+      "(default: the only markers stream)");
   command->callback([arguments] { run_import(*arguments); });
 }
 

@@ -73,6 +73,7 @@ std::string preview_fields(const FileImportOptions& options) {
   text += options.class_column + '\n' + joined(options.group_columns, ",") + '\n';
   text += joined(options.signals, ",") + '\n';
   text += options.annotation_seconds ? shortest_text(*options.annotation_seconds) : "-";
+  text += '\n' + options.stream + '\n' + options.markers;
   return text;
 }
 
@@ -195,7 +196,7 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
     }
     return true;
   };
-  const std::string rate = trimmed_field(dialog.rate.data());
+  const std::string rate = format == ".xdf" ? "" : trimmed_field(dialog.rate.data());
   double value = 0.0;
   // An EDF or BDF file states its rate: the field is hidden for one, and not read.
   if (!rate.empty() && format != ".edf" && format != ".bdf") {
@@ -229,6 +230,9 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
       if (!positive(seconds, "--annotation-seconds", value)) return false;
       options.annotation_seconds = value;
     }
+  } else if (format == ".xdf") {
+    options.stream = trimmed_field(dialog.stream.data());
+    options.markers = trimmed_field(dialog.markers.data());
   } else if (!format.empty()) {
     if (format == ".npz" || format == ".h5") options.dataset = trimmed_field(dialog.dataset.data());
     if (format == ".json") {
@@ -280,19 +284,20 @@ void draw_import_dialog(WorkbenchState& state) {
   dialog_keys(state, open);
   const std::string file = trimmed_field(dialog.file.data());
   const std::string format = import_format_of(file);
-  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json, .h5, .edf or .bdf file",
+  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json, .h5, .edf, .bdf or .xdf file",
                -90.0f);
   if (import_browse(state, "FILE")) {
     BrowseRequest request = import_browse_request(state, BrowseMode::kOpenFile, "import file",
                                                   "Import: the file to read");
-    request.extensions = {".csv", ".txt",  ".npy", ".npz", ".json",
-                          ".h5",  ".hdf5", ".hdf", ".edf", ".bdf"};
+    request.extensions = {".csv",  ".txt", ".npy", ".npz", ".json", ".h5",
+                          ".hdf5", ".hdf", ".edf", ".bdf", ".xdf"};
     state.file_browser.open(std::move(request));
   }
   const std::string layouts = joined(known_layout_ids()) + ", grid:RxC, strip:N";
   import_field(state, "--layout", dialog.layout, layouts.c_str(), 440.0f);
   const bool edf = format == ".edf" || format == ".bdf";
-  if (!edf)  // an EDF or BDF file states its rate
+  // An EDF or BDF file states its rate; an XDF stream has its own nominal rate.
+  if (!edf && format != ".xdf")
     import_field(state, "--rate", dialog.rate,
                  format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
                  320.0f);
@@ -324,6 +329,11 @@ void draw_import_dialog(WorkbenchState& state) {
                  "labels in channel order, e.g. Fz,Cz (default: every signal)", 440.0f);
     import_field(state, "--annotation-seconds", dialog.annotation_seconds,
                  "length of annotations without one (default: refused)", 320.0f);
+  } else if (format == ".xdf") {
+    import_field(state, "--stream", dialog.stream,
+                 "NAME or type:TYPE (default: the only numeric stream with a rate)", 440.0f);
+    import_field(state, "--markers", dialog.markers,
+                 "NAME or type:TYPE (default: the only markers stream)", 440.0f);
   } else if (!format.empty()) {
     if (format == ".npz" || format == ".h5")
       import_field(state, "--dataset", dialog.dataset,
@@ -385,7 +395,7 @@ void draw_import_dialog(WorkbenchState& state) {
   if (file.empty()) {
     ImGui::TextDisabled(
         "Choose a file: long or wide CSV, NumPy .npy / .npz, JSON frames, another program's "
-        ".h5 (docs/IMPORT.md).");
+        ".h5, an XDF recording (docs/IMPORT.md).");
   } else if (!parsed) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "refused: %s", refusal.c_str());
   } else {

@@ -568,7 +568,11 @@ ImportedRecording recording_from_array(const ImportedArray& array, const SkinLay
         int64_t rest = index;
         std::vector<int64_t> coordinate(shape.size());
         for (size_t d = shape.size(); d-- > 0;) coordinate[d] = rest % shape[d], rest /= shape[d];
-        for (int64_t c : coordinate) place += "[" + std::to_string(c) + "]";
+        for (int64_t c : coordinate) {
+          place += '[';
+          place += std::to_string(c);
+          place += ']';
+        }
         throw Error(where + " " + place, "not a finite number");
       }
       stream.samples(row, column) = static_cast<float>(value);

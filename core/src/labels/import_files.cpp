@@ -12,6 +12,7 @@
 #include "tactile/io/edf_import.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/io/xdf_import.h"
 #include "tactile/labels/commands.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
@@ -33,6 +34,9 @@ void check_import_options(const FileImportOptions& options) {
   if (options.samples_per_capture) throw Error("--samples-per-capture", "only with --wide");
   if (options.labels_file) throw Error("--labels-file", "only with --wide");
   if (options.class_names) throw Error("--class-names", "only with --wide");
+  if ((!options.stream.empty() || !options.markers.empty()) &&
+      import_format_of(options.file) != ".xdf")
+    throw Error("--stream/--markers", "are for XDF files");
 }
 
 std::string lower_extension(const std::string& path) {
@@ -63,7 +67,19 @@ ImportedArray array_in(const std::string& path, const std::string& name, const s
       throw Error(name_option, "names the dataset of " + path + " to read (e.g. /data/pressure)");
     return read_hdf5_dataset(path, name);
   }
-  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5, .edf, .bdf)");
+  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5, .edf, .bdf, .xdf)");
+}
+
+// A recording file (EDF, XDF) carries its own rate, channel names and labels: the options of
+// arrays and CSV files are refused as not for `what`.
+void refuse_array_options(const FileImportOptions& options, const std::string& what) {
+  if (!options.dataset.empty() || !options.key.empty() || !options.value_key.empty() ||
+      !options.class_key.empty() || !options.class_array.empty() || options.captures ||
+      !options.class_column.empty() || options.wide || !options.group_columns.empty())
+    throw Error(
+        "--dataset/--key/--value-key/--class-key/--class-array/--captures/--class-column/"
+        "--wide/--group-columns",
+        "are not for " + what);
 }
 
 // What the file holds, read into recordings of the layout; `shape` gets an array's shape.
@@ -72,16 +88,9 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
                                                  std::vector<int64_t>* shape) {
   const std::string extension = lower_extension(options.file);
   if (extension == ".edf" || extension == ".bdf") {
-    // A recording with its own rate, signal names and annotations: no array or CSV options.
     if (options.rate_hz)
       throw Error("--rate", "an EDF or BDF file states its own rate; leave --rate out");
-    if (!options.dataset.empty() || !options.key.empty() || !options.value_key.empty() ||
-        !options.class_key.empty() || !options.class_array.empty() || options.captures ||
-        !options.class_column.empty() || options.wide || !options.group_columns.empty())
-      throw Error(
-          "--dataset/--key/--value-key/--class-key/--class-array/--captures/--class-column/"
-          "--wide/--group-columns",
-          "are not for EDF or BDF files (--signals chooses their signals)");
+    refuse_array_options(options, "EDF or BDF files (--signals chooses their signals)");
     EdfImportOptions edf;
     edf.signals = options.signals;
     edf.annotation_seconds = options.annotation_seconds;
@@ -89,6 +98,12 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
   }
   if (!options.signals.empty() || options.annotation_seconds)
     throw Error("--signals/--annotation-seconds", "are for EDF and BDF files");
+  if (extension == ".xdf") {
+    if (options.rate_hz)
+      throw Error("--rate", "an XDF stream is resampled to its own nominal rate");
+    refuse_array_options(options, "XDF files (--stream and --markers choose its streams)");
+    return {import_xdf(options.file, layout, XdfImportOptions{options.stream, options.markers})};
+  }
   if (extension == ".csv" || extension == ".txt") {
     if (!options.dataset.empty() || !options.key.empty() || !options.class_array.empty() ||
         options.captures)
@@ -176,7 +191,7 @@ std::string import_format_of(const std::string& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".csv" || extension == ".txt") return "CSV";
   if (extension == ".hdf5" || extension == ".hdf") return ".h5";
-  for (const char* known : {".npy", ".npz", ".json", ".h5", ".edf", ".bdf"})
+  for (const char* known : {".npy", ".npz", ".json", ".h5", ".edf", ".bdf", ".xdf"})
     if (extension == known) return known;
   return "";
 }
@@ -281,6 +296,9 @@ ImportPreview preview_import(const FileImportOptions& options, int frames,
     const std::string format = import_format_of(options.file);
     if (format == ".edf" || format == ".bdf")
       preview.format = format + " recording";
+    else if (format == ".xdf")
+      preview.format =
+          "XDF stream " + in_quotes(recordings.front().recording.metadata.at("xdf_stream"));
     else if (format != "CSV")
       preview.format = format + " array";
     else if (options.wide)

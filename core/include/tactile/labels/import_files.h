@@ -11,6 +11,7 @@
 //   .npy .npz .json .h5   an array (dataset / key), classes from class_array, captures; JSON
 //              frames given as objects through value_key (and class_key for their classes)
 //   .edf .bdf  EDF+/BDF+ signals chosen by label, annotations as labels (io/edf_import.h)
+//   .xdf       a numeric stream (stream) resampled to its nominal rate, a markers stream's labels
 
 #include <cstdint>
 #include <functional>
@@ -48,6 +49,9 @@ struct FileImportOptions {
   // Any format: the file's labels stored as this annotator's (replacing their labels of the
   // recording on a second import) instead of the ground truth; "" = the ground truth.
   std::string annotator;  // --annotator
+  // XDF only (refused for other files): NAME or type:TYPE; "" = the only candidate.
+  std::string stream;   // --stream: the data stream
+  std::string markers;  // --markers: the markers stream whose markers become labels
 };
 
 // One recording written.
@@ -105,7 +109,7 @@ ImportPreview preview_import(const FileImportOptions& options, int frames = 10,
                              const std::function<void(double)>& step = {});
 
 // The format an import reads a file as, by its extension: "CSV", ".npy", ".npz", ".json",
-// ".h5", ".edf", ".bdf"; "" for one it does not read.
+// ".h5", ".edf", ".bdf", ".xdf"; "" for one it does not read.
 std::string import_format_of(const std::string& path);
 
 }  // namespace tactile
