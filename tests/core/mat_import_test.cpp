@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <matio.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -160,6 +161,37 @@ TEST(MatImport, AV73FileWrittenByLibmatioReadsTheSameValues) {
   EXPECT_EQ(read_mat_variable(path, "rate").values, std::vector<double>{250});
   EXPECT_EQ(read_mat_variable(path, "names").strings,
             (std::vector<std::string>{"Punch", "Stroke"}));
+}
+
+TEST(MatImport, AV73GroupNodePastTheEndIsRefusedBeforeLibhdf5FollowsIt) {
+  // The fuzzer's finding: libhdf5 copied from a null pointer following the root group's
+  // B-tree (its bytes shifted: the heap the superblock names is not where it points).
+  const std::string path = tactile::test::test_data_dir() +
+                           "/../fuzz/regressions/mat/v73-group-btree-child-past-the-end.mat";
+  const std::string refusal = refusal_of([&] { read_mat_variable(path, "samples"); });
+  EXPECT_NE(refusal.find("byte 1192: no local heap signature"), std::string::npos) << refusal;
+  // A child address past the end of file.
+  testing::TemporaryDirectory directory;
+  const std::string child = directory.file("child73.mat");
+  write_mat73(child);
+  std::vector<uint8_t> changed = mat_bytes(child);
+  const auto tree =
+      std::search(changed.begin(), changed.end(), std::begin("TREE"), std::end("TREE") - 1);
+  ASSERT_NE(tree, changed.end());
+  const size_t child_at = static_cast<size_t>(tree - changed.begin()) + 24 + 8;
+  std::memset(changed.data() + child_at, 0xff, 8);
+  write_mat_bytes(child, changed);
+  EXPECT_NE(refusal_of([&] {
+              read_mat_variable(child, "samples");
+            }).find("byte " + std::to_string(child_at) + ": an address"),
+            std::string::npos);
+  const std::string cut = directory.file("cut73.mat");
+  write_mat73(cut);
+  std::vector<uint8_t> bytes = mat_bytes(cut);
+  bytes.resize(bytes.size() - 100);
+  write_mat_bytes(cut, bytes);
+  EXPECT_NE(refusal_of([&] { read_mat_variable(cut, "samples"); }).find("end of file at"),
+            std::string::npos);
 }
 
 TEST(MatImport, EveryTruncationOfAV5FileIsRefusedOrReadWhole) {

@@ -32,8 +32,8 @@ struct ImportDialog {
   bool open = false;
   bool focus = false;  // take the keyboard on the next frame
   std::array<char, 1024> file{}, out{}, labels{}, labels_file{};
-  std::array<char, 128> layout{}, rate{}, samples_per_capture{}, dataset{}, key{}, value_key{}, class_key{}, class_array{},
-      class_column{}, group_columns{}, recording_id{};
+  std::array<char, 128> layout{}, rate{}, samples_per_capture{}, dataset{}, rate_variable{}, key{},
+      value_key{}, class_key{}, class_array{}, class_column{}, group_columns{}, recording_id{};
   std::array<char, 512> class_names{};
   bool wide = false, captures = false;
   // The preview of what the fields read, made on a worker; a change of the fields starts the

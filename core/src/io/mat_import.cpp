@@ -44,7 +44,10 @@ constexpr uint64_t kMatMostInflation = 1032;
 MatHandle open_mat(const std::string& path) {
   quiet_matio();
   const MatFileVersion version = mat_file_version(path);
-  if (version == MatFileVersion::v5) check_mat_v5_structure(path);
+  if (version == MatFileVersion::v5)
+    check_mat_v5_structure(path);
+  else
+    check_mat_v73_structure(path);
   mat_message.clear();
   MatHandle mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
   if (!mat)

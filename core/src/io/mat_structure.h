@@ -23,4 +23,9 @@ MatFileVersion mat_file_version(const std::string& path);
 // inflated stream of a compressed variable) and what is wrong.
 void check_mat_v5_structure(const std::string& path);
 
+// Of a v7.3 file, what libhdf5 follows unchecked when libmatio opens it: the superblock's end
+// of file against the file's size, and the root group's B-tree, symbol-table nodes and local
+// heap, every address within that end. Datasets' object headers are libhdf5's to check.
+void check_mat_v73_structure(const std::string& path);
+
 }  // namespace tactile
