@@ -299,6 +299,10 @@ std::vector<std::string> mat_rows(const matvar_t& variable, const std::string& p
     throw Error(path, "variable " + name + ": a char array of " + std::to_string(variable.rank) +
                           " dimensions (names are a char matrix or a cell array of char vectors)");
   const size_t rows = variable.dims[0], columns = variable.dims[1];
+  // Rows of no characters hold no bytes: their count is bounded by nothing the file holds.
+  if (columns == 0 && rows > 1)
+    throw Error(path, "variable " + name + ": a " + std::to_string(rows) +
+                          "x0 char matrix (names of no characters)");
   const size_t unit = variable.data_size > 0 ? static_cast<size_t>(variable.data_size) : 1;
   if (rows * columns > 0 && (!variable.data || variable.nbytes < rows * columns * unit))
     throw Error(path, "variable " + name + ": libmatio returned fewer characters than declared");
