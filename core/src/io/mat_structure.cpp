@@ -399,6 +399,8 @@ class MatWalker {
     }
     if (fields != 0 && elements > static_cast<uint64_t>(kMaxImportedElements) / fields)
       refuse(stream, names_tag.at, name, "declares more fields than can be read");
+    // A struct array of no fields holds no bytes however many elements it declares.
+    if (field_names.empty()) return;
     for (uint64_t element = 0; element < elements; ++element)
       for (const std::string& field : field_names) {
         const std::string prefix =
