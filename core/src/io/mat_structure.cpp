@@ -265,6 +265,17 @@ class MatWalker {
         child(stream, end, name + "{" + std::to_string(index + 1) + "}", depth);
     } else if (array_class == kMxStruct) {
       structure(stream, end, name, elements, depth);
+    } else if (array_class == kMxSparse) {
+      // libmatio allocates the row indices and values by nzmax and the column starts by the
+      // columns (the fuzzer's regressions/mat/sparse-nzmax-makes-libmatio-allocate-2.3-gb.mat):
+      // each must fit in the bytes the array holds.
+      const uint64_t nonzero_max = word(flags.data() + 4);
+      const uint64_t columns = dims.size() >= 8 ? word(dims.data() + 4) : 0;
+      const uint64_t left = end - stream.offset();
+      if (nonzero_max > left / 4 || columns + 1 > left / 4)
+        refuse(stream, flags_tag.at, name,
+               "a sparse array of " + std::to_string(nonzero_max) + " non-zeros and " +
+                   std::to_string(columns) + " columns in " + std::to_string(left) + " bytes");
     } else if (array_class == kMxChar || (array_class >= kMxDouble && array_class <= kMxUint64)) {
       data(stream, end, name, elements, array_class == kMxChar, "the data");
       if (complex) data(stream, end, name, elements, false, "the imaginary part");
