@@ -25,7 +25,7 @@ while [[ $# -gt 0 ]]; do
     *) targets+=("$1"); shift ;;
   esac
 done
-all=(csv layout hdf5 packet labels script arrays eaf label_studio edf xdf)
+all=(csv layout hdf5 packet labels script arrays eaf label_studio mat edf xdf)
 if [[ ${#targets[@]} -eq 0 ]]; then targets=("${all[@]}"); fi
 for target in "${targets[@]}"; do
   if [[ ! " ${all[*]} " == *" $target "* ]]; then
@@ -49,7 +49,7 @@ cmake --build "$build" -j"$(nproc)" --target $(printf 'fuzz_%s ' "${targets[@]}"
 # Inputs larger than this teach the fuzzer little and slow it down; the HDF5 seeds are 5 KB.
 declare -A max_len=([csv]=4096 [layout]=8192 [hdf5]=16384 [packet]=4096 [labels]=4096
                     [script]=2048 [arrays]=8192 [eaf]=8192 [label_studio]=8192 [edf]=8192
-                    [xdf]=8192)
+                    [xdf]=8192 [mat]=8192)
 
 # Leaks inside third-party libraries we cannot mend (tests/lsan.supp says which and why).
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"

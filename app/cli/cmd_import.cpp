@@ -1,7 +1,7 @@
 // `tactile import FILE --layout ID --out FILE.h5|FOLDER [--labels DB]`: a recording from
 // what other programs publish (docs/IMPORT.md): long or wide CSV (a class column, grouping
-// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, EDF+/BDF+,
-// an XDF stream.
+// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, a MATLAB .mat
+// variable, EDF+/BDF+, an XDF stream.
 // The import itself is core's (tactile/labels/import_files.h), shared with the workbench.
 #include <iostream>
 #include <memory>
@@ -53,11 +53,12 @@ void register_import(CLI::App& app) {
   FileImportOptions* options = &arguments->options;
   CLI::App* command = app.add_subcommand("import",
                                          "Convert other programs' data (CSV, NumPy .npy/.npz, JSON "
-                                         "frames, HDF5 datasets, EDF+/BDF+, XDF) to recordings");
+                                         "frames, HDF5 datasets, MATLAB .mat, EDF+/BDF+, XDF) "
+                                         "to recordings");
   command
       ->add_option("FILE", options->file,
                    "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json, .h5, "
-                   ".edf, .bdf or .xdf")
+                   ".mat (v5, v7.3), .edf, .bdf or .xdf")
       ->required();
   command
       ->add_option("--layout", options->layout,
@@ -67,6 +68,9 @@ void register_import(CLI::App& app) {
       ->add_option("--rate", options->rate_hz,
                    "Sampling rate in Hz (default for long CSV: from the time column)")
       ->check(CLI::PositiveNumber);
+  command->add_option(
+      "--rate-variable", options->rate_variable,
+      ".mat: the scalar variable holding the rate in Hz (e.g. fs or s.rate; not with --rate)");
   command->add_flag("--wide", options->wide,
                     "One capture per row, channel-major, with a labels file");
   arguments->samples_per_capture_option =
@@ -83,7 +87,9 @@ void register_import(CLI::App& app) {
                        "Class names, comma-separated (--wide; default: the layout's)")
           ->delimiter(',');
   command->add_option("--dataset", options->dataset,
-                      "The array to read: a .npz array's name, an HDF5 file's dataset path");
+                      "The array to read: a .npz array's name, an HDF5 file's dataset path, a .mat "
+                      "variable (s.field for a "
+                      "struct's field; default: the file's one array)");
   command->add_option("--key", options->key, "The JSON key holding the frames (a.b for nested; default: the top level)");
   command->add_option("--value-key", options->value_key,
                       "JSON frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
@@ -92,9 +98,11 @@ void register_import(CLI::App& app) {
                       "JSON frames given as objects: the member holding each frame's class (e.g. label)");
   command->add_flag("--captures", options->captures,
                     "The array is [captures][channels][samples]: captures laid end to end");
-  command->add_option("--class-array", options->class_array,
-                      "Classes per frame (or per capture) in the same file: a .npz array, an HDF5 dataset, a JSON "
-                      "key; names, or indices into the layout's classes; none/empty: no touch");
+  command->add_option(
+      "--class-array", options->class_array,
+      "Classes per frame (or per capture) in the same file: a .npz array, an HDF5 dataset, a JSON "
+      "key, a .mat variable (cell array of names, char matrix, numeric vector); names, or indices "
+      "into the layout's classes; none/empty: no touch");
   command->add_option("--class-column", options->class_column,
                       "Long CSV: the column of class names per row (none/empty: no touch)");
   command->add_option("--group-columns", options->group_columns,

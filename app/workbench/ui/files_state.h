@@ -34,8 +34,8 @@ struct ImportDialog {
   bool open = false;
   bool focus = false;  // take the keyboard on the next frame
   std::array<char, 1024> file{}, out{}, labels{}, labels_file{};
-  std::array<char, 128> layout{}, rate{}, samples_per_capture{}, dataset{}, key{}, value_key{},
-      class_key{}, class_array{}, class_column{}, group_columns{}, recording_id{},
+  std::array<char, 128> layout{}, rate{}, samples_per_capture{}, dataset{}, rate_variable{}, key{},
+      value_key{}, class_key{}, class_array{}, class_column{}, group_columns{}, recording_id{},
       annotation_seconds{}, annotator{}, stream{}, markers{};
   std::array<char, 512> signals{};  // EDF/BDF: --signals
   std::array<char, 512> class_names{};

@@ -69,6 +69,7 @@ std::string preview_fields(const FileImportOptions& options) {
   text += options.labels_file.value_or("-") + '\n';
   text += (options.class_names ? joined(*options.class_names, ",") : "-") + '\n';
   text += options.dataset + '\n' + options.key + '\n' + options.class_array + '\n';
+  text += options.rate_variable + '\n';
   text += options.value_key + '\n' + options.class_key + '\n';
   text += options.class_column + '\n' + joined(options.group_columns, ",") + '\n';
   text += joined(options.signals, ",") + '\n';
@@ -234,7 +235,9 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
     options.stream = trimmed_field(dialog.stream.data());
     options.markers = trimmed_field(dialog.markers.data());
   } else if (!format.empty()) {
-    if (format == ".npz" || format == ".h5") options.dataset = trimmed_field(dialog.dataset.data());
+    if (format == ".npz" || format == ".h5" || format == ".mat")
+      options.dataset = trimmed_field(dialog.dataset.data());
+    if (format == ".mat") options.rate_variable = trimmed_field(dialog.rate_variable.data());
     if (format == ".json") {
       options.key = trimmed_field(dialog.key.data());
       options.value_key = trimmed_field(dialog.value_key.data());
@@ -284,13 +287,13 @@ void draw_import_dialog(WorkbenchState& state) {
   dialog_keys(state, open);
   const std::string file = trimmed_field(dialog.file.data());
   const std::string format = import_format_of(file);
-  import_field(state, "FILE", dialog.file, "a CSV, .npy, .npz, .json, .h5, .edf, .bdf or .xdf file",
-               -90.0f);
+  import_field(state, "FILE", dialog.file,
+               "a CSV, .npy, .npz, .json, .h5, .mat, .edf, .bdf or .xdf file", -90.0f);
   if (import_browse(state, "FILE")) {
     BrowseRequest request = import_browse_request(state, BrowseMode::kOpenFile, "import file",
                                                   "Import: the file to read");
     request.extensions = {".csv",  ".txt", ".npy", ".npz", ".json", ".h5",
-                          ".hdf5", ".hdf", ".edf", ".bdf", ".xdf"};
+                          ".hdf5", ".hdf", ".mat", ".edf", ".bdf",  ".xdf"};
     state.file_browser.open(std::move(request));
   }
   const std::string layouts = joined(known_layout_ids()) + ", grid:RxC, strip:N";
@@ -335,11 +338,15 @@ void draw_import_dialog(WorkbenchState& state) {
     import_field(state, "--markers", dialog.markers,
                  "NAME or type:TYPE (default: the only markers stream)", 440.0f);
   } else if (!format.empty()) {
-    if (format == ".npz" || format == ".h5")
+    if (format == ".npz" || format == ".h5" || format == ".mat")
       import_field(state, "--dataset", dialog.dataset,
-                   format == ".h5" ? "the dataset, e.g. /data/pressure"
-                                   : "the array (default: the only one)",
+                   format == ".h5"    ? "the dataset, e.g. /data/pressure"
+                   : format == ".mat" ? "the variable, s.field (default: the only array)"
+                                      : "the array (default: the only one)",
                    320.0f);
+    if (format == ".mat")
+      import_field(state, "--rate-variable", dialog.rate_variable,
+                   "the variable holding the rate in Hz (not with --rate)", 320.0f);
     if (format == ".json") {
       import_field(state, "--key", dialog.key, "a.b (default: the top level)", 320.0f);
       import_field(state, "--value-key", dialog.value_key,
@@ -395,7 +402,7 @@ void draw_import_dialog(WorkbenchState& state) {
   if (file.empty()) {
     ImGui::TextDisabled(
         "Choose a file: long or wide CSV, NumPy .npy / .npz, JSON frames, another program's "
-        ".h5, an XDF recording (docs/IMPORT.md).");
+        ".h5, MATLAB .mat, EDF+/BDF+, an XDF recording (docs/IMPORT.md).");
   } else if (!parsed) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "refused: %s", refusal.c_str());
   } else {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "tactile/io/edf_import.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/io/mat_import.h"
 #include "tactile/io/xdf_import.h"
 #include "tactile/labels/commands.h"
 #include "tactile/layout/skin_layout.h"
@@ -67,7 +69,29 @@ ImportedArray array_in(const std::string& path, const std::string& name, const s
       throw Error(name_option, "names the dataset of " + path + " to read (e.g. /data/pressure)");
     return read_hdf5_dataset(path, name);
   }
-  throw Error(path, "not a format import reads (.csv, .npy, .npz, .json, .h5, .edf, .bdf, .xdf)");
+
+  if (extension == ".mat") {
+    if (!name.empty()) return read_mat_variable(path, name);
+    // Without a name: the one numeric variable (or struct field) of two or more dimensions
+    // longer than 1, as a .npz of one array needs none.
+    const std::vector<MatVariable> variables = mat_variables(path);
+    std::vector<std::string> candidates;
+    std::string list;
+    for (const MatVariable& variable : variables) {
+      if (!list.empty()) list += ", ";
+      list += mat_variable_line(variable);
+      if (variable.numeric() && std::count_if(variable.dims.begin(), variable.dims.end(),
+                                              [](int64_t extent) { return extent > 1; }) >= 2)
+        candidates.push_back(variable.name);
+    }
+    if (candidates.size() != 1)
+      throw Error(name_option, path + " holds " + std::to_string(candidates.size()) +
+                                   " numeric arrays of 2 or more dimensions: name one (" +
+                                   (list.empty() ? "no variables" : list) + ")");
+    return read_mat_variable(path, candidates.front());
+  }
+  throw Error(path,
+              "not a format import reads (.csv, .npy, .npz, .json, .h5, .mat, .edf, .bdf, .xdf)");
 }
 
 // A recording file (EDF, XDF) carries its own rate, channel names and labels: the options of
@@ -104,6 +128,8 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
     refuse_array_options(options, "XDF files (--stream and --markers choose its streams)");
     return {import_xdf(options.file, layout, XdfImportOptions{options.stream, options.markers})};
   }
+  if (!options.rate_variable.empty() && extension != ".mat")
+    throw Error("--rate-variable", "is for .mat files (a scalar variable holding the rate in Hz)");
   if (extension == ".csv" || extension == ".txt") {
     if (!options.dataset.empty() || !options.key.empty() || !options.class_array.empty() ||
         options.captures)
@@ -141,12 +167,23 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
     throw Error("--value-key/--class-key", "are for JSON frames given as objects");
   if (!options.class_key.empty() && !options.class_array.empty())
     throw Error("--class-key", "or --class-array, not both");
-  if (!options.rate_hz) throw Error("--rate", "is needed for an array (it carries no time)");
+  std::optional<double> rate_hz = options.rate_hz;
+  if (!options.rate_variable.empty()) {
+    // The rate as a scalar variable of the .mat file.
+    if (rate_hz) throw Error("--rate-variable", "or --rate, not both");
+    const ImportedArray rate = read_mat_variable(options.file, options.rate_variable);
+    if (rate.text || rate.values.size() != 1 || !std::isfinite(rate.values.front()) ||
+        rate.values.front() <= 0.0)
+      throw Error("--rate-variable", options.file + ":" + options.rate_variable +
+                                         " is not one positive number (the rate in Hz)");
+    rate_hz = rate.values.front();
+  }
+  if (!rate_hz) throw Error("--rate", "is needed for an array (it carries no time)");
   const ImportedArray array =
       array_in(options.file, options.dataset, options.key, "--dataset", options.value_key);
   if (shape) *shape = array.shape;
   ArrayRecordingOptions array_options;
-  array_options.rate_hz = *options.rate_hz;
+  array_options.rate_hz = *rate_hz;
   array_options.captures = options.captures;
   if (!options.class_array.empty() || !options.class_key.empty()) {
     // The classes live in the same file: another array, dataset or key, or a member of each
@@ -191,7 +228,7 @@ std::string import_format_of(const std::string& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".csv" || extension == ".txt") return "CSV";
   if (extension == ".hdf5" || extension == ".hdf") return ".h5";
-  for (const char* known : {".npy", ".npz", ".json", ".h5", ".edf", ".bdf", ".xdf"})
+  for (const char* known : {".npy", ".npz", ".json", ".h5", ".mat", ".edf", ".bdf", ".xdf"})
     if (extension == known) return known;
   return "";
 }

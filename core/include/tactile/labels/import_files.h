@@ -8,7 +8,7 @@
 //
 //   long CSV   header, time column, one column per channel; class_column, group_columns
 //   wide CSV   wide: one capture per row, with a labels file
-//   .npy .npz .json .h5   an array (dataset / key), classes from class_array, captures; JSON
+//   .npy .npz .json .h5 .mat   an array (dataset / key), classes from class_array, captures; JSON
 //              frames given as objects through value_key (and class_key for their classes)
 //   .edf .bdf  EDF+/BDF+ signals chosen by label, annotations as labels (io/edf_import.h)
 //   .xdf       a numeric stream (stream) resampled to its nominal rate, a markers stream's labels
@@ -23,15 +23,16 @@ namespace tactile {
 
 // The options of `tactile import`, by the names of its flags.
 struct FileImportOptions {
-  std::string file;               // FILE: .csv/.txt, .npy, .npz, .json, .h5/.hdf5/.hdf
+  std::string file;               // FILE: .csv/.txt, .npy, .npz, .json, .h5/.hdf5/.hdf, .mat
   std::string layout;             // --layout: a layout id, grid:RxC or strip:N
   std::optional<double> rate_hz;  // --rate (long CSV: from its time column when unset)
+  std::string rate_variable;      // --rate-variable: .mat: the scalar variable holding the rate
   bool wide = false;              // --wide
   // Wide CSV only; set when given, and refused without `wide`.
   std::optional<int64_t> samples_per_capture;           // --samples-per-capture
   std::optional<std::string> labels_file;               // --labels-file
   std::optional<std::vector<std::string>> class_names;  // --class-names
-  std::string dataset;                                  // --dataset: a .npz array, an HDF5 dataset
+  std::string dataset;  // --dataset: a .npz array, an HDF5 dataset, a .mat variable ("s.field")
   std::string key;                                      // --key: the JSON key of the frames
   std::string value_key;  // --value-key: JSON frames given as objects, the member of each frame
   std::string class_key;  // --class-key: ... and the member of its class
@@ -109,7 +110,7 @@ ImportPreview preview_import(const FileImportOptions& options, int frames = 10,
                              const std::function<void(double)>& step = {});
 
 // The format an import reads a file as, by its extension: "CSV", ".npy", ".npz", ".json",
-// ".h5", ".edf", ".bdf", ".xdf"; "" for one it does not read.
+// ".h5", ".mat", ".edf", ".bdf", ".xdf"; "" for one it does not read.
 std::string import_format_of(const std::string& path);
 
 }  // namespace tactile
