@@ -2,6 +2,7 @@
 // Shared by the command-line end-to-end tests: a temporary folder per test and a way
 // to run a built program with its output captured.
 
+#include <gtest/gtest.h>
 #include <stdlib.h>
 #include <sys/wait.h>
 
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "tactile/live/udp.h"
 #include "test_paths.h"
@@ -81,6 +83,23 @@ inline CommandResult run_program(const std::string& program, const std::string& 
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return result;
+}
+
+// `tactile import ARGUMENTS --out OUT` refused for each case: a non-zero exit, `expected` in
+// what it says, and OUT never written.
+struct RefusedImport {
+  std::string arguments, expected;
+};
+inline void expect_imports_refused(const std::vector<RefusedImport>& cases, const std::string& out,
+                                   const TempFolder& folder) {
+  for (const RefusedImport& bad : cases) {
+    const CommandResult result =
+        run_program("tactile", "import " + bad.arguments + " --out " + out, folder);
+    EXPECT_NE(result.exit_code, 0) << bad.arguments;
+    EXPECT_NE(result.err.find(bad.expected), std::string::npos)
+        << bad.arguments << ": " << result.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << bad.arguments;
+  }
 }
 
 // A UDP port on the loopback that nobody holds now (the system picks it).

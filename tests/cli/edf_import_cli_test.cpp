@@ -82,10 +82,7 @@ TEST_F(EdfImportCli, BadFlagsAndBadFilesAreRefusedClearlyAndWriteNothing) {
   const std::string out = folder.file("never.h5");
   std::filesystem::copy_file(edf, folder.file("cut.edf"));
   std::filesystem::resize_file(folder.file("cut.edf"), std::filesystem::file_size(edf) - 100);
-  struct Case {
-    std::string arguments, expected;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<test::RefusedImport> cases = {
       {edf + " --layout strip:5", "\"Resp\" 25 Hz"},
       {edf + " --layout strip:4 --signals Fz,Cz,Pz,T3", "--signals: no signal \"T3\" in"},
       {edf + " --layout strip:3 --signals Fz,Cz,Pz,Oz",
@@ -98,13 +95,7 @@ TEST_F(EdfImportCli, BadFlagsAndBadFilesAreRefusedClearlyAndWriteNothing) {
       {folder.file("cut.edf") + four, "byte 236: 3 data records of"},
       {folder.file("missing.edf") + four, "missing.edf"},
   };
-  for (const Case& bad : cases) {
-    const auto result = tactile("import " + bad.arguments + " --out " + out);
-    EXPECT_NE(result.exit_code, 0) << bad.arguments;
-    EXPECT_NE(result.err.find(bad.expected), std::string::npos)
-        << bad.arguments << ": " << result.err;
-    EXPECT_FALSE(std::filesystem::exists(out)) << bad.arguments;
-  }
+  test::expect_imports_refused(cases, out, folder);
 }
 
 }  // namespace

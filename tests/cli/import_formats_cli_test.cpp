@@ -93,10 +93,7 @@ TEST_F(ImportFormats, OneTableSplitsIntoRecordingsByItsGroupingColumns) {
 
 TEST_F(ImportFormats, BadInputIsRefusedWithItsPlaceAndWritesNothing) {
   const std::string out = folder.file("never.h5");
-  struct Case {
-    std::string arguments, expected;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<test::RefusedImport> cases = {
       {kData + "frames.npy --layout grid:4x5 --rate 10", "does not fit grid:4x5"},
       {kData + "frames.npy --layout grid:4x4", "--rate"},
       {kData + "frames.npz --layout grid:4x4 --rate 10",
@@ -117,12 +114,7 @@ TEST_F(ImportFormats, BadInputIsRefusedWithItsPlaceAndWritesNothing) {
       {kData + "objects.json --layout grid:4x4 --rate 10 --key frames --value-key pressure",
        "[0]: no member 'pressure'"},
   };
-  for (const Case& bad : cases) {
-    const auto result = import(bad.arguments + " --out " + out);
-    EXPECT_NE(result.exit_code, 0) << bad.arguments;
-    EXPECT_NE(result.err.find(bad.expected), std::string::npos) << bad.arguments << ": " << result.err;
-    EXPECT_FALSE(std::filesystem::exists(out)) << bad.arguments;
-  }
+  test::expect_imports_refused(cases, out, folder);
 }
 
 }  // namespace

@@ -80,10 +80,7 @@ TEST_F(ImportMat, BadFlagsAndDamagedFilesAreRefusedAndWriteNothing) {
     std::ofstream(cut, std::ios::binary) << bytes.substr(0, 400);
   }
   const std::string v6 = kInterop + "tactile_v6.mat --layout grid:2x2 ";
-  struct Case {
-    std::string arguments, expected;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<test::RefusedImport> cases = {
       {v6 + "--dataset samples --rate 10 --rate-variable rate",
        "--rate-variable: or --rate, not both"},
       {v6 + "--dataset samples", "--rate"},
@@ -98,13 +95,7 @@ TEST_F(ImportMat, BadFlagsAndDamagedFilesAreRefusedAndWriteNothing) {
        cut + ": byte 384: a data element declares 56 bytes, 8 are left"},
   };
   const std::string out = folder.file("never.h5");
-  for (const Case& bad : cases) {
-    const auto result = tactile("import " + bad.arguments + " --out " + out);
-    EXPECT_NE(result.exit_code, 0) << bad.arguments;
-    EXPECT_NE(result.err.find(bad.expected), std::string::npos)
-        << bad.arguments << ": " << result.err;
-    EXPECT_FALSE(std::filesystem::exists(out)) << bad.arguments;
-  }
+  test::expect_imports_refused(cases, out, folder);
 }
 
 }  // namespace

@@ -69,10 +69,7 @@ TEST_F(XdfImportCli, BadFlagsAndDamagedFilesAreRefusedWithThePlaceAndWriteNothin
   const std::string bytes = test::read_text(kSession);
   const std::string cut = folder.file("cut.xdf");
   std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() - 10);
-  struct Case {
-    std::string arguments, expected;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<test::RefusedImport> cases = {
       {kSession + " --layout strip:8 --rate 50",
        "--rate: an XDF stream is resampled to its own nominal rate"},
       {kSession + " --layout strip:4",
@@ -86,13 +83,7 @@ TEST_F(XdfImportCli, BadFlagsAndDamagedFilesAreRefusedWithThePlaceAndWriteNothin
        "--stream/--markers: are for XDF files"},
       {cut + " --layout strip:8", "cut.xdf chunk 15 at byte "},
   };
-  for (const Case& bad : cases) {
-    const auto result = tactile("import " + bad.arguments + " --out " + out);
-    EXPECT_NE(result.exit_code, 0) << bad.arguments;
-    EXPECT_NE(result.err.find(bad.expected), std::string::npos)
-        << bad.arguments << ": " << result.err;
-    EXPECT_FALSE(std::filesystem::exists(out)) << bad.arguments;
-  }
+  test::expect_imports_refused(cases, out, folder);
 }
 
 }  // namespace

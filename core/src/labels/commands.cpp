@@ -55,15 +55,25 @@ LabelEdit bounds_edit(Label label, double t0, double t1) {
   return edit;
 }
 
+namespace {
+
+// The labels the filter finds replaced by `labels`, in one edit.
+LabelEdit replacing_import(const LabelStore& store, const LabelFilter& previous,
+                           const std::vector<Label>& labels) {
+  LabelEdit edit;
+  for (const Label& label : store.list(previous)) edit.remove.push_back(ref_of(label));
+  edit.add = labels;
+  return edit;
+}
+
+}  // namespace
+
 LabelEdit ground_truth_import(const LabelStore& store, const std::string& recording,
                               const std::vector<Label>& labels) {
   LabelFilter previous;
   previous.recording = recording;
   previous.source = LabelSource::kGroundTruth;
-  LabelEdit edit;
-  for (const Label& label : store.list(previous)) edit.remove.push_back(ref_of(label));
-  edit.add = labels;
-  return edit;
+  return replacing_import(store, previous, labels);
 }
 
 LabelEdit annotator_import(const LabelStore& store, const std::string& recording,
@@ -72,10 +82,7 @@ LabelEdit annotator_import(const LabelStore& store, const std::string& recording
   previous.recording = recording;
   previous.annotator = annotator;
   previous.source = LabelSource::kManual;
-  LabelEdit edit;
-  for (const Label& label : store.list(previous)) edit.remove.push_back(ref_of(label));
-  edit.add = labels;
-  return edit;
+  return replacing_import(store, previous, labels);
 }
 
 }  // namespace tactile
