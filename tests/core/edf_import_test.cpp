@@ -16,17 +16,10 @@
 namespace tactile {
 namespace {
 
+using testing::refusal_of;
+
 using testing::edf_test_value;
 using testing::EdfTestFile;
-
-std::string refusal_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
 
 // Overwrites `text` at `offset` of the file, padded with spaces to `width`.
 void patch(const std::string& path, size_t offset, const std::string& text, size_t width) {

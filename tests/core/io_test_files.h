@@ -7,12 +7,24 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <string>
 
+#include "tactile/error.h"
 #include "tactile/io/recording.h"
 
 namespace tactile::testing {
+
+// The message of the tactile::Error `call` throws ("" when it throws none).
+inline std::string refusal_of(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
 
 class TemporaryDirectory {
  public:

@@ -21,6 +21,8 @@
 namespace tactile {
 namespace {
 
+using testing::refusal_of;
+
 const std::string kInterop = tactile::test::test_data_dir() + "/interop/";
 const std::string kV6 = kInterop + "tactile_v6.mat";
 const std::string kV7 = kInterop + "tactile_v7.mat";
@@ -34,15 +36,6 @@ void write_mat_bytes(const std::string& path, const std::vector<uint8_t>& bytes)
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(bytes.data()),
             static_cast<std::streamsize>(bytes.size()));
-}
-
-std::string refusal_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
 }
 
 // samples(t, c) = 100 t + c for t = 1..6, c = 1..4, in C order.

@@ -18,20 +18,11 @@
 namespace tactile {
 namespace {
 
+using testing::refusal_of;
+
 using testing::TemporaryDirectory;
 using testing::XdfGloveSample;
 using testing::XdfWriter;
-
-// The message of the tactile::Error `action` throws ("" when it throws none).
-template <typename Action>
-std::string refusal_of(Action&& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
 
 const SkinLayout& glove_layout() {
   static const SkinLayout layout = make_strip_layout(8);
