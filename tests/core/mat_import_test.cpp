@@ -156,6 +156,31 @@ TEST(MatImport, AV73FileWrittenByLibmatioReadsTheSameValues) {
             (std::vector<std::string>{"Punch", "Stroke"}));
 }
 
+TEST(MatImport, AV73AttributeWhoseDataspaceLiesIsRefusedBeforeLibhdf5DecodesIt) {
+  // The fuzzer's finding: libhdf5 1.10.8 read past a heap buffer decoding this attribute of a
+  // variable's object header (libmatio asks for MATLAB_class while it lists the variables).
+  const std::string path = tactile::test::test_data_dir() +
+                           "/../fuzz/regressions/mat/v73-attribute-dataspace-past-its-message.mat";
+  const std::string refusal = refusal_of([&] { mat_variables(path); });
+  EXPECT_NE(refusal.find("byte 1336: a dataspace of more than 2^40 elements"), std::string::npos)
+      << refusal;
+  // An attribute whose name claims more bytes than its message holds.
+  testing::TemporaryDirectory directory;
+  const std::string named = directory.file("named73.mat");
+  write_mat73(named);
+  std::vector<uint8_t> changed = mat_bytes(named);
+  const auto name = std::search(changed.begin(), changed.end(), std::begin("MATLAB_class"),
+                                std::end("MATLAB_class") - 1);
+  ASSERT_NE(name, changed.end());
+  const size_t message = static_cast<size_t>(name - changed.begin()) - 8;  // version 1 header
+  ASSERT_EQ(changed[message], 1);
+  changed[message + 2] = 0xff;  // name size 255: past the message
+  const std::string lying = directory.file("lying73.mat");
+  write_mat_bytes(lying, changed);
+  const std::string too_long = refusal_of([&] { mat_variables(lying); });
+  EXPECT_NE(too_long.find("an attribute whose name (255)"), std::string::npos) << too_long;
+}
+
 TEST(MatImport, AV73GroupNodePastTheEndIsRefusedBeforeLibhdf5FollowsIt) {
   // The fuzzer's finding: libhdf5 copied from a null pointer following the root group's
   // B-tree (its bytes shifted: the heap the superblock names is not where it points).

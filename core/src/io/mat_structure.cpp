@@ -629,15 +629,126 @@ class MatHdf5Walker {
     for (uint64_t symbol = 0; symbol < symbols; ++symbol) {
       const size_t entry = 8 + static_cast<size_t>(symbol) * 40;
       if (number(node, entry) >= heap_size_) fail(at + entry, "a link name past its heap");
-      address(number(node, entry + 8), at + entry + 8, 16);
+      const uint64_t header = address(number(node, entry + 8), at + entry + 8, 16);
+      object_header(header);
     }
+  }
+
+  // A variable's (or a struct's group's) object header, version 1: every message within its
+  // block, continuation blocks followed within the file, and the messages libhdf5 decodes
+  // without checking their sizes against the message (attributes: MATLAB_class on every
+  // variable; dataspaces; datatypes) checked here. A struct's group is walked in turn.
+  void object_header(uint64_t at) {
+    if (++headers_ > 65536) fail(at, "more than 65536 object headers (a cycle?)");
+    const std::vector<uint8_t> prefix = bytes(at, 16, "an object header");
+    if (std::memcmp(prefix.data(), "OHDR", 4) == 0)
+      fail(at, "an object header of version 2, which is not read here");
+    if (prefix[0] != 1) fail(at, "an object header of version " + std::to_string(prefix[0]));
+    const uint64_t declared = number(prefix, 2, 2);
+    const uint64_t length = number(prefix, 8, 4);
+    std::vector<std::pair<uint64_t, uint64_t>> blocks = {{at + 16, length}};
+    uint64_t messages = 0;
+    for (size_t block = 0; block < blocks.size(); ++block) {
+      if (block > 64) fail(at, "more than 64 continuation blocks");
+      const auto [start, size] = blocks[block];
+      if (size > (uint64_t{1} << 20))
+        fail(start, "a header block of " + std::to_string(size) + " bytes");
+      address(start - base_, start, size);
+      const std::vector<uint8_t> data = bytes(start, size, "an object header block");
+      for (uint64_t offset = 0; offset + 8 <= size;) {
+        const uint64_t type = number(data, offset, 2);
+        const uint64_t message = number(data, offset + 2, 2);
+        const uint64_t body = start + offset + 8;
+        if (message > size - offset - 8) fail(start + offset, "a header message past its block");
+        if (++messages > declared + 64)
+          fail(start + offset, "more messages than the header declares");
+        const std::vector<uint8_t> content(
+            data.begin() + static_cast<std::ptrdiff_t>(offset + 8),
+            data.begin() + static_cast<std::ptrdiff_t>(offset + 8 + message));
+        if (type == 0x0001) dataspace(content, 0, message, body);
+        if (type == 0x0003) datatype(content, 0, message, body);
+        if (type == 0x000C) attribute(content, body);
+        if (type == 0x0010) {
+          if (message < 16)
+            fail(body, "a continuation message of " + std::to_string(message) + " bytes");
+          blocks.emplace_back(address(number(content, 0), body, number(content, 8)),
+                              number(content, 8));
+        }
+        if (type == 0x0011) {
+          if (message < 16)
+            fail(body, "a symbol table message of " + std::to_string(message) + " bytes");
+          if (++depth_ > 32) fail(body, "groups nested deeper than 32");
+          const uint64_t saved_heap = heap_size_, saved_nodes = nodes_;
+          group(number(content, 0), number(content, 8), body);
+          heap_size_ = saved_heap;
+          nodes_ = saved_nodes;
+          --depth_;
+        }
+        offset += 8 + message;
+      }
+    }
+  }
+
+  // Dataspace message (versions 1 and 2) at `from` of `content`, `limit` bytes long: its rank
+  // and dimension sizes within those bytes. Returns the element count (1 for a scalar).
+  uint64_t dataspace(const std::vector<uint8_t>& content, size_t from, uint64_t limit,
+                     uint64_t at) {
+    if (limit < 8) fail(at, "a dataspace of " + std::to_string(limit) + " bytes");
+    const uint8_t version = content[from], rank = content[from + 1], flags = content[from + 2];
+    if (version < 1 || version > 2) fail(at, "a dataspace of version " + std::to_string(version));
+    if (rank > 32) fail(at + 1, "a dataspace of rank " + std::to_string(rank));
+    const uint64_t header = version == 1 ? 8 : 4;
+    const uint64_t needed = header + uint64_t{rank} * 8 * ((flags & 1) ? 2 : 1);
+    if (needed > limit)
+      fail(at, "a dataspace of rank " + std::to_string(rank) + " needs " + std::to_string(needed) +
+                   " bytes, its message has " + std::to_string(limit));
+    uint64_t elements = 1;
+    for (uint64_t d = 0; d < rank; ++d) {
+      const uint64_t extent = number(content, from + header + d * 8);
+      if (extent != 0 && elements > (uint64_t{1} << 40) / extent)
+        fail(at, "a dataspace of more than 2^40 elements");
+      elements *= extent;
+    }
+    return elements;
+  }
+
+  // Datatype message: at least its 8-byte header within `limit`; returns the element size.
+  uint64_t datatype(const std::vector<uint8_t>& content, size_t from, uint64_t limit, uint64_t at) {
+    if (limit < 8) fail(at, "a datatype of " + std::to_string(limit) + " bytes");
+    const uint64_t size = number(content, from + 4, 4);
+    if (size == 0) fail(at + 4, "a datatype of 0 bytes");
+    return size;
+  }
+
+  // Attribute message, versions 1 to 3: name, datatype and dataspace within the message, and
+  // the value (elements x element size) within what is left.
+  void attribute(const std::vector<uint8_t>& content, uint64_t at) {
+    const uint64_t limit = content.size();
+    if (limit < 8) fail(at, "an attribute of " + std::to_string(limit) + " bytes");
+    const uint8_t version = content[0];
+    if (version < 1 || version > 3) fail(at, "an attribute of version " + std::to_string(version));
+    const uint64_t name = number(content, 2, 2), type = number(content, 4, 2),
+                   space = number(content, 6, 2);
+    auto padded = [version](uint64_t n) { return version == 1 ? (n + 7) / 8 * 8 : n; };
+    const uint64_t header = version == 3 ? 9 : 8;
+    const uint64_t type_at = header + padded(name), space_at = type_at + padded(type),
+                   value_at = space_at + padded(space);
+    if (name == 0 || value_at > limit)
+      fail(at, "an attribute whose name (" + std::to_string(name) + "), datatype (" +
+                   std::to_string(type) + ") and dataspace (" + std::to_string(space) +
+                   " bytes) do not fit its " + std::to_string(limit) + " bytes");
+    const uint64_t element = datatype(content, type_at, type, at + type_at);
+    const uint64_t elements = dataspace(content, space_at, space, at + space_at);
+    if (elements != 0 && element > (limit - value_at) / elements)
+      fail(at, "an attribute value of " + std::to_string(elements) + " x " +
+                   std::to_string(element) + " bytes past its message");
   }
 
   std::string path_;
   std::ifstream& in_;
   uint64_t size_;
   uint64_t base_ = 0, end_ = 0;
-  uint64_t leaf_k_ = 0, internal_k_ = 0, heap_size_ = 0, nodes_ = 0;
+  uint64_t leaf_k_ = 0, internal_k_ = 0, heap_size_ = 0, nodes_ = 0, headers_ = 0, depth_ = 0;
 };
 
 }  // namespace
