@@ -648,6 +648,7 @@ class MatHdf5Walker {
     const uint64_t length = number(prefix, 8, 4);
     std::vector<std::pair<uint64_t, uint64_t>> blocks = {{at + 16, length}};
     uint64_t messages = 0;
+    std::optional<uint64_t> elements, element_bytes;
     for (size_t block = 0; block < blocks.size(); ++block) {
       if (block > 64) fail(at, "more than 64 continuation blocks");
       const auto [start, size] = blocks[block];
@@ -665,8 +666,8 @@ class MatHdf5Walker {
         const std::vector<uint8_t> content(
             data.begin() + static_cast<std::ptrdiff_t>(offset + 8),
             data.begin() + static_cast<std::ptrdiff_t>(offset + 8 + message));
-        if (type == 0x0001) dataspace(content, 0, message, body);
-        if (type == 0x0003) datatype(content, 0, message, body);
+        if (type == 0x0001) elements = dataspace(content, 0, message, body);
+        if (type == 0x0003) element_bytes = datatype(content, 0, message, body);
         if (type == 0x000C) attribute(content, body);
         if (type == 0x0010) {
           if (message < 16)
@@ -687,6 +688,14 @@ class MatHdf5Walker {
         offset += 8 + message;
       }
     }
+    // A dataset's value: libhdf5 allocates elements x element size to read it (and to convert
+    // it), whatever the file holds, so it must be what the file's bytes could hold even
+    // deflated (1032:1).
+    if (elements && element_bytes &&
+        (*elements != 0 && *element_bytes > size_ / *elements * 1032 + 1032))
+      fail(at, "a dataset of " + std::to_string(*elements) + " elements of " +
+                   std::to_string(*element_bytes) + " bytes, more than the file's " +
+                   std::to_string(size_) + " bytes could hold");
   }
 
   // Dataspace message (versions 1 and 2) at `from` of `content`, `limit` bytes long: its rank
