@@ -18,6 +18,7 @@
 #include "tactile/labels/predict.h"
 #include "tactile/ml/classifier.h"
 #include "tactile/ml/evaluation.h"
+#include "tactile/ml/evaluation_shards.h"
 #include "tactile/ml/train_all.h"
 #include "tactile/skins/skin.h"
 
@@ -36,6 +37,8 @@ struct EvaluateArgs {
   std::string save_model;
   std::string out;
   std::string pipeline, pipeline_params;  // recorded in a saved model
+  bool no_timings = false;
+  ShardArgs shard;
 };
 
 void print_list() {
@@ -137,28 +140,18 @@ void print_result(const ml::EvaluationResult& result, const Dataset& dataset) {
             << " s, summed over folds)\n";
 }
 
-// `--classifier all`: every preset on the same folds, a table sorted by accuracy.
-void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protocol& protocol) {
-  ProgressBar bar("evaluate all");
-  ml::EvaluationControl control;
-  control.threads = args.threads;
-  control.scores = !args.out.empty();
-  control.progress = [&](int done, int total) { bar.update(done, total); };
-  ml::TrainAllResult all{protocol.to_string(), args.seed, args.features,
-                         ml::evaluate_all(dataset, protocol, args.seed, control)};
-  bar.finish();
-  ml::sort_best_first(all.outcomes);
+// The train-all table, best first, as `--classifier all` prints it (or its JSON).
+void print_all(const ml::TrainAllResult& all, const Dataset& dataset, bool json,
+               const std::string& out) {
   const std::vector<ml::PresetOutcome>& outcomes = all.outcomes;
-  nlohmann::json table = nlohmann::json::array();
-  for (const ml::PresetOutcome& outcome : outcomes) table.push_back(ml::summary_json(outcome));
-  if (!args.out.empty()) ml::write_train_all_file(args.out, all);
-  if (args.json) {
-    std::cout << nlohmann::json{{"protocol", protocol.to_string()}, {"presets", table}}.dump(2)
-              << "\n";
+  if (json) {
+    nlohmann::json table = nlohmann::json::array();
+    for (const ml::PresetOutcome& outcome : outcomes) table.push_back(ml::summary_json(outcome));
+    std::cout << nlohmann::json{{"protocol", all.protocol}, {"presets", table}}.dump(2) << "\n";
     return;
   }
-  std::cout << "protocol " << protocol.to_string() << ", " << dataset.rows() << " rows, "
-            << dataset.features.cols() << " features, seed " << args.seed << "\n"
+  std::cout << "protocol " << all.protocol << ", " << dataset.rows() << " rows, "
+            << dataset.features.cols() << " features, seed " << all.seed << "\n"
             << std::left << std::setw(22) << "classifier" << std::right << std::setw(10)
             << "accuracy" << std::setw(13) << "mean recall" << std::setw(10) << "time\n";
   for (const ml::PresetOutcome& outcome : outcomes) {
@@ -171,7 +164,90 @@ void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protoco
               << percent(ml::mean_recall(*outcome.result)) << std::setw(8)
               << std::setprecision(2) << outcome.result->seconds << " s\n";
   }
-  if (!args.out.empty()) std::cout << "results     " << args.out << "\n";
+  if (!out.empty()) std::cout << "results     " << out << "\n";
+}
+
+// What a single evaluation writes to --out and prints with --json.
+nlohmann::json evaluation_document(const ml::EvaluationResult& result, const std::string& features,
+                                   const std::string& model) {
+  nlohmann::json document = ml::to_json(result, true);
+  document["features"] = features;
+  if (!model.empty()) document["model"] = model;
+  return document;
+}
+
+// Writes what one process writes to `out` for the outcomes of a job: the train-all file, or
+// the one evaluation's result.
+void write_evaluation_out(const std::string& out, bool all, const ml::TrainAllResult& result) {
+  if (all) {
+    ml::write_train_all_file(out, result);
+  } else {
+    write_json_file(out, evaluation_document(*result.outcomes.front().result, result.features, ""),
+                    "evaluation");
+  }
+}
+
+// `--classifier all`: every preset on the same folds, a table sorted by accuracy.
+void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protocol& protocol) {
+  ProgressBar bar("evaluate all");
+  ml::EvaluationControl control;
+  control.threads = args.threads;
+  control.scores = !args.out.empty();
+  control.progress = [&](int done, int total) { bar.update(done, total); };
+  ml::TrainAllResult all{protocol.to_string(), args.seed, args.features,
+                         ml::evaluate_all(dataset, protocol, args.seed, control)};
+  bar.finish();
+  if (args.no_timings)
+    for (ml::PresetOutcome& outcome : all.outcomes)
+      if (outcome.result) ml::clear_timings(*outcome.result);
+  ml::sort_best_first(all.outcomes);
+  if (!args.out.empty()) ml::write_train_all_file(args.out, all);
+  print_all(all, dataset, args.json, args.out);
+}
+
+// The job of an evaluation, as its shards and their merge see it.
+ml::EvaluationJob evaluation_job(const nlohmann::json& inputs) {
+  ml::EvaluationJob job;
+  const auto classifier = inputs.at("--classifier").get<std::string>();
+  job.skip_failures = classifier == "all";
+  job.classifiers = job.skip_failures ? ml::preset_names() : std::vector<std::string>{classifier};
+  job.protocol = ml::Protocol::parse(inputs.at("--protocol").get<std::string>());
+  job.seed = inputs.at("--seed").get<uint64_t>();
+  job.scores = true;  // a shard writes --out, which holds every row's score
+  return job;
+}
+
+// `--shard I/N`: this shard's folds (of every preset for `all`), kept in a part file.
+void run_shard(const EvaluateArgs& args, const Dataset& dataset) {
+  if (args.out.empty())
+    throw Error("--shard", "needs --out (the result the merge writes; parts go beside it)");
+  if (!args.save_model.empty())
+    throw Error("--save-model",
+                "fits on every row in one process: not with --shard (save the "
+                "model with `tactile evaluate --save-model` without --shard)");
+  if (args.json) throw Error("--json", "not with --shard: `tactile merge` prints the result");
+  const ShardPlan plan = shard_plan(args.shard, args.out);
+  Part part;
+  part.command = "evaluate";
+  part.shard = plan.shard;
+  part.inputs = {{"--features", args.features},
+                 {"features bytes", file_digest(args.features)},
+                 {"--classifier", args.classifier},
+                 {"--protocol", ml::Protocol::parse(args.protocol).to_string()},
+                 {"--seed", args.seed},
+                 {"--no-timings", args.no_timings}};
+  part.result = args.out;
+  const ml::EvaluationJob job = evaluation_job(part.inputs);
+  const std::vector<std::string> keys = ml::evaluation_plan(dataset, job);
+  part.items = static_cast<int64_t>(keys.size());
+  part.plan = plan_digest(keys);
+  ProgressBar bar("evaluate " + args.classifier + " shard " + plan.shard.to_string());
+  ml::EvaluationControl control;
+  control.threads = args.threads;
+  control.progress = [&](int done, int total) { bar.update(done, total); };
+  part.done = ml::run_evaluation_items(dataset, job, plan.shard, control);
+  bar.finish();
+  write_shard_part(plan, part);
 }
 
 void run_evaluate(const EvaluateArgs& args) {
@@ -191,6 +267,10 @@ void run_evaluate(const EvaluateArgs& args) {
   if (!args.out.empty() && std::filesystem::path(args.out).extension() != ".json")
     throw Error("--out", "'" + args.out + "': the file name must end in .json");
   const Dataset dataset = read_dataset_csv(args.features);
+  if (!args.shard.shard.empty() || !args.shard.part.empty()) {
+    run_shard(args, dataset);
+    return;
+  }
   if (all) {
     run_all(args, dataset, protocol);
     return;
@@ -201,9 +281,10 @@ void run_evaluate(const EvaluateArgs& args) {
   control.threads = args.threads;
   control.progress = [&](int done, int total) { bar.update(done, total); };
   control.scores = !args.out.empty() || args.json;
-  const ml::EvaluationResult result =
+  ml::EvaluationResult result =
       ml::evaluate(dataset, args.classifier, protocol, args.seed, control);
   bar.finish();
+  if (args.no_timings) ml::clear_timings(result);
   if (!args.save_model.empty()) {
     // The skin's own pipeline unless told, when every row is of one skin.
     const std::string layout = dataset.shared_metadata("layout");
@@ -215,18 +296,11 @@ void run_evaluate(const EvaluateArgs& args) {
         fit_model_document(dataset, args.classifier, args.seed, pipeline, args.pipeline_params),
         "model");
   }
-  if (!args.out.empty()) {
-    nlohmann::json document = ml::to_json(result, true);
-    document["features"] = args.features;
-    if (!args.save_model.empty()) document["model"] = args.save_model;
-    write_json_file(args.out, document, "evaluation");
-  }
-
+  if (!args.out.empty())
+    write_json_file(args.out, evaluation_document(result, args.features, args.save_model),
+                    "evaluation");
   if (args.json) {
-    nlohmann::json out = ml::to_json(result, true);
-    out["features"] = args.features;
-    if (!args.save_model.empty()) out["model"] = args.save_model;
-    std::cout << out.dump(2) << "\n";
+    std::cout << evaluation_document(result, args.features, args.save_model).dump(2) << "\n";
   } else {
     print_result(result, dataset);
     if (!args.save_model.empty())
@@ -236,6 +310,29 @@ void run_evaluate(const EvaluateArgs& args) {
 }
 
 }  // namespace
+
+void merge_evaluate(const std::vector<Part>& parts, const std::string& out) {
+  const nlohmann::json& inputs = parts.front().inputs;
+  const auto features = inputs.at("--features").get<std::string>();
+  const Dataset dataset = read_dataset_csv(features);
+  if (file_digest(features) != inputs.at("features bytes"))
+    throw Error(features, "changed since the shards read it; run them again");
+  const ml::EvaluationJob job = evaluation_job(inputs);
+  ml::TrainAllResult result{job.protocol.to_string(), job.seed, features,
+                            ml::outcomes_from_items(dataset, job, items_in_order(parts))};
+  if (inputs.at("--no-timings").get<bool>())
+    for (ml::PresetOutcome& outcome : result.outcomes)
+      if (outcome.result) ml::clear_timings(*outcome.result);
+  const bool all = job.skip_failures;
+  if (all) ml::sort_best_first(result.outcomes);
+  write_evaluation_out(out, all, result);
+  if (all)
+    print_all(result, dataset, false, out);
+  else {
+    print_result(*result.outcomes.front().result, dataset);
+    std::cout << "result      " << out << "\n";
+  }
+}
 
 void register_evaluate(CLI::App& app) {
   auto args = std::make_shared<EvaluateArgs>();
@@ -265,6 +362,10 @@ void register_evaluate(CLI::App& app) {
   command->add_option("--pipeline-params", args->pipeline_params,
                       "With --save-model: that pipeline's --params");
   command->add_flag("--json", args->json, "Print the result as JSON");
+  command->add_flag("--no-timings", args->no_timings,
+                    "Write 0 for every time, so that the same inputs give the same bytes (a "
+                    "result to compare, or one merged from shards)");
+  add_shard_options(command, args->shard);
   command->add_flag("--list", args->list, "List the classifier names and exit");
   command->callback([args] { run_evaluate(*args); });
 }

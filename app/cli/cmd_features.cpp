@@ -28,6 +28,7 @@ struct FeaturesOptions {
   std::string describe, layout;
   int threads = 0;
   bool list = false, json = false;
+  ShardArgs shard;
 };
 
 void run_list() {
@@ -61,6 +62,8 @@ void run_extract(const FeaturesOptions& options) {
   table_options.recordings = options.recordings;
   table_options.out = options.out;
   table_options.threads = options.threads;
+  const ShardPlan plan = shard_plan(options.shard, options.out);
+  table_options.shard = plan.shard;
   ProgressBar progress("features " + options.pipeline);
   const FeatureTable table = extract_feature_table(
       table_options, [&progress](int64_t done, int64_t total) { progress.update(done, total); });
@@ -68,6 +71,10 @@ void run_extract(const FeaturesOptions& options) {
   for (const SkippedSegment& skipped : table.corpus.skipped)
     std::cerr << "skipped: " << skipped.recording << " segment " << skipped.segment_id << ": "
               << skipped.reason << "\n";
+  if (plan.shard.active()) {  // its share only: the table is merge's to write
+    write_shard_part(plan, feature_table_part(table, table_options));
+    return;
+  }
   write_feature_table(table, table_options);
   // What the pipeline chose for the table's layout (generic: per channel or whole grid).
   if (const std::string layout = table.corpus.dataset.shared_metadata("layout"); !layout.empty()) {
@@ -83,6 +90,15 @@ void run_extract(const FeaturesOptions& options) {
 }
 
 }  // namespace
+
+void merge_features(const std::vector<Part>& parts, const std::string& out) {
+  FeatureTableOptions options;
+  options.pipeline = parts.front().inputs.at("--pipeline").get<std::string>();
+  options.out = out;
+  const FeatureTable table = merge_feature_table_parts(parts);
+  write_feature_table(table, options);
+  std::cout << feature_table_line(table, options) << " (" << parts.size() << " parts merged)\n";
+}
 
 void register_features(CLI::App& app) {
   auto options = std::make_shared<FeaturesOptions>();
@@ -102,6 +118,7 @@ void register_features(CLI::App& app) {
   command->add_option("--out", options->out, "Output table: FILE.csv or FILE.arff");
   command->add_flag("--json", options->json,
                     "Print a JSON summary: rows, skipped, columns, per-class counts and means");
+  add_shard_options(command, options->shard);
   command->add_flag("--list", options->list, "Print the feature pipelines and exit");
   command->add_option("--describe", options->describe,
                       "Print a pipeline's columns with their descriptions (needs --layout)");

@@ -42,13 +42,23 @@ FeatureTable extract_feature_table(const FeatureTableOptions& options,
       make_feature_extractor(options.pipeline, Parameters::parse(options.params, "--params"));
   CorpusQuery query{options.database, source, options.recordings, options.layout};
   query.recording = options.recording;
-  const std::vector<CorpusRecording> recordings = corpus_from_store(query);
+  std::vector<CorpusRecording> recordings = corpus_from_store(query);
+  FeatureTable table;
+  for (size_t index = 0; index < recordings.size(); ++index) {
+    table.plan.push_back(recordings[index].id + ":" +
+                         std::to_string(recordings[index].segments.size()));
+    if (options.shard.owns(index)) table.done.push_back(index);
+  }
+  if (options.shard.active()) {
+    std::vector<CorpusRecording> owned;
+    for (size_t index : table.done) owned.push_back(std::move(recordings[index]));
+    recordings = std::move(owned);
+  }
   CorpusOptions corpus_options;
   corpus_options.threads = options.threads;
   corpus_options.progress = progress;
   corpus_options.cancel = cancel;
-  FeatureTable table;
-  table.corpus = extract_corpus(*extractor, recordings, corpus_options);
+  if (!recordings.empty()) table.corpus = extract_corpus(*extractor, recordings, corpus_options);
   table.recordings = recordings.size();
   return table;
 }
@@ -110,6 +120,101 @@ std::string feature_table_json(const FeatureTable& table, const FeatureTableOpti
   summary["class_counts"] = counts;
   summary["class_means"] = means;
   return summary.dump(2) + "\n";
+}
+
+//---- Shards ---------------------------------------------------------------------------------
+
+Part feature_table_part(const FeatureTable& table, const FeatureTableOptions& options) {
+  const Dataset& dataset = table.corpus.dataset;
+  Part part;
+  part.command = "features";
+  part.shard = options.shard;
+  part.inputs = {{"--pipeline", options.pipeline},
+                 {"--params", options.params},
+                 {"--labels", options.database},
+                 {"--source", options.source},
+                 {"--recordings", options.recordings}};
+  part.result = options.out;
+  part.items = static_cast<int64_t>(table.plan.size());
+  part.plan = plan_digest(table.plan);
+  nlohmann::json columns = nlohmann::json::array();
+  for (const FeatureColumn& column : dataset.columns)
+    columns.push_back({column.name, column.description});
+  part.shared = {{"columns", columns}};
+  part.done = nlohmann::json::array();
+  for (size_t index : table.done) {
+    const std::string id = table.plan[index].substr(0, table.plan[index].rfind(':'));
+    nlohmann::json rows = nlohmann::json::array(), skipped = nlohmann::json::array();
+    for (int64_t row = 0; row < dataset.rows(); ++row) {
+      const auto at = static_cast<size_t>(row);
+      if (dataset.recordings[at] != id) continue;
+      std::vector<double> values(static_cast<size_t>(dataset.features.cols()));
+      for (size_t column = 0; column < values.size(); ++column)
+        values[column] = dataset.features(row, static_cast<Eigen::Index>(column));
+      rows.push_back({{"features", values},
+                      {"class", dataset.classes[at]},
+                      {"subject", dataset.subjects[at]},
+                      {"segment_id", dataset.segment_ids[at]},
+                      {"metadata", dataset.metadata[at]}});
+    }
+    for (const SkippedSegment& skip : table.corpus.skipped)
+      if (skip.recording == id)
+        skipped.push_back({{"segment_id", skip.segment_id},
+                           {"t0", skip.t0},
+                           {"t1", skip.t1},
+                           {"reason", skip.reason}});
+    part.done.push_back(
+        {{"index", index}, {"recording", id}, {"rows", rows}, {"skipped", skipped}});
+  }
+  return part;
+}
+
+FeatureTable merge_feature_table_parts(const std::vector<Part>& parts) {
+  FeatureTable table;
+  // A shard that read no recording (more shards than recordings) knows no columns.
+  const Part* with_columns = nullptr;
+  for (const Part& part : parts) {
+    if (part.shared.at("columns").empty()) continue;
+    if (!with_columns) {
+      with_columns = &part;
+      for (const nlohmann::json& column : part.shared.at("columns"))
+        table.corpus.dataset.columns.push_back(
+            {column.at(0).get<std::string>(), column.at(1).get<std::string>()});
+    } else if (part.shared.at("columns") != with_columns->shared.at("columns")) {
+      throw Error(part.path, "its feature columns differ from " + with_columns->path + "'s");
+    }
+  }
+  Dataset& dataset = table.corpus.dataset;
+  std::vector<std::vector<double>> values;
+  for (const nlohmann::json& item : items_in_order(parts)) {
+    const auto id = item.at("recording").get<std::string>();
+    ++table.recordings;
+    for (const nlohmann::json& row : item.at("rows")) {
+      values.push_back(row.at("features").get<std::vector<double>>());
+      if (values.back().size() != dataset.columns.size())
+        throw Error("merge", "recording " + id + ": a row of " +
+                                 std::to_string(values.back().size()) + " features, not " +
+                                 std::to_string(dataset.columns.size()));
+      dataset.classes.push_back(row.at("class").get<std::string>());
+      dataset.subjects.push_back(row.at("subject").get<std::string>());
+      dataset.recordings.push_back(id);
+      dataset.segment_ids.push_back(row.at("segment_id").get<int64_t>());
+      dataset.metadata.push_back(row.at("metadata").get<Metadata>());
+    }
+    for (const nlohmann::json& skip : item.at("skipped"))
+      table.corpus.skipped.push_back({id, skip.at("segment_id").get<int64_t>(),
+                                      skip.at("t0").get<double>(), skip.at("t1").get<double>(),
+                                      skip.at("reason").get<std::string>()});
+    table.corpus.segments +=
+        static_cast<int64_t>(item.at("rows").size() + item.at("skipped").size());
+  }
+  dataset.features.resize(static_cast<Eigen::Index>(values.size()),
+                          static_cast<Eigen::Index>(dataset.columns.size()));
+  for (size_t row = 0; row < values.size(); ++row)
+    for (size_t column = 0; column < values[row].size(); ++column)
+      dataset.features(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column)) =
+          values[row][column];
+  return table;
 }
 
 }  // namespace tactile

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "evaluation_folds.h"
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
 #include "tactile/ml/grid_search.h"
@@ -27,17 +28,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-// What one fold hands back; merged in fold order so threads never change the result.
-struct FoldOutcome {
-  std::vector<int> predicted;  // per test row
-  Matrix scores;               // per test row, when asked for
-  std::string model;
-  std::vector<double> importances;  // per feature column, when the classifier gives them
-  double fit_seconds = 0.0;
-  double predict_seconds = 0.0;
-  std::exception_ptr failure;
-};
 
 void check_dataset(const Dataset& dataset) {
   if (dataset.rows() == 0) throw Error("evaluation", "the dataset has no rows");
@@ -222,32 +212,34 @@ FitGroupsScope::FitGroupsScope(const std::vector<std::string>* groups) : previou
 
 FitGroupsScope::~FitGroupsScope() { tl_fit_groups = previous_; }
 
-EvaluationResult evaluate(const Dataset& dataset, const std::string& given_specification,
-                          const Protocol& protocol, uint64_t seed,
-                          const EvaluationControl& control) {
-  const Clock::time_point start = Clock::now();
+EvaluationSetup prepare_evaluation(const Dataset& dataset, const std::string& given_specification,
+                                   const Protocol& protocol, uint64_t seed) {
   check_dataset(dataset);
+  EvaluationSetup setup;
   // auto on a stacked table searches its pipelines too.
-  const std::string classifier_specification =
-      searched_specification(given_specification, dataset.columns);
-  make_classifier(classifier_specification);  // a bad name or parameter fails before any fold
-
-  EvaluationResult result;
-  result.classifier = given_specification;
-  result.protocol = protocol.to_string();
-  result.seed = seed;
-  result.classes = dataset.class_names();
-  const int class_count = static_cast<int>(result.classes.size());
+  setup.specification = searched_specification(given_specification, dataset.columns);
+  make_classifier(setup.specification);  // a bad name or parameter fails before any fold
+  setup.given_specification = given_specification;
+  setup.protocol = protocol;
+  setup.seed = seed;
+  setup.class_names = dataset.class_names();
   std::map<std::string, int> index;
-  for (int k = 0; k < class_count; ++k) index[result.classes[static_cast<size_t>(k)]] = k;
-  std::vector<int> classes;
-  classes.reserve(dataset.classes.size());
-  for (const std::string& name : dataset.classes) classes.push_back(index.at(name));
+  for (size_t k = 0; k < setup.class_names.size(); ++k)
+    index[setup.class_names[k]] = static_cast<int>(k);
+  setup.classes.reserve(dataset.classes.size());
+  for (const std::string& name : dataset.classes) setup.classes.push_back(index.at(name));
+  setup.folds = make_folds(dataset, protocol, seed);
+  setup.groups = protocol_groups(dataset, protocol);
+  return setup;
+}
 
-  const std::vector<Fold> folds = make_folds(dataset, protocol, seed);
-  const std::vector<std::string> groups = protocol_groups(dataset, protocol);
-  const int fold_count = static_cast<int>(folds.size());
-  std::vector<FoldOutcome> outcomes(folds.size());
+std::vector<FoldOutcome> run_folds(const Dataset& dataset, const EvaluationSetup& setup,
+                                   const std::vector<int>& which,
+                                   const EvaluationControl& control) {
+  const int class_count = static_cast<int>(setup.class_names.size());
+  const int fold_count = static_cast<int>(which.size());
+  std::vector<FoldOutcome> outcomes(which.size());
+  if (which.empty()) return outcomes;
 
   // An evaluation inside a fold of another (a search's inner cross-validation) runs on its
   // fold's thread: the outer one already keeps every core busy.
@@ -267,18 +259,23 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& given_speci
     const CancelScope scope(cancel);
     const WorkerMark mark(threads > 1);
     while (!failed.load() && !cancelled()) {
-      const int fold = next_fold.fetch_add(1);
-      if (fold >= fold_count) return;
-      FoldOutcome& outcome = outcomes[static_cast<size_t>(fold)];
+      const int next = next_fold.fetch_add(1);
+      if (next >= fold_count) return;
+      const int fold = which[static_cast<size_t>(next)];
+      FoldOutcome& outcome = outcomes[static_cast<size_t>(next)];
+      const Clock::time_point fold_start = Clock::now();
       try {
-        outcome = run_fold(dataset, classes, class_count, classifier_specification,
-                           folds[static_cast<size_t>(fold)],
-                           derive_seed(seed, static_cast<uint64_t>(fold)), control.scores, groups);
+        outcome = run_fold(dataset, setup.classes, class_count, setup.specification,
+                           setup.folds[static_cast<size_t>(fold)],
+                           derive_seed(setup.seed, static_cast<uint64_t>(fold)), control.scores,
+                           setup.groups);
       } catch (...) {
         outcome.failure = std::current_exception();
         failed.store(true);
         return;
       }
+      outcome.seconds = seconds_since(fold_start);
+      outcome.ran = true;
       if (control.progress) {
         const std::lock_guard<std::mutex> lock(progress_mutex);
         control.progress(++done, fold_count);
@@ -293,16 +290,36 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& given_speci
     for (std::thread& worker : workers) worker.join();
   }
   if (cancelled()) throw Error("evaluation", "cancelled");
+  return outcomes;
+}
+
+void rethrow_first_failure(const std::vector<FoldOutcome>& outcomes) {
   for (const FoldOutcome& outcome : outcomes)
     if (outcome.failure) std::rethrow_exception(outcome.failure);
+}
 
+EvaluationResult assemble_evaluation(const Dataset& dataset, const EvaluationSetup& setup,
+                                     const std::vector<FoldOutcome>& outcomes) {
+  EvaluationResult result;
+  result.classifier = setup.given_specification;
+  result.protocol = setup.protocol.to_string();
+  result.seed = setup.seed;
+  result.classes = setup.class_names;
+  const int class_count = static_cast<int>(result.classes.size());
+  const int fold_count = static_cast<int>(setup.folds.size());
+  const std::vector<int>& classes = setup.classes;
+  const std::string& classifier_specification = setup.specification;
   result.confusion = Eigen::MatrixXi::Zero(class_count, class_count + 1);
   for (int fold = 0; fold < fold_count; ++fold) {
-    const Fold& split = folds[static_cast<size_t>(fold)];
+    const Fold& split = setup.folds[static_cast<size_t>(fold)];
     const FoldOutcome& outcome = outcomes[static_cast<size_t>(fold)];
     result.fit_seconds += outcome.fit_seconds;
     result.predict_seconds += outcome.predict_seconds;
     result.fold_models.push_back(outcome.model);
+    if (outcome.predicted.size() != split.test.size())
+      throw Error("classifier " + classifier_specification,
+                  "fold " + std::to_string(fold) + ": " + std::to_string(outcome.predicted.size()) +
+                      " predictions for " + std::to_string(split.test.size()) + " test rows");
     for (size_t i = 0; i < split.test.size(); ++i) {
       const auto row = static_cast<size_t>(split.test[i]);
       const int truth = classes[row];
@@ -336,6 +353,19 @@ EvaluationResult evaluate(const Dataset& dataset, const std::string& given_speci
   result.accuracy = accuracy_of(result.confusion);
   result.per_class = class_figures(result.confusion);
   result.importances = mean_importances(dataset, outcomes);
+  return result;
+}
+
+EvaluationResult evaluate(const Dataset& dataset, const std::string& given_specification,
+                          const Protocol& protocol, uint64_t seed,
+                          const EvaluationControl& control) {
+  const Clock::time_point start = Clock::now();
+  const EvaluationSetup setup = prepare_evaluation(dataset, given_specification, protocol, seed);
+  std::vector<int> every(setup.folds.size());
+  for (size_t fold = 0; fold < every.size(); ++fold) every[fold] = static_cast<int>(fold);
+  const std::vector<FoldOutcome> outcomes = run_folds(dataset, setup, every, control);
+  rethrow_first_failure(outcomes);
+  EvaluationResult result = assemble_evaluation(dataset, setup, outcomes);
   result.seconds = seconds_since(start);
   return result;
 }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "tactile/features/corpus.h"
+#include "tactile/io/shard.h"
 
 namespace tactile {
 
@@ -23,11 +24,16 @@ struct FeatureTableOptions {
   int threads = 0;                      // --threads; 0 = one per core
   std::string recording;                // only this recording's segments; "" = every recording's
   std::string layout;                   // only recordings of this skin; "" = every skin
+  Shard shard;                          // --shard: only its recordings (the store's order)
 };
 
 struct FeatureTable {
   CorpusDataset corpus;
   size_t recordings = 0;  // the recordings read
+  // Every recording of the job in the store's order, "ID:SEGMENTS" (a shard's plan), and
+  // the indices of those this table holds.
+  std::vector<std::string> plan;
+  std::vector<size_t> done;
 };
 
 // Checks the options (refusals name the flag), finds the recordings and extracts every
@@ -44,5 +50,14 @@ void write_feature_table(const FeatureTable& table, const FeatureTableOptions& o
 std::string feature_table_line(const FeatureTable& table, const FeatureTableOptions& options);
 // The --json summary: rows, skipped, columns, per-class counts and means; indented.
 std::string feature_table_json(const FeatureTable& table, const FeatureTableOptions& options);
+
+//---- Shards: item k is the k-th recording of the store's order ------------------------------
+
+// A shard's table as its part file's content (`tactile features --shard I/N`).
+Part feature_table_part(const FeatureTable& table, const FeatureTableOptions& options);
+// The table of the whole job from its gathered parts: rows, skips and segment counts as one
+// process extracts them, ready for write_feature_table. Throws tactile::Error naming a part
+// whose columns differ from the first's.
+FeatureTable merge_feature_table_parts(const std::vector<Part>& parts);
 
 }  // namespace tactile
