@@ -7,13 +7,18 @@ BATCH ?= ON
 
 SANITIZE_DIR ?= build-asan
 
-.PHONY: run test build deps clean sanitize fuzz
+.PHONY: run test test-slurm build deps clean sanitize fuzz
 
 run: build
 	./scripts/run-workbench.sh $(BUILD_DIR)
 
+# Every test but the Slurm end-to-end one, which starts a cluster of its own (test-slurm).
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
+	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS) -LE slurm
+
+# Shards submitted to a single-node Slurm on localhost and merged (docs/CLUSTER.md).
+test-slurm: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -L slurm
 
 # Ninja, a fast linker and ccache (all from scripts/install-deps.sh). A build folder made by
 # another generator is configured afresh.
