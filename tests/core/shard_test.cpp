@@ -34,7 +34,7 @@ Part square_part(Shard shard, int64_t items, const std::string& pipeline = "kabo
   return part;
 }
 
-std::string error_of(const std::vector<std::string>& paths) {
+std::string gather_error_of(const std::vector<std::string>& paths) {
   try {
     gather_parts(paths, "features");
   } catch (const Error& error) {
@@ -92,7 +92,7 @@ TEST(ShardParts, AMissingShardIsNamedWithItsDefaultPath) {
     paths.push_back(directory.file("p" + std::to_string(index)));
     write_part(paths.back(), square_part({index, 5}, 9));
   }
-  const std::string error = error_of(paths);
+  const std::string error = gather_error_of(paths);
   EXPECT_NE(error.find("shards 3/5 (table.csv.part-3-of-5 by default), 5/5"), std::string::npos)
       << error;
   EXPECT_NE(error.find("are missing"), std::string::npos) << error;
@@ -103,7 +103,7 @@ TEST(ShardParts, ADuplicatedShardNamesBothFiles) {
   const std::string a = directory.file("a"), b = directory.file("b");
   write_part(a, square_part({1, 2}, 4));
   write_part(b, square_part({1, 2}, 4));
-  const std::string error = error_of({a, b});
+  const std::string error = gather_error_of({a, b});
   EXPECT_NE(error.find(b + ": shard 1/2 is given twice: also " + a), std::string::npos) << error;
 }
 
@@ -112,18 +112,18 @@ TEST(ShardParts, PartsOfOtherInputsCountsOrWorkAreRefusedNamingTheField) {
   const std::string a = directory.file("a"), b = directory.file("b");
   write_part(a, square_part({1, 2}, 4));
   write_part(b, square_part({2, 2}, 4, "generic"));
-  std::string error = error_of({a, b});
+  std::string error = gather_error_of({a, b});
   EXPECT_NE(error.find("made with --pipeline \"generic\", " + a + " with \"kaboli\""),
             std::string::npos)
       << error;
   write_part(b, square_part({2, 3}, 4));
-  EXPECT_NE(error_of({a, b}).find("is one of 3 shards"), std::string::npos);
+  EXPECT_NE(gather_error_of({a, b}).find("is one of 3 shards"), std::string::npos);
   write_part(b, square_part({2, 2}, 5));
-  EXPECT_NE(error_of({a, b}).find("saw other work"), std::string::npos);
+  EXPECT_NE(gather_error_of({a, b}).find("saw other work"), std::string::npos);
   Part other = square_part({2, 2}, 4);
   other.command = "evaluate";
   write_part(b, other);
-  EXPECT_NE(error_of({a, b}).find("a part of `tactile evaluate`, not of `tactile features`"),
+  EXPECT_NE(gather_error_of({a, b}).find("a part of `tactile evaluate`, not of `tactile features`"),
             std::string::npos);
 }
 
@@ -136,12 +136,12 @@ TEST(ShardParts, ADamagedCutOrForeignFileIsRefusedByName) {
   ASSERT_NE(at, std::string::npos);
   text[at + 9] = '5';
   write_text(path, text);
-  EXPECT_NE(error_of({path}).find(path + ": checksum failed"), std::string::npos);
+  EXPECT_NE(gather_error_of({path}).find(path + ": checksum failed"), std::string::npos);
   write_text(path, text.substr(0, text.size() / 2));
-  EXPECT_NE(error_of({path}).find(path + ": not a part file (cut short"), std::string::npos);
+  EXPECT_NE(gather_error_of({path}).find(path + ": not a part file (cut short"), std::string::npos);
   write_text(path, "{\"rows\": 3}");
-  EXPECT_NE(error_of({path}).find("not a part file"), std::string::npos);
-  EXPECT_NE(error_of({directory.file("absent")}).find("no such part file"), std::string::npos);
+  EXPECT_NE(gather_error_of({path}).find("not a part file"), std::string::npos);
+  EXPECT_NE(gather_error_of({directory.file("absent")}).find("no such part file"), std::string::npos);
 }
 
 TEST(ShardParts, APartMissingOneOfItsItemsIsRefused) {
@@ -150,11 +150,11 @@ TEST(ShardParts, APartMissingOneOfItsItemsIsRefused) {
   Part part = square_part({2, 2}, 6);
   part.done.erase(part.done.begin() + 1);
   write_part(path, part);
-  EXPECT_NE(error_of({path}).find("holds 2 of shard 2/2's 3 items"), std::string::npos);
+  EXPECT_NE(gather_error_of({path}).find("holds 2 of shard 2/2's 3 items"), std::string::npos);
   part = square_part({2, 2}, 6);
   part.done[0]["index"] = 0;  // shard 1's item
   write_part(path, part);
-  EXPECT_NE(error_of({path}).find("item 0 is not one of shard 2/2's"), std::string::npos);
+  EXPECT_NE(gather_error_of({path}).find("item 0 is not one of shard 2/2's"), std::string::npos);
 }
 
 }  // namespace
