@@ -1,5 +1,7 @@
 // `tactile experiment NAME`: rerun one paper's experiment end to end on simulated skins (or
-// on recorded data with --data) and print the paper-shaped tables, ours beside the paper's.
+// on recorded data with --data) and print the paper-shaped tables, ours beside the paper's;
+// --repeats R runs it over R consecutive seeds and summarises the figures (--shard I/N: some
+// of the seeds, merged by `tactile merge`).
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -12,6 +14,7 @@
 #include "progress.h"
 #include "tactile/error.h"
 #include "tactile/experiments/experiment.h"
+#include "tactile/experiments/repeats.h"
 
 namespace tactile::cli {
 
@@ -25,6 +28,9 @@ struct ExperimentArgs {
   bool quick = false;
   bool json = false;
   bool keep = false;
+  int repeats = 1;
+  std::string out;
+  ShardArgs shard;
 };
 
 // Removes the folder when it goes out of scope (the run ended, or failed), unless released.
@@ -57,6 +63,47 @@ std::string default_work_dir(const std::string& name) {
   throw Error(base.string(), "cannot create a work folder for the experiment");
 }
 
+// The job the arguments (or a part's inputs) describe.
+experiments::RepeatsJob repeats_job(const nlohmann::json& inputs) {
+  experiments::RepeatsJob job;
+  job.name = inputs.at("name").get<std::string>();
+  job.first_seed = inputs.at("--seed").get<uint64_t>();
+  job.repeats = inputs.at("--repeats").get<int>();
+  job.quick = inputs.at("--quick").get<bool>();
+  return job;
+}
+
+nlohmann::json repeats_inputs(const ExperimentArgs& args) {
+  return {{"name", args.name},
+          {"--seed", args.seed},
+          {"--repeats", args.repeats},
+          {"--quick", args.quick},
+          {"--data", args.data}};
+}
+
+// One run prints as it always has; more print each run's tables and the summary.
+void print_repeats(const experiments::RepeatsJob& job,
+                   const std::vector<experiments::RepeatRun>& runs, bool json,
+                   const std::string& kept_work_dir, const std::string& out) {
+  if (json) {
+    nlohmann::json document;
+    if (runs.size() == 1 && job.repeats == 1) {
+      document = runs.front().report.json;
+      document["name"] = runs.front().report.name;
+      document["paper"] = runs.front().report.paper;
+    } else {
+      document = experiments::repeats_document(job, runs);
+    }
+    if (!kept_work_dir.empty()) document["work_dir"] = kept_work_dir;
+    std::cout << document.dump(2) << "\n";
+    return;
+  }
+  std::cout << (job.repeats == 1 && runs.size() == 1
+                    ? experiments::format_report(runs.front().report)
+                    : experiments::format_repeats(job, runs));
+  if (!out.empty()) std::cout << "result      " << out << "\n";
+}
+
 void run(const ExperimentArgs& args) {
   experiments::ExperimentOptions options;
   options.data_dir = args.data;
@@ -67,6 +114,16 @@ void run(const ExperimentArgs& args) {
   const std::vector<std::string> names = experiments::experiment_names();
   if (std::find(names.begin(), names.end(), args.name) == names.end())
     experiments::run_experiment(args.name, options);  // throws, listing the known names
+  if (args.repeats < 1)
+    throw Error("--repeats", "must be 1 or more, not " + std::to_string(args.repeats));
+  if (!args.out.empty() && std::filesystem::path(args.out).extension() != ".json")
+    throw Error("--out", "'" + args.out + "': the file name must end in .json");
+  const bool sharded = !args.shard.shard.empty() || !args.shard.part.empty();
+  if (sharded && args.out.empty())
+    throw Error("--shard", "needs --out (the result the merge writes; parts go beside it)");
+  if (sharded && args.json)
+    throw Error("--json", "not with --shard: `tactile merge` prints the result");
+  const ShardPlan plan = shard_plan(args.shard, args.out);
   // A run simulates hundreds of MB; in a folder of its own choosing it cleans up after
   // itself unless asked to keep it (--keep), so repeated runs do not fill the disk.
   std::unique_ptr<RemoveWhenDone> cleanup;
@@ -91,17 +148,40 @@ void run(const ExperimentArgs& args) {
     }
     bar->update(done, total);
   };
-  const experiments::ExperimentReport report = experiments::run_experiment(args.name, options);
-  if (bar) bar->finish();
-  if (args.json) {
-    nlohmann::json document = report.json;
-    document["name"] = report.name;
-    document["paper"] = report.paper;
-    if (!cleanup) document["work_dir"] = options.work_dir;  // only a folder that stays
-    std::cout << document.dump(2) << "\n";
-  } else {
-    std::cout << experiments::format_report(report);
+  const std::string kept_work_dir = cleanup ? "" : options.work_dir;  // only a folder that stays
+  if (args.repeats == 1 && args.out.empty() && !sharded) {
+    // One run, as before --repeats: simulated straight into the work folder.
+    const experiments::ExperimentReport report = experiments::run_experiment(args.name, options);
+    if (bar) bar->finish();
+    print_repeats({args.name, args.seed, 1, args.quick}, {{args.seed, report}}, args.json,
+                  kept_work_dir, "");
+    return;
   }
+  // Repeats (or one run kept in --out): each seed in WORK/seed-S, removed after its run
+  // when the work folder goes.
+  Part part;
+  part.inputs = repeats_inputs(args);
+  const experiments::RepeatsJob job = repeats_job(part.inputs);
+  const std::vector<experiments::RepeatRun> runs =
+      experiments::run_repeats(job, options, plan.shard, cleanup != nullptr);
+  if (bar) bar->finish();
+  if (sharded) {
+    part.command = "experiment";
+    part.shard = plan.shard;
+    part.result = args.out;
+    const std::vector<std::string> keys = experiments::repeats_plan(job);
+    part.items = static_cast<int64_t>(keys.size());
+    part.plan = plan_digest(keys);
+    part.done = nlohmann::json::array();
+    const std::vector<size_t> items = plan.shard.items_of(keys.size());
+    for (size_t run = 0; run < runs.size(); ++run)
+      part.done.push_back(experiments::repeat_item(items[run], runs[run]));
+    write_shard_part(plan, part);
+    return;
+  }
+  if (!args.out.empty())
+    experiments::write_repeats_file(args.out, experiments::repeats_document(job, runs));
+  print_repeats(job, runs, args.json, kept_work_dir, args.out);
 }
 
 }  // namespace
@@ -122,7 +202,25 @@ void register_experiment(CLI::App& app) {
   command->add_flag("--json", args->json, "print the report as JSON");
   command->add_flag("--keep", args->keep,
                     "keep the default work folder (its simulated recordings and labels)");
+  command
+      ->add_option("--repeats", args->repeats,
+                   "run R times with the seeds S, S+1, ..., S+R-1 (each in WORK/seed-S) and "
+                   "summarise the figures: mean, sd, min, max beside the paper's")
+      ->capture_default_str();
+  command->add_option("--out", args->out,
+                      "write the runs and their summary as JSON (no times, no paths: the same "
+                      "seeds give the same bytes)");
+  add_shard_options(command, args->shard);
   command->callback([args] { run(*args); });
+}
+
+void merge_experiment(const std::vector<Part>& parts, const std::string& out) {
+  const experiments::RepeatsJob job = repeats_job(parts.front().inputs);
+  std::vector<experiments::RepeatRun> runs;
+  for (const nlohmann::json& item : items_in_order(parts))
+    runs.push_back(experiments::repeat_from_item(item));
+  experiments::write_repeats_file(out, experiments::repeats_document(job, runs));
+  print_repeats(job, runs, false, "", out);
 }
 
 }  // namespace tactile::cli

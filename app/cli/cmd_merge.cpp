@@ -21,6 +21,7 @@ const std::map<std::string, PartMerger>& mergers() {
   static const std::map<std::string, PartMerger> table = {
       {"features", merge_features},
       {"evaluate", merge_evaluate},
+      {"experiment", merge_experiment},
   };
   return table;
 }

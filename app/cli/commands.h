@@ -52,5 +52,6 @@ void write_shard_part(const ShardPlan& plan, const Part& part);
 // each other, in shard order) into `out`, which one process would have written.
 void merge_features(const std::vector<Part>& parts, const std::string& out);
 void merge_evaluate(const std::vector<Part>& parts, const std::string& out);
+void merge_experiment(const std::vector<Part>& parts, const std::string& out);
 
 }  // namespace tactile::cli
