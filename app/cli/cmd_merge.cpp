@@ -19,8 +19,8 @@ using PartMerger = void (*)(const std::vector<Part>& parts, const std::string& o
 // Every command whose parts merge, by the name its parts carry.
 const std::map<std::string, PartMerger>& mergers() {
   static const std::map<std::string, PartMerger> table = {
-      {"features", merge_features},
-      {"evaluate", merge_evaluate},
+      {"features", merge_features}, {"evaluate", merge_evaluate}, {"simulate", merge_simulate},
+      {"segment", merge_segment},   {"predict", merge_predict},   {"verify", merge_verify},
   };
   return table;
 }
