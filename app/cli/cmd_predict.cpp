@@ -143,6 +143,11 @@ void run_predict(const PredictOptions& options) {
   const std::vector<std::string> files = recording_files(options.inputs);
   const ShardPlan plan = shard_plan(options.shard, options.database + ".predict");
   if (plan.shard.active()) {  // its recordings' predictions only: the store is merge's to write
+    // A shard only reads the store (its segments), and so needs it to be there.
+    if (!std::filesystem::exists(options.database))
+      throw Error(options.database,
+                  "no such label store: a shard reads it and leaves the writing "
+                  "to merge; create it first (`tactile labels import`)");
     const LabelStore store(options.database, LabelStore::OpenMode::kReadOnly);
     Part part;
     part.command = "predict";

@@ -222,6 +222,10 @@ TEST_F(ShardLabelStores, PredictShardsMergeIntoTheOneProcessLabels) {
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("does not belong with"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("--model"), std::string::npos) << run.err;
+  // A shard reads the store: one that is not there is named.
+  run = tactile(predict + " --labels " + quoted(file("absent.db")) + " --shard 1/2");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("absent.db: no such label store"), std::string::npos) << run.err;
 }
 
 TEST_F(ShardLabelStores, VerifyShardsMergeIntoTheOneProcessReport) {
