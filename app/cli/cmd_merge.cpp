@@ -19,9 +19,9 @@ using PartMerger = void (*)(const std::vector<Part>& parts, const std::string& o
 // Every command whose parts merge, by the name its parts carry.
 const std::map<std::string, PartMerger>& mergers() {
   static const std::map<std::string, PartMerger> table = {
-      {"features", merge_features},
-      {"evaluate", merge_evaluate},
-      {"experiment", merge_experiment},
+      {"features", merge_features}, {"evaluate", merge_evaluate}, {"experiment", merge_experiment},
+      {"simulate", merge_simulate}, {"segment", merge_segment},   {"predict", merge_predict},
+      {"verify", merge_verify},
   };
   return table;
 }

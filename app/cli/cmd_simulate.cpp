@@ -1,4 +1,5 @@
 // `tactile simulate`: synthetic recordings of any skin, or the demo workspace.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -20,7 +21,24 @@ struct SimulateArgs {
   std::string demo;
   SimulationOptions options;
   bool json = false;
+  ShardArgs shard;
 };
+
+void print_summary(const SimulationSummary& summary, const std::string& folder, bool json,
+                   bool demo) {
+  if (json) {
+    nlohmann::json out = {{"folder", folder},
+                          {"files", summary.files},
+                          {"labels", summary.labels},
+                          {"seconds_recorded", summary.seconds_recorded}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << "wrote " << summary.files.size() << " recordings (" << summary.seconds_recorded
+              << " s) and " << summary.labels << " labels to " << folder << "\n";
+    // The demo is made to be looked at: say how.
+    if (demo) std::cout << "open it: tactile-workbench " << folder << "\n";
+  }
+}
 
 void run_simulate(const SimulateArgs& args) {
   if (args.demo.empty() == args.out.empty())
@@ -32,28 +50,32 @@ void run_simulate(const SimulateArgs& args) {
   if (args.options.condition != "stationary" && args.options.condition != "moving")
     throw Error("--condition",
                 "must be stationary or moving, not '" + args.options.condition + "'");
+  if (!args.demo.empty() && !args.shard.shard.empty())
+    throw Error("--shard", "the demo workspace does not shard: give --skin ID --out DIR");
+  const ShardPlan plan =
+      shard_plan(args.shard, (std::filesystem::path(args.out) / "simulate").string());
   ProgressBar bar(args.demo.empty() ? "simulate " + args.skin : "demo workspace");
   auto progress = [&](int done, int total) { bar.update(done, total); };
+  if (plan.shard.active()) {  // its recordings only: the labels are merge's to store
+    const SimulatedTrials trials =
+        simulate_trials(args.out, args.skin, args.options, plan.shard, progress);
+    bar.finish();
+    write_shard_part(plan, simulation_part(trials, args.out, args.skin, args.options, plan.shard));
+    return;
+  }
   const SimulationSummary summary =
       args.demo.empty() ? write_simulation(args.out, args.skin, args.options, progress)
                         : write_demo_workspace(args.demo, args.options.seed, progress);
   bar.finish();
-  const std::string folder = args.demo.empty() ? args.out : args.demo;
-  if (args.json) {
-    nlohmann::json out = {{"folder", folder},
-                          {"files", summary.files},
-                          {"labels", summary.labels},
-                          {"seconds_recorded", summary.seconds_recorded}};
-    std::cout << out.dump(2) << "\n";
-  } else {
-    std::cout << "wrote " << summary.files.size() << " recordings (" << summary.seconds_recorded
-              << " s) and " << summary.labels << " labels to " << folder << "\n";
-    // The demo is made to be looked at: say how.
-    if (!args.demo.empty()) std::cout << "open it: tactile-workbench " << folder << "\n";
-  }
+  print_summary(summary, args.demo.empty() ? args.out : args.demo, args.json, !args.demo.empty());
 }
 
 }  // namespace
+
+void merge_simulate(const std::vector<Part>& parts, const std::string& out) {
+  const SimulationSummary summary = merge_simulation_parts(parts, out);
+  print_summary(summary, out, false, false);
+}
 
 void register_simulate(CLI::App& app) {
   auto args = std::make_shared<SimulateArgs>();
@@ -87,6 +109,7 @@ void register_simulate(CLI::App& app) {
                    "(docs/SIMULATION.md)")
       ->capture_default_str();
   command->add_flag("--json", args->json, "Print a machine-readable summary");
+  add_shard_options(command, args->shard);
   command->callback([args] { run_simulate(*args); });
 }
 

@@ -53,5 +53,9 @@ void write_shard_part(const ShardPlan& plan, const Part& part);
 void merge_features(const std::vector<Part>& parts, const std::string& out);
 void merge_evaluate(const std::vector<Part>& parts, const std::string& out);
 void merge_experiment(const std::vector<Part>& parts, const std::string& out);
+void merge_simulate(const std::vector<Part>& parts, const std::string& out);
+void merge_segment(const std::vector<Part>& parts, const std::string& out);
+void merge_predict(const std::vector<Part>& parts, const std::string& out);
+void merge_verify(const std::vector<Part>& parts, const std::string& out);
 
 }  // namespace tactile::cli

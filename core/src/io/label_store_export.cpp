@@ -51,6 +51,16 @@ std::string labels_json(const std::vector<Label>& labels) {
   return document.dump(2) + "\n";
 }
 
+nlohmann::json label_json(const Label& label) {
+  nlohmann::json object = label_rows::to_json(label);
+  if (label.revision != 0) object["revision"] = label.revision;
+  return object;
+}
+
+Label label_from_json(const nlohmann::json& object, const std::string& where) {
+  return label_rows::from_json(object, where);
+}
+
 void LabelStore::export_json(const std::string& path, const LabelFilter& filter) const {
   write_file_atomically(path, labels_json(list(filter)), "label export");
 }

@@ -206,6 +206,20 @@ Part read_part(const std::string& path) {
   return part;
 }
 
+namespace {
+
+// Where a missing shard's part would be: named as the first part given is (a command's
+// default may be "DB.segment.part-I-of-N"), else beside the result.
+std::string missing_part_hint(const Part& first, const Shard& missing) {
+  const std::string suffix = default_part_path("", first.shard);
+  if (first.path.size() > suffix.size() &&
+      first.path.compare(first.path.size() - suffix.size(), suffix.size(), suffix) == 0)
+    return first.path.substr(0, first.path.size() - suffix.size()) + default_part_path("", missing);
+  return default_part_path(first.result, missing);
+}
+
+}  // namespace
+
 std::vector<Part> gather_parts(const std::vector<std::string>& paths, const std::string& command) {
   if (paths.empty()) throw Error("merge", "no part files given");
   std::map<int, Part> by_shard;
@@ -233,7 +247,7 @@ std::vector<Part> gather_parts(const std::vector<std::string>& paths, const std:
   for (int index = 1; index <= first->shard.count; ++index)
     if (!by_shard.count(index))
       missing.push_back(std::to_string(index) + "/" + std::to_string(first->shard.count) + " (" +
-                        default_part_path(first->result, Shard{index, first->shard.count}) +
+                        missing_part_hint(*first, Shard{index, first->shard.count}) +
                         " by default)");
   if (!missing.empty()) {
     std::string list;

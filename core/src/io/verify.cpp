@@ -230,6 +230,33 @@ FileKind file_kind(const std::string& path) {
   return FileKind::kUnknown;
 }
 
+namespace {
+
+// The span of an open recording, from its streams' headers: from the earliest start to the
+// latest end. None for a recording without streams.
+void note_recording_span(const RecordingFile& file, RecordingSpans& spans) {
+  double begin = 0.0, end = 0.0;
+  bool first_stream = true;
+  for (const StreamInfo& stream : file.streams()) {
+    const double start = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
+    begin = first_stream ? start : std::min(begin, start);
+    end = first_stream ? start + stream.duration() : std::max(end, start + stream.duration());
+    first_stream = false;
+  }
+  if (!first_stream) spans[file.recording_id()] = {begin, end};
+}
+
+// A recording another shard checks: only its span, as verify_recording notes it (none when
+// it does not open).
+void add_recording_span(const std::string& path, RecordingSpans& spans) {
+  try {
+    note_recording_span(RecordingFile(path), spans);
+  } catch (const Error&) {
+  }
+}
+
+}  // namespace
+
 std::vector<FileProblem> verify_recording(const std::string& path, RecordingSpans* spans) {
   std::vector<FileProblem> problems;
   std::optional<RecordingFile> file;
@@ -244,16 +271,8 @@ std::vector<FileProblem> verify_recording(const std::string& path, RecordingSpan
                                   " carries no checksums; `tactile upgrade` rewrites it"});
   else
     check_structure(path, problems);
-  double begin = 0.0, end = 0.0;
-  bool first_stream = true;
-  for (const StreamInfo& stream : file->streams()) {
-    verify_stream(*file, stream, problems);
-    const double start = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
-    begin = first_stream ? start : std::min(begin, start);
-    end = first_stream ? start + stream.duration() : std::max(end, start + stream.duration());
-    first_stream = false;
-  }
-  if (spans != nullptr && !first_stream) (*spans)[file->recording_id()] = {begin, end};
+  for (const StreamInfo& stream : file->streams()) verify_stream(*file, stream, problems);
+  if (spans != nullptr) note_recording_span(*file, *spans);
   return problems;
 }
 
@@ -281,10 +300,9 @@ std::vector<FileProblem> verify_label_store(const std::string& path, const Recor
   return problems;
 }
 
-VerifyReport verify_paths(const std::vector<std::string>& paths,
-                          const std::function<void(double)>& step) {
+VerifyPlan verify_plan(const std::vector<std::string>& paths) {
   std::vector<std::string> files;
-  VerifyReport report;
+  VerifyPlan plan;
   for (const std::string& path : paths) {
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) {
@@ -294,35 +312,83 @@ VerifyReport verify_paths(const std::vector<std::string>& paths,
         if (it->is_regular_file() &&
             has_extension(it->path().string(), {".h5", ".hdf5", ".db", ".sqlite", ".sqlite3"}))
           found.push_back(it->path().string());
-      if (error) report.problems.push_back({path, path + ": cannot list folder: " + error.message()});
+      if (error)
+        plan.walk_problems.push_back({path, path + ": cannot list folder: " + error.message()});
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else if (!std::filesystem::exists(path, error)) {
-      report.problems.push_back({path, path + ": no such file or folder"});
+      plan.walk_problems.push_back({path, path + ": no such file or folder"});
     } else {
       files.push_back(path);
     }
   }
-  RecordingSpans spans;
-  size_t checked = 0;
   // Recordings first: their spans check the labels.
+  std::vector<FileKind> kinds;
+  for (const std::string& path : files) kinds.push_back(file_kind(path));
   for (const bool recordings : {true, false})
-    for (const std::string& path : files) {
-      if (step) step(static_cast<double>(checked) / static_cast<double>(files.size()));
-      const FileKind kind = file_kind(path);
-      if ((kind == FileKind::kRecording) != recordings) continue;
-      std::vector<FileProblem> problems;
-      if (kind == FileKind::kRecording)
-        problems = verify_recording(path, &spans);
-      else if (kind == FileKind::kLabelStore)
-        problems = verify_label_store(path, spans);
-      else
-        problems.push_back({path, path + ": neither a recording nor a label store"});
-      report.files.push_back({path, kind, problems.size()});
-      report.problems.insert(report.problems.end(), problems.begin(), problems.end());
-      ++checked;
+    for (size_t k = 0; k < files.size(); ++k)
+      if ((kinds[k] == FileKind::kRecording) == recordings) {
+        plan.files.push_back(files[k]);
+        plan.kinds.push_back(kinds[k]);
+      }
+  return plan;
+}
+
+std::vector<VerifiedItem> verify_items(const VerifyPlan& plan, const Shard& shard,
+                                       const std::function<void(double)>& step) {
+  const std::vector<size_t> owned = shard.items_of(plan.files.size());
+  // Each recording's span by its place in the plan, gathered in plan order for the label
+  // stores (so a recording id given twice ends as in one process: the later file's).
+  std::vector<RecordingSpans> noted(plan.files.size());
+  RecordingSpans spans;
+  bool all_spans = false;
+  std::vector<VerifiedItem> items;
+  for (const size_t index : owned) {
+    if (step) step(static_cast<double>(items.size()) / static_cast<double>(owned.size()));
+    const std::string& path = plan.files[index];
+    const FileKind kind = plan.kinds[index];
+    VerifiedItem item{index, {path, kind, 0}, {}};
+    if (kind == FileKind::kRecording) {
+      item.problems = verify_recording(path, &noted[index]);
+    } else if (kind == FileKind::kLabelStore) {
+      if (!all_spans)
+        for (size_t other = 0; other < plan.files.size(); ++other) {
+          if (plan.kinds[other] != FileKind::kRecording) continue;
+          // A recording another shard checks: opened for its span only.
+          if (!shard.owns(other)) add_recording_span(plan.files[other], noted[other]);
+          for (const auto& [id, span] : noted[other]) spans[id] = span;
+        }
+      all_spans = true;
+      item.problems = verify_label_store(path, spans);
+    } else {
+      item.problems.push_back({path, path + ": neither a recording nor a label store"});
     }
+    item.file.problems = item.problems.size();
+    items.push_back(std::move(item));
+  }
+  return items;
+}
+
+VerifyReport verify_report(const VerifyPlan& plan, const std::vector<VerifiedItem>& items) {
+  VerifyReport report;
+  report.problems = plan.walk_problems;
+  for (const VerifiedItem& item : items) {
+    report.files.push_back(item.file);
+    report.problems.insert(report.problems.end(), item.problems.begin(), item.problems.end());
+  }
   return report;
+}
+
+VerifyReport verify_paths(const std::vector<std::string>& paths,
+                          const std::function<void(double)>& step) {
+  const VerifyPlan plan = verify_plan(paths);
+  return verify_report(plan, verify_items(plan, {}, step));
+}
+
+FileKind parse_file_kind(const std::string& name) {
+  for (const FileKind kind : {FileKind::kRecording, FileKind::kLabelStore, FileKind::kUnknown})
+    if (name == file_kind_name(kind)) return kind;
+  throw Error(name, "not a kind of file verify knows (recording, labels, unknown)");
 }
 
 const char* file_kind_name(FileKind kind) {

@@ -16,6 +16,7 @@
 // journal_after().
 
 #include <cstdint>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -116,6 +117,11 @@ struct LabelEdit {
 
 // The JSON export's document for these labels: {"labels": [...]}, indented.
 std::string labels_json(const std::vector<Label>& labels);
+// One label as that document holds it (with its revision when it has one), and back: what a
+// shard's part keeps of the labels its merge stores (io/shard.h). Throws tactile::Error
+// naming `where` on a malformed label.
+nlohmann::json label_json(const Label& label);
+Label label_from_json(const nlohmann::json& object, const std::string& where);
 
 class LabelStore {
  public:

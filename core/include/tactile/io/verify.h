@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "tactile/io/shard.h"
+
 namespace tactile {
 
 enum class FileKind { kRecording, kLabelStore, kUnknown };
@@ -51,8 +53,35 @@ struct VerifyReport {
 // Files and folders (walked recursively for .h5/.hdf5/.db/.sqlite/.sqlite3);
 // recordings first, so label stores are checked against their spans. `step` gets the
 // fraction of the files checked, after each (and may throw to stop).
+// = verify_report(plan, verify_items(plan, {}, step)) with plan = verify_plan(paths).
 VerifyReport verify_paths(const std::vector<std::string>& paths,
                           const std::function<void(double)>& step = {});
+
+// verify_paths in its parts, as `tactile verify --shard I/N` and `tactile merge` use them
+// (io/shard.h). The plan: the files in the order they are checked (recordings first, each
+// group in walk order) with their kinds, and the walk's own problems (a missing path, a folder
+// that cannot be listed).
+struct VerifyPlan {
+  std::vector<std::string> files;
+  std::vector<FileKind> kinds;
+  std::vector<FileProblem> walk_problems;
+};
+VerifyPlan verify_plan(const std::vector<std::string>& paths);
+// One file of the plan checked: its entry of the report and its problems.
+struct VerifiedItem {
+  size_t index = 0;  // in plan.files
+  VerifiedFile file;
+  std::vector<FileProblem> problems;
+};
+// The files of the plan `shard` owns (every one when not sharded), checked in plan order. A
+// label store is checked against the spans of every recording of the plan: the recordings
+// this shard does not check are only opened for their span.
+std::vector<VerifiedItem> verify_items(const VerifyPlan& plan, const Shard& shard = {},
+                                       const std::function<void(double)>& step = {});
+// The report of every item (all of the plan, in order): the walk's problems, then each file's.
+VerifyReport verify_report(const VerifyPlan& plan, const std::vector<VerifiedItem>& items);
+// FileKind by the name file_kind_name gives; throws tactile::Error on another name.
+FileKind parse_file_kind(const std::string& name);
 
 // "recording", "labels", "unknown": a file's kind as reports name it.
 const char* file_kind_name(FileKind kind);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tactile/io/shard.h"
 #include "tactile/sim/simulator.h"
 
 namespace tactile {
@@ -27,6 +28,34 @@ struct SimulationSummary {
 SimulationSummary write_simulation(const std::string& folder, const std::string& skin,
                                    const SimulationOptions& options,
                                    const SimulationProgress& progress = {});
+
+// The same work in its two halves, as `tactile simulate --shard I/N` and `tactile merge` do it
+// (io/shard.h). The items are the (subject, trial) trials, subject-major; a shard generates and
+// writes the recordings of its own items into `folder` (each the file one process writes) and
+// keeps their labels; the store is written once, from every item's labels in item order.
+struct SimulatedTrials {
+  std::vector<std::string> plan;           // "subject/trial" of every item, in order
+  std::vector<size_t> done;                // the items simulated, ascending
+  std::vector<std::string> files;          // per item: the written HDF5 file ("" if not done)
+  std::vector<std::vector<Label>> labels;  // per item: its ground truth
+  std::vector<double> seconds;             // per item: the recording's duration
+};
+SimulatedTrials simulate_trials(const std::string& folder, const std::string& skin,
+                                const SimulationOptions& options, const Shard& shard = {},
+                                const SimulationProgress& progress = {});
+// Writes the ground truth of `trials` (every item done) into folder/labels.db as
+// write_simulation does: the skin's classes, a fixed time, each recording's earlier ground
+// truth replaced, in item order. Returns the summary of the whole simulation.
+SimulationSummary store_simulated_labels(const std::string& folder, const std::string& skin,
+                                         const SimulatedTrials& trials);
+// A shard's part (command "simulate"): the options, the plan, and per item done its file
+// (name and size), seconds and labels.
+Part simulation_part(const SimulatedTrials& trials, const std::string& folder,
+                     const std::string& skin, const SimulationOptions& options, const Shard& shard);
+// The gathered parts (io/shard.h gather_parts) merged into `folder`: every item's recording
+// checked to be there with the size its part names, then store_simulated_labels. Throws
+// tactile::Error naming a missing or changed recording (and the part that made it).
+SimulationSummary merge_simulation_parts(const std::vector<Part>& parts, const std::string& folder);
 
 // The demo workspace: a few short recordings of every skin with a demo share in its record
 // (the papers' five) in one folder (with labels.db), small enough to make in seconds.
