@@ -209,12 +209,14 @@ Part read_part(const std::string& path) {
 namespace {
 
 // Where a missing shard's part would be: named as the first part given is (a command's
-// default may be "DB.segment.part-I-of-N"), else beside the result.
+// default may be "DB.segment.part-I-of-N", a cluster's "DIR/parts/part-I-of-N"), else beside
+// the result.
 std::string missing_part_hint(const Part& first, const Shard& missing) {
-  const std::string suffix = default_part_path("", first.shard);
+  const std::string suffix = default_part_path("", first.shard).substr(1);  // "part-I-of-N"
   if (first.path.size() > suffix.size() &&
       first.path.compare(first.path.size() - suffix.size(), suffix.size(), suffix) == 0)
-    return first.path.substr(0, first.path.size() - suffix.size()) + default_part_path("", missing);
+    return first.path.substr(0, first.path.size() - suffix.size()) +
+           default_part_path("", missing).substr(1);
   return default_part_path(first.result, missing);
 }
 
@@ -247,8 +249,7 @@ std::vector<Part> gather_parts(const std::vector<std::string>& paths, const std:
   for (int index = 1; index <= first->shard.count; ++index)
     if (!by_shard.count(index))
       missing.push_back(std::to_string(index) + "/" + std::to_string(first->shard.count) + " (" +
-                        missing_part_hint(*first, Shard{index, first->shard.count}) +
-                        " by default)");
+                        missing_part_hint(*first, Shard{index, first->shard.count}) + ")");
   if (!missing.empty()) {
     std::string list;
     for (const std::string& name : missing) list += (list.empty() ? "" : ", ") + name;
