@@ -46,7 +46,11 @@ check_requirements() {
 
 # A TCP port on the loopback that nobody holds now (the kernel picks it).
 free_port() {
-  /usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])'
+  if [[ -x /usr/bin/python3 ]]; then
+    /usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])'
+  else
+    shuf -i 20000-60999 -n 1  # without Python: a random high port, most likely free
+  fi
 }
 
 sbin() { command -v "$1" 2>/dev/null || echo "/usr/sbin/$1"; }
@@ -198,10 +202,10 @@ case $1 in
     check_requirements
     dir=$(realpath -m "$2")
     if [[ -d $dir && -n $(ls -A "$dir") ]]; then die "$dir is not empty"; fi
-    if ! start_cluster "$dir"; then
-      stop_cluster "$dir"
-      exit 1
-    fi
+    # Whatever started is stopped again if the rest fails.
+    trap 'stop_cluster "$dir"' EXIT
+    start_cluster "$dir" || exit 1
+    trap - EXIT
     echo "$program: cluster up in $dir; to use it:"
     echo "export SLURM_CONF=$dir/slurm.conf"
     echo "$program: stop it with: $0 stop $dir"
