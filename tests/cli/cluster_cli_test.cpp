@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli_test_support.h"
@@ -144,6 +145,85 @@ TEST_F(ClusterCommand, SubmitWithoutSbatchOnPathSaysSoAndStatusWantsASubmittedFo
   run = tactile("cluster slurm --command \"tactile evaluate --out e.json\" --shards 0 --out j2");
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("--shards: give the number of shards"), std::string::npos) << run.err;
+}
+
+// Slurm's clients stood in for by scripts on PATH: what --submit, status and resubmit ask
+// them and how they read the answers (a real Slurm: tests/slurm/cluster_test.sh).
+class ClusterWithFakeSlurm : public ClusterCommand {
+ protected:
+  void SetUp() override {
+    std::filesystem::create_directories(folder_.file("fake-bin"));
+    const std::string calls = folder_.file("calls.log");
+    // sbatch: job ids 101, 102, ... in the order of submission.
+    fake("sbatch", "echo \"sbatch $*\" >> '" + calls + "'\nn=$(grep -c ^sbatch '" + calls +
+                       "')\necho $((100 + n))\n");
+    fake("scancel", "echo \"scancel $*\" >> '" + calls + "'\n");
+    // squeue: shard 2 of array 101 failed, the merge 102 waits for ever.
+    fake("squeue",
+         "for a in \"$@\"; do case $a in --jobs=*) id=${a#--jobs=};; esac; done\n"
+         "case $id in\n"
+         "101) printf "
+         "'101_1|COMPLETED|None\\n101_2|FAILED|NonZeroExitCode\\n101_3|COMPLETED|None\\n';;\n"
+         "102) printf '102|PENDING|DependencyNeverSatisfied\\n';;\n"
+         "*) echo 'slurm_load_jobs error: Invalid job id specified' >&2; exit 1;;\n"
+         "esac\n");
+    fake("sacct", "echo 'Slurm accounting storage is disabled'\nexit 1\n");
+  }
+  void fake(const std::string& name, const std::string& body) {
+    const std::string path = folder_.file("fake-bin/" + name);
+    std::ofstream(path) << "#!/bin/bash\n" << body;
+    std::filesystem::permissions(path, std::filesystem::perms::owner_all);
+  }
+  CommandResult with_slurm(const std::string& arguments) {
+    return tactile(arguments, "PATH='" + folder_.file("fake-bin") + "':\"$PATH\"");
+  }
+};
+
+TEST_F(ClusterWithFakeSlurm, SubmitsRecordsReportsAndResubmitsOnlyTheFailedShard) {
+  CommandResult run = with_slurm(slurm("tactile features --labels l.db --out t.csv", "--submit"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("shards: job 101 (array 1-3)\nmerge: job 102"), std::string::npos)
+      << run.out;
+  const std::string jobs = folder_.file("jobs");
+  EXPECT_EQ(read_text(folder_.file("calls.log")),
+            "sbatch --parsable " + jobs +
+                "/shards.sbatch\nsbatch --parsable --dependency=afterok:101 " + jobs +
+                "/merge.sbatch\n");
+  // What the shards left: parts 1 and 3, shard 2's exit code.
+  std::ofstream(jobs + "/parts/part-1-of-3") << "";
+  std::ofstream(jobs + "/parts/part-3-of-3") << "";
+  std::ofstream(jobs + "/logs/shard-2.exit") << "1\n";
+  run = with_slurm("cluster status jobs");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const std::string& line : std::vector<std::string>{
+           "shard 1/3  job 101_1  completed  part present\n",
+           "shard 2/3  job 101_2  failed  exit 1  (NonZeroExitCode)  part missing\n",
+           "merge  job 102  pending  (DependencyNeverSatisfied)  result missing: " +
+               folder_.file("t.csv") + "\n",
+           "parts: 2 of 3 present (missing: shard 2)\n",
+           "note: sacct: Slurm accounting storage is disabled - sacct needs slurmdbd"})
+    EXPECT_NE(run.out.find(line), std::string::npos) << line << "\nnot in\n" << run.out;
+
+  run = with_slurm("cluster resubmit jobs --shard 4");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("--shard: 4 is not a shard of this job (1 to 3)"), std::string::npos)
+      << run.err;
+  run = with_slurm("cluster resubmit jobs --shard 2");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("cancelled the old merge, job 102\nshards 2: job 103\nmerge: job 104"),
+            std::string::npos)
+      << run.out;
+  const std::string calls = read_text(folder_.file("calls.log"));
+  EXPECT_NE(calls.find("scancel 102\nsbatch --parsable --array=2 " + jobs +
+                       "/shards.sbatch\nsbatch --parsable --dependency=afterok:103 " + jobs +
+                       "/merge.sbatch\n"),
+            std::string::npos)
+      << calls;
+  EXPECT_FALSE(std::filesystem::exists(jobs + "/logs/shard-2.exit")) << "the old run's code";
+  run = with_slurm("cluster status jobs");
+  EXPECT_NE(run.out.find("shard 2/3  job 103_2  unknown"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("shard 3/3  job 101_3  completed"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("merge  job 104  unknown"), std::string::npos) << run.out;
 }
 
 }  // namespace
