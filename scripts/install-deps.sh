@@ -17,6 +17,7 @@ packages=(
   xvfb xauth
   python3-h5py  # a test reads our recordings with h5py, as users do
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer and the sanitizers' runtime for clang
+  slurm-wlm munge  # scripts/slurm-local.sh and `ctest -L slurm`: a one-node Slurm (docs/CLUSTER.md)
 )
 
 missing=()

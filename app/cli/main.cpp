@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   tactile::cli::register_verify(app);
   tactile::cli::register_predict(app);
   tactile::cli::register_merge(app);
+  tactile::cli::register_cluster(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
