@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <utility>
 
@@ -141,30 +142,31 @@ Part feature_table_part(const FeatureTable& table, const FeatureTableOptions& op
   for (const FeatureColumn& column : dataset.columns)
     columns.push_back({column.name, column.description});
   part.shared = {{"columns", columns}};
+  // Each recording's rows and skips, gathered in one pass over the table.
+  std::map<std::string, nlohmann::json> rows, skipped;
+  for (int64_t row = 0; row < dataset.rows(); ++row) {
+    const auto at = static_cast<size_t>(row);
+    std::vector<double> values(static_cast<size_t>(dataset.features.cols()));
+    Eigen::Map<Eigen::RowVectorXd>(values.data(), dataset.features.cols()) =
+        dataset.features.row(row);
+    rows[dataset.recordings[at]].push_back({{"features", values},
+                                            {"class", dataset.classes[at]},
+                                            {"subject", dataset.subjects[at]},
+                                            {"segment_id", dataset.segment_ids[at]},
+                                            {"metadata", dataset.metadata[at]}});
+  }
+  for (const SkippedSegment& skip : table.corpus.skipped)
+    skipped[skip.recording].push_back({{"segment_id", skip.segment_id},
+                                       {"t0", skip.t0},
+                                       {"t1", skip.t1},
+                                       {"reason", skip.reason}});
   part.done = nlohmann::json::array();
   for (size_t index : table.done) {
     const std::string id = table.plan[index].substr(0, table.plan[index].rfind(':'));
-    nlohmann::json rows = nlohmann::json::array(), skipped = nlohmann::json::array();
-    for (int64_t row = 0; row < dataset.rows(); ++row) {
-      const auto at = static_cast<size_t>(row);
-      if (dataset.recordings[at] != id) continue;
-      std::vector<double> values(static_cast<size_t>(dataset.features.cols()));
-      for (size_t column = 0; column < values.size(); ++column)
-        values[column] = dataset.features(row, static_cast<Eigen::Index>(column));
-      rows.push_back({{"features", values},
-                      {"class", dataset.classes[at]},
-                      {"subject", dataset.subjects[at]},
-                      {"segment_id", dataset.segment_ids[at]},
-                      {"metadata", dataset.metadata[at]}});
-    }
-    for (const SkippedSegment& skip : table.corpus.skipped)
-      if (skip.recording == id)
-        skipped.push_back({{"segment_id", skip.segment_id},
-                           {"t0", skip.t0},
-                           {"t1", skip.t1},
-                           {"reason", skip.reason}});
-    part.done.push_back(
-        {{"index", index}, {"recording", id}, {"rows", rows}, {"skipped", skipped}});
+    part.done.push_back({{"index", index},
+                         {"recording", id},
+                         {"rows", rows.count(id) ? rows[id] : nlohmann::json::array()},
+                         {"skipped", skipped.count(id) ? skipped[id] : nlohmann::json::array()}});
   }
   return part;
 }
