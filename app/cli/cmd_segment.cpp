@@ -1,6 +1,9 @@
-// `tactile segment RECORDING.h5|FOLDER... --labels DB [--method M] [--params k=v,...] [--replace]`
+// `tactile segment RECORDING.h5|FOLDER... --labels DB [--method M] [--params k=v,...]
+//  [--preset NAME] [--fit-to LANE] [--score LANE] [--replace]`
 // Runs a segmenter on each recording and stores its labels (source segmenter) in the
-// label database, one transaction per recording. A folder stands for every .h5 file under
+// label database, one transaction per recording. --fit-to first chooses adaptive's parameters
+// from a lane's labelled touches (segment/fit.h), prints them with their held-out scores and
+// saves them as a preset; --score prints each recording's segments scored against a lane. A folder stands for every .h5 file under
 // it. Segments whose class the method does not know are stored with class "unknown"
 // (the store needs a class); `tactile features` gives them the overlapping ground truth.
 #include <algorithm>
@@ -19,6 +22,10 @@
 #include "tactile/labels/suggestions.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
+#include "tactile/labels/lanes.h"
+#include "tactile/segment/fit.h"
+#include "tactile/segment/presets.h"
+#include "tactile/segment/scoring.h"
 #include "tactile/segment/segmenter.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
@@ -29,7 +36,7 @@ namespace {
 
 struct SegmentOptions {
   std::vector<std::string> inputs;
-  std::string database, method, params;
+  std::string database, method, params, preset, fit_to, score;
   bool replace = false;
   ShardArgs shard;
 };
@@ -45,6 +52,8 @@ struct SegmentedRecording {
   std::string recording;  // its id
   std::string method;
   std::vector<Label> segments;
+  double start_time = 0.0, rate_hz = 0.0;  // its frames, for --score
+  int64_t frames = 0;
 };
 
 SegmentedRecording segment_file(const SegmentOptions& options, const std::string& file) {
@@ -55,7 +64,13 @@ SegmentedRecording segment_file(const SegmentOptions& options, const std::string
   const std::string method = options.method.empty() ? own_method : options.method;
   const Parameters parameters = Parameters::parse(
       options.method.empty() && options.params.empty() ? own_params : options.params, "--params");
-  return {recording.id, method, segment_recording(method, recording, layout, parameters)};
+  SegmentedRecording segmented{recording.id, method,
+                               segment_recording(method, recording, layout, parameters)};
+  const Stream& stream = recording.streams.front();  // segment_recording needs one
+  segmented.start_time = stream.sample_count() > 0 ? stream.time_of(0) : 0.0;
+  segmented.rate_hz = stream.rate_hz;
+  segmented.frames = stream.sample_count();
+  return segmented;
 }
 
 // Stores one recording's segments as one transaction and says so; returns how many.
@@ -96,10 +111,77 @@ Part segment_part(const SegmentOptions& options, const Shard& shard,
   return part;
 }
 
-void run_segment(const SegmentOptions& options) {
+// The labels of one lane ("ground-truth" or "truth", "manual:NAME" or NAME, "segmenter:M",
+// "model:NAME") on one recording.
+std::vector<Label> lane_labels(const LabelStore& store, const std::string& lane,
+                               const std::string& recording) {
+  const LaneKey key = lane_from_id(lane == "truth" ? "ground-truth" : lane);
+  LabelFilter filter;
+  filter.recording = recording;
+  filter.source = key.source;
+  if (key.source != LabelSource::kGroundTruth) filter.annotator = key.annotator;
+  return store.list(filter);
+}
+
+// --preset NAME: the preset's method and parameters, unless the line gives its own.
+void apply_preset(SegmentOptions& options) {
+  if (options.preset.empty() || !options.fit_to.empty()) return;
+  const std::string path = segmenter_presets_path(options.database);
+  const std::optional<SegmenterPreset> preset = find_segmenter_preset(path, options.preset);
+  if (!preset) throw Error("--preset " + options.preset, "no such preset in " + path);
+  if (!options.method.empty() && options.method != preset->method)
+    throw Error("--preset " + options.preset,
+                "is a preset of " + preset->method + ", not of --method " + options.method);
+  if (!options.params.empty())
+    throw Error("--params", "give either --params or --preset, not both");
+  options.method = preset->method;
+  options.params = preset->params;
+}
+
+// --fit-to LANE: adaptive's parameters chosen on the lane's touches, printed and saved as a
+// preset; the recordings are then segmented with them.
+void fit_to_lane(SegmentOptions& options, const std::vector<std::string>& files) {
+  if (!options.method.empty() && options.method != "adaptive")
+    throw Error("--fit-to", "fits the adaptive segmenter's parameters, not " + options.method);
+  if (!options.params.empty()) throw Error("--params", "--fit-to chooses the parameters itself");
+  std::vector<Recording> recordings;
+  std::vector<SkinLayout> layouts;
+  recordings.reserve(files.size());
+  layouts.reserve(files.size());
+  const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
+  std::vector<FitRecording> items;
+  for (const std::string& file : files) {
+    recordings.push_back(read_recording(file));
+    layouts.push_back(load_layout(recordings.back().layout_id));
+  }
+  for (size_t r = 0; r < files.size(); ++r)
+    items.push_back({&recordings[r], &layouts[r],
+                     lane_labels(store, options.fit_to, recordings[r].id)});
+  const SegmenterFit fit = fit_segmenter(items);
+  std::cout << fit_report(fit);
+  SegmenterPreset preset;
+  preset.name = options.preset.empty() ? "fitted" : options.preset;
+  preset.method = fit.method;
+  preset.params = fit.params;
+  preset.fitted_to = options.fit_to;
+  preset.held_out_event_f1 = fit.held_out.events.f1();
+  preset.touches = fit.touches;
+  const std::string path = segmenter_presets_path(options.database);
+  save_segmenter_preset(path, preset);
+  std::cout << "saved as preset '" << preset.name << "' in " << path
+            << " (tactile segment --preset " << preset.name << ")\n";
+  options.method = fit.method;
+  options.params = fit.params;
+}
+
+void run_segment(SegmentOptions options) {
   check_segment_method(options.method);
   const std::vector<std::string> files = recording_files(options.inputs);
   const ShardPlan plan = shard_plan(options.shard, options.database + ".segment");
+  if (plan.shard.active() && (!options.fit_to.empty() || !options.score.empty()))
+    throw Error("--shard", "runs without --fit-to and --score (they read every recording)");
+  if (!options.fit_to.empty()) fit_to_lane(options, files);
+  apply_preset(options);
   if (plan.shard.active()) {  // its recordings' segments only: the store is merge's to write
     Part part = segment_part(options, plan.shard, files);
     for (size_t index : plan.shard.items_of(files.size())) {
@@ -119,12 +201,22 @@ void run_segment(const SegmentOptions& options) {
   LabelStore store(options.database);
   std::set<std::string> annotators;
   int64_t total = 0;
+  TouchScore scored;
   for (const std::string& file : files) {
     const SegmentedRecording segmented = segment_file(options, file);
     annotators.insert("segmenter:" + segmented.method);
     total += static_cast<int64_t>(store_segments(store, segmented, options.replace));
+    if (options.score.empty()) continue;
+    const TouchScore score =
+        score_touches(segmented.segments, lane_labels(store, options.score, segmented.recording),
+                      segmented.start_time, segmented.rate_hz, segmented.frames);
+    std::cout << "  against " << options.score << ": " << touch_score_text(score) << "\n";
+    scored += score;
   }
   print_segment_total(total, files.size(), options.database, annotators);
+  if (!options.score.empty())
+    std::cout << "all recordings against " << options.score << ": " << touch_score_text(scored)
+              << "\n";
 }
 
 }  // namespace
@@ -159,6 +251,16 @@ void register_segment(CLI::App& app) {
       "--method", options->method,
       "Segmenter: " + joined(segmenter_methods()) + " (default: each recording's skin's own)");
   command->add_option("--params", options->params, "Method parameters as key=value,...");
+  command->add_option("--preset", options->preset,
+                      "A saved segmenter preset (with --fit-to: the name to save it as; "
+                      "default 'fitted')");
+  command->add_option("--fit-to", options->fit_to,
+                      "Choose adaptive's parameters from this lane's labelled touches "
+                      "(ground-truth, manual:NAME or NAME; at least three touches), print "
+                      "them with their held-out scores, save them as a preset, then segment");
+  command->add_option("--score", options->score,
+                      "Score each recording's segments against this lane (frame F1, event F1, "
+                      "touches split and merged)");
   command->add_flag("--replace", options->replace,
                     "First remove each recording's earlier labels from this method");
   add_shard_options(command, options->shard);

@@ -14,42 +14,46 @@ namespace {
 
 struct AdaptiveOptions {
   double margin = 2.0;             // times the 3-sigma band: a taxel is off its rest
-  int64_t taxels = 2;              // that many taxels off their rest make a touch frame
-  double alone = 2.0;              // or one taxel this many times further
-  double level = 0.3;              // share of the touch level a touch needs somewhere
-  double dip = 0.2;                // a release: the excursion below this share of both peaks
+  int64_t taxels = 2;              // that many taxels on make a touch frame
+  double alone = 2.0;              // or one taxel this many times past its band
+  double share = 0.2;              // the band's share of the touch amplitude of the taxel's kind
+  double join_seconds = -1.0;      // releases this short join contacts; < 0: from the signal
   double baseline_seconds = 20.0;  // the running median the rest follows
   double opening_seconds = 4.0;    // the lower envelope the rest of a one-way channel follows
   double envelope_seconds = 0.03;  // a taxel's excursion is its largest over this span
-  double stuck_seconds = 1.0;      // an unchanging run this long is a stuck taxel
-  double quiet_seconds = 0.02;     // gaps this short inside a touch are bridged
+  double stuck_seconds = 1.0;      // an unchanging run this long is a stuck taxel (noisy ones)
   double max_seconds = 10.0;
   double min_seconds = 0.05;
 };
 
 AdaptiveOptions adaptive_options(const Parameters& parameters) {
-  parameters.expect_only({"margin", "taxels", "alone", "level", "dip", "baseline_seconds",
-                          "opening_seconds", "envelope_seconds", "stuck_seconds", "quiet_seconds",
-                          "max_seconds", "min_seconds"});
+  parameters.expect_only({"margin", "taxels", "alone", "share", "join_seconds", "quiet_seconds",
+                          "baseline_seconds", "opening_seconds", "envelope_seconds",
+                          "stuck_seconds", "max_seconds", "min_seconds"});
   AdaptiveOptions options;
   options.margin = parameters.number("margin", options.margin);
   options.taxels = parameters.integer("taxels", options.taxels);
   options.alone = parameters.number("alone", options.alone);
-  options.level = parameters.number("level", options.level);
-  options.dip = parameters.number("dip", options.dip);
+  options.share = parameters.number("share", options.share);
+  // quiet_seconds: the name join_seconds had before gesture-level touches.
+  if (parameters.has("quiet_seconds") && parameters.has("join_seconds"))
+    throw Error("parameter quiet_seconds", "is the old name of join_seconds: give one of them");
+  options.join_seconds = parameters.has("quiet_seconds")
+                             ? parameters.number("quiet_seconds", options.join_seconds)
+                             : parameters.number("join_seconds", options.join_seconds);
   options.baseline_seconds = parameters.number("baseline_seconds", options.baseline_seconds);
   options.opening_seconds = parameters.number("opening_seconds", options.opening_seconds);
   options.envelope_seconds = parameters.number("envelope_seconds", options.envelope_seconds);
   options.stuck_seconds = parameters.number("stuck_seconds", options.stuck_seconds);
-  options.quiet_seconds = parameters.number("quiet_seconds", options.quiet_seconds);
   options.max_seconds = parameters.number("max_seconds", options.max_seconds);
   options.min_seconds = parameters.number("min_seconds", options.min_seconds);
   if (!(options.margin > 0)) throw Error("parameter margin", "must be positive");
   if (options.taxels < 1) throw Error("parameter taxels", "must be at least 1");
   if (!(options.alone >= 1)) throw Error("parameter alone", "must be at least 1");
-  if (!(options.level >= 0 && options.level < 1))
-    throw Error("parameter level", "must lie in [0, 1)");
-  if (!(options.dip >= 0 && options.dip < 1)) throw Error("parameter dip", "must lie in [0, 1)");
+  if (!(options.share >= 0 && options.share < 1))
+    throw Error("parameter share", "must lie in [0, 1)");
+  if (std::isnan(options.join_seconds))
+    throw Error("parameter join_seconds", "must be a number (negative: chosen from the signal)");
   if (!(options.baseline_seconds > 0))
     throw Error("parameter baseline_seconds", "must be positive");
   if (!(options.opening_seconds >= 0))
@@ -57,8 +61,8 @@ AdaptiveOptions adaptive_options(const Parameters& parameters) {
   if (!(options.envelope_seconds >= 0))
     throw Error("parameter envelope_seconds", "must not be negative");
   if (!(options.stuck_seconds > 0)) throw Error("parameter stuck_seconds", "must be positive");
-  if (!(options.quiet_seconds >= 0)) throw Error("parameter quiet_seconds", "must not be negative");
   if (!(options.max_seconds > 0)) throw Error("parameter max_seconds", "must be positive");
+  if (!(options.min_seconds >= 0)) throw Error("parameter min_seconds", "must not be negative");
   return options;
 }
 
@@ -148,58 +152,41 @@ std::vector<float> adaptive_baseline(const float* column, int64_t samples, int64
   return rest;
 }
 
-// Splits [first, last] at its deepest release, recursively: a frame whose excursion is below
-// `dip` times the smaller of the highest excursions on either side.
-void adaptive_split(const std::vector<float>& excursion, int64_t first, int64_t last, double dip,
-                    int64_t shortest, std::vector<std::pair<int64_t, int64_t>>& parts) {
-  if (last - first + 1 < 2 * shortest + 1) {
-    parts.emplace_back(first, last);
-    return;
-  }
-  const auto count = static_cast<size_t>(last - first + 1);
-  std::vector<float> left(count), right(count);
-  for (size_t k = 0; k < count; ++k)
-    left[k] = std::max(k ? left[k - 1] : 0.0f, excursion[static_cast<size_t>(first) + k]);
-  for (size_t k = count; k-- > 0;)
-    right[k] =
-        std::max(k + 1 < count ? right[k + 1] : 0.0f, excursion[static_cast<size_t>(first) + k]);
-  double deepest = dip;
-  int64_t at = -1;
-  for (int64_t t = first + shortest; t <= last - shortest; ++t) {
-    const auto k = static_cast<size_t>(t - first);
-    const float peak = std::min(left[k], right[k]);
-    if (!(peak > 0)) continue;
-    const double ratio = excursion[static_cast<size_t>(t)] / peak;
-    if (ratio < deepest) deepest = ratio, at = t;
-  }
-  if (at < 0) {
-    parts.emplace_back(first, last);
-    return;
-  }
-  // The release frames around the deepest one go to neither touch.
-  int64_t end_left = at - 1, start_right = at + 1;
-  const float release = excursion[static_cast<size_t>(at)];
-  const auto near_release = [&](int64_t t) {
-    return excursion[static_cast<size_t>(t)] <= release * 1.0001f + 1e-6f;
-  };
-  while (end_left > first && near_release(end_left)) --end_left;
-  while (start_right < last && near_release(start_right)) ++start_right;
-  adaptive_split(excursion, first, end_left, dip, shortest, parts);
-  adaptive_split(excursion, start_right, last, dip, shortest, parts);
-}
-
 }  // namespace
 
-std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout& layout,
-                                    const Parameters& parameters) {
-  const AdaptiveOptions options = adaptive_options(parameters);
+struct AdaptiveScan {
+  std::string recording;
+  double rate = 0.0;
+  int64_t samples = 0;
+  double start_time = 0.0;
+  std::vector<double> times;                // of each frame
+  std::vector<std::vector<float>> moved;    // each channel's excursion (empty: never counts)
+  std::vector<float> sigmas;                // each channel's noise sigma
+  std::vector<std::string> kinds;           // each channel's kind (modality|unit)
+  std::map<std::string, float> amplitude;   // each kind's touch amplitude
+  float noise_bands = 6.0f;                 // margin x 3
+  std::vector<std::vector<int>> group_channels;
+  std::vector<std::string> group_ids;
+};
+
+namespace {
+
+// The slow half: each channel's rest, noise, excursion and peak, and each kind's amplitude.
+std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const SkinLayout& layout,
+                                            const AdaptiveOptions& options) {
+  auto scan = std::make_shared<AdaptiveScan>();
+  scan->recording = recording.id;
   if (recording.streams.empty()) throw Error(recording.id, "no stream to segment");
   const Stream& stream = recording.streams.front();
   if (!(stream.rate_hz > 0)) throw Error(recording.id + ":/streams/" + stream.name, "needs a sample rate");
   const double rate = stream.rate_hz;
   const int channels = static_cast<int>(stream.channel_count());
   const int64_t samples = stream.sample_count();
-  if (samples == 0) return {};
+  scan->rate = rate;
+  scan->samples = samples;
+  scan->start_time = samples > 0 ? stream.time_of(0) : 0.0;
+  for (int64_t t = 0; t < samples; ++t) scan->times.push_back(stream.time_of(t));
+  if (samples == 0) return scan;
   const auto frames_of = [&](double seconds) {
     return std::max<int64_t>(1, std::llround(seconds * rate));
   };
@@ -209,30 +196,45 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
   const int64_t stuck = frames_of(options.stuck_seconds);
   const int64_t opening = std::llround(options.opening_seconds / 0.25);
   const int64_t peak_frames = std::llround(options.min_seconds * rate);
-  const float on = static_cast<float>(options.margin * 3.0);  // in noise sigmas
 
-  // Each channel's excursion from its running rest, in its own noise sigmas (1.4826 MAD of
-  // the residual); 0 where the channel holds one value for stuck_seconds or more (a stuck or
-  // dead taxel), and everywhere for a channel without noise (it never moves).
-  std::vector<std::vector<float>> score(static_cast<size_t>(channels));
+  // Each channel's excursion from its running rest, in units of its band: > 1 is "on".
+  // A run of one unchanging value for stuck_seconds or more on a noisy channel is a stuck
+  // taxel: missing everywhere below. A channel with no noise at all (binary, integer-step,
+  // clipped at zero) holds its rest for long stretches by nature, so the rule skips it.
+  std::vector<std::vector<float>>& score = scan->moved;
+  score.resize(static_cast<size_t>(channels));
   std::vector<float> residual(static_cast<size_t>(samples));
   std::vector<float> deviations;
   std::vector<std::vector<float>> kept_columns(static_cast<size_t>(channels));
   std::vector<int> directions(static_cast<size_t>(channels), 0);
   std::vector<uint8_t> usable_channel(static_cast<size_t>(channels), 0);
+  std::vector<double> change_share(static_cast<size_t>(channels), 0.0);
   for (int c = 0; c < channels; ++c) {
-    // Runs of one unchanging value for stuck_seconds or more: a stuck or dead taxel. They
-    // count as missing everywhere below (rest, direction, noise) and never as a touch.
     const float* raw = stream.samples.col(c).data();
     std::vector<float>& kept = kept_columns[static_cast<size_t>(c)];
     kept.assign(raw, raw + samples);
+    // How often the value changes from one frame to the next outside the long unchanging
+    // runs: noise changes it nearly every frame, a noiseless sensor only at its edges.
+    int64_t changes = 0, outside = 0;
+    std::vector<std::pair<int64_t, int64_t>> long_runs;
     for (int64_t t = 0; t < samples;) {
       int64_t end = t + 1;
-      while (end < samples && raw[end] == raw[t]) ++end;
-      if (end - t >= stuck)
-        std::fill(kept.begin() + t, kept.begin() + end, std::numeric_limits<float>::quiet_NaN());
+      while (end < samples && (raw[end] == raw[t] || (std::isnan(raw[end]) && std::isnan(raw[t]))))
+        ++end;
+      if (end - t >= stuck) {
+        long_runs.emplace_back(t, end);
+      } else {
+        outside += end - t;
+        changes += 1;
+      }
       t = end;
     }
+    change_share[static_cast<size_t>(c)] =
+        outside > 1 ? static_cast<double>(changes) / static_cast<double>(outside) : 0.0;
+    const bool noisy = change_share[static_cast<size_t>(c)] >= 0.5;
+    for (const auto& [from, to] : long_runs)
+      if (noisy || std::isnan(raw[from]))
+        std::fill(kept.begin() + from, kept.begin() + to, std::numeric_limits<float>::quiet_NaN());
     const float* column = kept.data();
     // Which way touches move the channel: the side of its median with the longer tail, once
     // a running median over the opening window is taken off (drift has no tail of its own).
@@ -263,7 +265,11 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
     for (int& direction : directions)
       if (direction == 0) direction = skin_direction;
   }
-  std::vector<float> sigmas(static_cast<size_t>(channels), 0.0f);
+  // Each channel's excursion in its own units (one-sided where touches move it one way),
+  // closed over envelope_seconds, and its noise sigma (1.4826 MAD of the residual; 0 for a
+  // noiseless sensor).
+  std::vector<float>& sigmas = scan->sigmas;
+  sigmas.assign(static_cast<size_t>(channels), 0.0f);
   for (int c = 0; c < channels; ++c) {
     if (!usable_channel[static_cast<size_t>(c)]) continue;
     const float* column = kept_columns[static_cast<size_t>(c)].data();
@@ -273,7 +279,6 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
                                                       : direction < 0 ? 0.75
                                                                       : 0.5,
                                                       direction, opening);
-
     deviations.clear();
     for (int64_t t = 0; t < samples; ++t) {
       residual[static_cast<size_t>(t)] =
@@ -282,36 +287,24 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
     }
     const float centre = stats::median(deviations);
     for (float& value : deviations) value = std::fabs(value - centre);
-    float sigma = 1.4826f * stats::median(deviations);
-    if (!(sigma > 0)) {
-      // Quantised quiet channels: the median change between frames tells the step.
-      deviations.clear();
-      for (int64_t t = 1; t < samples; ++t)
-        if (column[t] != column[t - 1] && std::isfinite(column[t]) && std::isfinite(column[t - 1]))
-          deviations.push_back(std::fabs(column[t] - column[t - 1]));
-      if (deviations.size() < 3) continue;
-      sigma = stats::median(deviations);
-    }
-    sigmas[static_cast<size_t>(c)] = sigma;
-    std::vector<float>& z = score[static_cast<size_t>(c)];
-    z.assign(static_cast<size_t>(samples), 0.0f);
-    // One-sided for a channel that touches move one way: the other way is no touch.
+    sigmas[static_cast<size_t>(c)] = 1.4826f * stats::median(deviations);
+    std::vector<float>& moved = score[static_cast<size_t>(c)];
+    moved.assign(static_cast<size_t>(samples), 0.0f);
     for (int64_t t = 0; t < samples; ++t) {
-      const float moved = residual[static_cast<size_t>(t)];
-      z[static_cast<size_t>(t)] = (direction > 0   ? std::max(0.0f, moved)
-                                   : direction < 0 ? std::max(0.0f, -moved)
-                                                   : std::fabs(moved)) /
-                                  sigma;
+      const float value = residual[static_cast<size_t>(t)];
+      moved[static_cast<size_t>(t)] = direction > 0   ? std::max(0.0f, value)
+                                      : direction < 0 ? std::max(0.0f, -value)
+                                                      : std::fabs(value);
     }
     // A closing (running maximum, then running minimum, over envelope_seconds): oscillating
     // signals (piezo films) keep their level through zero crossings, and the edges stay put.
     if (envelope > 0) {
-      std::vector<float> widest(z.size()), closed(z.size());
+      std::vector<float> widest(moved.size()), closed(moved.size());
       for (int64_t t = 0; t < samples; ++t) {
         float most = 0.0f;
         for (int64_t u = std::max<int64_t>(0, t - envelope);
              u <= std::min(samples - 1, t + envelope); ++u)
-          most = std::max(most, z[static_cast<size_t>(u)]);
+          most = std::max(most, moved[static_cast<size_t>(u)]);
         widest[static_cast<size_t>(t)] = most;
       }
       for (int64_t t = 0; t < samples; ++t) {
@@ -321,125 +314,65 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
           least = std::min(least, widest[static_cast<size_t>(u)]);
         closed[static_cast<size_t>(t)] = least;
       }
-      z = std::move(closed);
+      moved = std::move(closed);
     }
   }
-  // A channel with almost no noise of its own (a tenth of the median channel's, or less) is
-  // stuck under a drifting offset, or dead: it never counts.
+  // A noisy channel with a tenth of the median noisy channel's sigma or less, changing
+  // smoothly, is stuck under a drifting offset, or dead: it never counts.
   {
     std::vector<float> noises;
     for (int c = 0; c < channels; ++c)
-      if (!score[static_cast<size_t>(c)].empty()) noises.push_back(sigmas[static_cast<size_t>(c)]);
+      if (!score[static_cast<size_t>(c)].empty() && sigmas[static_cast<size_t>(c)] > 0)
+        noises.push_back(sigmas[static_cast<size_t>(c)]);
     if (noises.size() >= 3) {
       const float typical_noise = stats::median(noises);
       for (int c = 0; c < channels; ++c)
-        if (sigmas[static_cast<size_t>(c)] < 0.1f * typical_noise)
+        if (sigmas[static_cast<size_t>(c)] < 0.1f * typical_noise &&
+            change_share[static_cast<size_t>(c)] >= 0.5)
           score[static_cast<size_t>(c)].clear();
     }
   }
 
-  // The touch level: each moving channel's peak, the highest z it holds for min_seconds (a
-  // channel touched once, briefly, keeps its press's level); the median of those stands in
-  // for channels that only a resting hand reached. A touch needs, somewhere, `taxels` channels
-  // past `level` times that; a low broad press between touches never gets there.
-  std::vector<float> high(static_cast<size_t>(channels), 0.0f);
-  std::vector<float> levels;
-  int usable = 0;
+  // The band of each channel: its noise band (margin x 3 sigma) or `share` of the touch
+  // amplitude of its kind, whichever is higher. A channel's peak is the highest excursion it
+  // holds for min_seconds; the touch amplitude of a kind (the layout's modality and unit: one
+  // scale) is the 95th percentile of the peaks of its channels that left their noise band.
+  // So a noiseless sensor (binary, integer steps) is on past a fifth of its kind's press, an
+  // 8-bit grid past a fifth of its full presses (crosstalk and a resting hand stay below),
+  // and a noisy analog skin past its noise.
+  std::map<std::string, std::string> kind_of_name;
+  for (const Channel& channel : layout.channels)
+    kind_of_name[channel.name] = channel.modality + "|" + channel.unit;
+  std::vector<std::string>& kinds = scan->kinds;
+  kinds.resize(static_cast<size_t>(channels));
   for (int c = 0; c < channels; ++c) {
-    std::vector<float>& z = score[static_cast<size_t>(c)];
-    if (z.empty()) continue;
-    ++usable;
-    std::vector<float> copy = z;
+    const auto found = kind_of_name.find(stream.channels[static_cast<size_t>(c)]);
+    if (found != kind_of_name.end()) kinds[static_cast<size_t>(c)] = found->second;
+  }
+  const float noise_bands = static_cast<float>(options.margin * 3.0);
+  std::vector<float> peaks(static_cast<size_t>(channels), 0.0f);
+  scan->noise_bands = noise_bands;
+  std::map<std::string, std::vector<float>> kind_peaks;
+  for (int c = 0; c < channels; ++c) {
+    const std::vector<float>& moved = score[static_cast<size_t>(c)];
+    if (moved.empty()) continue;
+    std::vector<float> copy = moved;
     const auto index = static_cast<size_t>(std::max<int64_t>(
         0, static_cast<int64_t>(copy.size()) - std::max<int64_t>(1, peak_frames)));
-    high[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
-    if (high[static_cast<size_t>(c)] > on) levels.push_back(high[static_cast<size_t>(c)]);
+    peaks[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
+    if (peaks[static_cast<size_t>(c)] > noise_bands * sigmas[static_cast<size_t>(c)])
+      kind_peaks[kinds[static_cast<size_t>(c)]].push_back(peaks[static_cast<size_t>(c)]);
   }
-  const float typical = levels.empty() ? on : stats::median(levels);
-  const int64_t needed = std::min<int64_t>(options.taxels, std::max(1, usable));
-  const float alone = static_cast<float>(options.alone) * on;
-  std::vector<uint8_t> low(static_cast<size_t>(samples), 0), core(static_cast<size_t>(samples), 0);
-  std::vector<float> excursion(static_cast<size_t>(samples), 0.0f);
-  {
-    std::vector<int64_t> above(static_cast<size_t>(samples), 0),
-        strong(static_cast<size_t>(samples), 0);
-    for (int c = 0; c < channels; ++c) {
-      const std::vector<float>& z = score[static_cast<size_t>(c)];
-      if (z.empty()) continue;
-      const float touch_level = std::max(
-          on, static_cast<float>(options.level) * std::max(high[static_cast<size_t>(c)], typical));
-      for (int64_t t = 0; t < samples; ++t) {
-        const float value = z[static_cast<size_t>(t)];
-        // One channel far past its band counts as many (a touch on one large taxel).
-        above[static_cast<size_t>(t)] += value > alone ? needed : value > on;
-        strong[static_cast<size_t>(t)] +=
-            value > std::max(alone, touch_level) ? needed : value > touch_level;
-        // The excursion beyond the noise band, capped at a channel's touch level so that one
-        // wild channel cannot hide a release.
-        excursion[static_cast<size_t>(t)] +=
-            std::clamp(value - on, 0.0f, std::max(high[static_cast<size_t>(c)], on));
-      }
-    }
-    for (int64_t t = 0; t < samples; ++t) {
-      low[static_cast<size_t>(t)] = above[static_cast<size_t>(t)] >= needed;
-      core[static_cast<size_t>(t)] = strong[static_cast<size_t>(t)] >= needed;
-    }
-  }
-
-  // Runs of frames with `taxels` channels off rest, bridged over gaps up to quiet_seconds, kept
-  // when they reach the touch level somewhere; then split at releases.
-  const int64_t bridge = std::llround(options.quiet_seconds * rate);
-  std::vector<std::pair<int64_t, int64_t>> runs;
-  for (int64_t t = 0; t < samples;) {
-    if (!low[static_cast<size_t>(t)]) {
-      ++t;
-      continue;
-    }
-    int64_t end = t;
-    for (;;) {
-      while (end + 1 < samples && low[static_cast<size_t>(end + 1)]) ++end;
-      int64_t next = end + 1;
-      while (next < samples && next - end - 1 < bridge && !low[static_cast<size_t>(next)]) ++next;
-      if (next < samples && next - end - 1 <= bridge && low[static_cast<size_t>(next)] &&
-          next > end + 1) {
-        end = next;
-        continue;
-      }
-      break;
-    }
-    if (std::any_of(core.begin() + t, core.begin() + end + 1, [](uint8_t v) { return v != 0; }))
-      runs.emplace_back(t, end);
-    t = end + 1;
-  }
-  std::vector<std::pair<int64_t, int64_t>> parts;
-  const int64_t shortest = std::max<int64_t>(1, std::llround(options.min_seconds * rate));
-  for (const auto& [first, last] : runs) {
-    // Touch-level stretches inside the run, bridged over quiet_seconds: each gap between two is
-    // a release, cut at its lowest frame.
-    std::vector<std::pair<int64_t, int64_t>> pressed;
-    for (int64_t t = first; t <= last; ++t) {
-      if (!core[static_cast<size_t>(t)]) continue;
-      if (!pressed.empty() && t - pressed.back().second - 1 <= bridge)
-        pressed.back().second = t;
-      else
-        pressed.emplace_back(t, t);
-    }
-    int64_t start = first;
-    for (size_t k = 0; k + 1 < pressed.size(); ++k) {
-      int64_t lowest = pressed[k].second + 1;
-      for (int64_t t = lowest; t < pressed[k + 1].first; ++t)
-        if (excursion[static_cast<size_t>(t)] < excursion[static_cast<size_t>(lowest)]) lowest = t;
-      if (lowest - 1 >= start)
-        adaptive_split(excursion, start, lowest - 1, options.dip, shortest, parts);
-      start = lowest + 1;
-    }
-    if (start <= last) adaptive_split(excursion, start, last, options.dip, shortest, parts);
-  }
-
+  std::map<std::string, float>& amplitude = scan->amplitude;
+  for (auto& [kind, values] : kind_peaks)
+    amplitude[kind] = stats::nth_smallest(
+        values, static_cast<size_t>(std::llround(0.95 * static_cast<double>(values.size() - 1))));
   // Which group a channel's taxel belongs to, for the region.
   std::map<std::string, int> channel_of_name;
   for (int c = 0; c < channels; ++c) channel_of_name[stream.channels[static_cast<size_t>(c)]] = c;
-  std::vector<std::vector<int>> group_channels(layout.groups.size());
+  std::vector<std::vector<int>>& group_channels = scan->group_channels;
+  group_channels.resize(layout.groups.size());
+  for (const auto& group : layout.groups) scan->group_ids.push_back(group.id);
   for (size_t g = 0; g < layout.groups.size(); ++g)
     for (int64_t taxel_id : layout.groups[g].taxels)
       if (const Taxel* taxel = layout.find_taxel(taxel_id))
@@ -448,16 +381,103 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
             const auto found = channel_of_name.find(layout.channels[static_cast<size_t>(channel)].name);
             if (found != channel_of_name.end()) group_channels[g].push_back(found->second);
           }
+  return scan;
+}
+
+// The fast half: bands from the touch amplitude, touch frames, contacts joined into touches.
+std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptions& options) {
+  const int64_t samples = scan.samples;
+  if (samples == 0) return {};
+  const double rate = scan.rate;
+  const int channels = static_cast<int>(scan.moved.size());
+  const auto frames_of = [&](double seconds) {
+    return std::max<int64_t>(1, std::llround(seconds * rate));
+  };
+  std::vector<std::vector<float>> score = scan.moved;
+  const std::vector<float>& sigmas = scan.sigmas;
+  const std::vector<std::string>& kinds = scan.kinds;
+  const float noise_bands = scan.noise_bands;
+  const auto& amplitude = scan.amplitude;
+  const auto& group_channels = scan.group_channels;
+  int usable = 0;
+  for (int c = 0; c < channels; ++c) {
+    std::vector<float>& moved = score[static_cast<size_t>(c)];
+    if (moved.empty()) continue;
+    const auto found = amplitude.find(kinds[static_cast<size_t>(c)]);
+    const float band =
+        std::max(noise_bands * sigmas[static_cast<size_t>(c)],
+                 static_cast<float>(options.share) * (found == amplitude.end() ? 0.0f : found->second));
+    if (!(band > 0)) {  // a channel of a kind no touch moved: never on
+      moved.clear();
+      continue;
+    }
+    ++usable;
+    for (float& value : moved) value /= band;
+  }
+
+  // Touch frames: `taxels` channels on, or one `alone` times past its band. A contact is a
+  // run of them, its edges moved out while any channel stays on.
+  const int64_t needed = std::min<int64_t>(options.taxels, std::max(1, usable));
+  const float alone = static_cast<float>(options.alone);
+  std::vector<uint8_t> touching(static_cast<size_t>(samples), 0), any_on(static_cast<size_t>(samples), 0);
+  {
+    std::vector<int64_t> count(static_cast<size_t>(samples), 0);
+    for (int c = 0; c < channels; ++c) {
+      const std::vector<float>& e = score[static_cast<size_t>(c)];
+      if (e.empty()) continue;
+      for (int64_t t = 0; t < samples; ++t) {
+        const float value = e[static_cast<size_t>(t)];
+        count[static_cast<size_t>(t)] += value > alone ? needed : value > 1.0f;
+        any_on[static_cast<size_t>(t)] |= value > 1.0f;
+      }
+    }
+    for (int64_t t = 0; t < samples; ++t)
+      touching[static_cast<size_t>(t)] = count[static_cast<size_t>(t)] >= needed;
+  }
+  std::vector<std::pair<int64_t, int64_t>> contacts;
+  for (int64_t t = 0; t < samples; ++t) {
+    if (!touching[static_cast<size_t>(t)]) continue;
+    int64_t first = t, last = t;
+    while (last + 1 < samples && touching[static_cast<size_t>(last + 1)]) ++last;
+    t = last;
+    while (first > 0 && any_on[static_cast<size_t>(first - 1)]) --first;
+    while (last + 1 < samples && any_on[static_cast<size_t>(last + 1)]) ++last;
+    if (!contacts.empty() && first <= contacts.back().second + 1)
+      contacts.back().second = std::max(contacts.back().second, last);
+    else
+      contacts.emplace_back(first, last);
+    t = std::max(t, last);
+  }
+  // A touch is a gesture instance: contacts whose release is at most `join` frames are one.
+  // From the signal, join is a quarter of the median contact's length (at least one frame):
+  // the fingers of a tickle, a stroke that lifts and lands again, a squeeze that eases. A
+  // release as long as a contact itself (repeated pulses, taps) still separates touches.
+  int64_t join = 0;
+  if (options.join_seconds >= 0) {
+    join = std::llround(options.join_seconds * rate);
+  } else if (!contacts.empty()) {
+    std::vector<float> lengths;
+    for (const auto& [first, last] : contacts) lengths.push_back(static_cast<float>(last - first + 1));
+    join = std::max<int64_t>(1, static_cast<int64_t>(0.25 * stats::median(lengths)));
+  }
+  std::vector<std::pair<int64_t, int64_t>> parts;
+  for (const auto& contact : contacts) {
+    if (!parts.empty() && contact.first - parts.back().second - 1 <= join)
+      parts.back().second = contact.second;
+    else
+      parts.push_back(contact);
+  }
+
   const int64_t longest = frames_of(options.max_seconds);
   std::vector<Label> labels;
   for (const auto& [part_first, part_last] : parts) {
     for (int64_t first = part_first; first <= part_last; first += longest) {
       const int64_t last = std::min(part_last, first + longest - 1);
-      const double t0 = stream.time_of(first);
-      const double t1 = stream.time_of(last) + 1.0 / rate;
+      const double t0 = scan.times[static_cast<size_t>(first)];
+      const double t1 = scan.times[static_cast<size_t>(last)] + 1.0 / rate;
       if (t1 - t0 < options.min_seconds - 1e-9) continue;
       Label label;
-      label.recording = recording.id;
+      label.recording = scan.recording;
       label.t0 = t0;
       label.t1 = t1;
       label.class_name = kUnknownClass;
@@ -467,17 +487,50 @@ std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout
       for (size_t g = 0; g < group_channels.size(); ++g) {
         double moved = 0.0;
         for (int c : group_channels[g]) {
-          const std::vector<float>& z = score[static_cast<size_t>(c)];
-          if (z.empty()) continue;
+          const std::vector<float>& e = score[static_cast<size_t>(c)];
+          if (e.empty()) continue;
           for (int64_t t = first; t <= last; ++t)
-            moved += std::max(0.0f, z[static_cast<size_t>(t)] - on);
+            moved += std::max(0.0f, e[static_cast<size_t>(t)] - 1.0f);
         }
-        if (moved > best) best = moved, label.region = layout.groups[g].id;
+        if (moved > best) best = moved, label.region = scan.group_ids[g];
       }
       labels.push_back(std::move(label));
     }
   }
   return labels;
+}
+
+}  // namespace
+
+std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout& layout,
+                                    const Parameters& parameters) {
+  const AdaptiveOptions options = adaptive_options(parameters);
+  return adaptive_decide(*adaptive_scan(recording, layout, options), options);
+}
+
+AdaptiveSegmenter::AdaptiveSegmenter(const Recording& recording, const SkinLayout& layout,
+                                     const Parameters& slow)
+    : scan_(adaptive_scan(recording, layout, adaptive_options(slow))),
+      slow_(slow) {
+  for (const std::string& key : adaptive_fast_parameters())
+    if (slow.has(key))
+      throw Error("parameter " + key, "is chosen per run, not when the recording is scanned");
+}
+
+std::vector<Label> AdaptiveSegmenter::segments(const Parameters& fast) const {
+  for (const auto& [key, value] : fast.values())
+    if (std::find(adaptive_fast_parameters().begin(), adaptive_fast_parameters().end(), key) ==
+        adaptive_fast_parameters().end())
+      throw Error("parameter " + key, "needs a new scan of the recording (AdaptiveSegmenter)");
+  Parameters all = slow_;
+  for (const auto& [key, value] : fast.values()) all.set(key, value);
+  return adaptive_decide(*scan_, adaptive_options(all));
+}
+
+const std::vector<std::string>& adaptive_fast_parameters() {
+  static const std::vector<std::string> keys = {"taxels", "alone", "share", "join_seconds",
+                                                "quiet_seconds", "max_seconds"};
+  return keys;
 }
 
 }  // namespace tactile

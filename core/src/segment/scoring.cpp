@@ -89,4 +89,62 @@ DetectionScore score_events(const std::vector<Label>& detected, const std::vecto
   return score;
 }
 
+TouchScore& TouchScore::operator+=(const TouchScore& other) {
+  frames += other.frames;
+  events += other.events;
+  touches += other.touches;
+  segments += other.segments;
+  split += other.split;
+  merged += other.merged;
+  return *this;
+}
+
+TouchScore score_touches(const std::vector<Label>& detected, const std::vector<Label>& truth,
+                         double start_time, double rate_hz, int64_t frames) {
+  TouchScore score;
+  score.frames = score_frames(detected, truth, start_time, rate_hz, frames);
+  score.touches = static_cast<int64_t>(truth.size());
+  score.segments = static_cast<int64_t>(detected.size());
+  std::vector<const Label*> touches, segments;
+  for (const Label& label : truth) touches.push_back(&label);
+  for (const Label& label : detected) segments.push_back(&label);
+  const auto by_time = [](const Label* a, const Label* b) {
+    return std::tie(a->t0, a->t1) < std::tie(b->t0, b->t1);
+  };
+  std::stable_sort(touches.begin(), touches.end(), by_time);
+  std::stable_sort(segments.begin(), segments.end(), by_time);
+  const auto overlap = [](const Label* a, const Label* b) {
+    return std::min(a->t1, b->t1) - std::max(a->t0, b->t0);
+  };
+  std::vector<uint8_t> used(segments.size(), 0);
+  std::vector<int64_t> touches_of_segment(segments.size(), 0);
+  for (const Label* touch : touches) {
+    size_t best = segments.size();
+    int64_t overlapping = 0;
+    for (size_t s = 0; s < segments.size(); ++s) {
+      const double shared = overlap(touch, segments[s]);
+      if (!(shared > 0)) continue;
+      ++overlapping;
+      ++touches_of_segment[s];
+      if (!used[s] && (best == segments.size() || shared > overlap(touch, segments[best])))
+        best = s;
+    }
+    if (overlapping >= 2) ++score.split;
+    if (best < segments.size()) {
+      used[best] = 1;
+      ++score.events.hits;
+    } else {
+      ++score.events.misses;
+    }
+  }
+  score.events.false_alarms = score.segments - score.events.hits;
+  for (const Label* touch : touches)
+    for (size_t s = 0; s < segments.size(); ++s)
+      if (overlap(touch, segments[s]) > 0 && touches_of_segment[s] >= 2) {
+        ++score.merged;
+        break;
+      }
+  return score;
+}
+
 }  // namespace tactile

@@ -72,7 +72,7 @@ std::vector<SkinRecord> builtin_skins() {
   // Its labels are the scenario's interactions, several contacts each: contacts less than
   // 1.5 s apart stay one segment (bench/SEGMENT.md: longer bridges score higher still against
   // interaction labels; 0.25 s, adaptive's bridge before issue 26, scores lower).
-  robovie.segmenter_params = "quiet_seconds=1.5,dip=0";
+  robovie.segmenter_params = "join_seconds=1.5";
   // 274 films on a 16-bit A/D at 100 Hz.
   robovie.packet = PacketFormat{"", 4, 100.0, 1, 274, WireWord::kInt16, {0.0, 1.0, -32768, 32767}};
 

@@ -1,40 +1,39 @@
 #pragma once
-// Segmenter "adaptive": for skins with no calibration (grid, strip, other people's data).
-// Touches are contacts: two that follow each other are two, however short the release between
-// them (issue 26). Per channel, from the recording itself:
-// - stuck or dead: runs of one unchanging value for stuck_seconds (1) or more count as missing,
-//   and a channel with nothing else never counts;
+// Segmenter "adaptive": touches on skins with no calibration (grid, strip, other people's
+// data), with no parameters. A touch is a gesture instance as people label it: a grab, a
+// punch, a stroke, a tickle; contacts separated by short releases (a tickle's fingers, a
+// stroke that lifts and lands again, a squeeze that eases) are one touch (docs/SEGMENTERS.md).
+// Per channel, from the recording itself:
+// - stuck: on a noisy channel (its value changes in at least half of its frames), a run of one
+//   unchanging value for stuck_seconds (1) or more is missing; a noiseless sensor (binary,
+//   integer steps, clipped at zero) holds its rest for long by nature and is never "stuck";
 // - direction: touches move a channel to the side with the longer tail (twice the other's
 //   0.5 % tail) once a running median over opening_seconds is taken off, or both ways
-//   (oscillating films); a channel with neither (a taxel no touch reached) takes the skin's
-//   direction, the one three quarters of the channels with a direction share;
+//   (oscillating films); a channel with neither takes the skin's direction (nine in ten);
 // - rest of a one-way channel: medians of 0.25 s blocks, then their lower envelope (upper for
-//   channels that touches lower), a morphological opening over opening_seconds (4; a running
-//   minimum then maximum, the block medians mirrored through each end of the recording), so
-//   drift is followed to the first and last frame and a skin touched most of the time keeps
-//   its rest from its releases; a press held longer than the window becomes the rest.
-//   opening_seconds=0, and channels moved both ways: the running quantile of the block medians
-//   over baseline_seconds (20), on the side away from the touches (0.25 or 0.75; 0.5 both
-//   ways);
-// - noise: sigma = 1.4826 x the MAD of the residual; the excursion z = residual / sigma, one-
-//   sided when the direction is known, closed over envelope_seconds (0.03: a running maximum
-//   then minimum) so oscillations keep their level and edges stay put. A channel with a tenth
-//   of the median channel's sigma or less (stuck under a drifting offset) never counts.
-// A frame is off rest when `taxels` (2) channels exceed margin (2) x 3 sigma, or one exceeds
-// `alone` (2) times that. A run of such frames, bridged over gaps up to quiet_seconds (0.02),
-// is a touch only where `taxels` channels (or one, alone) reach the touch level: `level` (0.3)
-// times the channel's peak z (the highest it holds for min_seconds) or the median of those
-// over moving channels, whichever is higher. A hand resting between touches is low (a sixth
-// of a touch's press), so it stays below, however broad and long; crosstalk follows a touch,
-// so it never stands alone. A run is split at each release: between two touch-level stretches, at
-// the lowest total excursion; and wherever the total excursion dips below `dip` (0.2) times the
-// smaller of its highest values on either side (recursively). Segments of at least min_seconds
-// (0.05), cut at max_seconds (10). Note: "quiet" / "open" / "forced". Parameters: margin, taxels,
-// alone, level, dip, baseline_seconds, opening_seconds, envelope_seconds, stuck_seconds,
-// quiet_seconds, max_seconds, min_seconds. quiet_seconds=0.25,dip=0 keeps contacts less than a
-// quarter second apart in one segment (gesture-level labels). Region: the layout group whose
-// channels moved most over the segment, else "all".
+//   channels that touches lower), a morphological opening over opening_seconds (4), mirrored
+//   through each end of the recording; opening_seconds=0 and two-way channels: the running
+//   quantile of the block medians over baseline_seconds (20), away from the touches;
+// - excursion: the residual, one-sided when the direction is known, closed over
+//   envelope_seconds (0.03); noise sigma = 1.4826 x the MAD of the residual (0 for a noiseless
+//   sensor); a noisy channel with a tenth of the median noisy channel's sigma, changing every
+//   frame, is stuck under a drifting offset and never counts;
+// - band: margin (2) x 3 sigma, or `share` (0.2) of the touch amplitude of the channel's kind,
+//   whichever is higher. A kind is the layout's modality and unit (one scale); its amplitude
+//   is the 95th percentile of its channels' peaks (the highest excursion a channel holds for
+//   min_seconds) among channels that left their noise band. So a binary sensor is on when it
+//   is on, an 8-bit grid past a fifth of its full press, a noisy analog skin past its noise.
+// A frame is a touch frame when `taxels` (2) channels are past their band, or one is `alone`
+// (2) times past it. A contact is a run of touch frames, its edges moved out while any channel
+// stays past its band. Contacts whose release is at most join_seconds are one touch; by
+// default (join_seconds < 0) the join is a quarter of the median contact's length, at least
+// one frame: short lifts inside a gesture join, a release as long as a contact (repeated taps,
+// pulses) separates. Touches of at least min_seconds (0.05), cut at max_seconds (10). Note
+// "quiet" / "open" / "forced". quiet_seconds is join_seconds's old name. Region: the layout
+// group whose channels went furthest past their bands over the touch, else "all".
 
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "tactile/io/label.h"
@@ -46,5 +45,24 @@ namespace tactile {
 
 std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout& layout,
                                     const Parameters& parameters);
+
+struct AdaptiveScan;
+
+// adaptive in two halves, for trying many parameter sets on one recording (fitting): the
+// constructor does the slow half (rest, noise, excursions) with the parameters that shape it;
+// segments() decides with the rest (adaptive_fast_parameters()) as segment_adaptive would
+// with both sets together.
+class AdaptiveSegmenter {
+ public:
+  AdaptiveSegmenter(const Recording& recording, const SkinLayout& layout, const Parameters& slow);
+  std::vector<Label> segments(const Parameters& fast) const;
+
+ private:
+  std::shared_ptr<const AdaptiveScan> scan_;
+  Parameters slow_;
+};
+
+// taxels, alone, share, join_seconds, quiet_seconds, max_seconds.
+const std::vector<std::string>& adaptive_fast_parameters();
 
 }  // namespace tactile

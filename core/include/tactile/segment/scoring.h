@@ -34,4 +34,24 @@ DetectionScore score_frames(const std::vector<Label>& detected, const std::vecto
 DetectionScore score_events(const std::vector<Label>& detected, const std::vector<Label>& truth,
                             double min_iou = 0.0);
 
+// Labelled touches against a segmentation, as people's labels are scored
+// (shared/data/inflatable-grid-dev/README.md): each labelled touch, in time order, is matched
+// to at most one segment, the one that overlaps it most and is not yet used (ties: the
+// earlier segment); unmatched touches are misses, unmatched segments false alarms. A touch
+// is split when two or more segments overlap it, merged when a segment that overlaps it
+// overlaps another touch too.
+struct TouchScore {
+  DetectionScore frames;
+  DetectionScore events;
+  int64_t touches = 0;
+  int64_t segments = 0;
+  int64_t split = 0;   // touches that two or more segments overlap
+  int64_t merged = 0;  // touches that share a segment with another touch
+  TouchScore& operator+=(const TouchScore& other);
+};
+
+// One recording's segments and labelled touches (regions ignored); frames as score_frames.
+TouchScore score_touches(const std::vector<Label>& detected, const std::vector<Label>& truth,
+                         double start_time, double rate_hz, int64_t frames);
+
 }  // namespace tactile
