@@ -11,8 +11,8 @@ namespace tactile {
 namespace {
 
 TEST(AdaptiveSegmenter, FindsTouchesOnAnUncalibratedGridWithChannelsOfDifferentNoise) {
-  // grid:2x2 at 100 Hz, 20 s; channels at different levels and noise; touches on
-  // channel 1 from 3 s to 4 s and on channel 3 from 12 s to 13.5 s.
+  // grid:2x2 at 100 Hz, 20 s; channels at different levels and noise (one kind: one scale of
+  // presses); touches on channel 1 from 3 s to 4 s and on channel 3 from 12 s to 13.5 s.
   Recording recording;
   recording.id = "grid";
   recording.layout_id = "grid:2x2";
@@ -28,7 +28,7 @@ TEST(AdaptiveSegmenter, FindsTouchesOnAnUncalibratedGridWithChannelsOfDifferentN
     for (int c = 0; c < 4; ++c) {
       std::normal_distribution<float> gaussian(0.0f, noise[c]);
       float value = level[c] + gaussian(random);
-      if (c == 1 && t >= 300 && t < 400) value += 40.0f;   // 20 sigma
+      if (c == 1 && t >= 300 && t < 400) value += 600.0f;  // 300 sigma
       if (c == 3 && t >= 1200 && t < 1350) value -= 600.0f;  // 20 sigma, downwards
       stream.samples(t, c) = value;
     }
@@ -86,11 +86,16 @@ struct GridScene {
   }
 };
 
-TEST(AdaptiveSegmenter, TwoTouchesOneFrameApartAreTwoSegments) {
+TEST(AdaptiveSegmenter, TwoContactsOneFrameApartAreOneTouchUnlessJoinIsZero) {
   GridScene scene(1200);
   scene.press(200, 209);
-  scene.press(211, 220);  // frame 210 is the release
-  const std::vector<Label> labels = scene.segments();
+  scene.press(211, 220);  // frame 210 is the release: a lift inside one gesture
+  const std::vector<Label> joined = scene.segments();
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_NEAR(joined[0].t0, 200 / GridScene::kRate, 1e-9);
+  EXPECT_NEAR(joined[0].t1, 221 / GridScene::kRate, 1e-9);
+  // join_seconds=0: every contact is its own touch.
+  const std::vector<Label> labels = scene.segments("join_seconds=0");
   ASSERT_EQ(labels.size(), 2u);
   EXPECT_NEAR(labels[0].t0, 200 / GridScene::kRate, 1e-9);
   EXPECT_NEAR(labels[0].t1, 210 / GridScene::kRate, 1e-9);
@@ -173,8 +178,8 @@ TEST(AdaptiveSegmenter, AHandRestingBetweenTouchesIsNoTouch) {
     for (int c = 0; c < 12; ++c) scene.values(t, c) += 8.0f * envelope;
   }
   EXPECT_EQ(scene.segments().size(), 6u);
-  // Without the touch level (level=0) the resting hand makes touches of its own.
-  EXPECT_GT(scene.segments("level=0,opening_seconds=0").size(), 6u);
+  // Without the touch amplitude's share (share=0) the resting hand makes touches of its own.
+  EXPECT_GT(scene.segments("share=0,opening_seconds=0").size(), 6u);
 }
 
 }  // namespace

@@ -57,3 +57,53 @@ TEST(SegmentScoring, FramesCountFromTheLabelsTimes) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+Label touch_span(double t0, double t1) {
+  Label label;
+  label.t0 = t0;
+  label.t1 = t1;
+  return label;
+}
+
+// shared/data/inflatable-grid-dev/README.md: each labelled touch in time order takes the
+// unused segment that overlaps it most; splits and merges are counted.
+TEST(SegmentScoring, TouchesTakeTheirSegmentsInTimeOrder) {
+  // Touch A [0, 2) overlaps segment X [1, 5) by 1; touch B [2, 5) overlaps X by 3. A comes first
+  // and takes X (largest-IoU-first would give X to B and leave A missed): B is missed instead.
+  const TouchScore score =
+      score_touches({touch_span(1.0, 5.0)}, {touch_span(0.0, 2.0), touch_span(2.0, 5.0)}, 0.0, 1.0, 6);
+  EXPECT_EQ(score.events.hits, 1);
+  EXPECT_EQ(score.events.misses, 1);
+  EXPECT_EQ(score.events.false_alarms, 0);
+  EXPECT_EQ(score.merged, 2);
+  EXPECT_EQ(score.split, 0);
+  // Frames 0..5: the segment holds 1-4, the touches 0-4: 4 hits, 1 miss.
+  EXPECT_EQ(score.frames.hits, 4);
+  EXPECT_EQ(score.frames.misses, 1);
+  EXPECT_EQ(score.frames.false_alarms, 0);
+}
+
+TEST(SegmentScoring, ATouchCutInThreeIsSplitWithTwoFalseAlarms) {
+  const TouchScore score = score_touches(
+      {touch_span(0.0, 1.0), touch_span(1.5, 2.0), touch_span(2.5, 4.0)}, {touch_span(0.0, 4.0)},
+      0.0, 2.0, 10);
+  EXPECT_EQ(score.events.hits, 1);
+  EXPECT_EQ(score.events.false_alarms, 2);
+  EXPECT_EQ(score.split, 1);
+  EXPECT_EQ(score.merged, 0);
+  EXPECT_NEAR(score.events.f1(), 2.0 / 4.0, 1e-12);
+  EXPECT_EQ(score.touches, 1);
+  EXPECT_EQ(score.segments, 3);
+}
+
+TEST(SegmentScoring, NothingToFindAndNothingFoundScoresOne) {
+  const TouchScore score = score_touches({}, {}, 0.0, 10.0, 100);
+  EXPECT_DOUBLE_EQ(score.events.f1(), 1.0);
+  EXPECT_DOUBLE_EQ(score.frames.f1(), 1.0);
+}
+
+}  // namespace
+}  // namespace tactile

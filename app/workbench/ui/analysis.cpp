@@ -442,6 +442,7 @@ std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
 void poll_jobs(WorkbenchState& state) {
   drop_ended_jobs(state);
   apply_finished_segmenter(state);
+  apply_finished_fit(state);
   apply_finished_prediction(state);
   if (std::optional<std::string> written = finished_job(state, state.export_job))
     state.notice = "wrote " + *written;

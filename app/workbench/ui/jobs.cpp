@@ -40,8 +40,8 @@ void drop_ended_jobs(WorkbenchState& state) {
 std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
   std::vector<AnyJob*> jobs;
   for (AnyJob* job : std::initializer_list<AnyJob*>{
-           state.labelling.segment_job.get(), state.analysis.predict_job.get(),
-           state.analysis.som_job.get(), state.analysis.scatter_job.get(),
+           state.labelling.segment_job.get(), state.labelling.fit_job.get(),
+           state.analysis.predict_job.get(), state.analysis.som_job.get(), state.analysis.scatter_job.get(),
            state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get(),
            state.demo_job.get(), state.files.import.preview_job.get(),
            state.files.labels_import.read_job.get()})
@@ -86,6 +86,7 @@ bool draw_job_status(WorkbenchState& state) {
   // The first that runs of the segmenter run, Predict, the demo workspace and the file commands
   // (import, export, verify, ...).
   std::vector<AnyJob*> candidates = {state.labelling.segment_job.get(),
+                                     state.labelling.fit_job.get(),
                                      state.analysis.predict_job.get(), state.demo_job.get()};
   for (const auto& [kind, file_job] : state.files.jobs) candidates.push_back(file_job.get());
   AnyJob* job = nullptr;

@@ -17,8 +17,11 @@
 #include "tactile/labels/predict.h"
 #include "tactile/labels/region.h"
 #include "tactile/labels/suggestions.h"
+#include "tactile/segment/fit.h"
+#include "tactile/segment/presets.h"
 #include "tactile/segment/segmenter.h"
 #include "tactile/signal/taxel_values.h"
+#include "tactile/text.h"
 #include "views.h"
 
 namespace tactile {
@@ -369,6 +372,62 @@ void apply_finished_segmenter(WorkbenchState& state) {
                                       : "") +
                  "; A accepts, R rejects");
   select_next_suggestion(state, found->annotator, -1e300);
+}
+
+bool fit_segmenter_to_labels(WorkbenchState& state) {
+  if (!state.document) return false;
+  Document& document = *state.document;
+  try {
+    LabelFilter filter;
+    filter.recording = document.recording_id();
+    filter.source = LabelSource::kManual;
+    filter.annotator = state.labelling.annotator;
+    std::vector<Label> touches = document.label_store().list(filter);
+    if (touches.size() < 3)
+      return fail(state, "Fit needs at least three touches labelled in your lane (" +
+                             state.labelling.annotator + "); it has " +
+                             std::to_string(touches.size()) + ": label more, then fit again");
+    const std::string presets = segmenter_presets_path(document.label_store().path());
+    start_job<LabellingState::SegmenterFitted>(
+        state, state.labelling.fit_job, "fit segmenter",
+        [read = recording_for_job(document, 0.0, 0.3), layout = document.layout,
+         touches = std::move(touches), presets, path = document.path,
+         lane = state.labelling.active_lane()](JobProgress& progress) {
+          const Recording whole = read(progress);
+          progress.report(0.3, "trying parameter sets");
+          SegmenterFit fit = fit_segmenter({{&whole, &layout, touches}}, [&](double share) {
+            progress.report(0.3 + 0.65 * share, "trying parameter sets");
+            progress.check();
+          });
+          SegmenterPreset preset;
+          preset.name = "fitted";
+          preset.method = fit.method;
+          preset.params = fit.params;
+          preset.fitted_to = lane;
+          preset.held_out_event_f1 = fit.held_out.events.f1();
+          preset.touches = fit.touches;
+          save_segmenter_preset(presets, preset);
+          return LabellingState::SegmenterFitted{path, std::move(fit)};
+        });
+    state.error.clear();
+    state.notice = "fitting the segmenter to your labels...";
+    return true;
+  } catch (const std::exception& error) {
+    return fail(state, error.what());
+  }
+}
+
+void apply_finished_fit(WorkbenchState& state) {
+  std::optional<LabellingState::SegmenterFitted> fitted = finished_job(state, state.labelling.fit_job);
+  if (!fitted) return;
+  const SegmenterFit& fit = fitted->fit;
+  state.labelling.last_segmenter = fit.method;
+  state.labelling.segmenter_params.fill('\0');
+  fit.params.copy(state.labelling.segmenter_params.data(),
+                  state.labelling.segmenter_params.size() - 1);
+  state.notice = "segmenter fitted to " + std::to_string(fit.touches) + " touches: " + fit.params +
+                 " (held out " + fit.folds + ": event F1 " +
+                 fixed_text(fit.held_out.events.f1(), 2) + "); G suggests with it";
 }
 
 bool accept_suggestion(WorkbenchState& state) {

@@ -585,6 +585,10 @@ void Workbench::draw_menu_bar() {
         ImGui::EndMenu();
       }
       remember_item(state_, "menu:Labels/Run segmenter");
+      if (ImGui::MenuItem("Fit segmenter to my labels")) fit_segmenter_to_labels(state_);
+      remember_item(state_, "menu:Labels/Fit segmenter to my labels",
+                    "Choose the segmenter's parameters from the touches you labelled here (three "
+                    "or more); G then suggests touches the way you label them");
       if (ImGui::MenuItem("Keep labels in my own store", nullptr, false,
                           !state_.document->labels_read_only.empty())) {
         try {

@@ -17,6 +17,7 @@
 #include "document.h"
 #include "file_browser.h"
 #include "files_state.h"
+#include "tactile/segment/fit.h"
 #include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/predict.h"
@@ -109,6 +110,13 @@ struct LabellingState {
     size_t added = 0, rejected = 0;
   };
   std::unique_ptr<Job<SegmentsFound>> segment_job;
+  // Labels > Fit segmenter to my labels, on a worker: adaptive's parameters chosen on the
+  // operator's touches in the open recording (segment/fit.h), saved as the preset "fitted".
+  struct SegmenterFitted {
+    std::string document;
+    SegmenterFit fit;
+  };
+  std::unique_ptr<Job<SegmenterFitted>> fit_job;
   std::string active_lane() const { return "manual:" + annotator; }
 };
 

@@ -266,8 +266,7 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
       if (direction == 0) direction = skin_direction;
   }
   // Each channel's excursion in its own units (one-sided where touches move it one way),
-  // closed over envelope_seconds, and its noise sigma (1.4826 MAD of the residual; 0 for a
-  // noiseless sensor).
+  // closed over envelope_seconds, and its noise sigma (0 for a noiseless sensor).
   std::vector<float>& sigmas = scan->sigmas;
   sigmas.assign(static_cast<size_t>(channels), 0.0f);
   for (int c = 0; c < channels; ++c) {
@@ -279,15 +278,22 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
                                                       : direction < 0 ? 0.75
                                                                       : 0.5,
                                                       direction, opening);
-    deviations.clear();
     for (int64_t t = 0; t < samples; ++t) {
       residual[static_cast<size_t>(t)] =
           std::isfinite(column[t]) ? column[t] - rest[static_cast<size_t>(t)] : 0.0f;
-      if (std::isfinite(column[t])) deviations.push_back(residual[static_cast<size_t>(t)]);
     }
-    const float centre = stats::median(deviations);
-    for (float& value : deviations) value = std::fabs(value - centre);
-    sigmas[static_cast<size_t>(c)] = 1.4826f * stats::median(deviations);
+    // Noise from one frame to the next (1.4826 x the MAD of the differences, over sqrt 2):
+    // white noise gives its sigma, while touches, however much of the recording they fill,
+    // and drift move too slowly to count.
+    deviations.clear();
+    for (int64_t t = 1; t < samples; ++t)
+      if (std::isfinite(column[t]) && std::isfinite(column[t - 1]))
+        deviations.push_back(column[t] - column[t - 1]);
+    if (deviations.size() >= 3) {
+      const float centre = stats::median(deviations);
+      for (float& value : deviations) value = std::fabs(value - centre);
+      sigmas[static_cast<size_t>(c)] = 1.4826f / std::sqrt(2.0f) * stats::median(deviations);
+    }
     std::vector<float>& moved = score[static_cast<size_t>(c)];
     moved.assign(static_cast<size_t>(samples), 0.0f);
     for (int64_t t = 0; t < samples; ++t) {
