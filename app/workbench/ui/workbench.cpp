@@ -837,6 +837,9 @@ nlohmann::json Workbench::state_json() const {
   json["memory_bytes"] = document ? document->samples().memory_bytes() : 0;
   json["error"] = state_.error;
   json["notice"] = state_.notice;
+  // What G runs (Labels > Run segmenter, or a fitted segmenter).
+  json["segmenter"] = {{"method", state_.labelling.last_segmenter},
+                       {"params", std::string(state_.labelling.segmenter_params.data())}};
   json["unavailable"] = state_.unavailable;
   json["labels_read_only"] = document ? document->labels_read_only : std::string();
   json["labels_path"] = document ? document->labels_path : std::string();

@@ -237,9 +237,9 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
         std::fill(kept.begin() + from, kept.begin() + to, std::numeric_limits<float>::quiet_NaN());
     const float* column = kept.data();
     // Which way touches move the channel: the side of its median with the longer tail, once
-    // a running median over the opening window is taken off (drift has no tail of its own).
-    const std::vector<float> centred =
-        adaptive_baseline(column, samples, block, opening > 0 ? opening : window, 0.5, 0, 0);
+    // a running median over baseline_seconds is taken off (drift has no tail of its own; a
+    // touch of several seconds, shorter than the window, keeps its tail).
+    const std::vector<float> centred = adaptive_baseline(column, samples, block, window, 0.5, 0, 0);
     deviations.clear();
     for (int64_t t = 0; t < samples; ++t)
       if (std::isfinite(column[t]))

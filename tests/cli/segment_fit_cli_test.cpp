@@ -1,0 +1,155 @@
+// `tactile segment --fit-to LANE`, `--preset NAME` and `--score LANE` end to end: a strip of
+// binary sensors whose operator labels double taps as one touch; the fit learns it from the
+// labelled touches, prints its held-out score, saves the preset and segments with it; the
+// labels are never changed; too few touches and labels outside the recording are refused.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli_test_support.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/io/label_store.h"
+#include "tactile/layout/skin_layout.h"
+
+namespace tactile {
+namespace {
+
+using test::run_program;
+
+// strip:8 at 50 Hz, 0/1: `pairs` double taps (two 0.3-s taps 0.5 s apart) on sensor 3, 4 s apart.
+Recording double_tap_recording(const std::string& id, int pairs) {
+  Recording recording;
+  recording.id = id;
+  recording.layout_id = "strip:8";
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 50.0;
+  const SkinLayout layout = load_layout("strip:8");
+  for (const Channel& channel : layout.channels) stream.channels.push_back(channel.name);
+  stream.samples.setZero(100 + 200 * pairs, static_cast<Eigen::Index>(stream.channels.size()));
+  for (int t = 100; t < 100 + 200 * pairs; ++t) {
+    const int phase = (t - 100) % 200;
+    stream.samples(t, 3) = phase < 15 || (phase >= 40 && phase < 55) ? 1.0f : 0.0f;
+  }
+  recording.streams = {stream};
+  return recording;
+}
+
+Label pair_label(const std::string& recording, int pair, const std::string& annotator) {
+  Label label;
+  label.recording = recording;
+  label.t0 = (100 + 200 * pair) / 50.0;
+  label.t1 = (100 + 200 * pair + 55) / 50.0;
+  label.class_name = "double-tap";
+  label.region = "all";
+  label.annotator = annotator;
+  label.source = LabelSource::kManual;
+  return label;
+}
+
+class SegmentFitCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* id : {"a", "b"}) write_recording(folder.file(std::string(id) + ".h5"), double_tap_recording(id, 8));
+    LabelStore store(folder.file("labels.db"));
+    for (int pair = 0; pair < 4; ++pair) store.add(pair_label("a", pair, "ana"));
+    for (int pair = 0; pair < 3; ++pair) store.add(pair_label("b", pair, "ana"));
+  }
+  test::CommandResult tactile(const std::string& arguments) {
+    return run_program("tactile", arguments, folder);
+  }
+  std::vector<Label> lane(const std::string& annotator) {
+    LabelStore store(folder.file("labels.db"));
+    LabelFilter filter;
+    filter.annotator = annotator;
+    return store.list(filter);
+  }
+  std::string recordings() { return folder.file("a.h5") + " " + folder.file("b.h5"); }
+  test::TempFolder folder{"tactile-segment-fit"};
+};
+
+TEST_F(SegmentFitCli, FitsToTheLabelledTouchesSavesAPresetAndSegmentsWithIt) {
+  const std::vector<Label> before = lane("ana");
+  // Adaptive's defaults cut each double tap in two.
+  const auto plain = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                             " --method adaptive --score manual:ana");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("32 segments from 2 recordings"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("7 touches split"), std::string::npos) << plain.out;
+
+  const auto fit = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                           " --fit-to ana --preset taps --replace");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_NE(fit.out.find("fitted adaptive to 7 labelled touches"), std::string::npos) << fit.out;
+  EXPECT_NE(fit.out.find("held out, by recording (2 folds): frame F1 1.000"), std::string::npos)
+      << fit.out;
+  EXPECT_NE(fit.out.find("event F1 1.000 (7 of 7 touches found, 0 false alarms"),
+            std::string::npos)
+      << fit.out;
+  EXPECT_NE(fit.out.find("saved as preset 'taps'"), std::string::npos) << fit.out;
+  EXPECT_NE(fit.out.find("16 segments from 2 recordings"), std::string::npos) << fit.out;
+  EXPECT_EQ(lane("segmenter:adaptive").size(), 16u);
+  EXPECT_TRUE(std::filesystem::exists(folder.file("segmenter-presets.json")));
+
+  // The preset again, scored against the operator's lane on the labelled stretch and beyond.
+  const auto again = tactile("segment " + folder.file("a.h5") + " --labels " +
+                             folder.file("labels.db") + " --preset taps --replace --score ana");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("a: 8 segments (adaptive)"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("event F1 0.667 (4 of 4 touches found, 4 false alarms; 8 segments), "
+                           "0 touches split, 0 merged"),
+            std::string::npos)
+      << again.out;
+
+  // Fitting never changes a label of the lane it read.
+  const std::vector<Label> after = lane("ana");
+  ASSERT_EQ(after.size(), before.size());
+  for (size_t k = 0; k < after.size(); ++k) {
+    EXPECT_EQ(after[k].id, before[k].id);
+    EXPECT_EQ(after[k].t0, before[k].t0);
+    EXPECT_EQ(after[k].t1, before[k].t1);
+    EXPECT_EQ(after[k].revision, before[k].revision);
+  }
+}
+
+TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPresets) {
+  {
+    LabelStore store(folder.file("labels.db"));
+    store.add(pair_label("a", 0, "bo"));
+    store.add(pair_label("a", 1, "bo"));
+  }
+  const auto few = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                           " --fit-to bo");
+  EXPECT_EQ(few.exit_code, 1);
+  EXPECT_NE(few.err.find("needs at least three labelled touches, has 2"), std::string::npos)
+      << few.err;
+  {
+    LabelStore store(folder.file("labels.db"));
+    Label late = pair_label("a", 2, "bo");
+    late.t0 = 40.0;
+    late.t1 = 41.0;  // a.h5 lasts 34 s
+    store.add(late);
+  }
+  const auto outside = tactile("segment " + recordings() + " --labels " +
+                               folder.file("labels.db") + " --fit-to bo");
+  EXPECT_EQ(outside.exit_code, 1);
+  EXPECT_NE(outside.err.find("a: label 40.000-41.000 s lies outside the recording (0.000-34.000 s)"),
+            std::string::npos)
+      << outside.err;
+  EXPECT_EQ(lane("segmenter:adaptive").size(), 0u) << "nothing is segmented after a refusal";
+  EXPECT_FALSE(std::filesystem::exists(folder.file("segmenter-presets.json")));
+
+  const auto unknown = tactile("segment " + recordings() + " --labels " +
+                               folder.file("labels.db") + " --preset nope");
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_NE(unknown.err.find("--preset nope: no such preset"), std::string::npos) << unknown.err;
+  const auto other = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                             " --fit-to ana --method threshold");
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_NE(other.err.find("fits the adaptive segmenter's parameters, not threshold"),
+            std::string::npos)
+      << other.err;
+}
+
+}  // namespace
+}  // namespace tactile
