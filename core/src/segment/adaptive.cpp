@@ -17,6 +17,7 @@ struct AdaptiveOptions {
   int64_t taxels = 2;              // that many taxels on make a touch frame
   double alone = 2.0;              // or one taxel this many times past its band
   double share = 0.2;              // the band's share of the touch amplitude of the taxel's kind
+  double footprint = 0.1;          // a touch frame has this share of a touch's channels on
   double join_seconds = -1.0;      // releases this short join contacts; < 0: from the signal
   double baseline_seconds = 20.0;  // the running median the rest follows
   double opening_seconds = 4.0;    // the lower envelope the rest of a one-way channel follows
@@ -27,7 +28,8 @@ struct AdaptiveOptions {
 };
 
 AdaptiveOptions adaptive_options(const Parameters& parameters) {
-  parameters.expect_only({"margin", "taxels", "alone", "share", "join_seconds", "quiet_seconds",
+  parameters.expect_only({"margin", "taxels", "alone", "share", "footprint", "join_seconds",
+                          "quiet_seconds",
                           "baseline_seconds", "opening_seconds", "envelope_seconds",
                           "stuck_seconds", "max_seconds", "min_seconds"});
   AdaptiveOptions options;
@@ -35,6 +37,7 @@ AdaptiveOptions adaptive_options(const Parameters& parameters) {
   options.taxels = parameters.integer("taxels", options.taxels);
   options.alone = parameters.number("alone", options.alone);
   options.share = parameters.number("share", options.share);
+  options.footprint = parameters.number("footprint", options.footprint);
   // quiet_seconds: the name join_seconds had before gesture-level touches.
   if (parameters.has("quiet_seconds") && parameters.has("join_seconds"))
     throw Error("parameter quiet_seconds", "is the old name of join_seconds: give one of them");
@@ -52,6 +55,8 @@ AdaptiveOptions adaptive_options(const Parameters& parameters) {
   if (!(options.alone >= 1)) throw Error("parameter alone", "must be at least 1");
   if (!(options.share >= 0 && options.share < 1))
     throw Error("parameter share", "must lie in [0, 1)");
+  if (!(options.footprint >= 0 && options.footprint <= 1))
+    throw Error("parameter footprint", "must lie in [0, 1]");
   if (std::isnan(options.join_seconds))
     throw Error("parameter join_seconds", "must be a number (negative: chosen from the signal)");
   if (!(options.baseline_seconds > 0))
@@ -421,24 +426,41 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
     for (float& value : moved) value /= band;
   }
 
-  // Touch frames: `taxels` channels on, or one `alone` times past its band. A contact is a
-  // run of them, its edges moved out while any channel stays on.
-  const int64_t needed = std::min<int64_t>(options.taxels, std::max(1, usable));
+  // Touch frames: as many channels on as a tenth (`footprint`) of a touch's footprint on this
+  // skin, `taxels` (2) at least, where one channel `alone` times past its band stands for
+  // `taxels`. The footprint is the 95th percentile of the number of channels on, over the
+  // frames with any on: a palm on a 19 x 27 grid covers a hundred taxels and a few lingering
+  // ones between two touches are no touch; on a strip of eight sensors a touch is one or two.
+  // A contact is a run of touch frames, its edges moved out while half as many channels stay
+  // on (one, on a skin whose touches need two).
   const float alone = static_cast<float>(options.alone);
-  std::vector<uint8_t> touching(static_cast<size_t>(samples), 0), any_on(static_cast<size_t>(samples), 0);
-  {
-    std::vector<int64_t> count(static_cast<size_t>(samples), 0);
-    for (int c = 0; c < channels; ++c) {
-      const std::vector<float>& e = score[static_cast<size_t>(c)];
-      if (e.empty()) continue;
-      for (int64_t t = 0; t < samples; ++t) {
-        const float value = e[static_cast<size_t>(t)];
-        count[static_cast<size_t>(t)] += value > alone ? needed : value > 1.0f;
-        any_on[static_cast<size_t>(t)] |= value > 1.0f;
-      }
+  std::vector<int64_t> on_count(static_cast<size_t>(samples), 0), strong(static_cast<size_t>(samples), 0);
+  for (int c = 0; c < channels; ++c) {
+    const std::vector<float>& e = score[static_cast<size_t>(c)];
+    if (e.empty()) continue;
+    for (int64_t t = 0; t < samples; ++t) {
+      on_count[static_cast<size_t>(t)] += e[static_cast<size_t>(t)] > 1.0f;
+      strong[static_cast<size_t>(t)] += e[static_cast<size_t>(t)] > alone;
     }
-    for (int64_t t = 0; t < samples; ++t)
-      touching[static_cast<size_t>(t)] = count[static_cast<size_t>(t)] >= needed;
+  }
+  int64_t needed = std::min<int64_t>(options.taxels, std::max(1, usable));
+  {
+    std::vector<float> counts;
+    for (int64_t count : on_count)
+      if (count > 0) counts.push_back(static_cast<float>(count));
+    if (!counts.empty()) {
+      const float footprint = stats::nth_smallest(
+          counts, static_cast<size_t>(std::llround(0.95 * static_cast<double>(counts.size() - 1))));
+      needed = std::max<int64_t>(
+          needed, static_cast<int64_t>(std::ceil(options.footprint * footprint - 1e-9)));
+    }
+  }
+  const int64_t stands_for = std::min<int64_t>(options.taxels, needed);
+  std::vector<uint8_t> touching(static_cast<size_t>(samples), 0), any_on(static_cast<size_t>(samples), 0);
+  for (int64_t t = 0; t < samples; ++t) {
+    const auto at = static_cast<size_t>(t);
+    touching[at] = on_count[at] + strong[at] * (stands_for - 1) >= needed;
+    any_on[at] = on_count[at] + strong[at] * (stands_for - 1) >= std::max<int64_t>(1, needed / 2);
   }
   std::vector<std::pair<int64_t, int64_t>> contacts;
   for (int64_t t = 0; t < samples; ++t) {
@@ -534,7 +556,7 @@ std::vector<Label> AdaptiveSegmenter::segments(const Parameters& fast) const {
 }
 
 const std::vector<std::string>& adaptive_fast_parameters() {
-  static const std::vector<std::string> keys = {"taxels", "alone", "share", "join_seconds",
+  static const std::vector<std::string> keys = {"taxels", "alone", "share", "footprint", "join_seconds",
                                                 "quiet_seconds", "max_seconds"};
   return keys;
 }
