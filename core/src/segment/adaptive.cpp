@@ -477,7 +477,8 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
     t = std::max(t, last);
   }
   // A touch is a gesture instance: contacts whose release is at most `join` frames are one.
-  // From the signal, join is a quarter of the median contact's length (at least one frame):
+  // From the signal, join is a quarter of the median contact's length (at least one frame, at
+  // most half a second: a lift inside one gesture is brief, however long its contacts):
   // the fingers of a tickle, a stroke that lifts and lands again, a squeeze that eases. A
   // release as long as a contact itself (repeated pulses, taps) still separates touches.
   int64_t join = 0;
@@ -486,7 +487,8 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   } else if (!contacts.empty()) {
     std::vector<float> lengths;
     for (const auto& [first, last] : contacts) lengths.push_back(static_cast<float>(last - first + 1));
-    join = std::max<int64_t>(1, static_cast<int64_t>(0.25 * stats::median(lengths)));
+    join = std::max<int64_t>(1, std::min(static_cast<int64_t>(0.25 * stats::median(lengths)),
+                                         static_cast<int64_t>(0.5 * rate)));
   }
   std::vector<std::pair<int64_t, int64_t>> parts;
   for (const auto& contact : contacts) {

@@ -71,11 +71,12 @@ size_t fit_choose(const std::vector<std::vector<TouchScore>>& scores, size_t lef
 
 std::vector<std::string> segmenter_fit_candidates() {
   std::vector<std::string> candidates;
-  for (const char* share : {"0.2", "0.1", "0.15", "0.3", "0.4", "0.5"})
-    for (const char* taxels : {"2", "1", "3", "5", "8"})
-      for (const char* join : {"-1", "0", "0.1", "0.2", "0.4", "0.8"})
-        candidates.push_back(std::string("share=") + share + ",taxels=" + taxels +
-                             ",join_seconds=" + join);
+  for (const char* share : {"0.2", "0.1", "0.15", "0.3", "0.4"})
+    for (const char* footprint : {"0.1", "0.05", "0.2"})
+      for (const char* taxels : {"2", "1"})
+        for (const char* join : {"-1", "0", "0.1", "0.2", "0.4", "0.8"})
+          candidates.push_back(std::string("share=") + share + ",footprint=" + footprint +
+                               ",taxels=" + taxels + ",join_seconds=" + join);
   return candidates;
 }
 

@@ -23,14 +23,17 @@
 //   is the 95th percentile of its channels' peaks (the highest excursion a channel holds for
 //   min_seconds) among channels that left their noise band. So a binary sensor is on when it
 //   is on, an 8-bit grid past a fifth of its full press, a noisy analog skin past its noise.
-// A frame is a touch frame when `taxels` (2) channels are past their band, or one is `alone`
-// (2) times past it. A contact is a run of touch frames, its edges moved out while any channel
-// stays past its band. Contacts whose release is at most join_seconds are one touch; by
+// A frame is a touch frame when as many channels are past their band as a tenth (`footprint`)
+// of a touch's footprint on this skin (the 95th percentile of the number of channels on, over
+// frames with any on), `taxels` (2) at least; one channel `alone` (2) times past its band
+// stands for `taxels`. A contact is a run of touch frames, its edges moved out while half as
+// many channels stay on. Contacts whose release is at most join_seconds are one touch; by
 // default (join_seconds < 0) the join is a quarter of the median contact's length, at least
-// one frame: short lifts inside a gesture join, a release as long as a contact (repeated taps,
-// pulses) separates. Touches of at least min_seconds (0.05), cut at max_seconds (10). Note
-// "quiet" / "open" / "forced". quiet_seconds is join_seconds's old name. Region: the layout
-// group whose channels went furthest past their bands over the touch, else "all".
+// one frame and at most half a second: short lifts inside a gesture join, a release as long
+// as a contact (repeated taps, pulses) separates. Touches of at least min_seconds (0.05), cut
+// at max_seconds (10). Note "quiet" / "open" / "forced". quiet_seconds is join_seconds's old
+// name. Region: the layout group whose channels went furthest past their bands over the
+// touch, else "all".
 
 #include <memory>
 #include <string>
@@ -62,7 +65,7 @@ class AdaptiveSegmenter {
   Parameters slow_;
 };
 
-// taxels, alone, share, join_seconds, quiet_seconds, max_seconds.
+// taxels, alone, share, footprint, join_seconds, quiet_seconds, max_seconds.
 const std::vector<std::string>& adaptive_fast_parameters();
 
 }  // namespace tactile

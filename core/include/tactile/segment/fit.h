@@ -41,7 +41,8 @@ struct SegmenterFit {
   int64_t candidates = 0;     // parameter sets tried
 };
 
-// The parameter sets tried, adaptive's defaults first: share x taxels x join_seconds.
+// The parameter sets tried, adaptive's defaults first: share x footprint x taxels x
+// join_seconds (180).
 std::vector<std::string> segmenter_fit_candidates();
 
 // Throws tactile::Error when fewer than three touches are labelled in all, when a label lies
