@@ -1,7 +1,8 @@
 // Labels > Fit segmenter to my labels, through the workbench's real input path: an operator
 // labels three double taps with the keys ([ ] 1 Enter), fits, presses G, and the suggestions
-// follow the way they label (one per double tap, where adaptive's defaults give two); the
-// operator's labels are unchanged; with two labels the fit is refused with what is needed.
+// follow the way they label (one per double tap, where adaptive's defaults give two), and
+// the Quality tab scores them against the operator's touches; the operator's labels are
+// unchanged; with two labels the fit is refused with what is needed.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -68,7 +69,8 @@ TEST_F(WorkbenchSegmentFit, FittedToThreeLabelledTouchesGSuggestsTheWayTheOperat
   const auto result = workbench(
       "wait 2\nkey G\nwait jobs\nstate @default.json\n" + label_pair(0) + label_pair(1) +
       label_pair(2) + "menu Labels/Fit segmenter to my labels\nwait jobs\nstate @fitted.json\n" +
-      "key G\nwait jobs\nstate @suggested.json\n");
+      "key G\nwait jobs\nstate @suggested.json\nclick item tab:quality\nwait 2\n"
+      "state @quality.json\nscreenshot @quality.png\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(state("default.json")["segmenter"]["method"], "adaptive");
   const std::vector<Label> mine = lane("ana");
@@ -99,6 +101,15 @@ TEST_F(WorkbenchSegmentFit, FittedToThreeLabelledTouchesGSuggestsTheWayTheOperat
   ASSERT_EQ(after.size(), mine.size());
   for (size_t k = 0; k < after.size(); ++k) EXPECT_EQ(after[k].revision, mine[k].revision);
   EXPECT_TRUE(std::filesystem::exists(folder.file("segmenter-presets.json")));
+  // The Quality tab scores the suggestions (lane B) against the operator's touches (lane A):
+  // each of the three found whole, the five beyond them false alarms, none split or merged.
+  const nlohmann::json quality = state("quality.json")["quality"];
+  EXPECT_EQ(quality["touches"], 3);
+  EXPECT_EQ(quality["touches_found"], 3);
+  EXPECT_EQ(quality["touch_false_alarms"], 5);
+  EXPECT_EQ(quality["touches_split"], 0);
+  EXPECT_EQ(quality["touches_merged"], 0);
+  EXPECT_NEAR(quality["touch_event_f1"].get<double>(), 6.0 / 11.0, 1e-9);
 }
 
 TEST_F(WorkbenchSegmentFit, FewerThanThreeLabelledTouchesAreRefusedWithWhatIsNeeded) {

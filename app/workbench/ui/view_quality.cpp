@@ -1,12 +1,16 @@
 // Quality view: the open recording's label issues (overlaps in a lane and region,
 // implausible durations, segmenter events without a label, classes outside the
 // vocabulary) and the agreement of two lanes (kappa over time, segment F1 at IoU 0.5,
-// the disagreements); a click on an issue or a disagreement moves the cursor there.
+// the disagreements; and B's segments scored as touches against A's, frame F1 and one-to-one
+// event F1 with the touches split and merged, as `tactile segment --score`); a click on an
+// issue or a disagreement moves the cursor there.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/quality.h"
+#include "tactile/segment/scoring.h"
 #include "views.h"
 
 namespace tactile {
@@ -61,6 +65,7 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
     options.vocabulary = {document.classes.begin(), document.classes.end()};
     cache.issues = check_labels(document.labels, options);
     cache.agreement = {};
+    cache.touches = {};
     if (lanes.keys.size() >= 2) {
       const SourceInfo& info = document.samples().info();
       const std::map<std::string, RecordingTiming> timing = {
@@ -68,6 +73,11 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
            {document.samples().start_time(), document.samples().end_time(), info.rate_hz}}};
       cache.agreement = compute_agreement(lanes.lanes[static_cast<size_t>(a)].labels(),
                                           lanes.lanes[static_cast<size_t>(b)].labels(), timing);
+      const auto frames = static_cast<int64_t>(std::llround(
+          (document.samples().end_time() - document.samples().start_time()) * info.rate_hz));
+      cache.touches = score_touches(lanes.lanes[static_cast<size_t>(b)].labels(),
+                                    lanes.lanes[static_cast<size_t>(a)].labels(),
+                                    document.samples().start_time(), info.rate_hz, frames);
     }
     cache.document = &document;
     cache.labels_version = document.labels_version;
@@ -99,6 +109,17 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
   ImGui::Text("kappa %.3f   F1 %.3f", agreement.kappa, agreement.f1);
   ImGui::TextDisabled("P %.2f R %.2f, %lld matched", agreement.precision, agreement.recall,
                       static_cast<long long>(agreement.matched));
+  // B's segments as touches against A's (a segmenter's lane against labelled touches).
+  const TouchScore& touches = cache.touches;
+  ImGui::Text("touches F1 %.3f / %.3f", touches.frames.f1(), touches.events.f1());
+  remember_item(state, "quality:touches",
+                "B's segments scored against A's touches: frame F1 / one-to-one event F1 "
+                "(docs/SEGMENTERS.md)");
+  ImGui::TextDisabled("%lld of %lld found, %lld extra", static_cast<long long>(touches.events.hits),
+                      static_cast<long long>(touches.touches),
+                      static_cast<long long>(touches.events.false_alarms));
+  ImGui::TextDisabled("%lld split, %lld merged", static_cast<long long>(touches.split),
+                      static_cast<long long>(touches.merged));
   for (size_t k = 0; k < agreement.disagreements.size() && k < 200; ++k) {
     const Disagreement& d = agreement.disagreements[k];
     ImGui::PushID(1000 + static_cast<int>(k));

@@ -819,9 +819,17 @@ nlohmann::json Workbench::state_json() const {
                        {"collapsed", labelling.collapsed.count(id) > 0}});
     }
   json["lanes"] = lanes;
+  const TouchScore& touches = state_.quality.touches;
   json["quality"] = {{"kappa", state_.quality.agreement.kappa},
                      {"f1", state_.quality.agreement.f1},
-                     {"disagreements", state_.quality.agreement.disagreements.size()}};
+                     {"disagreements", state_.quality.agreement.disagreements.size()},
+                     {"touch_frame_f1", touches.frames.f1()},
+                     {"touch_event_f1", touches.events.f1()},
+                     {"touches", touches.touches},
+                     {"touches_found", touches.events.hits},
+                     {"touch_false_alarms", touches.events.false_alarms},
+                     {"touches_split", touches.split},
+                     {"touches_merged", touches.merged}};
   json["analysis"] = analysis_json();
   json["live"] = live_json(state_);
   json["workspace"] = state_.workspace;

@@ -18,6 +18,7 @@
 #include "file_browser.h"
 #include "files_state.h"
 #include "tactile/segment/fit.h"
+#include "tactile/segment/scoring.h"
 #include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/predict.h"
@@ -305,6 +306,7 @@ struct WorkbenchState {
     std::pair<int, int> lanes{-1, -1};
     std::vector<LabelIssue> issues;
     Agreement agreement;
+    TouchScore touches;  // lane B's segments against lane A's touches (segment/scoring.h)
   } quality;
   PanelSizes sizes;
   std::string error;   // the last error, shown in the status bar
