@@ -8,15 +8,15 @@
 // definitions). bench/SEGMENT.md has the table.
 //
 //   build/bench/segment_bench [--subjects N] [--seed S] [--faults realistic|SPEC]
-//                             [--dev FOLDER] [--no-sim] [skin ...]
+//                             [--params ADAPTIVE_PARAMS] [--dev FOLDER] [--no-sim] [skin ...]
 //
 // --dev FOLDER: every .h5 under FOLDER with the ground truth in FOLDER/labels.db (the
 // development set imported as its README says). Without skins: every skin with a simulator
 // (skins/skin.h) and the pressure grids grid:16x16 and grid:19x27 (sim/grid_sim.h).
 //
 // The baseline, made general from the development set's README's: each channel's median is
-// its rest; a channel is on past 40/255 of the skin's range (the largest distance of any
-// channel from its rest; 40 counts on an 8-bit grid); a frame is a touch with min(3,
+// its rest; a channel is on 40/255 of the skin's range above it (the largest rise of any
+// channel above its rest; 40 counts on an 8-bit grid); a frame is a touch with min(3,
 // ceil(channels / 8)) channels on; one frame of dilation.
 #include <Eigen/Core>
 #include <algorithm>
@@ -65,7 +65,7 @@ std::vector<Label> baseline_touches(const Recording& recording) {
     std::erase_if(values, [](float value) { return !std::isfinite(value); });
     if (values.empty()) continue;
     rest[static_cast<size_t>(c)] = tactile::stats::median(values);
-    for (float value : values) range = std::max(range, std::fabs(value - rest[static_cast<size_t>(c)]));
+    for (float value : values) range = std::max(range, value - rest[static_cast<size_t>(c)]);
   }
   const float on = 40.0f / 255.0f * range;
   const int needed = std::min(3, std::max(1, (channels + 7) / 8));
@@ -73,7 +73,7 @@ std::vector<Label> baseline_touches(const Recording& recording) {
   for (int64_t t = 0; t < samples; ++t) {
     int count = 0;
     for (int c = 0; c < channels; ++c)
-      count += std::fabs(stream.samples(t, c) - rest[static_cast<size_t>(c)]) > on;
+      count += stream.samples(t, c) - rest[static_cast<size_t>(c)] > on;
     touching[static_cast<size_t>(t)] = on > 0 && count >= needed;
   }
   std::vector<uint8_t> dilated = touching;
@@ -144,6 +144,8 @@ std::string fitted_cell(const std::vector<Labelled>& items) {
   return cell(unseen) + " `" + fit.params + "`";
 }
 
+std::string adaptive_params;  // --params: the adaptive column's parameters
+
 void print_row(const std::string& name, const std::string& own_method,
                const std::vector<Labelled>& items, bool fit) {
   TouchScore baseline, own, adaptive;
@@ -160,7 +162,9 @@ void print_row(const std::string& name, const std::string& own_method,
       // The skin's own segmenter may need what a faulty recording lacks.
     }
     own += score_of(own_found, item);
-    adaptive += score_of(tactile::segment_recording("adaptive", item.recording, item.layout), item);
+    adaptive += score_of(tactile::segment_recording("adaptive", item.recording, item.layout,
+                                                    tactile::Parameters::parse(adaptive_params, "--params")),
+                         item);
   }
   std::printf("| %s | %lld | %s | %s | %s | %s |\n", name.c_str(), static_cast<long long>(touches),
               cell(baseline).c_str(), (own_method + ": " + cell(own)).c_str(),
@@ -213,6 +217,8 @@ int main(int argc, char** argv) {
         fault_spec = argv[++k];
       else if (word == "--seed" && k + 1 < argc)
         seed = std::strtoull(argv[++k], nullptr, 10);
+      else if (word == "--params" && k + 1 < argc)
+        adaptive_params = argv[++k];
       else if (word == "--dev" && k + 1 < argc)
         dev = argv[++k];
       else if (word == "--no-sim")

@@ -428,9 +428,10 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
 
   // Touch frames: as many channels on as a tenth (`footprint`) of a touch's footprint on this
   // skin, `taxels` (2) at least, where one channel `alone` times past its band stands for
-  // `taxels`. The footprint is the 95th percentile of the number of channels on, over the
-  // frames with any on: a palm on a 19 x 27 grid covers a hundred taxels and a few lingering
-  // ones between two touches are no touch; on a strip of eight sensors a touch is one or two.
+  // `taxels`. The footprint is the median number of channels on, over the frames with any on:
+  // where hands cover a hundred taxels of a 19 x 27 grid, a few lingering ones between two
+  // touches are no touch; where fingertips and palms mix, the typical touch is small and a
+  // fingertip still counts; on a strip of eight sensors a touch is one or two.
   // A contact is a run of touch frames, its edges moved out while half as many channels stay
   // on (one, on a skin whose touches need two).
   const float alone = static_cast<float>(options.alone);
@@ -450,7 +451,7 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
       if (count > 0) counts.push_back(static_cast<float>(count));
     if (!counts.empty()) {
       const float footprint = stats::nth_smallest(
-          counts, static_cast<size_t>(std::llround(0.95 * static_cast<double>(counts.size() - 1))));
+          counts, (counts.size() - 1) / 2);
       needed = std::max<int64_t>(
           needed, static_cast<int64_t>(std::ceil(options.footprint * footprint - 1e-9)));
     }

@@ -24,8 +24,8 @@
 //   min_seconds) among channels that left their noise band. So a binary sensor is on when it
 //   is on, an 8-bit grid past a fifth of its full press, a noisy analog skin past its noise.
 // A frame is a touch frame when as many channels are past their band as a tenth (`footprint`)
-// of a touch's footprint on this skin (the 95th percentile of the number of channels on, over
-// frames with any on), `taxels` (2) at least; one channel `alone` (2) times past its band
+// of a touch's footprint on this skin (the median number of channels on, over the frames
+// with any on), `taxels` (2) at least; one channel `alone` (2) times past its band
 // stands for `taxels`. A contact is a run of touch frames, its edges moved out while half as
 // many channels stay on. Contacts whose release is at most join_seconds are one touch; by
 // default (join_seconds < 0) the join is a quarter of the median contact's length, at least
