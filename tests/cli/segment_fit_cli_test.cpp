@@ -10,41 +10,17 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
+#include "touch_scenes.h"
 
 namespace tactile {
 namespace {
 
 using test::run_program;
 
-// strip:8 at 50 Hz, 0/1: `pairs` double taps (two 0.3-s taps 0.5 s apart) on sensor 3, 4 s apart.
-Recording double_tap_recording(const std::string& id, int pairs) {
-  Recording recording;
-  recording.id = id;
-  recording.layout_id = "strip:8";
-  Stream stream;
-  stream.name = "skin";
-  stream.rate_hz = 50.0;
-  const SkinLayout layout = load_layout("strip:8");
-  for (const Channel& channel : layout.channels) stream.channels.push_back(channel.name);
-  stream.samples.setZero(100 + 200 * pairs, static_cast<Eigen::Index>(stream.channels.size()));
-  for (int t = 100; t < 100 + 200 * pairs; ++t) {
-    const int phase = (t - 100) % 200;
-    stream.samples(t, 3) = phase < 15 || (phase >= 40 && phase < 55) ? 1.0f : 0.0f;
-  }
-  recording.streams = {stream};
-  return recording;
-}
+using test::double_tap_recording;
 
 Label pair_label(const std::string& recording, int pair, const std::string& annotator) {
-  Label label;
-  label.recording = recording;
-  label.t0 = (100 + 200 * pair) / 50.0;
-  label.t1 = (100 + 200 * pair + 55) / 50.0;
-  label.class_name = "double-tap";
-  label.region = "all";
-  label.annotator = annotator;
-  label.source = LabelSource::kManual;
-  return label;
+  return test::double_tap_touches(recording, pair + 1, annotator).back();
 }
 
 class SegmentFitCli : public ::testing::Test {

@@ -12,6 +12,7 @@
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "tactile/layout/skin_layout.h"
+#include "touch_scenes.h"
 
 namespace tactile {
 namespace {
@@ -19,21 +20,8 @@ namespace {
 class WorkbenchSegmentFit : public ::testing::Test {
  protected:
   void SetUp() override {
-    // strip:8 at 50 Hz, 0/1: eight double taps (two 0.3-s taps 0.5 s apart) on sensor 3, 4 s apart.
-    Recording recording;
-    recording.id = "taps";
-    recording.layout_id = "strip:8";
-    Stream stream;
-    stream.name = "skin";
-    stream.rate_hz = 50.0;
-    for (const Channel& channel : load_layout("strip:8").channels)
-      stream.channels.push_back(channel.name);
-    stream.samples.setZero(100 + 200 * 8, static_cast<Eigen::Index>(stream.channels.size()));
-    for (int t = 100; t < 100 + 200 * 8; ++t) {
-      const int phase = (t - 100) % 200;
-      stream.samples(t, 3) = phase < 15 || (phase >= 40 && phase < 55) ? 1.0f : 0.0f;
-    }
-    recording.streams = {stream};
+    // Eight double taps on sensor 3 of strip:8, 4 s apart (touch_scenes.h).
+    const Recording recording = test::double_tap_recording("taps", 8);
     write_recording(folder.file("taps.h5"), recording);
     LabelStore store(folder.file("labels.db"));
     store.set_classes("strip:8", {"double-tap", "stroke"});

@@ -61,20 +61,13 @@ TEST(SegmentScoring, FramesCountFromTheLabelsTimes) {
 namespace tactile {
 namespace {
 
-Label touch_span(double t0, double t1) {
-  Label label;
-  label.t0 = t0;
-  label.t1 = t1;
-  return label;
-}
-
 // shared/data/inflatable-grid-dev/README.md: each labelled touch in time order takes the
 // unused segment that overlaps it most; splits and merges are counted.
 TEST(SegmentScoring, TouchesTakeTheirSegmentsInTimeOrder) {
   // Touch A [0, 2) overlaps segment X [1, 5) by 1; touch B [2, 5) overlaps X by 3. A comes first
   // and takes X (largest-IoU-first would give X to B and leave A missed): B is missed instead.
   const TouchScore score =
-      score_touches({touch_span(1.0, 5.0)}, {touch_span(0.0, 2.0), touch_span(2.0, 5.0)}, 0.0, 1.0, 6);
+      score_touches({span(1.0, 5.0)}, {span(0.0, 2.0), span(2.0, 5.0)}, 0.0, 1.0, 6);
   EXPECT_EQ(score.events.hits, 1);
   EXPECT_EQ(score.events.misses, 1);
   EXPECT_EQ(score.events.false_alarms, 0);
@@ -88,7 +81,7 @@ TEST(SegmentScoring, TouchesTakeTheirSegmentsInTimeOrder) {
 
 TEST(SegmentScoring, ATouchCutInThreeIsSplitWithTwoFalseAlarms) {
   const TouchScore score = score_touches(
-      {touch_span(0.0, 1.0), touch_span(1.5, 2.0), touch_span(2.5, 4.0)}, {touch_span(0.0, 4.0)},
+      {span(0.0, 1.0), span(1.5, 2.0), span(2.5, 4.0)}, {span(0.0, 4.0)},
       0.0, 2.0, 10);
   EXPECT_EQ(score.events.hits, 1);
   EXPECT_EQ(score.events.false_alarms, 2);

@@ -11,6 +11,7 @@
 #include "tactile/segment/adaptive.h"
 #include "tactile/segment/fit.h"
 #include "tactile/segment/segmenter.h"
+#include "touch_scenes.h"
 
 namespace tactile {
 namespace {
@@ -156,27 +157,8 @@ TEST(TouchSegmenter, TheScanAndDecideHalvesGiveWhatOneRunGives) {
                Error);
 }
 
-// Pairs of taps 0.5 s apart that a person labels as one touch each ("a double tap").
-Recording double_taps(int pairs) {
-  return touch_recording("strip:8", 50.0, 100 + 200 * pairs, [](int t, int c) {
-    const int local = t - 100;
-    if (c != 3 || local < 0) return 0.0f;
-    const int phase = local % 200;
-    return phase < 15 || (phase >= 40 && phase < 55) ? 1.0f : 0.0f;
-  });
-}
-
-std::vector<Label> double_tap_labels(int pairs) {
-  std::vector<Label> labels;
-  for (int k = 0; k < pairs; ++k) {
-    Label label;
-    label.recording = "touches";
-    label.t0 = (100 + 200 * k) / 50.0;
-    label.t1 = (100 + 200 * k + 55) / 50.0;
-    labels.push_back(label);
-  }
-  return labels;
-}
+Recording double_taps(int pairs) { return test::double_tap_recording("touches", pairs); }
+std::vector<Label> double_tap_labels(int pairs) { return test::double_tap_touches("touches", pairs); }
 
 TEST(SegmenterFit, LearnsThatAPersonLabelsDoubleTapsAsOneTouch) {
   const Recording recording = double_taps(9);
