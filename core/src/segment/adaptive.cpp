@@ -163,7 +163,6 @@ struct AdaptiveScan {
   std::string recording;
   double rate = 0.0;
   int64_t samples = 0;
-  double start_time = 0.0;
   std::vector<double> times;                // of each frame
   std::vector<std::vector<float>> moved;    // each channel's excursion (empty: never counts)
   std::vector<float> sigmas;                // each channel's noise sigma
@@ -189,7 +188,6 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
   const int64_t samples = stream.sample_count();
   scan->rate = rate;
   scan->samples = samples;
-  scan->start_time = samples > 0 ? stream.time_of(0) : 0.0;
   for (int64_t t = 0; t < samples; ++t) scan->times.push_back(stream.time_of(t));
   if (samples == 0) return scan;
   const auto frames_of = [&](double seconds) {
@@ -202,8 +200,8 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
   const int64_t opening = std::llround(options.opening_seconds / 0.25);
   const int64_t peak_frames = std::llround(options.min_seconds * rate);
 
-  // Each channel's excursion from its running rest, in units of its band: > 1 is "on".
-  // A run of one unchanging value for stuck_seconds or more on a noisy channel is a stuck
+  // Each channel's excursion from its running rest, in its own units (its band is the fast
+  // half's). A run of one unchanging value for stuck_seconds or more on a noisy channel is a stuck
   // taxel: missing everywhere below. A channel with no noise at all (binary, integer-step,
   // clipped at zero) holds its rest for long stretches by nature, so the rule skips it.
   std::vector<std::vector<float>>& score = scan->moved;
@@ -404,7 +402,9 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   const auto frames_of = [&](double seconds) {
     return std::max<int64_t>(1, std::llround(seconds * rate));
   };
-  std::vector<std::vector<float>> score = scan.moved;
+  // Each channel's band (0: never on); its excursion over the band is > 1 where it is on.
+  const std::vector<std::vector<float>>& moved = scan.moved;
+  std::vector<float> bands(static_cast<size_t>(channels), 0.0f);
   const std::vector<float>& sigmas = scan.sigmas;
   const std::vector<std::string>& kinds = scan.kinds;
   const float noise_bands = scan.noise_bands;
@@ -412,18 +412,14 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   const auto& group_channels = scan.group_channels;
   int usable = 0;
   for (int c = 0; c < channels; ++c) {
-    std::vector<float>& moved = score[static_cast<size_t>(c)];
-    if (moved.empty()) continue;
+    if (moved[static_cast<size_t>(c)].empty()) continue;
     const auto found = amplitude.find(kinds[static_cast<size_t>(c)]);
     const float band =
         std::max(noise_bands * sigmas[static_cast<size_t>(c)],
                  static_cast<float>(options.share) * (found == amplitude.end() ? 0.0f : found->second));
-    if (!(band > 0)) {  // a channel of a kind no touch moved: never on
-      moved.clear();
-      continue;
-    }
+    if (!(band > 0)) continue;  // a channel of a kind no touch moved: never on
+    bands[static_cast<size_t>(c)] = band;
     ++usable;
-    for (float& value : moved) value /= band;
   }
 
   // Touch frames: as many channels on as a tenth (`footprint`) of a touch's footprint on this
@@ -437,11 +433,12 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   const float alone = static_cast<float>(options.alone);
   std::vector<int64_t> on_count(static_cast<size_t>(samples), 0), strong(static_cast<size_t>(samples), 0);
   for (int c = 0; c < channels; ++c) {
-    const std::vector<float>& e = score[static_cast<size_t>(c)];
-    if (e.empty()) continue;
+    const float band = bands[static_cast<size_t>(c)];
+    if (!(band > 0)) continue;
+    const std::vector<float>& excursion = moved[static_cast<size_t>(c)];
     for (int64_t t = 0; t < samples; ++t) {
-      on_count[static_cast<size_t>(t)] += e[static_cast<size_t>(t)] > 1.0f;
-      strong[static_cast<size_t>(t)] += e[static_cast<size_t>(t)] > alone;
+      on_count[static_cast<size_t>(t)] += excursion[static_cast<size_t>(t)] > band;
+      strong[static_cast<size_t>(t)] += excursion[static_cast<size_t>(t)] > alone * band;
     }
   }
   int64_t needed = std::min<int64_t>(options.taxels, std::max(1, usable));
@@ -516,14 +513,14 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
       // The group whose channels left their band the most, summed over the segment.
       double best = 0.0;
       for (size_t g = 0; g < group_channels.size(); ++g) {
-        double moved = 0.0;
+        double past = 0.0;
         for (int c : group_channels[g]) {
-          const std::vector<float>& e = score[static_cast<size_t>(c)];
-          if (e.empty()) continue;
+          const float band = bands[static_cast<size_t>(c)];
+          if (!(band > 0)) continue;
           for (int64_t t = first; t <= last; ++t)
-            moved += std::max(0.0f, e[static_cast<size_t>(t)] - 1.0f);
+            past += std::max(0.0f, moved[static_cast<size_t>(c)][static_cast<size_t>(t)] / band - 1.0f);
         }
-        if (moved > best) best = moved, label.region = scan.group_ids[g];
+        if (past > best) best = past, label.region = scan.group_ids[g];
       }
       labels.push_back(std::move(label));
     }
