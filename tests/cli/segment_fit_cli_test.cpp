@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "cli_test_support.h"
 #include "tactile/io/hdf5_file.h"
@@ -119,6 +120,17 @@ TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPre
                                folder.file("labels.db") + " --preset nope");
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_NE(unknown.err.find("--preset nope: no such preset"), std::string::npos) << unknown.err;
+  // A damaged presets file is named, and a fit does not overwrite it.
+  { std::ofstream(folder.file("segmenter-presets.json")) << "{\"taps\": {\"method\": "; }
+  const auto damaged = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                               " --preset taps");
+  EXPECT_EQ(damaged.exit_code, 1);
+  EXPECT_NE(damaged.err.find("segmenter-presets.json: damaged segmenter presets"), std::string::npos)
+      << damaged.err;
+  const auto over = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                            " --fit-to ana");
+  EXPECT_EQ(over.exit_code, 1);
+  EXPECT_EQ(test::read_text(folder.file("segmenter-presets.json")), "{\"taps\": {\"method\": ");
   const auto other = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
                              " --fit-to ana --method threshold");
   EXPECT_EQ(other.exit_code, 1);
