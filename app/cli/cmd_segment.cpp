@@ -159,13 +159,8 @@ void fit_to_lane(SegmentOptions& options, const std::vector<std::string>& files)
                      lane_labels(store, options.fit_to, recordings[r].id)});
   const SegmenterFit fit = fit_segmenter(items);
   std::cout << fit_report(fit);
-  SegmenterPreset preset;
-  preset.name = options.preset.empty() ? "fitted" : options.preset;
-  preset.method = fit.method;
-  preset.params = fit.params;
-  preset.fitted_to = options.fit_to;
-  preset.held_out_event_f1 = fit.held_out.events.f1();
-  preset.touches = fit.touches;
+  const SegmenterPreset preset =
+      fit_preset(fit, options.preset.empty() ? "fitted" : options.preset, options.fit_to);
   const std::string path = segmenter_presets_path(options.database);
   save_segmenter_preset(path, preset);
   std::cout << "saved as preset '" << preset.name << "' in " << path

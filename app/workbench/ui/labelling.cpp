@@ -399,14 +399,7 @@ bool fit_segmenter_to_labels(WorkbenchState& state) {
             progress.report(0.3 + 0.65 * share, "trying parameter sets");
             progress.check();
           });
-          SegmenterPreset preset;
-          preset.name = "fitted";
-          preset.method = fit.method;
-          preset.params = fit.params;
-          preset.fitted_to = lane;
-          preset.held_out_event_f1 = fit.held_out.events.f1();
-          preset.touches = fit.touches;
-          save_segmenter_preset(presets, preset);
+          save_segmenter_preset(presets, fit_preset(fit, "fitted", lane));
           return LabellingState::SegmenterFitted{path, std::move(fit)};
         });
     state.error.clear();

@@ -7,6 +7,7 @@
 
 #include "tactile/error.h"
 #include "tactile/segment/adaptive.h"
+#include "tactile/segment/presets.h"
 #include "tactile/text.h"
 
 namespace tactile {
@@ -154,6 +155,18 @@ SegmenterFit fit_segmenter(const std::vector<FitRecording>& recordings,
   fit.params = candidates[chosen];
   for (size_t u = 0; u < units.size(); ++u) fit.fitted += scores[chosen][u];
   return fit;
+}
+
+SegmenterPreset fit_preset(const SegmenterFit& fit, const std::string& name,
+                           const std::string& lane) {
+  SegmenterPreset preset;
+  preset.name = name;
+  preset.method = fit.method;
+  preset.params = fit.params;
+  preset.fitted_to = lane;
+  preset.held_out_event_f1 = fit.held_out.events.f1();
+  preset.touches = fit.touches;
+  return preset;
 }
 
 std::string touch_score_text(const TouchScore& score) {

@@ -51,6 +51,11 @@ std::vector<std::string> segmenter_fit_candidates();
 SegmenterFit fit_segmenter(const std::vector<FitRecording>& recordings,
                            const std::function<void(double)>& progress = {});
 
+// The fit as a preset named `name`, fitted to `lane` (segment/presets.h).
+struct SegmenterPreset;
+SegmenterPreset fit_preset(const SegmenterFit& fit, const std::string& name,
+                           const std::string& lane);
+
 // The fit as text: the parameters, the held-out and fitted scores (as `--score` prints them).
 std::string fit_report(const SegmenterFit& fit);
 // One score as a line: "frame F1 0.906 (P 0.95 R 0.87), event F1 0.836 (74 of 92 touches,
