@@ -418,8 +418,13 @@ void apply_finished_fit(WorkbenchState& state) {
   state.labelling.segmenter_params.fill('\0');
   fit.params.copy(state.labelling.segmenter_params.data(),
                   state.labelling.segmenter_params.size() - 1);
-  state.notice = "segmenter fitted to " + std::to_string(fit.touches) + " touches: " + fit.params +
-                 " (held out " + fit.folds + ": event F1 " +
+  // The parameters serve every recording of the skin; say where they came from when the
+  // operator has opened another meanwhile.
+  const bool elsewhere = !state.document || state.document->path != fitted->document;
+  state.notice = "segmenter fitted to " + std::to_string(fit.touches) + " touches" +
+                 (elsewhere ? " of " + std::filesystem::path(fitted->document).filename().string()
+                            : std::string()) +
+                 ": " + fit.params + " (held out " + fit.folds + ": event F1 " +
                  fixed_text(fit.held_out.events.f1(), 2) + "); G suggests with it";
 }
 
