@@ -113,14 +113,30 @@ Part segment_part(const SegmentOptions& options, const Shard& shard,
 
 // The labels of one lane ("ground-truth" or "truth", "manual:NAME" or NAME, "segmenter:M",
 // "model:NAME") on one recording.
-std::vector<Label> lane_labels(const LabelStore& store, const std::string& lane,
-                               const std::string& recording) {
+LabelFilter lane_filter(const std::string& lane) {
   const LaneKey key = lane_from_id(lane == "truth" ? "ground-truth" : lane);
   LabelFilter filter;
-  filter.recording = recording;
   filter.source = key.source;
   if (key.source != LabelSource::kGroundTruth) filter.annotator = key.annotator;
+  return filter;
+}
+
+std::vector<Label> lane_labels(const LabelStore& store, const std::string& lane,
+                               const std::string& recording) {
+  LabelFilter filter = lane_filter(lane);
+  filter.recording = recording;
   return store.list(filter);
+}
+
+// --score LANE names a lane with labels in the store, or nothing is segmented: a score against
+// an empty lane (a misspelt name) would read as a segmenter that found nothing right.
+void check_score_lane(const LabelStore& store, const std::string& lane) {
+  if (!store.list(lane_filter(lane)).empty()) return;
+  std::set<std::string> lanes;
+  for (const Label& label : store.list())
+    if (label.source != LabelSource::kSegmenter) lanes.insert(lane_of(label).id());
+  throw Error("--score " + lane, "no labels in this lane in " + store.path() + " (lanes with labels: " +
+                                     (lanes.empty() ? "none" : joined({lanes.begin(), lanes.end()})) + ")");
 }
 
 // --preset NAME: the preset's method and parameters, unless the line gives its own.
@@ -194,6 +210,7 @@ void run_segment(SegmentOptions options) {
     return;
   }
   LabelStore store(options.database);
+  if (!options.score.empty()) check_score_lane(store, options.score);
   std::set<std::string> annotators;
   int64_t total = 0;
   TouchScore scored;

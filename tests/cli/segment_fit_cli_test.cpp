@@ -116,6 +116,13 @@ TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPre
   EXPECT_EQ(lane("segmenter:adaptive").size(), 0u) << "nothing is segmented after a refusal";
   EXPECT_FALSE(std::filesystem::exists(folder.file("segmenter-presets.json")));
 
+  const auto empty_lane = tactile("segment " + recordings() + " --labels " +
+                                  folder.file("labels.db") + " --method adaptive --score nobody");
+  EXPECT_EQ(empty_lane.exit_code, 1);
+  EXPECT_NE(empty_lane.err.find("--score nobody: no labels in this lane"), std::string::npos)
+      << empty_lane.err;
+  EXPECT_NE(empty_lane.err.find("manual:ana"), std::string::npos) << empty_lane.err;
+  EXPECT_EQ(lane("segmenter:adaptive").size(), 0u) << "nothing is stored after a refusal";
   const auto unknown = tactile("segment " + recordings() + " --labels " +
                                folder.file("labels.db") + " --preset nope");
   EXPECT_EQ(unknown.exit_code, 1);
