@@ -7,14 +7,19 @@ BATCH ?= ON
 
 SANITIZE_DIR ?= build-asan
 
-.PHONY: run test test-slurm build deps clean sanitize fuzz
+.PHONY: run test test-busy test-slurm build deps clean sanitize fuzz
 
 run: build
 	./scripts/run-workbench.sh $(BUILD_DIR)
 
-# Every test but the Slurm end-to-end one, which starts a cluster of its own (test-slurm).
+# Every test but the Slurm end-to-end one, which starts a cluster of its own (test-slurm), and
+# the job tests beside busy processes (test-busy), which take the machine for three minutes.
 test: build
-	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS) -LE slurm
+	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS) -LE 'slurm|busy'
+
+# The workbench's job tests beside two busy processes (tests/busy/beside_busy.sh).
+test-busy: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -L busy
 
 # Shards submitted to a single-node Slurm on localhost and merged (docs/CLUSTER.md).
 test-slurm: build

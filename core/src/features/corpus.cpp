@@ -13,6 +13,7 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/jobs/job.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
 
@@ -157,7 +158,7 @@ CorpusDataset extract_corpus(const FeatureExtractor& extractor,
   const auto total = static_cast<int64_t>(recordings.size());
   std::vector<RecordingRows> results(recordings.size());
   int threads =
-      options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+      options.threads > 0 ? options.threads : thread_budget();
   threads = std::clamp<int>(threads, 1, std::max<int>(1, static_cast<int>(total)));
 
   std::atomic<int64_t> next{0};

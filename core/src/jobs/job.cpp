@@ -1,19 +1,26 @@
 #include "tactile/jobs/job.h"
 
-#if defined(__linux__)
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
-
+#include <algorithm>
 #include <exception>
+#include <thread>
 
 namespace tactile {
 
 namespace {
-[[maybe_unused]] constexpr int kWorkerNice = 19;
 thread_local const std::atomic<bool>* thread_cancel_flag = nullptr;
+thread_local int thread_budget_now = 0;  // 0: none set, every core
+}  // namespace
+
+int thread_budget() {
+  if (thread_budget_now > 0) return thread_budget_now;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 }
+
+ThreadBudget::ThreadBudget(int threads) : previous_(thread_budget_now) {
+  thread_budget_now = std::max(1, threads);
+}
+
+ThreadBudget::~ThreadBudget() { thread_budget_now = previous_; }
 
 const std::atomic<bool>* current_cancel_flag() { return thread_cancel_flag; }
 
@@ -52,10 +59,9 @@ std::string JobProgress::stage() const {
 JobRunner::JobRunner(std::string name, std::function<void(JobProgress&)> work)
     : name_(std::move(name)) {
   worker_ = std::thread([this, work = std::move(work)] {
-#if defined(__linux__)
-    // Below the window's thread, as the training job: frames keep their time.
-    setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kWorkerNice);
-#endif
+    // At the process's own priority: a job shares the machine with whatever else runs on it
+    // as any program does. (At nice 19 it starved beside one busy process.) The window's
+    // thread keeps its frames by being light and mostly asleep, not by outranking the workers.
     const CancelScope scope(progress_.flag());
     try {
       progress_.check();

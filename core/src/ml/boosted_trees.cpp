@@ -50,7 +50,7 @@ class XgboostMatrix {
 };
 
 int xgboost_threads(int threads) {
-  return threads > 0 ? threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return threads > 0 ? threads : thread_budget();
 }
 
 // XGBoost's "gain" importance per column ("f<index>" names), normalised to sum 1.

@@ -181,23 +181,8 @@ std::vector<ClassFigures> class_figures(const Eigen::MatrixXi& confusion) {
 
 namespace {
 
-// True on a thread that runs folds of an evaluation beside other such threads.
-thread_local bool tl_on_evaluation_worker = false;
 // fit_groups() of this thread; null: none.
 thread_local const std::vector<std::string>* tl_fit_groups = nullptr;
-
-class WorkerMark {
- public:
-  explicit WorkerMark(bool parallel) : previous_(tl_on_evaluation_worker) {
-    tl_on_evaluation_worker = tl_on_evaluation_worker || parallel;
-  }
-  ~WorkerMark() { tl_on_evaluation_worker = previous_; }
-  WorkerMark(const WorkerMark&) = delete;
-  WorkerMark& operator=(const WorkerMark&) = delete;
-
- private:
-  bool previous_;
-};
 
 }  // namespace
 
@@ -241,12 +226,12 @@ std::vector<FoldOutcome> run_folds(const Dataset& dataset, const EvaluationSetup
   std::vector<FoldOutcome> outcomes(which.size());
   if (which.empty()) return outcomes;
 
-  // An evaluation inside a fold of another (a search's inner cross-validation) runs on its
-  // fold's thread: the outer one already keeps every core busy.
-  unsigned threads = control.threads > 0       ? static_cast<unsigned>(control.threads)
-                     : tl_on_evaluation_worker ? 1u
-                                               : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(fold_count));
+  // The threads given (else this thread's budget: an evaluation inside a fold of another, a
+  // search's inner cross-validation, has its fold's share), the folds side by side, each
+  // with its share for the classifier's own loops.
+  const int given = control.threads > 0 ? control.threads : thread_budget();
+  const int threads = std::min(given, fold_count);
+  const int each_fold = std::max(1, given / threads);
   std::atomic<int> next_fold{0};
   std::atomic<bool> failed{false};
   std::mutex progress_mutex;
@@ -257,7 +242,7 @@ std::vector<FoldOutcome> run_folds(const Dataset& dataset, const EvaluationSetup
   const auto work = [&] {
     // The folds' threads work for the same job: a classifier's fit polls its flag.
     const CancelScope scope(cancel);
-    const WorkerMark mark(threads > 1);
+    const ThreadBudget budget(each_fold);
     while (!failed.load() && !cancelled()) {
       const int next = next_fold.fetch_add(1);
       if (next >= fold_count) return;
@@ -286,7 +271,7 @@ std::vector<FoldOutcome> run_folds(const Dataset& dataset, const EvaluationSetup
     work();
   } else {
     std::vector<std::thread> workers;
-    for (unsigned i = 0; i < threads; ++i) workers.emplace_back(work);
+    for (int i = 0; i < threads; ++i) workers.emplace_back(work);
     for (std::thread& worker : workers) worker.join();
   }
   if (cancelled()) throw Error("evaluation", "cancelled");

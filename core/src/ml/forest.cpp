@@ -74,7 +74,7 @@ void TreeEnsemble::fit(const Matrix& x, const std::vector<int>& y, int class_cou
   importances_.clear();
 
   const int threads = std::clamp<int>(
-      threads_ > 0 ? threads_ : static_cast<int>(std::thread::hardware_concurrency()), 1,
+      threads_ > 0 ? threads_ : thread_budget(), 1,
       static_cast<int>(std::min<int64_t>(tree_count_, 64)));
   const SortedColumns sorted = sort_columns(x, threads);
   TreeGrowth growth;

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "tactile/error.h"
+#include "tactile/jobs/job.h"
 #include "tactile/ml/checks.h"
 #include "tactile/random.h"
 #include "thresholds.h"
@@ -176,7 +177,7 @@ SortedColumns sort_columns(const Matrix& x, int threads) {
                        [&](int32_t a, int32_t b) { return x(a, feature) < x(b, feature); });
     }
   };
-  const int workers = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
+  const int workers = threads > 0 ? threads : thread_budget();
   std::vector<std::thread> pool;
   for (int worker = 1; worker < workers && worker < x.cols(); ++worker) pool.emplace_back(work);
   work();

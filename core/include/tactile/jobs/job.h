@@ -1,7 +1,8 @@
 #pragma once
 // A step that may take longer than a frame, run on a worker thread: the window's thread starts
 // it, draws its progress, may cancel it, and takes its result in one step when it is done. The
-// worker runs below the window's priority, so the frames keep their time. Cancel is
+// worker runs at the process's own priority, sharing the machine fairly with other programs;
+// the window keeps its frames by being light. Cancel is
 // cooperative: the work calls JobProgress::check() between steps (a SOM epoch, a file) and
 // ends within one step.
 //
@@ -78,6 +79,23 @@ class CancelScope {
 
  private:
   const std::atomic<bool>* previous_;
+};
+
+// How many threads code on this thread may keep busy in its own parallel loops (a forest's
+// trees, XGBoost's nthread, an evaluation's folds): every core, unless an enclosing
+// ThreadBudget says fewer. An evaluation whose folds run side by side gives each fold its
+// share, so nested loops never ask for more cores than the job was given (beside busy
+// programs, threads beyond the cores wait on each other's spins and barriers).
+int thread_budget();
+class ThreadBudget {
+ public:
+  explicit ThreadBudget(int threads);  // at least 1
+  ~ThreadBudget();
+  ThreadBudget(const ThreadBudget&) = delete;
+  ThreadBudget& operator=(const ThreadBudget&) = delete;
+
+ private:
+  int previous_;
 };
 
 // The part of a job that does not depend on its result's type.
