@@ -295,3 +295,61 @@ TEST(SomClassifier, SavedModelGivesIdenticalScores) {
 
 }  // namespace
 }  // namespace tactile::ml
+
+namespace tactile::ml {
+namespace {
+
+// A table much wider than long, as Robovie's pair correlations (183 x 37,401): rows near one
+// of three centres in 400 columns.
+Matrix wide_table(std::vector<int>& labels) {
+  Random random{std::mt19937_64(3)};
+  Matrix centres(3, 400);
+  for (Eigen::Index k = 0; k < centres.size(); ++k) centres.data()[k] = random.uniform(0.0, 1.0);
+  Matrix x(30, 400);
+  labels.clear();
+  for (int row = 0; row < 30; ++row) {
+    labels.push_back(row % 3);
+    for (int column = 0; column < 400; ++column)
+      x(row, column) = centres(row % 3, column) + random.uniform(-0.2, 0.2);
+  }
+  return x;
+}
+
+TEST(SomClassifier, AWideTableTrainedInTheSpanOfItsRowsGivesTheSameMap) {
+  std::vector<int> labels;
+  const Matrix x = wide_table(labels);
+  SomClassifier reduced(Parameters::parse("epochs=60", "test"));
+  SomClassifier whole(Parameters::parse("epochs=60,subspace=false", "test"));
+  reduced.fit(x, labels, 3, 7);
+  whole.fit(x, labels, 3, 7);
+  ASSERT_EQ(reduced.map().weights.cols(), 400);
+  EXPECT_LT((reduced.map().weights - whole.map().weights).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_EQ(reduced.map().hits, whole.map().hits);
+  EXPECT_EQ(reduced.map().neuron_class, whole.map().neuron_class);
+  ASSERT_EQ(reduced.training_errors().size(), whole.training_errors().size());
+  for (size_t epoch = 0; epoch < whole.training_errors().size(); ++epoch)
+    EXPECT_NEAR(reduced.training_errors()[epoch].mean, whole.training_errors()[epoch].mean, 1e-9);
+  EXPECT_EQ(reduced.predict(x), whole.predict(x));
+  EXPECT_EQ(reduced.parameters().text("subspace", ""), "true");
+}
+
+TEST(SomQuality, QuantisationAndTopographicErrorOfAKnownMap) {
+  // A 1 x 3 chain at 0, 1, 2 on a line.
+  SomMap map;
+  map.rows = 1;
+  map.columns = 3;
+  map.weights = Matrix{{0.0}, {1.0}, {2.0}};
+  // 0.25: winner 0 (0.25), then 1: neighbours. 1.9: winner 2 (0.1), then 1: neighbours.
+  const SomQuality good = som_quality(map, Matrix{{0.25}, {1.9}});
+  EXPECT_NEAR(good.quantisation_error, (0.25 + 0.1) / 2, 1e-12);
+  EXPECT_EQ(good.topographic_error, 0.0);
+  // Folded: neurons 0 and 2 hold 0 and 1. 0.4: winner 0, then 2, two steps apart; 1.9:
+  // winner 1, then 2: neighbours.
+  map.weights = Matrix{{0.0}, {2.0}, {1.0}};
+  const SomQuality folded = som_quality(map, Matrix{{0.4}, {1.9}});
+  EXPECT_NEAR(folded.quantisation_error, (0.4 + 0.1) / 2, 1e-12);
+  EXPECT_EQ(folded.topographic_error, 0.5);
+}
+
+}  // namespace
+}  // namespace tactile::ml

@@ -1,5 +1,6 @@
 #include "tactile/ml/som.h"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -37,6 +38,36 @@ Matrix neighbourhood_table(const SomMap& map, double radius) {
     table.col(winner) = som_neighbourhood(map, winner, radius);
   return table;
 }
+
+// A SOM over inputs that lie in a space of fewer dimensions than they have columns (n rows,
+// d > n columns), trained there exactly. Q (d x n, orthonormal columns) spans the rows. A
+// neuron w splits into its part in that span, w Q (n numbers), and the part outside it, w_o.
+// An update w += h (x - w) moves the first as the full weights would and only shrinks the
+// second, w_o *= 1 - h, since x has no part outside; and |x - w|^2 = |x Q - w Q|^2 + |w_o|^2.
+// So the map needs the n coordinates, |w_o|^2 and the product of the shrinks per neuron: each
+// step costs neurons x n instead of neurons x d, and the full weights come back at the end.
+struct SomSubspace {
+  SomSubspace() = default;
+  SomSubspace(const Matrix& rows, const Matrix& initial) {
+    const Eigen::HouseholderQR<Matrix> qr(rows.transpose());
+    basis = qr.householderQ() * Matrix::Identity(rows.cols(), rows.rows());
+    inputs = rows * basis;
+    weights = initial * basis;
+    outside_initial = initial - weights * basis.transpose();
+    outside = outside_initial.rowwise().squaredNorm();
+  }
+  // The full weights from the trained coordinates and each neuron's kept share of its
+  // initial outside part.
+  Matrix full_weights(const Matrix& trained, const Vector& kept) const {
+    return trained * basis.transpose() + kept.asDiagonal() * outside_initial;
+  }
+
+  Matrix basis;            // d x n
+  Matrix inputs;           // the rows in the basis, n x n
+  Matrix weights;          // the initial weights in the basis, neurons x n
+  Matrix outside_initial;  // the initial weights' parts outside the span, neurons x d
+  Vector outside;          // their squared norms
+};
 
 }  // namespace
 
@@ -81,7 +112,7 @@ int som_step(SomMap& map, const Vector& x, double radius, double rate) {
 
 SomClassifier::SomClassifier(const Parameters& parameters) {
   parameters.expect_only({"rows", "columns", "epochs", "radius_start", "radius_end", "rate_start",
-                          "rate_end", "initial", "scale", "empty"});
+                          "rate_end", "initial", "scale", "empty", "subspace"});
   const std::string where = parameters.where();
   const auto rows = parameters.integer("rows", 7);
   const auto columns = parameters.integer("columns", 7);
@@ -115,6 +146,7 @@ SomClassifier::SomClassifier(const Parameters& parameters) {
   if (empty != "nearest" && empty != "unknown")
     throw Error(where, "empty=" + empty + ": expected nearest or unknown");
   empty_unknown_ = empty == "unknown";
+  subspace_ = parameters.flag("subspace", true);
 }
 
 Parameters SomClassifier::parameters() const {
@@ -130,6 +162,7 @@ Parameters SomClassifier::parameters() const {
   parameters.set("initial", normal_initial_ ? "normal" : "uniform");
   parameters.set("scale", scale_inputs_ ? "true" : "false");
   parameters.set("empty", empty_unknown_ ? "unknown" : "nearest");
+  parameters.set("subspace", subspace_ ? "true" : "false");
   return parameters;
 }
 
@@ -160,29 +193,47 @@ void SomClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_co
       map_.weights(neuron, feature) =
           normal_initial_ ? random.truncated_normal(0.5, 0.2, 2.0) : random.uniform(0.1, 0.9);
 
+  // A table wider than it is long (183 segments x 37,401 correlations) is trained in the
+  // span of its rows, exactly (see SomSubspace): the same winners, the same weights, for a
+  // fraction of the work.
+  const bool reduce = subspace_ && scaled.cols() > scaled.rows();
+  const SomSubspace subspace = reduce ? SomSubspace(scaled, map_.weights) : SomSubspace();
+  const Matrix& inputs = reduce ? subspace.inputs : scaled;
+  Matrix reduced_weights = subspace.weights;
+  Matrix& weights = reduce ? reduced_weights : map_.weights;
+  Vector outside = reduce ? subspace.outside : Vector::Zero(neurons);  // squared, per neuron
+  Vector kept = Vector::Ones(neurons);  // what is left of each neuron's initial outside part
+
   std::vector<int64_t> order(static_cast<size_t>(x.rows()));
   std::iota(order.begin(), order.end(), 0);
   training_errors_.assign(static_cast<size_t>(schedule_.epochs), {});
-  Vector sample(x.cols());
+  Vector sample(inputs.cols());
   for (int epoch = 0; epoch < schedule_.epochs; ++epoch) {
     shuffle(order, random.engine());
     const Matrix table = neighbourhood_table(map_, schedule_.radius(epoch));
     const double rate = schedule_.rate(epoch);
     SomEpochError& error = training_errors_[static_cast<size_t>(epoch)];
     for (const int64_t row : order) {
-      sample = scaled.row(row).transpose();
+      sample = inputs.row(row).transpose();
       Eigen::Index winner = 0;
       const double squared =
-          (map_.weights.rowwise() - sample.transpose()).rowwise().squaredNorm().minCoeff(&winner);
+          ((weights.rowwise() - sample.transpose()).rowwise().squaredNorm() + outside)
+              .minCoeff(&winner);
       const double distance = std::sqrt(squared);
       error.mean += distance;
       error.max = std::max(error.max, distance);
-      map_.weights += (rate * table.col(winner)).asDiagonal() *
-                      ((-map_.weights).rowwise() + sample.transpose());
+      const Vector step = rate * table.col(winner);
+      weights += step.asDiagonal() * ((-weights).rowwise() + sample.transpose());
+      if (reduce) {
+        const Vector shrink = Vector::Ones(neurons) - step;
+        outside.array() *= shrink.array().square();
+        kept.array() *= shrink.array();
+      }
     }
     error.mean /= static_cast<double>(order.size());
     if (epoch_observer_) epoch_observer_(epoch + 1, schedule_.epochs);
   }
+  if (reduce) map_.weights = subspace.full_weights(weights, kept);
   label_neurons(scaled, y, class_count);
 }
 
@@ -265,6 +316,34 @@ std::vector<int> SomClassifier::predict(const Matrix& x) const {
     classes[static_cast<size_t>(row)] =
         map_.neuron_class[static_cast<size_t>(som_winner(map_, scaled.row(row).transpose()))];
   return classes;
+}
+
+// Quantisation error: the mean distance of an input to its winner. Topographic error
+// (Kiviluoto 1996): the share of inputs whose two nearest neurons are not neighbours on the
+// grid (one step apart, diagonals included).
+SomQuality som_quality(const SomMap& map, const Matrix& inputs) {
+  SomQuality quality;
+  if (inputs.rows() == 0 || map.weights.rows() < 2) return quality;
+  for (Eigen::Index row = 0; row < inputs.rows(); ++row) {
+    const Vector distances = distances_to_neurons(map, inputs.row(row).transpose());
+    Eigen::Index first = 0;
+    distances.minCoeff(&first);
+    Eigen::Index second = first == 0 ? 1 : 0;
+    for (Eigen::Index neuron = 0; neuron < distances.size(); ++neuron)
+      if (neuron != first && distances(neuron) < distances(second)) second = neuron;
+    quality.quantisation_error += distances(first);
+    if (grid_squared_distance(map, static_cast<int>(first), static_cast<int>(second)) > 2)
+      quality.topographic_error += 1.0;
+  }
+  quality.quantisation_error /= static_cast<double>(inputs.rows());
+  quality.topographic_error /= static_cast<double>(inputs.rows());
+  return quality;
+}
+
+SomQuality SomClassifier::quality(const Matrix& x) const {
+  check_fitted(!map_.hits.empty(), kSomWhere);
+  check_query(x, minimum_.size(), kSomWhere);
+  return som_quality(map_, scale(x));
 }
 
 std::unique_ptr<Classifier> make_som_classifier(const Parameters& parameters) {

@@ -18,6 +18,10 @@
 // Preset reproduced: `som` is the paper's 7 x 7 map with R_MAX = 7. The paper's pipeline puts
 // standardisation and PCA to 90 % variance (spec §5.8) in front of it; that belongs to the
 // flux-som experiment, the classifier scales whatever features it is given.
+//   subspace=true       a table with more columns than rows is trained in the span of its
+//                       rows: exactly the same map (weights equal to rounding), a fraction of
+//                       the work (183 x 37,401: each step 49 x 183 numbers, not 49 x 37,401);
+//                       false trains on every column as written
 // With epochs=1 the schedules stay at their start values.
 //
 // Scores: for class c, minus the Euclidean distance from the scaled input to the nearest neuron
@@ -60,6 +64,12 @@ struct SomEpochError {
 int som_winner(const SomMap& map, const Vector& x);
 // Spec eq 1 as printed: theta_k = exp(-d^2 / r) for grid distance d < r, else 0.
 Vector som_neighbourhood(const SomMap& map, int winner, double radius);
+// How well a trained map fits inputs (already scaled as the map sees them).
+struct SomQuality {
+  double quantisation_error = 0.0;  // mean distance of an input to its winner
+  double topographic_error = 0.0;   // share whose two nearest neurons are not grid neighbours
+};
+SomQuality som_quality(const SomMap& map, const Matrix& inputs);
 // One online step, spec eq 2: w_k += alpha theta_k (x - w_k). Returns the winner.
 int som_step(SomMap& map, const Vector& x, double radius, double rate);
 
@@ -80,6 +90,8 @@ class SomClassifier : public Classifier {
   const std::vector<SomEpochError>& training_errors() const { return training_errors_; }
   // The inputs as the map sees them (min-max scaled when scale=true).
   Matrix scale(const Matrix& x) const;
+  // The map's quality on unscaled inputs `x` (the training table, or another).
+  SomQuality quality(const Matrix& x) const;
   // Called by fit after each epoch with (epochs done, epochs): for progress, and to stop a
   // fit by throwing (a cancelled job). Not saved with the model.
   void set_epoch_observer(std::function<void(int, int)> observer) {
@@ -94,6 +106,7 @@ class SomClassifier : public Classifier {
   bool normal_initial_ = false;
   bool scale_inputs_ = true;
   bool empty_unknown_ = false;
+  bool subspace_ = true;
   int class_count_ = 0;
   Vector minimum_;
   Vector range_;
