@@ -206,11 +206,18 @@ void run_all(const EvaluateArgs& args, const Dataset& dataset, const ml::Protoco
 }
 
 // The job of an evaluation, as its shards and their merge see it.
-ml::EvaluationJob evaluation_job(const nlohmann::json& inputs) {
+ml::EvaluationJob evaluation_job(const nlohmann::json& inputs, const Dataset& dataset) {
   ml::EvaluationJob job;
   const auto classifier = inputs.at("--classifier").get<std::string>();
   job.skip_failures = classifier == "all";
-  job.classifiers = job.skip_failures ? ml::preset_names() : std::vector<std::string>{classifier};
+  job.classifiers = {classifier};
+  if (job.skip_failures) {  // the presets as one process runs them (evaluate_all)
+    job.classifiers.clear();
+    for (const ml::TrainAllStep& step :
+         ml::train_all_plan(dataset.rows(), dataset.features.cols(),
+                            static_cast<int>(dataset.class_names().size())))
+      job.classifiers.push_back(step.classifier);
+  }
   job.protocol = ml::Protocol::parse(inputs.at("--protocol").get<std::string>());
   job.seed = inputs.at("--seed").get<uint64_t>();
   job.scores = true;  // a shard writes --out, which holds every row's score
@@ -237,7 +244,7 @@ void run_shard(const EvaluateArgs& args, const Dataset& dataset) {
                  {"--seed", args.seed},
                  {"--no-timings", args.no_timings}};
   part.result = args.out;
-  const ml::EvaluationJob job = evaluation_job(part.inputs);
+  const ml::EvaluationJob job = evaluation_job(part.inputs, dataset);
   const std::vector<std::string> keys = ml::evaluation_plan(dataset, job);
   part.items = static_cast<int64_t>(keys.size());
   part.plan = plan_digest(keys);
@@ -317,7 +324,7 @@ void merge_evaluate(const std::vector<Part>& parts, const std::string& out) {
   const Dataset dataset = read_dataset_csv(features);
   if (file_digest(features) != inputs.at("features bytes"))
     throw Error(features, "changed since the shards read it; run them again");
-  const ml::EvaluationJob job = evaluation_job(inputs);
+  const ml::EvaluationJob job = evaluation_job(inputs, dataset);
   ml::TrainAllResult result{job.protocol.to_string(), job.seed, features,
                             ml::outcomes_from_items(dataset, job, items_in_order(parts))};
   if (inputs.at("--no-timings").get<bool>())

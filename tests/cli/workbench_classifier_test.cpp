@@ -186,6 +186,35 @@ TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
   EXPECT_NE(next["true"], next["predicted"]);
 }
 
+// Train all shows each preset's result as it arrives (the quick ones first), says how far it
+// is and how long is left, and Cancel keeps the results that finished.
+TEST_F(WorkbenchClassifiers, TrainAllShowsEachResultAsItArrivesAndCancelKeepsThem) {
+  auto run = workbench(demo("fur-s01-t01.h5"),
+                       "wait 2\nclick item tab:model\nwait 2\nclick item button:Train all\n"
+                       "wait results 3\nstate @partial.json\nclick item button:Cancel\n"
+                       "wait jobs\nwait 2\nstate @cancelled.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json partial = state("partial.json")["analysis"];
+  EXPECT_EQ(partial["training"], "running");
+  ASSERT_GE(partial["results"].size(), 3u);
+  EXPECT_NE(partial["training_progress"].get<std::string>().find(" %"), std::string::npos);
+  EXPECT_FALSE(partial["current"].is_null());  // the first to arrive is shown at once
+  EXPECT_GT(partial["dataset_rows"].get<int>(), 0);
+  // The quick ones first: Naive Bayes before boosting and the SOM.
+  EXPECT_EQ(partial["results"][0]["classifier"], "gaussian-nb");
+
+  const nlohmann::json cancelled = state("cancelled.json");
+  const nlohmann::json analysis = cancelled["analysis"];
+  EXPECT_EQ(analysis["training"], "idle");
+  EXPECT_GE(analysis["results"].size(), partial["results"].size());
+  EXPECT_LT(analysis["results"].size(), 24u) << "the run ended before Cancel";
+  for (const nlohmann::json& row : analysis["results"])
+    EXPECT_TRUE(row.contains("accuracy") || row.contains("skipped")) << row.dump();
+  EXPECT_FALSE(analysis["current"].is_null());
+  EXPECT_NE(cancelled["notice"].get<std::string>().find("kept the"), std::string::npos)
+      << cancelled["notice"];
+}
+
 // The SOM map and the scatter's PCA run on a worker: the window goes on drawing frames, and
 // each result is applied frames after its job started (it was fitted inside one frame,
 // 18-20 s at 454 x 1692); a screenshot waits for the view's job.

@@ -143,3 +143,37 @@ TEST(JobCancelFlag, IsTheWorkersJobsAndScopesPassItOn) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+TEST(JobTimeLeft, FollowsThePaceSoFarOnceItSaysSomething) {
+  EXPECT_LT(seconds_left(0.0, 10.0), 0.0);   // nothing done yet
+  EXPECT_LT(seconds_left(0.01, 10.0), 0.0);  // under 2 %
+  EXPECT_LT(seconds_left(0.5, 0.2), 0.0);    // under half a second in
+  EXPECT_DOUBLE_EQ(seconds_left(0.25, 30.0), 90.0);
+  EXPECT_DOUBLE_EQ(seconds_left(1.0, 30.0), 0.0);
+  EXPECT_EQ(progress_text(0.427, -1.0), "42 %");
+  EXPECT_EQ(progress_text(0.5, 9.2), "50 %, 10 s left");
+  EXPECT_EQ(progress_text(0.5, 70.0), "50 %, 1 min 10 s left");
+  EXPECT_EQ(progress_text(0.1, 3 * 3600.0 + 125.0), "10 %, 3 h 2 min left");
+  EXPECT_EQ(progress_text(1.5, 0.0), "100 %, 0 s left");
+}
+
+TEST(ThreadBudget, EveryCoreUnlessAScopeSaysFewer) {
+  const int cores = thread_budget();
+  EXPECT_GE(cores, 1);
+  {
+    const ThreadBudget one(1);
+    EXPECT_EQ(thread_budget(), 1);
+    {
+      const ThreadBudget none(0);  // at least one
+      EXPECT_EQ(thread_budget(), 1);
+    }
+    std::thread([&] { EXPECT_EQ(thread_budget(), cores); }).join();  // per thread
+  }
+  EXPECT_EQ(thread_budget(), cores);
+}
+
+}  // namespace
+}  // namespace tactile

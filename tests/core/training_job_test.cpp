@@ -59,9 +59,9 @@ TEST_F(TrainingJobTest, OneClassifierOnOneSkinWithAModel) {
   ASSERT_EQ(outcome->results.size(), 1u);
   ASSERT_TRUE(outcome->results[0].result);
   const EvaluationResult& result = *outcome->results[0].result;
-  EXPECT_EQ(result.predictions, outcome->dataset.rows());
-  EXPECT_EQ(static_cast<int64_t>(result.rows.size()), outcome->dataset.rows());
-  for (const Metadata& metadata : outcome->dataset.metadata) EXPECT_EQ(metadata.at("layout"), "flux");
+  EXPECT_EQ(result.predictions, outcome->dataset->rows());
+  EXPECT_EQ(static_cast<int64_t>(result.rows.size()), outcome->dataset->rows());
+  for (const Metadata& metadata : outcome->dataset->metadata) EXPECT_EQ(metadata.at("layout"), "flux");
   for (const RowPrediction& row : result.rows) {
     EXPECT_LT(row.t0, row.t1);
     EXPECT_GT(row.score, 0.0);  // scores were asked for

@@ -45,13 +45,13 @@ void reset_views(WorkbenchState& state) {
   analysis.som_held = analysis.scatter_held = false;
 }
 
-void set_dataset(WorkbenchState& state, Dataset dataset) {
+void set_dataset(WorkbenchState& state, std::shared_ptr<const Dataset> dataset) {
   AnalysisState& analysis = state.analysis;
-  analysis.dataset_layout = dataset.shared_metadata("layout");
+  analysis.dataset_layout = dataset->shared_metadata("layout");
   // A table's classes take its skin's colours when no recording of that skin is open.
   if (!state.document || state.document->layout.id != analysis.dataset_layout)
     state.class_colours.set_vocabulary(skin_classes(analysis.dataset_layout));
-  analysis.dataset = std::make_shared<const Dataset>(std::move(dataset));
+  analysis.dataset = std::move(dataset);
   analysis.som.reset();
   retire_job(state, std::move(analysis.som_job));
   reset_views(state);
@@ -96,6 +96,9 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   } catch (const Error& error) {
     return fail(state, error.what());
   }
+  request.so_far = std::make_shared<TrainingSoFar>();
+  analysis.so_far = request.so_far;
+  analysis.so_far_shown = 0;
   analysis.last_request = request;
   analysis.job = start_training_job(request);
   log_job_start(state, "training");
@@ -104,18 +107,57 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   return true;
 }
 
+namespace {
+
+// The table the results are about, once: the same table again keeps the views' maps.
+void show_table(WorkbenchState& state, std::shared_ptr<const Dataset> table, const std::string& pipeline) {
+  AnalysisState& analysis = state.analysis;
+  if (!table || analysis.dataset == table) return;
+  analysis.results_from = analysis.last_request.layout + ", " + pipeline + " features, " +
+                          std::to_string(table->rows()) + " segments";
+  set_dataset(state, std::move(table));
+}
+
+// The running job's results that arrived since the last frame; the first becomes current,
+// without leaving the model tab, which shows the run's progress and Cancel.
+void show_results_so_far(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (!analysis.so_far || analysis.so_far->count() == analysis.so_far_shown) return;
+  show_table(state, analysis.so_far->table(), analysis.so_far->pipeline());
+  const bool first = analysis.so_far_shown == 0;
+  analysis.results = analysis.so_far->outcomes();
+  analysis.so_far_shown = analysis.results.size();
+  if (!first) return;
+  const std::string tab = analysis.tab_request;
+  choose_result(state, ml::best_outcome(analysis.results));
+  analysis.tab_request = tab;
+}
+
+}  // namespace
+
 void poll_training(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  if (!analysis.job || analysis.job->status() == JobStatus::kRunning) return;
+  if (!analysis.job) return;
+  show_results_so_far(state);
+  if (analysis.job->status() == JobStatus::kRunning) return;
   const JobStatus status = analysis.job->status();
   if (status == JobStatus::kFailed) {
     state.error = "training failed: " + analysis.job->error();
     log_job_end(state, "training", to_string(status));
     analysis.job.reset();
+    analysis.so_far.reset();
     return;
   }
   std::optional<TrainingOutcome> outcome = finished_job(state, analysis.job);
-  if (status == JobStatus::kCancelled) state.notice = "training cancelled";
+  const std::shared_ptr<TrainingSoFar> so_far = std::move(analysis.so_far);
+  if (status == JobStatus::kCancelled) {
+    // What finished before Cancel stays: each result is whole.
+    const size_t kept = so_far ? so_far->count() : 0;
+    state.notice = kept == 0 ? "training cancelled"
+                             : "training cancelled: kept the " + std::to_string(kept) +
+                                   " finished result" + (kept == 1 ? "" : "s");
+    if (kept > 0) choose_result(state, ml::best_outcome(analysis.results));
+  }
   if (!outcome) return;
   const TrainingRequest& request = analysis.last_request;
   analysis.results = std::move(outcome->results);
@@ -133,9 +175,7 @@ void poll_training(WorkbenchState& state) {
       state.error = error.what();
     }
   }
-  analysis.results_from = request.layout + ", " + outcome->pipeline + " features, " +
-                          std::to_string(outcome->dataset.rows()) + " segments";
-  set_dataset(state, std::move(outcome->dataset));
+  show_table(state, outcome->dataset, outcome->pipeline);
   const int best = ml::best_outcome(analysis.results);
   choose_result(state, best);
   state.notice = best < 0 ? "no classifier fitted the data"
@@ -287,7 +327,7 @@ bool open_evaluation_file(WorkbenchState& state, const std::string& path) {
     if (!opened.features.empty()) {
       fs::path table(opened.features);
       if (table.is_relative() && !fs::exists(table)) table = fs::path(path).parent_path() / table;
-      if (fs::exists(table)) set_dataset(state, read_dataset_csv(table.string()));
+      if (fs::exists(table)) set_dataset(state, std::make_shared<const Dataset>(read_dataset_csv(table.string())));
     }
   } catch (const std::exception& error) {
     return fail(state, std::string("cannot open the evaluation: ") + error.what());
@@ -316,7 +356,7 @@ bool open_model_file(WorkbenchState& state, const std::string& path) {
 
 bool open_features_file(WorkbenchState& state, const std::string& path) {
   try {
-    set_dataset(state, read_dataset_csv(path));
+    set_dataset(state, std::make_shared<const Dataset>(read_dataset_csv(path)));
     if (state.analysis.results.empty()) state.analysis.tab_request = "scatter";
   } catch (const std::exception& error) {
     return fail(state, std::string("cannot open the features: ") + error.what());

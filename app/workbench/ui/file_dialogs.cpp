@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "files.h"
+#include "jobs.h"
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/atomic_file.h"
@@ -142,7 +143,7 @@ void draw_labels_export_dialog(WorkbenchState& state) {
   ImGui::EndDisabled();
   if (running) {
     ImGui::SameLine();
-    ImGui::ProgressBar(static_cast<float>(running->progress()), ImVec2(-1, 0), "writing");
+    draw_job_progress(*running, "writing");
   }
   ImGui::End();
 }
@@ -205,7 +206,7 @@ void draw_labels_import_dialog(WorkbenchState& state) {
   dialog_keys(state, dialog.open);
   ImGui::TextDisabled("as tactile labels import: %s", dialog.file.c_str());
   if (dialog.read_job) {
-    ImGui::ProgressBar(static_cast<float>(dialog.read_job->progress()), ImVec2(-1, 0), "reading");
+    draw_job_progress(*dialog.read_job, "reading");
   } else if (!dialog.failure.empty() || !dialog.sources) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", dialog.failure.c_str());
@@ -347,8 +348,7 @@ void draw_features_export_dialog(WorkbenchState& state) {
     if (ImGui::Button("Cancel")) running->cancel();
     remember_item(state, "button:export-features/Cancel", "Stop computing the features");
     ImGui::SameLine();
-    const std::string stage = running->stage();
-    ImGui::ProgressBar(static_cast<float>(running->progress()), ImVec2(-1, 0), stage.c_str());
+    draw_job_progress(*running);
   }
   ImGui::End();
 }

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "files.h"
+#include "jobs.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
 #include "views.h"
@@ -408,11 +409,7 @@ void draw_import_dialog(WorkbenchState& state) {
   } else {
     if (!dialog.preview_job && fields != dialog.preview_for)
       start_import_preview(state, options, fields);
-    if (dialog.preview_job) {
-      const std::string stage = dialog.preview_job->stage();
-      ImGui::ProgressBar(static_cast<float>(dialog.preview_job->progress()), ImVec2(-1, 0),
-                         stage.c_str());
-    }
+    if (dialog.preview_job) draw_job_progress(*dialog.preview_job);
     ImGui::BeginChild("preview", ImVec2(0, -ImGui::GetFrameHeightWithSpacing() * 2.2f), false,
                       ImGuiWindowFlags_HorizontalScrollbar);
     draw_import_preview(dialog, fields == dialog.preview_for);
@@ -437,8 +434,7 @@ void draw_import_dialog(WorkbenchState& state) {
     if (ImGui::Button("Cancel")) running->cancel();
     remember_item(state, "button:import/Cancel", "Stop the import; the files already written stay");
     ImGui::SameLine();
-    const std::string stage = running->stage();
-    ImGui::ProgressBar(static_cast<float>(running->progress()), ImVec2(-1, 0), stage.c_str());
+    draw_job_progress(*running);
   } else if (!dialog.failure.empty()) {
     ImGui::SameLine();
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", dialog.failure.c_str());

@@ -65,6 +65,14 @@ void log_job_end(WorkbenchState& state, const std::string& name, const std::stri
     }
 }
 
+void draw_job_progress(AnyJob& job, const std::string& label, float width) {
+  const double fraction = job.progress();
+  const std::string what = label.empty() ? job.stage() : label;
+  const std::string done = progress_text(fraction, job.seconds_left());
+  const std::string text = what.empty() ? done : what + " - " + done;
+  ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(width, 0), text.c_str());
+}
+
 bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) {
   if (held && *held) {
     ImGui::Text("%s: cancelled", what);
@@ -77,8 +85,7 @@ bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) 
   if (ImGui::Button("Cancel")) job->cancel();
   remember_item(state, "button:Cancel", "Stop this computation; the view keeps what it showed");
   ImGui::SameLine();
-  const std::string stage = job->stage();
-  ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(-1, 0), stage.c_str());
+  draw_job_progress(*job);
   return true;
 }
 
@@ -101,7 +108,7 @@ bool draw_job_status(WorkbenchState& state) {
                 "Stop this job; nothing it would have changed is changed");
   ImGui::SameLine();
   const std::string stage = job->stage().empty() ? job->name() : job->name() + ": " + job->stage();
-  ImGui::ProgressBar(static_cast<float>(job->progress()), ImVec2(320, 0), stage.c_str());
+  draw_job_progress(*job, stage, 420.0f);
   ImGui::SameLine();
   ImGui::TextDisabled("the window stays live; the result is applied when it ends");
   return true;

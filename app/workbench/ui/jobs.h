@@ -57,6 +57,10 @@ std::optional<Result> finished_job(WorkbenchState& state, std::unique_ptr<Job<Re
   return result;
 }
 
+// A job's progress bar: `label` (the job's stage when empty), the share done and the time
+// left when the job can know it ("fitting the map · 42 %, 1 min 10 s left"). `width` as
+// ImGui::ProgressBar's (-1: the rest of the line).
+void draw_job_progress(AnyJob& job, const std::string& label = {}, float width = -1.0f);
 // A job in a view: what it does, how far, and Cancel; after a cancel (`held`, when given), a
 // Compute button that asks for it again. False when there is neither.
 bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what);

@@ -391,6 +391,13 @@ void ScriptPlayer::wait_labels(const ScriptStep& step) {
       "the recording does not show " + step.words[1] + " labels after 10 minutes", step);
 }
 
+void ScriptPlayer::wait_results(const ScriptStep& step) {
+  const size_t wanted = static_cast<size_t>(std::stod(step.words[1]));
+  draw_until(
+      [wanted](Workbench& workbench) { return workbench.state().analysis.results.size() >= wanted; },
+      "the results do not hold " + step.words[1] + " rows after 10 minutes", step);
+}
+
 void ScriptPlayer::play_recording(const ScriptStep& step) {
   auto remaining = std::make_shared<double>(std::stod(step.words[0]));
   auto started = std::make_shared<bool>(false);

@@ -70,6 +70,7 @@ class ScriptPlayer {
   void wait_training(const ScriptStep& step);
   void wait_jobs(const ScriptStep& step);
   void wait_labels(const ScriptStep& step);
+  void wait_results(const ScriptStep& step);
   void play_recording(const ScriptStep& step);
   void sleep_wall_clock(const ScriptStep& step);
   void write_screenshot(const ScriptStep& step);

@@ -59,6 +59,8 @@ inline constexpr size_t kAnyWords = std::numeric_limits<size_t>::max();
     1, 1, nullptr, wait_jobs)                                                                      \
   X("wait labels N", "keep drawing frames until the open recording shows N labels",                \
     2, 2, check_script_one_number, wait_labels)                                                    \
+  X("wait results N", "keep drawing frames until the model panel's results hold N rows",           \
+    2, 2, check_script_one_number, wait_results)                                                   \
   X("play SECONDS", "play for this much recording time (at the current speed), then pause",       \
     1, 1, check_script_not_negative, play_recording)                                               \
   X("sleep SECONDS", "keep drawing frames for this much wall-clock time (live data arrives)",      \

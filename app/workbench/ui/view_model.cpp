@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "analysis.h"
+#include "jobs.h"
 #include "tactile/features/feature_extractor.h"
 #include "views.h"
 
@@ -96,8 +97,7 @@ void draw_run_controls(WorkbenchState& state) {
     if (ImGui::Button("Cancel")) analysis.job->cancel();
     remember_item(state, "button:Cancel", "Stop the training run");
     ImGui::SameLine();
-    const std::string stage = analysis.job->stage();
-    ImGui::ProgressBar(static_cast<float>(analysis.job->progress()), ImVec2(-1, 0), stage.c_str());
+    draw_job_progress(*analysis.job);
   }
 }
 

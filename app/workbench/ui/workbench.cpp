@@ -895,7 +895,11 @@ nlohmann::json Workbench::analysis_json() const {
               {"predicted", class_name(analysis.landed->predicted)},
               {"segment_id", analysis.landed->segment_id}};
   std::string training = "idle";
-  if (analysis.job) training = analysis.job->status() == JobStatus::kRunning ? "running" : "finished";
+  std::string training_progress;
+  if (analysis.job) {
+    training = analysis.job->status() == JobStatus::kRunning ? "running" : "finished";
+    training_progress = progress_text(analysis.job->progress(), analysis.job->seconds_left());
+  }
   nlohmann::json confusion = nullptr;
   if (current) {
     confusion = nlohmann::json::array();
@@ -908,6 +912,7 @@ nlohmann::json Workbench::analysis_json() const {
   }
   return {
       {"training", training},
+      {"training_progress", training_progress},
       {"results", results},
       {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
       {"confusion", confusion},

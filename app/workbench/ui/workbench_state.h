@@ -131,6 +131,10 @@ struct AnalysisState {
   LabelSource segments = LabelSource::kGroundTruth;
   std::unique_ptr<TrainingJob> job;
   TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
+  // The running job's results as they arrive (shown at once, kept on Cancel), and how many of
+  // them the results hold.
+  std::shared_ptr<TrainingSoFar> so_far;
+  size_t so_far_shown = 0;
   // The results: one per classifier tried (one row of the train-all table each).
   std::vector<ml::PresetOutcome> results;
   std::string results_from;  // what they are of ("nao, kaboli features", a file)

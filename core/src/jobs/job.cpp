@@ -1,6 +1,7 @@
 #include "tactile/jobs/job.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <thread>
 
@@ -10,6 +11,24 @@ namespace {
 thread_local const std::atomic<bool>* thread_cancel_flag = nullptr;
 thread_local int thread_budget_now = 0;  // 0: none set, every core
 }  // namespace
+
+double seconds_left(double fraction, double elapsed) {
+  if (!(fraction >= 0.02) || !(elapsed >= 0.5)) return -1.0;
+  return elapsed * (1.0 - std::min(fraction, 1.0)) / fraction;
+}
+
+std::string progress_text(double fraction, double left) {
+  std::string text =
+      std::to_string(static_cast<int>(std::floor(100.0 * std::clamp(fraction, 0.0, 1.0)))) + " %";
+  if (!(left >= 0.0)) return text;
+  const auto seconds = static_cast<long long>(std::ceil(left));
+  if (seconds < 60) return text + ", " + std::to_string(seconds) + " s left";
+  if (seconds < 3600)
+    return text + ", " + std::to_string(seconds / 60) + " min " + std::to_string(seconds % 60) +
+           " s left";
+  return text + ", " + std::to_string(seconds / 3600) + " h " + std::to_string(seconds % 3600 / 60) +
+         " min left";
+}
 
 int thread_budget() {
   if (thread_budget_now > 0) return thread_budget_now;
@@ -89,6 +108,13 @@ JobRunner::JobRunner(std::string name, std::function<void(JobProgress&)> work)
 JobRunner::~JobRunner() {
   cancel();
   wait();
+}
+
+double JobRunner::seconds_left() const {
+  if (status() != JobStatus::kRunning) return -1.0;
+  return tactile::seconds_left(
+      progress_.fraction(),
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
 }
 
 std::string JobRunner::error() const {

@@ -16,6 +16,37 @@ namespace {
 constexpr double kFeatureShare = 0.3;  // of the progress bar
 }
 
+void TrainingSoFar::set_table(std::shared_ptr<const Dataset> table, std::string pipeline) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  table_ = std::move(table);
+  pipeline_ = std::move(pipeline);
+}
+
+void TrainingSoFar::add(ml::PresetOutcome outcome) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  outcomes_.push_back(std::move(outcome));
+}
+
+size_t TrainingSoFar::count() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return outcomes_.size();
+}
+
+std::shared_ptr<const Dataset> TrainingSoFar::table() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return table_;
+}
+
+std::string TrainingSoFar::pipeline() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return pipeline_;
+}
+
+std::vector<ml::PresetOutcome> TrainingSoFar::outcomes() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return outcomes_;
+}
+
 std::unique_ptr<TrainingJob> start_training_job(TrainingRequest request) {
   return std::make_unique<TrainingJob>("training",
                                        [request = std::move(request)](JobProgress& progress) {
@@ -45,7 +76,8 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
     if (table.dataset.rows() == 0)
       throw Error("features",
                   "no rows: all " + std::to_string(table.segments) + " segments were skipped");
-    outcome.dataset = std::move(table.dataset);
+    outcome.dataset = std::make_shared<const Dataset>(std::move(table.dataset));
+    if (request.so_far) request.so_far->set_table(outcome.dataset, outcome.pipeline);
 
     const ml::Protocol protocol = ml::Protocol::parse(request.protocol);
     ml::EvaluationControl control;
@@ -57,8 +89,9 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
     };
     if (request.classifier == "all") {
       outcome.results = ml::evaluate_all(
-          outcome.dataset, protocol, request.seed, control,
+          *outcome.dataset, protocol, request.seed, control,
           [&](const ml::PresetOutcome& preset, int index, int total) {
+            if (request.so_far) request.so_far->add(preset);
             progress.report(progress.fraction(), "trained " + preset.classifier + " (" +
                                                      std::to_string(index + 1) + "/" +
                                                      std::to_string(total) + ")");
@@ -68,12 +101,13 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
       ml::PresetOutcome one;
       one.classifier = request.classifier;
       one.result =
-          ml::evaluate(outcome.dataset, request.classifier, protocol, request.seed, control);
+          ml::evaluate(*outcome.dataset, request.classifier, protocol, request.seed, control);
+      if (request.so_far) request.so_far->add(one);
       outcome.results.push_back(std::move(one));
       if (!request.save_model.empty()) {
         progress.report(progress.fraction(), "fitting the model on every row");
         write_json_file(request.save_model,
-                        fit_model_document(outcome.dataset, request.classifier, request.seed,
+                        fit_model_document(*outcome.dataset, request.classifier, request.seed,
                                            outcome.pipeline, request.pipeline_params),
                         "model");
         outcome.model_path = request.save_model;

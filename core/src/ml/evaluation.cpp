@@ -17,6 +17,7 @@
 #include "tactile/error.h"
 #include "tactile/jobs/job.h"
 #include "tactile/ml/grid_search.h"
+#include "tactile/ml/train_all.h"
 #include "tactile/random.h"
 
 namespace tactile::ml {
@@ -449,17 +450,24 @@ std::vector<PresetOutcome> evaluate_all(
     const EvaluationControl& control,
     const std::function<void(const PresetOutcome&, int, int)>& each) {
   check_dataset(dataset);
-  const std::vector<std::string> names = preset_names();
-  const auto total = static_cast<int>(names.size());
-  const int folds = static_cast<int>(make_folds(dataset, protocol, seed).size());
+  const std::vector<TrainAllStep> plan = train_all_plan(
+      dataset.rows(), dataset.features.cols(), static_cast<int>(dataset.class_names().size()));
+  const auto total = static_cast<int>(plan.size());
+  double total_cost = 0.0;
+  for (const TrainAllStep& step : plan) total_cost += step.cost;
+  // The bar in thousandths, each preset weighed by its share of the estimated work.
+  constexpr int kBar = 1000;
+  double cost_before = 0.0;
   std::vector<PresetOutcome> outcomes;
   for (int index = 0; index < total; ++index) {
+    const TrainAllStep& step = plan[static_cast<size_t>(index)];
     PresetOutcome outcome;
-    outcome.classifier = names[static_cast<size_t>(index)];
+    outcome.classifier = step.classifier;
     EvaluationControl preset_control = control;
     if (control.progress)
-      preset_control.progress = [&](int done, int) {
-        control.progress(index * folds + done, total * folds);
+      preset_control.progress = [&](int done, int folds) {
+        const double cost = cost_before + step.cost * done / std::max(1, folds);
+        control.progress(static_cast<int>(std::lround(kBar * cost / total_cost)), kBar);
       };
     try {
       outcome.result = evaluate(dataset, outcome.classifier, protocol, seed, preset_control);
@@ -467,6 +475,7 @@ std::vector<PresetOutcome> evaluate_all(
       if (control.cancel && control.cancel->load()) throw;
       outcome.skipped = error.what();
     }
+    cost_before += step.cost;
     outcomes.push_back(outcome);
     if (each) each(outcomes.back(), index, total);
   }

@@ -41,7 +41,8 @@ struct ClassifierRow {
 };
 
 // ClassifierEntry::widest of the full-covariance models, and of those that go over every
-// column many times (every node of every boosted tree; every neuron in every epoch).
+// column many times (every node of every boosted or bagged tree). The SOM is not one: it
+// trains a wide table in the span of its rows (som.h).
 constexpr int64_t kWidestCovariance = 500;
 constexpr int64_t kWidestScanned = 2000;
 
@@ -94,7 +95,7 @@ const std::vector<ClassifierRow>& classifier_table() {
       {"bagged-trees",
        "MATLAB Bagged Trees: 30 deep CART trees on bootstrap samples, all predictors (trees, "
        "predictors, max_splits, min_leaf)",
-       make_bagged_trees_classifier},
+       make_bagged_trees_classifier, true, kWidestScanned},
       {"random-forest",
        "random forest, scikit-learn defaults: 100 trees, sqrt(P) predictors per split, grown "
        "until pure (trees, predictors=sqrt|all|N, max_splits, min_leaf)",
@@ -118,7 +119,7 @@ const std::vector<ClassifierRow>& classifier_table() {
        "CLAFIC subspace method: c1 subspace size, c2 sensor banks, tau fidelity -> unknown",
        make_clafic_classifier},
       {"som", "Kohonen SOM (7x7) with neuron-to-class regions; rows, columns, epochs, schedules",
-       make_som_classifier, true, kWidestScanned},
+       make_som_classifier},
       {"ridge",
        "one-vs-rest ridge on z-scores, alpha by exact leave-one-out over 10^-3..10^3 (as "
        "scikit-learn's RidgeClassifierCV; alpha_min, alpha_max, alphas)",

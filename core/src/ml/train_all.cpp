@@ -1,11 +1,13 @@
 #include "tactile/ml/train_all.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
+#include "tactile/ml/classifier.h"
 
 namespace tactile::ml {
 
@@ -15,7 +17,52 @@ double accuracy_or_below(const PresetOutcome& outcome) {
   return outcome.result ? outcome.result->accuracy : -1.0;
 }
 
+// An estimate of a preset's training and prediction work over n rows of d columns and k
+// classes, from the shape of its algorithm (not measured constants): enough to run the quick
+// ones first and to weigh the progress bar. Unknown names cost as a k-NN.
+double preset_cost(const std::string& name, double n, double d, double k) {
+  const double log_n = std::log2(std::max(2.0, n));
+  const double narrow = std::min(n, d);
+  const double tree = n * log_n * d * log_n;  // sort each column, scan it at each depth
+  if (name == "gaussian-nb") return n * d;
+  if (name == "ridge" || name == "clafic") return n * d * narrow;
+  if (name == "tree" || name == "medium-tree") return tree;
+  if (name == "random-forest") return n * log_n * d + 100.0 * n * log_n * std::sqrt(d) * log_n;
+  if (name == "bagged-trees") return 30.0 * tree;
+  if (name == "logitboost") return 10.0 * k * tree / log_n;
+  if (name == "boosted-trees") return 100.0 * k * n * d * 6.0;  // 100 rounds of depth-6 trees
+  if (name == "gaussian-ml" || name == "qda") return k * d * d * d + n * d * d;
+  if (name == "em") return 10.0 * 100.0 * k * n * d;  // restarts x iterations
+  if (name == "som") return 1000.0 * n * 49.0 * narrow + n * d * narrow;
+  if (name == "subspace-knn") return 15.0 * n * n * d;  // 30 learners on half the columns
+  if (name == "linear-svm") return n * n * d;
+  if (name.find("-svm") != std::string::npos) return 3.0 * n * n * d;
+  return n * n * d;  // the k-NN family, kernel-nb
+}
+
 }  // namespace
+
+std::vector<TrainAllStep> train_all_plan(int64_t rows, int64_t columns, int classes) {
+  std::vector<TrainAllStep> plan;
+  for (const ClassifierEntry& entry : classifier_catalog()) {
+    if (!entry.preset) continue;
+    TrainAllStep step;
+    step.classifier = entry.name;
+    int64_t used = columns;
+    if (entry.widest > 0 && columns > entry.widest) {
+      step.classifier = "select:k=" + std::to_string(entry.widest) + ",base=" + entry.name;
+      used = entry.widest;
+    }
+    // Choosing the columns reads the whole table once per fold.
+    step.cost = preset_cost(entry.name, static_cast<double>(rows), static_cast<double>(used),
+                            static_cast<double>(classes)) +
+                (used < columns ? static_cast<double>(rows * columns) : 0.0);
+    plan.push_back(step);
+  }
+  std::stable_sort(plan.begin(), plan.end(),
+                   [](const TrainAllStep& a, const TrainAllStep& b) { return a.cost < b.cost; });
+  return plan;
+}
 
 void sort_best_first(std::vector<PresetOutcome>& outcomes) {
   std::stable_sort(outcomes.begin(), outcomes.end(), [](const PresetOutcome& a, const PresetOutcome& b) {

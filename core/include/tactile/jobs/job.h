@@ -10,6 +10,7 @@
 //   ... each frame: draw job.progress(); if (auto pca = job.take()) apply(*pca);
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -81,6 +82,13 @@ class CancelScope {
   const std::atomic<bool>* previous_;
 };
 
+// Seconds a job has left when `fraction` of it is done after `elapsed` seconds, at the pace so
+// far; negative while that says nothing yet (under 2 % done or under half a second in).
+double seconds_left(double fraction, double elapsed);
+// What a progress bar says: "42 %", with ", 1 min 10 s left" when `left` >= 0 (rounded up
+// to whole seconds; minutes past 60 s, hours past 60 min).
+std::string progress_text(double fraction, double left);
+
 // How many threads code on this thread may keep busy in its own parallel loops (a forest's
 // trees, XGBoost's nthread, an evaluation's folds): every core, unless an enclosing
 // ThreadBudget says fewer. An evaluation whose folds run side by side gives each fold its
@@ -109,6 +117,8 @@ class JobRunner {
   const std::string& name() const { return name_; }
   JobStatus status() const { return status_.load(); }
   double progress() const { return progress_.fraction(); }
+  // Time left at the pace so far (seconds_left above); negative when not known yet.
+  double seconds_left() const;
   std::string stage() const { return progress_.stage(); }
   std::string error() const;  // when failed: what the work threw
   void cancel() { progress_.cancel(); }
@@ -117,6 +127,7 @@ class JobRunner {
  private:
   std::string name_;
   JobProgress progress_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   std::atomic<JobStatus> status_{JobStatus::kRunning};
   mutable std::mutex mutex_;
   std::string error_;
@@ -131,6 +142,7 @@ class AnyJob {
   const std::string& name() { return runner().name(); }
   JobStatus status() { return runner().status(); }
   double progress() { return runner().progress(); }
+  double seconds_left() { return runner().seconds_left(); }
   std::string stage() { return runner().stage(); }
   std::string error() { return runner().error(); }
   void cancel() { runner().cancel(); }

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,27 @@
 #include "tactile/ml/evaluation.h"
 
 namespace tactile {
+
+// What a training run has finished so far, shared by its worker and the window: the feature
+// table once it is made, then each classifier's outcome as it ends. The window shows each
+// result as it arrives and keeps what finished when the run is cancelled.
+class TrainingSoFar {
+ public:
+  void set_table(std::shared_ptr<const Dataset> table, std::string pipeline);
+  void add(ml::PresetOutcome outcome);
+  // How many outcomes have arrived (cheap: the window asks every frame).
+  size_t count() const;
+  // The table (null before it is made), its pipeline and the outcomes so far.
+  std::shared_ptr<const Dataset> table() const;
+  std::string pipeline() const;
+  std::vector<ml::PresetOutcome> outcomes() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::shared_ptr<const Dataset> table_;
+  std::string pipeline_;
+  std::vector<ml::PresetOutcome> outcomes_;
+};
 
 struct TrainingRequest {
   std::string database;  // label store
@@ -29,10 +51,11 @@ struct TrainingRequest {
   uint64_t seed = 1;
   int threads = 0;
   std::string save_model;  // when set and one classifier: fit on all rows, save here
+  std::shared_ptr<TrainingSoFar> so_far;  // when set: filled as the run goes
 };
 
 struct TrainingOutcome {
-  Dataset dataset;                         // the feature table the results are about
+  std::shared_ptr<const Dataset> dataset;  // the feature table the results are about
   std::vector<ml::PresetOutcome> results;  // one per classifier tried, in the order run
   std::string model_path;                  // written model ("" when none asked for)
   std::string pipeline;                    // as used

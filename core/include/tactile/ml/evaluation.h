@@ -183,14 +183,15 @@ struct PresetOutcome {
   std::optional<EvaluationResult> result;  // empty when the preset does not fit the data
   std::string skipped;                     // why (the error it raised), when it does not
 };
-// Evaluates every preset in turn on the same folds. A preset that cannot learn from the
-// data (an error in fit) is kept with the reason and the next one runs; cancelling stops
-// all (throws tactile::Error("evaluation", "cancelled")). `each` is called after each
-// preset with (outcome, index, total); control.progress is called with the folds done
-// over all presets.
 // One line of the train-all table: classifier, accuracy, mean_recall and seconds, or
 // skipped with the reason.
 nlohmann::json summary_json(const PresetOutcome& outcome);
+// Evaluates every preset in turn on the same folds, in train_all_plan's order (train_all.h:
+// the quick ones first; past a preset's widest, on the columns chosen in each fold). A preset
+// that cannot learn from the data (an error in fit) is kept with the reason and the next one
+// runs; cancelling stops all (throws tactile::Error("evaluation", "cancelled")). `each` is
+// called after each preset with (outcome, index, total); control.progress with thousandths
+// of the estimated work done (done, 1000).
 std::vector<PresetOutcome> evaluate_all(
     const Dataset& dataset, const Protocol& protocol, uint64_t seed,
     const EvaluationControl& control = {},

@@ -17,6 +17,19 @@
 
 namespace tactile::ml {
 
+// What Train all runs on a table of `rows` x `columns` with `classes` classes, in the order it
+// runs them: every preset, the quick ones first by an estimate of each one's training work
+// (`cost`, the same unit for all; the order and the progress bar's shares come from it). A
+// preset whose training grows out of proportion past its widest (ClassifierEntry::widest:
+// boosting and bagging scan every column at every split, a full covariance is P x P) learns,
+// on a wider table, from the `widest` columns that best separate each training fold's
+// classes (`select:k=WIDEST,base=NAME`, as auto does); its row names that.
+struct TrainAllStep {
+  std::string classifier;  // a specification for make_classifier
+  double cost = 0.0;
+};
+std::vector<TrainAllStep> train_all_plan(int64_t rows, int64_t columns, int classes);
+
 struct TrainAllResult {
   std::string protocol;
   uint64_t seed = 0;
