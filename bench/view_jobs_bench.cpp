@@ -23,6 +23,7 @@
 #include "analysis.h"
 #include "bench_support.h"
 #include "jobs.h"
+#include "long_robovie.h"
 #include "labelling.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/hdf5_file.h"
@@ -58,40 +59,6 @@ void write_table(const std::string& path) {
     table.metadata.push_back({});
   }
   tactile::write_dataset_csv(path, table);
-}
-
-// Robovie's 13 trials of one subject end to end: about 30 minutes of 274 films, its ground
-// truth (the segments Predict takes when there are no suggestions) in labels.db beside it.
-void write_long_robovie(const std::filesystem::path& folder) {
-  const tactile::SkinLayout layout = tactile::load_layout("robovie");
-  tactile::SimulationOptions options;
-  options.subjects = 1;
-  tactile::Recording whole;
-  std::vector<tactile::Label> labels;
-  double offset = 0.0;
-  for (int trial = 0; offset < 1800.0; ++trial) {
-    tactile::SimulatedTrial made =
-        tactile::skin_record("robovie").simulate(layout, options, 0, trial);
-    tactile::Stream& stream = made.recording.streams.front();
-    if (trial == 0) {
-      whole = made.recording;
-      whole.id = "robovie-30min";
-    } else {
-      tactile::Stream& all = whole.streams.front();
-      const auto rows = all.samples.rows();
-      all.samples.conservativeResize(rows + stream.samples.rows(), Eigen::NoChange);
-      all.samples.bottomRows(stream.samples.rows()) = stream.samples;
-    }
-    for (tactile::Label label : made.labels) {
-      label.recording = whole.id;
-      label.t0 += offset, label.t1 += offset;
-      labels.push_back(label);
-    }
-    offset = whole.streams.front().sample_count() / whole.streams.front().rate_hz;
-  }
-  tactile::write_recording((folder / "robovie-30min.h5").string(), whole);
-  tactile::LabelStore store((folder / "labels.db").string());
-  store.add_many(labels);
 }
 
 struct Measured {
@@ -201,7 +168,7 @@ int main(int argc, char** argv) {
 
   // The recording's jobs, in the whole window on 30 minutes of Robovie.
   const std::filesystem::path robovie = folder / "robovie-30min.h5";
-  if (!std::filesystem::exists(robovie)) write_long_robovie(folder);
+  if (!std::filesystem::exists(robovie)) tactile::bench::write_long_robovie(folder);
   tactile::WorkbenchOptions whole;
   whole.open_path = robovie.string();
   whole.settings_path = options.settings_path;
