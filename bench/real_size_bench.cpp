@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -29,6 +30,15 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The process's peak resident memory in MB since the last reset_peak() (Linux's VmHWM).
+double peak_mb() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -86,10 +96,12 @@ void train_rows(const tactile::Dataset& table) {
   tactile::ml::evaluate_all(table, tactile::ml::Protocol::parse("kfold:5"), 1, control,
                             [&](const tactile::ml::PresetOutcome& outcome, int index, int total) {
                               const double now = seconds_since(start);
+                              char accuracy[32];
+                              std::snprintf(accuracy, sizeof accuracy, "%.1f %%",
+                                            outcome.result ? outcome.result->accuracy * 100.0 : 0.0);
                               std::printf("| %d/%d %s | %.2f s | %.2f s | %s |\n", index + 1, total,
                                           outcome.classifier.c_str(), now - last, now,
-                                          outcome.result ? (std::to_string(outcome.result->accuracy * 100.0) + " %").c_str()
-                                                         : ("skipped: " + outcome.skipped).c_str());
+                                          outcome.result ? accuracy : ("skipped: " + outcome.skipped).c_str());
                               std::fflush(stdout);
                               last = now;
                             });
@@ -113,6 +125,7 @@ int main(int argc, char** argv) {
                 static_cast<long long>(table.rows()), static_cast<long long>(table.features.cols()),
                 table.class_names().size());
     for (const std::string& part : parts) {
+      reset_peak();
       if (part == "som") {
         std::printf("| SOM | seconds | quantisation error | topographic error |\n|---|---|---|---|\n");
         som_rows(table);
@@ -122,6 +135,9 @@ int main(int argc, char** argv) {
       } else {
         throw tactile::Error("real_size_bench", "unknown part '" + part + "' (som, train)");
       }
+      std::printf("\n%s: peak resident memory %.0f MB (the table itself %.0f MB)\n\n", part.c_str(),
+                  peak_mb(), static_cast<double>(table.features.size()) * 8.0 / 1e6);
+      std::fflush(stdout);
     }
     return 0;
   } catch (const tactile::Error& error) {

@@ -187,7 +187,7 @@ TEST(TrainAllPlan, OnAWideTableBoostingBaggingAndCovariancesLearnFromChosenColum
   const auto has = [&names](const std::string& name) {
     return std::find(names.begin(), names.end(), name) != names.end();
   };
-  EXPECT_TRUE(has("select:k=2000,base=boosted-trees"));
+  EXPECT_TRUE(has("select:k=500,base=boosted-trees"));
   EXPECT_TRUE(has("select:k=2000,base=bagged-trees"));
   EXPECT_TRUE(has("select:k=500,base=qda"));
   EXPECT_TRUE(has("select:k=500,base=gaussian-ml"));

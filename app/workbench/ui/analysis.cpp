@@ -53,6 +53,8 @@ void set_dataset(WorkbenchState& state, std::shared_ptr<const Dataset> dataset) 
     state.class_colours.set_vocabulary(skin_classes(analysis.dataset_layout));
   analysis.dataset = std::move(dataset);
   analysis.som.reset();
+  analysis.som_quality.reset();
+  analysis.som_spread_for = nullptr;
   retire_job(state, std::move(analysis.som_job));
   reset_views(state);
 }
@@ -322,6 +324,8 @@ bool open_evaluation_file(WorkbenchState& state, const std::string& path) {
     analysis.results_from = fs::path(path).filename().string();
     analysis.dataset.reset();
     analysis.som.reset();
+    analysis.som_quality.reset();
+    analysis.som_spread_for = nullptr;
     analysis.som_classes.clear();
     // The table it was made from, for the scatter and the SOM (relative to the result).
     if (!opened.features.empty()) {
@@ -344,6 +348,8 @@ bool open_model_file(WorkbenchState& state, const std::string& path) {
       throw Error(path, "a " + model.classifier->name() + " model: only a SOM has a map to show");
     model.classifier.release();
     state.analysis.som.reset(som);
+    state.analysis.som_quality.reset();
+    state.analysis.som_spread_for = nullptr;
     state.analysis.som_classes = model.classes;
     state.analysis.som_for = nullptr;
     state.analysis.som_winners.clear();
@@ -496,8 +502,10 @@ void poll_jobs(WorkbenchState& state) {
     analysis.som_held = true;
   if (std::optional<AnalysisState::SomFit> fit = finished_job(state, analysis.som_job)) {
     analysis.som = std::move(fit->som);
+    analysis.som_spread_for = nullptr;
     analysis.som_classes = std::move(fit->classes);
     analysis.som_winners = std::move(fit->winners);
+    analysis.som_quality = fit->quality;
     analysis.som_for = analysis.dataset ? &*analysis.dataset : nullptr;
   }
   if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
@@ -528,7 +536,8 @@ bool ensure_som(WorkbenchState& state) {
               progress.report(fraction, "fitting the map");
               progress.check();
             });
-            return AnalysisState::SomFit{std::move(fit.som), std::move(fit.classes), std::move(fit.winners)};
+            return AnalysisState::SomFit{std::move(fit.som), std::move(fit.classes),
+                                         std::move(fit.winners), fit.quality};
           });
       return false;
     }
@@ -538,6 +547,8 @@ bool ensure_som(WorkbenchState& state) {
     analysis.som_for = table;
   } catch (const std::exception& error) {
     analysis.som.reset();
+    analysis.som_quality.reset();
+    analysis.som_spread_for = nullptr;
     return fail(state, std::string("SOM map: ") + error.what());
   }
   return true;

@@ -135,6 +135,12 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   const ml::SomMap& map = analysis.som->map();
   const std::vector<std::string>& classes = analysis.som_classes;
   ImGui::Text("SOM %d x %d: neurons coloured by their class, each row a dot on its winner", map.rows, map.columns);
+  if (analysis.som_quality) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(quantisation error %.3g, topographic error %.0f %%)",
+                        analysis.som_quality->quantisation_error,
+                        100.0 * analysis.som_quality->topographic_error);
+  }
   ImGui::SameLine();
   ImGui::Checkbox("U-matrix", &analysis.u_matrix);
   remember_item(state, "U-matrix",
@@ -146,23 +152,15 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   const float cell = std::max(8.0f, std::min((available.x - legend_width) / map.columns,
                                              (available.y - list_height - 8) / map.rows));
   ImDrawList& draw = *ImGui::GetWindowDrawList();
-  // U-matrix: each neuron's mean weight distance to its grid neighbours.
-  std::vector<double> spread(static_cast<size_t>(map.rows * map.columns), 0.0);
-  double spread_max = 1e-12;
-  for (int y = 0; y < map.rows; ++y)
-    for (int x = 0; x < map.columns; ++x) {
-      const int k = y * map.columns + x;
-      double sum = 0.0;
-      int count = 0;
-      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-        const int nx = x + dx, ny = y + dy;
-        if (nx < 0 || ny < 0 || nx >= map.columns || ny >= map.rows) continue;
-        sum += (map.weights.row(k) - map.weights.row(ny * map.columns + nx)).norm();
-        ++count;
-      }
-      spread[static_cast<size_t>(k)] = count ? sum / count : 0.0;
-      spread_max = std::max(spread_max, spread[static_cast<size_t>(k)]);
-    }
+  // U-matrix: each neuron's mean weight distance to its grid neighbours, once per map (a
+  // neuron of a wide table has tens of thousands of weights).
+  if (analysis.som_spread_for != analysis.som.get()) {
+    analysis.som_spread = ml::som_u_matrix(map);
+    analysis.som_spread_for = analysis.som.get();
+  }
+  const std::vector<double>& spread = analysis.som_spread;
+  const double spread_max =
+      std::max(1e-12, spread.empty() ? 0.0 : *std::max_element(spread.begin(), spread.end()));
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
   for (int y = 0; y < map.rows; ++y)
     for (int x = 0; x < map.columns; ++x) {

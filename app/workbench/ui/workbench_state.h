@@ -170,6 +170,7 @@ struct AnalysisState {
     std::unique_ptr<ml::SomClassifier> som;
     std::vector<std::string> classes;
     std::vector<int> winners;
+    std::optional<ml::SomQuality> quality;
   };
   std::unique_ptr<Job<SomFit>> som_job;  // fitting the table's map on a worker
   bool som_held = false;                 // cancelled: not started again until asked
@@ -177,6 +178,9 @@ struct AnalysisState {
   std::vector<std::string> som_classes;
   std::vector<int> som_winners;  // per dataset row
   const void* som_for = nullptr;  // which table the winners are for
+  std::optional<ml::SomQuality> som_quality;  // of a map fitted here, on its table
+  std::vector<double> som_spread;             // the U-matrix of `som`, computed once
+  const void* som_spread_for = nullptr;
   bool u_matrix = false;
   int som_neuron = -1;  // clicked
   // The scatter: the table's rows on the first two principal components.

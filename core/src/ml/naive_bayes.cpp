@@ -79,8 +79,11 @@ void GaussianNaiveBayes::fit(const Matrix& x, const std::vector<int>& y, int cla
   const auto members = support::rows_by_class(y, class_count);
   priors_ = support::class_priors(members, priors_mode_, name());
   const Eigen::Index dimension = x.cols();
+  // The means evaluated once: inside the expression Eigen would redo a column's mean for
+  // every row of it (rows^2 x columns: minutes on 183 x 37,401).
+  const Eigen::RowVectorXd column_means = x.colwise().mean();
   const Vector global_variance =
-      (x.rowwise() - x.colwise().mean()).array().square().colwise().sum() /
+      (x.rowwise() - column_means).array().square().colwise().sum().transpose() /
       static_cast<double>(x.rows());
   const double largest_variance = global_variance.maxCoeff();
   // With every feature constant all classes look alike whatever ε is; 1 keeps it positive.

@@ -340,6 +340,24 @@ SomQuality som_quality(const SomMap& map, const Matrix& inputs) {
   return quality;
 }
 
+std::vector<double> som_u_matrix(const SomMap& map) {
+  std::vector<double> spread(static_cast<size_t>(map.rows * map.columns), 0.0);
+  for (int y = 0; y < map.rows; ++y)
+    for (int x = 0; x < map.columns; ++x) {
+      const int k = y * map.columns + x;
+      double sum = 0.0;
+      int count = 0;
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= map.columns || ny >= map.rows) continue;
+        sum += (map.weights.row(k) - map.weights.row(ny * map.columns + nx)).norm();
+        ++count;
+      }
+      spread[static_cast<size_t>(k)] = count ? sum / count : 0.0;
+    }
+  return spread;
+}
+
 SomQuality SomClassifier::quality(const Matrix& x) const {
   check_fitted(!map_.hits.empty(), kSomWhere);
   check_query(x, minimum_.size(), kSomWhere);

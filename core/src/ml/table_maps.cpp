@@ -45,6 +45,7 @@ TableSom som_of(const Dataset& table, const std::function<void(double)>& step) {
   fit.som->fit(table.features, labels, static_cast<int>(fit.classes.size()), 1);
   fit.som->set_epoch_observer(nullptr);
   fit.winners = som_winners(*fit.som, table.features);
+  fit.quality = fit.som->quality(table.features);
   return fit;
 }
 

@@ -70,6 +70,8 @@ struct SomQuality {
   double topographic_error = 0.0;   // share whose two nearest neurons are not grid neighbours
 };
 SomQuality som_quality(const SomMap& map, const Matrix& inputs);
+// The U-matrix: each neuron's mean weight distance to its (up to four) grid neighbours.
+std::vector<double> som_u_matrix(const SomMap& map);
 // One online step, spec eq 2: w_k += alpha theta_k (x - w_k). Returns the winner.
 int som_step(SomMap& map, const Vector& x, double radius, double rate);
 

@@ -24,9 +24,10 @@ struct TableSom {
   std::unique_ptr<SomClassifier> som;
   std::vector<std::string> classes;  // the map's class order (the table's class names)
   std::vector<int> winners;          // per row
+  SomQuality quality;                // on the table's rows
 };
-// The SOM (200 epochs, seed 1) fitted on every row with its class; `step(fraction)` after
-// each epoch.
+// The SOM (200 epochs, seed 1) fitted on every row with its class, and its quality;
+// `step(fraction)` after each epoch.
 TableSom som_of(const Dataset& table, const std::function<void(double)>& step = {});
 // Each row's winning neuron on `som` (a map loaded from a file); none when the table's
 // columns are not the map's.
