@@ -73,7 +73,16 @@ std::string format_seconds(double seconds) {
 ScreenRect to_rect(ImVec2 min, ImVec2 max) { return {min.x, min.y, max.x, max.y}; }
 
 void remember_item(WorkbenchState& state, const std::string& name) {
-  state.targets.items[name] = to_rect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
+  // The part of the item that is visible: a table row spanning its columns is wider than a
+  // narrow sidebar, and the middle of the whole row lay beyond the sidebar's edge, where a
+  // click reached the next panel (`click item label-row:ID` did nothing).
+  const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
+  const ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const ImVec2 clip_min = draw.GetClipRectMin(), clip_max = draw.GetClipRectMax();
+  const ImVec2 shown_min(std::max(min.x, clip_min.x), std::max(min.y, clip_min.y));
+  const ImVec2 shown_max(std::min(max.x, clip_max.x), std::min(max.y, clip_max.y));
+  const bool visible = shown_min.x < shown_max.x && shown_min.y < shown_max.y;
+  state.targets.items[name] = visible ? to_rect(shown_min, shown_max) : to_rect(min, max);
 }
 
 void remember_item(WorkbenchState& state, const std::string& name, const std::string& tip) {

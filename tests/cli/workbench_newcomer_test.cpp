@@ -1,0 +1,66 @@
+// What a newcomer tripped on (issue 41), each driven through ImGui's real input path headless
+// in the default 1280 x 720 window on the demo workspace: a row of the label table answers a
+// click.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_test_support.h"
+#include "test_paths.h"
+
+namespace tactile {
+namespace {
+
+class Newcomer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto made =
+        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+  }
+  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
+  // The headless workbench at 1280 x 720 on `open` with a script whose `@` stand for this
+  // test's folder.
+  test::CommandResult workbench(const std::string& open, const std::string& text) {
+    return test::run_program("tactile-workbench-headless",
+                             open + " --annotator ana --size 1280x720 --settings " +
+                                 folder.file("settings.json") + " --script " +
+                                 test::write_script(folder, text),
+                             folder);
+  }
+  nlohmann::json state(const std::string& name) const {
+    std::ifstream in(folder.file(name));
+    return nlohmann::json::parse(in);
+  }
+  // The recording's labels as `tactile labels list --json` gives them.
+  nlohmann::json labels(const std::string& recording, const std::string& source = "") {
+    const auto listed = test::run_program(
+        "tactile",
+        "labels list " + demo("labels.db") + " --recording " + recording +
+            (source.empty() ? "" : " --source " + source) + " --json",
+        folder);
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+    return nlohmann::json::parse(listed.out)["labels"];
+  }
+
+  test::TempFolder folder{"tactile-newcomer"};
+};
+
+TEST_F(Newcomer, AClickOnARowOfTheLabelTableSelectsItsLabelAndGoesToIt) {
+  const nlohmann::json listed = labels("tsa-s01-t01");
+  ASSERT_GE(listed.size(), 4u);
+  // A row below the first, whose label starts away from where the recording opens.
+  const nlohmann::json& wanted = listed[3];
+  const std::string id = wanted["id"].dump();
+  const auto result = workbench(demo("tsa-s01-t01.h5"),
+                                "wait 2\nclick item label-row:" + id + "\nwait 1\nstate @row.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json row = state("row.json");
+  EXPECT_EQ(row["selection"]["labels"], nlohmann::json::array({wanted["id"]}));
+  EXPECT_NEAR(row["time"].get<double>(), wanted["t0"].get<double>(), 1e-6);
+}
+
+}  // namespace
+}  // namespace tactile
