@@ -1,6 +1,6 @@
 // What a newcomer tripped on (issue 41), each driven through ImGui's real input path headless
 // in the default 1280 x 720 window on the demo workspace: a row of the label table answers a
-// click.
+// click, a menu item is reached with its menu closed.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -60,6 +60,21 @@ TEST_F(Newcomer, AClickOnARowOfTheLabelTableSelectsItsLabelAndGoesToIt) {
   const nlohmann::json row = state("row.json");
   EXPECT_EQ(row["selection"]["labels"], nlohmann::json::array({wanted["id"]}));
   EXPECT_NEAR(row["time"].get<double>(), wanted["t0"].get<double>(), 1e-6);
+}
+
+TEST_F(Newcomer, AMenuItemIsClickedByNameWithItsMenuClosed) {
+  const auto result =
+      workbench(demo("fur-s01-t01.h5"),
+                "click item menu:Help/Keys\nwait 1\nstate @keys.json\nkey Escape\nwait 1\n"
+                "click item menu:Labels/Run segmenter/threshold\nwait jobs\nwait 1\n"
+                "state @segmented.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(state("keys.json")["help"]["keys"].get<bool>());
+  const nlohmann::json segmented = state("segmented.json");
+  EXPECT_EQ(segmented["segmenter"]["method"], "threshold");
+  ASSERT_FALSE(segmented["jobs"].empty());
+  EXPECT_EQ(segmented["jobs"].back()["name"], "segmenter threshold");
+  EXPECT_EQ(segmented["jobs"].back()["status"], "done");
 }
 
 }  // namespace
