@@ -1,6 +1,7 @@
 // What a newcomer tripped on (issue 41), each driven through ImGui's real input path headless
 // in the default 1280 x 720 window on the demo workspace: a row of the label table answers a
-// click, a menu item is reached with its menu closed.
+// click, a menu item is reached with its menu closed, the sheet of keys says which segmenter G
+// runs.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -75,6 +76,33 @@ TEST_F(Newcomer, AMenuItemIsClickedByNameWithItsMenuClosed) {
   ASSERT_FALSE(segmented["jobs"].empty());
   EXPECT_EQ(segmented["jobs"].back()["name"], "segmenter threshold");
   EXPECT_EQ(segmented["jobs"].back()["status"], "done");
+}
+
+// docs/SCRIPTING.md's sentence on G.
+std::string documented_g() {
+  std::ifstream in(test::test_data_dir() + "/../../docs/SCRIPTING.md");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = text.find("`G` runs");
+  if (at == std::string::npos) return "";
+  return text.substr(at, text.find(';', text.find(')', at)) - at);
+}
+
+TEST_F(Newcomer, TheSheetOfKeysAndTheDocumentationSayWhichSegmenterGRuns) {
+  // TSA's own segmenter is frame-edge: G runs it on opening, the sheet says so, and so does
+  // docs/SCRIPTING.md (which once said adaptive).
+  const auto result = workbench(demo("tsa-s01-t01.h5"),
+                                "wait 2\nkey F1\nwait 1\nstate @sheet.json\nkey Escape\nwait 1\n"
+                                "key G\nwait jobs\nwait 1\nstate @ran.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string sheet = state("sheet.json")["help"]["sheet"]["G"];
+  EXPECT_NE(sheet.find("the skin's own"), std::string::npos) << sheet;
+  EXPECT_NE(sheet.find("now: frame-edge"), std::string::npos) << sheet;
+  const nlohmann::json ran = state("ran.json");
+  ASSERT_FALSE(ran["jobs"].empty());
+  EXPECT_EQ(ran["jobs"].back()["name"], "segmenter frame-edge");
+  const std::string documented = documented_g();
+  EXPECT_NE(documented.find("skin's own"), std::string::npos) << documented;
+  EXPECT_EQ(documented.find("`adaptive` at first"), std::string::npos) << documented;
 }
 
 }  // namespace

@@ -771,6 +771,9 @@ nlohmann::json Workbench::state_json() const {
   json["legends"] = legends;
   json["tips"] = state_.targets.tips;
   json["help"] = {{"keys", state_.help.keys_open}, {"getting_started", state_.help.about_open}};
+  // The sheet of keys as F1 shows it now: each row's keys and what they do.
+  for (const KeyBinding& binding : key_bindings())
+    json["help"]["sheet"][keys_text(binding)] = key_sheet_text(binding, state_);
   nlohmann::json items = nlohmann::json::array();
   for (const auto& [name, rect] : state_.targets.items) items.push_back(name);
   json["items"] = items;
