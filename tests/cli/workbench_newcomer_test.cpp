@@ -1,9 +1,10 @@
 // What a newcomer tripped on (issue 41), each driven through ImGui's real input path headless
 // in the default 1280 x 720 window on the demo workspace: a row of the label table answers a
 // click, a menu item is reached with its menu closed, the sheet of keys says which segmenter G
-// runs.
+// runs, Robovie's parts are named once between its figures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -103,6 +104,32 @@ TEST_F(Newcomer, TheSheetOfKeysAndTheDocumentationSayWhichSegmenterGRuns) {
   const std::string documented = documented_g();
   EXPECT_NE(documented.find("skin's own"), std::string::npos) << documented;
   EXPECT_EQ(documented.find("`adaptive` at first"), std::string::npos) << documented;
+}
+
+TEST_F(Newcomer, RobovieNamesAPartBetweenItsTwoFiguresOnce) {
+  const auto result = workbench(demo("robovie-s01-t01.h5") + " --time 12",
+                                "wait 2\nwait jobs\nwait 1\nstate @robovie.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json names = state("robovie.json")["skin"]["names"];
+  ASSERT_GE(names.size(), 10u);
+  // Two boxes of the same name on one line, less than a name's width apart, read "left hand
+  // left hand"; the front's and the back's patch share one name there (the same box).
+  int shared = 0;
+  for (size_t a = 0; a < names.size(); ++a)
+    for (size_t b = a + 1; b < names.size(); ++b) {
+      const nlohmann::json &first = names[a], &second = names[b];
+      if (first["id"] != second["id"]) continue;
+      const double ax = first["x"], ay = first["y"], aw = first["width"], ah = first["height"];
+      const double bx = second["x"], by = second["y"], bw = second["width"], bh = second["height"];
+      if (ax == bx && ay == by) {
+        ++shared;
+        continue;
+      }
+      const bool one_line = ay < by + bh && by < ay + ah;
+      const double gap = std::max(bx - (ax + aw), ax - (bx + bw));
+      EXPECT_FALSE(one_line && gap < aw) << first.dump() << " beside " << second.dump();
+    }
+  EXPECT_GE(shared, 1) << names.dump();
 }
 
 }  // namespace
