@@ -1,7 +1,8 @@
 // What a newcomer tripped on (issue 41), each driven through ImGui's real input path headless
 // in the default 1280 x 720 window on the demo workspace: a row of the label table answers a
 // click, a menu item is reached with its menu closed, the sheet of keys says which segmenter G
-// runs, Robovie's parts are named once between its figures.
+// runs, Robovie's parts are named once between its figures, the analysis views, the lanes'
+// names and the live bar fit the window, no tooltip stays over what a click opened.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -130,6 +131,73 @@ TEST_F(Newcomer, RobovieNamesAPartBetweenItsTwoFiguresOnce) {
       EXPECT_FALSE(one_line && gap < aw) << first.dump() << " beside " << second.dump();
     }
   EXPECT_GE(shared, 1) << names.dump();
+}
+
+// Whether the box `name` of the state's `boxes` lies inside `outer` (a view, a cell), to a pixel.
+::testing::AssertionResult inside(const nlohmann::json& at, const std::string& name,
+                                  const nlohmann::json& outer) {
+  if (!at["boxes"].contains(name)) return ::testing::AssertionFailure() << "no box " << name;
+  const nlohmann::json& box = at["boxes"][name];
+  const double x = box["x"], y = box["y"], w = box["width"], h = box["height"];
+  const double ox = outer["x"], oy = outer["y"], ow = outer["width"], oh = outer["height"];
+  if (x >= ox - 1 && y >= oy - 1 && x + w <= ox + ow + 1 && y + h <= oy + oh + 1)
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << name << " " << box.dump() << " runs out of " << outer.dump();
+}
+
+TEST_F(Newcomer, TheAnalysisViewsAndLaneNamesFitTheDefaultWindowAndNoTooltipStaysAfterAClick) {
+  const auto result = workbench(
+      demo("nao-s01-t01.h5"),
+      "wait 2\nkey G\nwait jobs\nclick item tab:model\nwait 2\nclick item button:Train all\n"
+      "wait training\nwait 3\nstate @confusion.json\nclick item tab:model\nwait 3\n"
+      "state @model.json\nclick item tab:som\nwait jobs\nwait 2\nstate @som.json\n"
+      "click item tab:scatter\nwait jobs\nwait 3\nstate @scatter.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // Train all opens the confusion matrix under the resting mouse: no tooltip over it.
+  const nlohmann::json confusion = state("confusion.json");
+  for (const nlohmann::json& item : confusion["items"]) EXPECT_NE(item, "tooltip");
+  // With the plot's tab hidden, each lane's name fits its header ("proximit" did not).
+  size_t lanes = 0;
+  for (const nlohmann::json& lane : confusion["lanes"]) {
+    const std::string id = lane["id"];
+    ++lanes;
+    EXPECT_TRUE(inside(confusion, "lane-name:" + id, confusion["boxes"]["lane-header:" + id]));
+  }
+  EXPECT_GE(lanes, 2u);
+  // The results table's classifier names fit their column.
+  const nlohmann::json model = state("model.json");
+  size_t names = 0;
+  for (const auto& [name, box] : model["boxes"].items()) {
+    if (!name.starts_with("result-name:")) continue;
+    ++names;
+    EXPECT_TRUE(inside(model, name, model["boxes"]["result-cell:" + name.substr(12)]));
+  }
+  EXPECT_GE(names, 10u);
+  // The SOM's U-matrix box, the scatter's header and every row of its legend lie in their views.
+  const nlohmann::json som = state("som.json");
+  EXPECT_TRUE(inside(som, "U-matrix", som["views"]["som"]));
+  const nlohmann::json scatter = state("scatter.json");
+  EXPECT_TRUE(inside(scatter, "text:scatter-header", scatter["views"]["scatter"]));
+  size_t rows = 0;
+  for (const auto& [name, box] : scatter["boxes"].items())
+    if (name.starts_with("legend-row:scatter:")) {
+      ++rows;
+      EXPECT_TRUE(inside(scatter, name, scatter["views"]["scatter"]));
+    }
+  EXPECT_GE(rows, 5u);
+}
+
+TEST_F(Newcomer, TheLiveBarsClassifyButtonFitsTheDefaultWindow) {
+  const auto result = test::run_program(
+      "tactile-workbench-headless",
+      "--connect udp://127.0.0.1:" + std::to_string(test::free_port()) +
+          " --skin fur --size 1280x720 --settings " + folder.file("settings.json") + " --script " +
+          test::write_script(folder, "wait 3\nstate @live.json\n"),
+      folder);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json live = state("live.json");
+  for (const char* item : {"button:classify", "input:model", "checkbox:auto-record", "button:record"})
+    EXPECT_TRUE(inside(live, item, live["views"]["timeline"]));
 }
 
 }  // namespace

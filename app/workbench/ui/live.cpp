@@ -351,6 +351,7 @@ void draw_live_bar(WorkbenchState& state) {
   LiveState& live = state.live;
   const LiveCounters& counters = live.counters;
   const bool recording = !live.recording.empty();
+  const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::TextColored(live.failure.empty() ? ImVec4(0.3f, 0.9f, 0.4f, 1.0f) : ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
                      live.failure.empty() ? "LIVE" : "FAILED");
   ImGui::SameLine();
@@ -385,11 +386,14 @@ void draw_live_bar(WorkbenchState& state) {
   remember_item(state, "input:pretrigger",
                 "Seconds before the press of Record that the file starts with");
   live.pretrigger_seconds = std::clamp(live.pretrigger_seconds, 0.0f, 600.0f);
-  ImGui::SameLine();
+  same_line_if_fits(ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                    ImGui::CalcTextSize("start on contact").x);
   ImGui::Checkbox("start on contact", &live.auto_record);
   remember_item(state, "checkbox:auto-record",
                 "Start a recording when a contact begins, stop it after a quiet time");
-  ImGui::SameLine();
+  // The model's field and Classify together, on the next line when they do not fit (at 1280
+  // x 720 Classify was cut off at the view's edge).
+  same_line_if_fits(160.0f + style.ItemSpacing.x + ImGui::CalcTextSize("Classify").x + 2 * style.FramePadding.x);
   ImGui::SetNextItemWidth(160);
   ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(), live.model_input.size());
   remember_item(state, "input:model",

@@ -777,6 +777,10 @@ nlohmann::json Workbench::state_json() const {
   nlohmann::json items = nlohmann::json::array();
   for (const auto& [name, rect] : state_.targets.items) items.push_back(name);
   json["items"] = items;
+  nlohmann::json boxes = nlohmann::json::object();
+  for (const auto& [name, rect] : state_.targets.boxes)
+    boxes[name] = {{"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+  json["boxes"] = boxes;
   // The skin as drawn: each taxel's box (a touched one's enlarged box), the touched taxels,
   // the names on the map, and the columns of a strip laid in rows (0: as the layout lies).
   const auto box_json = [](const ScreenRect& rect) {

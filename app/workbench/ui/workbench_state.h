@@ -54,6 +54,9 @@ struct TimeAxis {
 // Where things were drawn on the last frame (screen pixels), by name.
 struct UiTargets {
   std::map<std::string, ScreenRect> items;  // "view:skin", "menu:File", "menu:File/Open..."
+  // An item's whole box as laid out, also the part cut off by its view (the state's `boxes`:
+  // tests hold what a view draws to fitting inside it).
+  std::map<std::string, ScreenRect> boxes;
   std::map<std::string, TimeAxis> time_axes;  // view name -> axis
   std::map<int64_t, std::pair<float, float>> taxels;  // taxel id -> centre on screen
   ScreenRect skin_map;                                // the skin view's drawing area
