@@ -2,7 +2,8 @@
 // in the default 1280 x 720 window on the demo workspace: a row of the label table answers a
 // click, a menu item is reached with its menu closed, the sheet of keys says which segmenter G
 // runs, Robovie's parts are named once between its figures, the analysis views, the lanes'
-// names and the live bar fit the window, no tooltip stays over what a click opened.
+// names and the live bar fit the window, no tooltip stays over what a click opened, an undo
+// says what it takes back and goes to it, and Ctrl+Z cancels a segmenter run still going.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -198,6 +199,64 @@ TEST_F(Newcomer, TheLiveBarsClassifyButtonFitsTheDefaultWindow) {
   const nlohmann::json live = state("live.json");
   for (const char* item : {"button:classify", "input:model", "checkbox:auto-record", "button:record"})
     EXPECT_TRUE(inside(live, item, live["views"]["timeline"]));
+}
+
+TEST_F(Newcomer, TheFirstUndoOfASessionSaysItTakesBackTheLastSessionsSegmenterRun) {
+  ASSERT_EQ(workbench(demo("fur-s01-t01.h5"), "wait 2\nkey G\nwait jobs\nwait 1\n").exit_code, 0);
+  const nlohmann::json suggestions = labels("fur-s01-t01", "segmenter");
+  ASSERT_FALSE(suggestions.empty());
+  double first = 1e9;
+  for (const nlohmann::json& label : suggestions) first = std::min(first, label["t0"].get<double>());
+  const auto result = workbench(demo("fur-s01-t01.h5"),
+                                "wait 2\ntime 50\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json undone = state("undone.json");
+  const std::string notice = undone["notice"];
+  EXPECT_NE(notice.find("threshold's segmenter run, which added " +
+                        std::to_string(suggestions.size()) + " suggestions"),
+            std::string::npos)
+      << notice;
+  EXPECT_NE(notice.find("earlier session"), std::string::npos) << notice;
+  EXPECT_TRUE(labels("fur-s01-t01", "segmenter").empty());
+  // The cursor went to what the undo changed.
+  EXPECT_NEAR(undone["time"].get<double>(), first, 1e-6);
+}
+
+TEST_F(Newcomer, EveryUndoAndRedoMovesTheCursorToTheLabelItChanged) {
+  const auto result = workbench(
+      demo("fur-s01-t01.h5"),
+      "wait 2\ntime 40\nkey [\ntime 42\nkey ]\nkey 1\nkey Enter\nwait 1\ntime 3\n"
+      "key Ctrl+Z\nwait 1\nstate @undone.json\ntime 7\nkey Ctrl+Shift+Z\nwait 1\n"
+      "state @redone.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json undone = state("undone.json"), redone = state("redone.json");
+  EXPECT_NEAR(undone["time"].get<double>(), 40.0, 1e-6);
+  EXPECT_NEAR(redone["time"].get<double>(), 40.0, 1e-6);
+  for (const nlohmann::json* at : {&undone, &redone}) {
+    EXPECT_LE((*at)["plot"]["t0"].get<double>(), 40.0);
+    EXPECT_GE((*at)["plot"]["t1"].get<double>(), 42.0);
+  }
+  const std::string notice = undone["notice"];
+  EXPECT_EQ(notice, "undone: an edit of ana, which added 1 label");
+  EXPECT_EQ(redone["notice"], "redone: an edit of ana, which added 1 label");
+}
+
+TEST_F(Newcomer, CtrlZWhileASegmenterRunsCancelsTheRunNotTheLabelBefore) {
+  // Robovie's 274 channels: the run takes long enough to be running when Ctrl+Z comes; if
+  // it stored its suggestions just then, they are undone all the same.
+  const auto result = workbench(demo("robovie-s01-t01.h5"),
+                                "wait 2\ntime 40\nkey [\ntime 42\nkey ]\nkey 1\nkey Enter\n"
+                                "wait 1\nkey G\nkey Ctrl+Z\nstate @pressed.json\nwait jobs\n"
+                                "wait 2\nstate @after.json\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string notice = state("pressed.json")["notice"];
+  EXPECT_NE(notice.find("cancelled (Ctrl+Z)"), std::string::npos) << notice;
+  EXPECT_EQ(labels("robovie-s01-t01", "manual").size(), 1u);
+  EXPECT_TRUE(labels("robovie-s01-t01", "segmenter").empty());
+  const nlohmann::json jobs = state("after.json")["jobs"];
+  ASSERT_FALSE(jobs.empty());
+  EXPECT_EQ(jobs.back()["name"], "segmenter adaptive");
+  EXPECT_NE(jobs.back()["status"], "running");
 }
 
 }  // namespace

@@ -135,7 +135,8 @@ std::vector<KeyBinding> make_bindings() {
        [](S& s, int) { remove_selected_label(s); }},
       {"Labelling",
        {"Ctrl+Z", "Ctrl+Shift+Z"},
-       "undo / redo your last edit (also after a restart)",
+       "undo / redo your last edit, also one of an earlier session (the status bar says what it "
+       "took back and when), and go to it; while a segmenter runs, Ctrl+Z cancels the run",
        has_document,
        [](S& s, int k) { undo_edit(s, k == 1); }},
       {"Labelling",

@@ -90,6 +90,7 @@ struct LabellingState {
   std::set<std::string> hidden, collapsed;
   std::array<char, 256> segmenter_params{};  // typed in the Labels menu
   bool snap = true;
+  bool run_cancelled_by_undo = false;  // Ctrl+Z cancelled the running segmenter job
   std::string last_segmenter = "adaptive";   // G runs it again; on opening, the skin's own
   std::string segmenter_skin;                // the skin last_segmenter was chosen for
   bool picker_open = false;                  // the type-ahead class picker (key C)
