@@ -274,7 +274,19 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
   if (!live.channels_chosen && source.duration() >= 2.0) {
     live.channels_chosen = true;
     plot_moving_channels(state);
-    state.rest_scale_modality = -1;
+    live.scale_learnt_at = -1.0;
+  }
+  // The colour scale learnt again every two seconds over the whole buffer, as a replay learns it
+  // over the whole file: learnt once from the first two seconds, it stayed at their noise.
+  constexpr double kLearnEverySeconds = 2.0;
+  if (source.sample_count() > 0 && (source.end_time() >= live.scale_learnt_at + kLearnEverySeconds ||
+                                    source.end_time() < live.scale_learnt_at)) {
+    live.scale_learnt_at = source.end_time();
+    const bool same = state.rest_scale_modality == state.modality;
+    const std::vector<int> columns =
+        taxel_columns(state.document->layout, source.info().channels, state.modality);
+    state.rest_scale = live_rest_scale(source, columns, same ? state.rest_scale.max_change : 0.0);
+    state.rest_scale_modality = state.modality;
   }
   plot_active_channels(state);
   auto_record(state, services);

@@ -208,6 +208,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   }
   double value_min = 0.0, value_max = 1.0;
   const std::vector<float> values = skin_values_now(state, value_min, value_max);
+  state.targets.skin_scale = {value_min, value_max};
   SkinViewStyle style;
   style.modality_label = current;
   style.values_are_change = !state.show_raw_values;

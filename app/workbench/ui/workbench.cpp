@@ -799,7 +799,9 @@ nlohmann::json Workbench::state_json() const {
   json["skin"] = {{"taxels", skin_taxels},
                   {"touched", state_.targets.touched_taxels},
                   {"names", skin_names},
-                  {"columns", state_.skin_drawing.columns}};
+                  {"columns", state_.skin_drawing.columns},
+                  {"scale", {{"min", state_.targets.skin_scale.first},
+                             {"max", state_.targets.skin_scale.second}}}};
   if (const auto caption = state_.targets.items.find("somatosensory:caption");
       caption != state_.targets.items.end())
     json["skin"]["caption"] = box_json(caption->second);

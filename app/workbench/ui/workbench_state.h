@@ -63,6 +63,7 @@ struct UiTargets {
   std::map<std::string, std::string> tips;            // a control's tooltip, by its item name
   std::map<int64_t, ScreenRect> taxel_boxes;          // taxel id -> its box as drawn
   std::vector<int64_t> touched_taxels;                // drawn enlarged as touched
+  std::pair<double, double> skin_scale{0.0, 1.0};      // the colour scale's ends as drawn
   std::vector<std::pair<std::string, ScreenRect>> skin_names;  // group id or taxel name, box
 };
 
@@ -216,6 +217,7 @@ struct LiveState {
   bool resize_request = false;   // the buffer's length changed: a new buffer next frame
   double active_checked_at = -1.0;  // stream time the plot last followed the active channels
   bool channels_chosen = false;  // the moving channels are picked once data has arrived
+  double scale_learnt_at = -1.0;  // stream time the colour scale was last learnt (live_rest_scale)
   std::string recording;            // the file being recorded; "" when not recording
   int64_t recorded_samples = 0;     // taken into it so far
   RecorderRoom room;                // its disk, as of the recorder's last flush
