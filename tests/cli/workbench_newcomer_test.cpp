@@ -3,15 +3,19 @@
 // click, a menu item is reached with its menu closed, the sheet of keys says which segmenter G
 // runs, Robovie's parts are named once between its figures, the analysis views, the lanes'
 // names and the live bar fit the window, no tooltip stays over what a click opened, an undo
-// says what it takes back and goes to it, and Ctrl+Z cancels a segmenter run still going.
+// says what it takes back and goes to it, Ctrl+Z cancels a segmenter run still going, the
+// somatosensory map fills its panel in colours apart.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_test_support.h"
+#include "png_test_support.h"
 #include "test_paths.h"
 
 namespace tactile {
@@ -257,6 +261,52 @@ TEST_F(Newcomer, CtrlZWhileASegmenterRunsCancelsTheRunNotTheLabelBefore) {
   ASSERT_FALSE(jobs.empty());
   EXPECT_EQ(jobs.back()["name"], "segmenter adaptive");
   EXPECT_NE(jobs.back()["status"], "running");
+}
+
+TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
+  const auto result = workbench(demo("robovie-s01-t01.h5") + " --time 12",
+                                "wait 2\nclick item map\nwait 1\nclick item map:somatosensory\n"
+                                "wait jobs\nwait 2\nstate @map.json\nscreenshot @map.png\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json drawn = state("map.json");
+  const Png png = read_png(folder.file("map.png"));
+  ASSERT_TRUE(png.pixels);
+  const nlohmann::json& view = drawn["views"]["skin"];
+  const double view_x = view["x"], view_width = view["width"];
+  // The dots: 274, each wide enough to show its colour, spread over the panel's middle rather
+  // than its left 60 % (a legend of 21 regions beside them took the rest).
+  double left = 1e9, right = -1e9;
+  std::vector<double> widths;
+  for (const auto& [id, box] : drawn["skin"]["taxels"].items()) {
+    left = std::min(left, box["x"].get<double>());
+    right = std::max(right, box["x"].get<double>() + box["width"].get<double>());
+    widths.push_back(box["width"].get<double>());
+  }
+  ASSERT_EQ(widths.size(), 274u);
+  std::nth_element(widths.begin(), widths.begin() + 137, widths.end());
+  EXPECT_GE(widths[137], 7.0);
+  EXPECT_NEAR(0.5 * (left + right), view_x + 0.5 * view_width, 0.1 * view_width)
+      << left << " to " << right << " in " << view.dump();
+  // The regions' colours as drawn in the legend: no two within 50 of each other in RGB (the
+  // class palette's came within 32).
+  const nlohmann::json& legend = drawn["legends"]["somatosensory"];
+  ASSERT_EQ(legend.size(), 21u);
+  std::vector<std::array<int, 3>> colours;
+  for (const auto& [name, swatch] : legend.items()) {
+    const unsigned char* p = png.at(static_cast<int>(swatch["x"].get<double>() + 5),
+                                    static_cast<int>(swatch["y"].get<double>() + 5));
+    colours.push_back({p[0], p[1], p[2]});
+    EXPECT_LE(swatch["x"].get<double>() + swatch["width"].get<double>(), view_x + view_width) << name;
+    EXPECT_LE(swatch["y"].get<double>() + swatch["height"].get<double>(),
+              view["y"].get<double>() + view["height"].get<double>())
+        << name;
+  }
+  double closest = 1e9;
+  for (size_t a = 0; a < colours.size(); ++a)
+    for (size_t b = a + 1; b < colours.size(); ++b)
+      closest = std::min(closest, std::hypot(colours[a][0] - colours[b][0], colours[a][1] - colours[b][1],
+                                             colours[a][2] - colours[b][2]));
+  EXPECT_GE(closest, 50.0);
 }
 
 }  // namespace

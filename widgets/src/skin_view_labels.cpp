@@ -543,6 +543,13 @@ float category_legend_width(const SkinViewCategories& categories, float height) 
   return static_cast<float>(columns) * column_width + 8.0f;
 }
 
+float category_legend_height(const SkinViewCategories& categories, float width) {
+  const auto [unused, column_width] = category_legend_columns(categories, 0.0f);
+  const auto columns = static_cast<size_t>(std::max(1.0f, std::floor((width - 8.0f) / column_width)));
+  const size_t rows = (categories.names.size() + columns - 1) / columns;
+  return static_cast<float>(rows) * category_line() + 8.0f;
+}
+
 std::vector<SkinViewLabel> draw_category_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size,
                                                 const SkinViewCategories& categories) {
   const auto [rows, column_width] = category_legend_columns(categories, size.y);
