@@ -4,7 +4,7 @@
 // runs, Robovie's parts are named once between its figures, the analysis views, the lanes'
 // names and the live bar fit the window, no tooltip stays over what a click opened, an undo
 // says what it takes back and goes to it, Ctrl+Z cancels a segmenter run still going, the
-// somatosensory map fills its panel in colours apart.
+// somatosensory map fills its panel in colours apart, a touch on TSA's tiny pads shows.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -307,6 +307,30 @@ TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
       closest = std::min(closest, std::hypot(colours[a][0] - colours[b][0], colours[a][1] - colours[b][1],
                                              colours[a][2] - colours[b][2]));
   EXPECT_GE(closest, 50.0);
+}
+
+TEST_F(Newcomer, ATouchOnTsaShowsAsABlotNotADotWhereTheRecordingOpens) {
+  // TSA opens at its first labelled touch, one taxel on the back of the head: drawn enlarged
+  // to 10 pixels it read as a dot among 4-pixel pads.
+  const auto result =
+      workbench(demo("tsa-s01-t01.h5"), "wait 2\nstate @tsa.json\nscreenshot @tsa.png\n");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json drawn = state("tsa.json");
+  const Png png = read_png(folder.file("tsa.png"));
+  ASSERT_TRUE(png.pixels);
+  ASSERT_FALSE(drawn["skin"]["touched"].empty());
+  int lit = 0;  // over half-way up viridis (green to yellow) inside the touched taxels' boxes
+  for (const nlohmann::json& id : drawn["skin"]["touched"]) {
+    const nlohmann::json& box = drawn["skin"]["taxels"][id.dump()];
+    for (int y = static_cast<int>(box["y"].get<double>());
+         y < static_cast<int>(box["y"].get<double>() + box["height"].get<double>()); ++y)
+      for (int x = static_cast<int>(box["x"].get<double>());
+           x < static_cast<int>(box["x"].get<double>() + box["width"].get<double>()); ++x) {
+        const unsigned char* p = png.at(x, y);
+        lit += p[1] > 140 && p[1] > p[2];
+      }
+  }
+  EXPECT_GE(lit, 150) << drawn["skin"]["touched"].dump();
 }
 
 }  // namespace

@@ -27,6 +27,10 @@ constexpr double kGapPixels = 1.0;
 // small pads of a crowded map still shows.
 constexpr float kTouchedPosition = 0.5f;
 constexpr float kTouchedMinPixels = 10.0f;
+// A touched taxel of fewer pixels than this (TSA's 4-pixel pads in the default window, whose
+// touches read as two or three dots of 5 pixels) is drawn kTinyTouchedPixels across.
+constexpr float kTinyTaxelPixels = 8.0f;
+constexpr float kTinyTouchedPixels = 18.0f;
 
 // Selected taxels: the colour of the time cursor, so "what is selected" reads as one thing.
 const ImU32 kSelection = IM_COL32(255, 140, 40, 255);
@@ -113,12 +117,14 @@ void fill_taxel(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 colour) {
   }
 }
 
-// A touched taxel again, on top, enlarged about its centre to kTouchedMinPixels when smaller,
+// A touched taxel again, on top, enlarged about its centre to kTouchedMinPixels when smaller
+// (kTinyTouchedPixels when tiny),
 // with a dark rim that parts it from its lit neighbours (and a white ring when its fill is a
 // region's colour, not its value's). Returns its drawn box.
 SkinViewBox draw_touched(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 fill, bool ring) {
-  const float factor = taxel.extent > 0.0f && taxel.extent < kTouchedMinPixels
-                           ? std::min(kTouchedMinPixels / taxel.extent, 3.0f)
+  const float least = taxel.extent < kTinyTaxelPixels ? kTinyTouchedPixels : kTouchedMinPixels;
+  const float factor = taxel.extent > 0.0f && taxel.extent < least
+                           ? std::min(least / taxel.extent, taxel.extent < kTinyTaxelPixels ? 5.0f : 3.0f)
                            : 1.0f;
   ScreenTaxel enlarged = taxel;
   SkinViewBox box{taxel.centre, taxel.centre};
