@@ -121,6 +121,35 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   EXPECT_GT(labels.front().t1, labels.front().t0);
 }
 
+// The live skin's colour scale is learnt again as the stream arrives, over the whole buffer as a
+// replay learns it over the whole file (issue 41: learnt once from the first two seconds, it read
+// "rest ... +1" where the replay of the same samples read +198, and lit other taxels): at the
+// end of a recorded session the two scales' tops agree, and so do the taxels drawn as touched.
+TEST_F(WorkbenchLive, TheLiveColourScaleIsTheReplaysOfTheSameSamples) {
+  const std::string record = folder.file("session.h5");
+  const CommandResult shown = run_program(
+      "tactile-workbench-headless",
+      "--connect sim://fur?seed=3 --record " + record + " --size 1280x720 --settings " +
+          folder.file("settings.json") + " --script " +
+          script("sleep 7\nstate @live.json\nkey Ctrl+R\nwait 2\n"),
+      folder);
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  const nlohmann::json live = state("live.json");
+  const double time = live["time"];
+  const CommandResult replayed = run_program(
+      "tactile-workbench-headless",
+      record + " --time " + std::to_string(time) + " --size 1280x720 --settings " +
+          folder.file("settings.json") + " --script " + script("wait 2\nstate @replay.json\n"),
+      folder);
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.err;
+  const nlohmann::json replay = state("replay.json");
+  const double live_top = live["skin"]["scale"]["max"], replay_top = replay["skin"]["scale"]["max"];
+  EXPECT_GT(replay_top, 20.0) << "the session holds no touch to scale by";
+  EXPECT_NEAR(live_top / replay_top, 1.0, 0.3) << live_top << " live, " << replay_top << " replayed";
+  EXPECT_NEAR(replay["time"].get<double>(), time, 1e-3);
+  EXPECT_EQ(live["skin"]["touched"], replay["skin"]["touched"]);
+}
+
 // While following, the plot moves to the channels being touched (a simulated NAO touches one
 // side, then another), and before a recording exists the timeline says where labels will go.
 TEST_F(WorkbenchLive, ThePlotFollowsTheActiveChannels) {

@@ -52,6 +52,21 @@ uint32_t class_palette_colour(size_t index) {
   return hue_colour(0.07 + static_cast<double>(index - 9) * kGoldenTurn);
 }
 
+uint32_t distinct_palette_colour(size_t index) {
+  // Greedy farthest-point picks in CIELAB from an sRGB grid (lightness 50-88, chroma 25 and
+  // more: not the grey of "no region", not the white of a touch's ring).
+  static const uint8_t kDistinct[][3] = {
+      {34, 136, 204},  {0, 255, 0},     {255, 0, 0},     {255, 0, 255},   {204, 187, 102},
+      {238, 102, 153}, {0, 238, 221},   {102, 102, 255}, {0, 153, 34},    {255, 153, 0},
+      {187, 221, 0},   {238, 204, 255}, {187, 102, 68},  {85, 136, 102},  {238, 136, 255},
+      {153, 238, 153}, {255, 0, 85},    {136, 221, 255}, {238, 0, 170},   {153, 102, 153},
+      {255, 187, 170}, {0, 238, 102},   {153, 153, 255}, {221, 187, 0}};
+  constexpr size_t kCount = std::size(kDistinct);
+  if (index >= kCount) return class_palette_colour(index - kCount + 9);
+  const uint8_t* rgb = kDistinct[index];
+  return packed(rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
+}
+
 ClassColours::ClassColours(std::vector<std::string> neutral) : neutral_(std::move(neutral)) {}
 
 void ClassColours::set_vocabulary(const std::vector<std::string>& vocabulary) {

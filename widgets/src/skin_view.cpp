@@ -27,6 +27,10 @@ constexpr double kGapPixels = 1.0;
 // small pads of a crowded map still shows.
 constexpr float kTouchedPosition = 0.5f;
 constexpr float kTouchedMinPixels = 10.0f;
+// A touched taxel of fewer pixels than this (TSA's 4-pixel pads in the default window, whose
+// touches read as two or three dots of 5 pixels) is drawn kTinyTouchedPixels across.
+constexpr float kTinyTaxelPixels = 8.0f;
+constexpr float kTinyTouchedPixels = 18.0f;
 
 // Selected taxels: the colour of the time cursor, so "what is selected" reads as one thing.
 const ImU32 kSelection = IM_COL32(255, 140, 40, 255);
@@ -46,7 +50,8 @@ struct ScreenTaxel {
   SkinViewBox box;
 };
 
-ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform, double spacing) {
+ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform, double spacing,
+                         float min_pixels) {
   ScreenTaxel screen;
   screen.map_points = taxel_outline(taxel);
   if (signed_area(screen.map_points) < 0) {
@@ -67,6 +72,21 @@ ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform, doub
       for (Point2& point : screen.map_points)
         point = {centre.x + factor * (point.x - centre.x),
                  centre.y + factor * (point.y - centre.y)};
+    }
+  }
+  if (min_pixels > 0.0f && !screen.map_points.empty()) {
+    double extent = std::numeric_limits<double>::max();
+    Point2 low = screen.map_points.front(), high = low;
+    for (const Point2& point : screen.map_points) {
+      low = {std::min(low.x, point.x), std::min(low.y, point.y)};
+      high = {std::max(high.x, point.x), std::max(high.y, point.y)};
+    }
+    extent = std::min(high.x - low.x, high.y - low.y) * transform.scale;
+    if (extent > 0.0 && extent < min_pixels) {
+      const double factor = min_pixels / extent;
+      const Point2 centre = taxel.position;
+      for (Point2& point : screen.map_points)
+        point = {centre.x + factor * (point.x - centre.x), centre.y + factor * (point.y - centre.y)};
     }
   }
   ImVec2 low(std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
@@ -97,12 +117,14 @@ void fill_taxel(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 colour) {
   }
 }
 
-// A touched taxel again, on top, enlarged about its centre to kTouchedMinPixels when smaller,
+// A touched taxel again, on top, enlarged about its centre to kTouchedMinPixels when smaller
+// (kTinyTouchedPixels when tiny),
 // with a dark rim that parts it from its lit neighbours (and a white ring when its fill is a
 // region's colour, not its value's). Returns its drawn box.
 SkinViewBox draw_touched(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 fill, bool ring) {
-  const float factor = taxel.extent > 0.0f && taxel.extent < kTouchedMinPixels
-                           ? std::min(kTouchedMinPixels / taxel.extent, 3.0f)
+  const float least = taxel.extent < kTinyTaxelPixels ? kTinyTouchedPixels : kTouchedMinPixels;
+  const float factor = taxel.extent > 0.0f && taxel.extent < least
+                           ? std::min(least / taxel.extent, taxel.extent < kTinyTaxelPixels ? 5.0f : 3.0f)
                            : 1.0f;
   ScreenTaxel enlarged = taxel;
   SkinViewBox box{taxel.centre, taxel.centre};
@@ -258,7 +280,18 @@ SkinViewGeometry skin_view_geometry(const SkinLayout& layout, ImVec2 top_left, I
   SkinViewGeometry right = fitted(ImVec2(below_names.x - right_width, below_names.y));
   right.legend_min = ImVec2(top_left.x + right.map_size.x, top_left.y);
   right.legend_size = ImVec2(size.x - right.map_size.x, size.y);
-  if (style.categories) return right;
+  if (style.categories) {
+    // A legend of many regions beside a narrow panel left the map its left 60 %: then it goes
+    // under the map, in as many columns as the width holds.
+    if (right_width <= 0.3f * size.x) return right;
+    const float strip = skin_parts::category_legend_height(*style.categories, size.x);
+    if (strip > 0.4f * size.y) return right;
+    SkinViewGeometry bottom = fitted(ImVec2(below_names.x, below_names.y - strip));
+    bottom.legend_along_bottom = true;
+    bottom.legend_min = ImVec2(top_left.x, top_left.y + size.y - strip);
+    bottom.legend_size = ImVec2(size.x, strip);
+    return bottom;
+  }
   // The colour scale along the bottom instead when the map is wider than the panel's shape
   // and so grows by it.
   const float strip = skin_parts::bottom_legend_height();
@@ -316,7 +349,7 @@ SkinViewResult draw_skin_view(const char* id, const SkinLayout& layout,
     const double spacing = index < style.neighbour_distances.size()
                                ? style.neighbour_distances[index]
                                : std::numeric_limits<double>::quiet_NaN();
-    screens.push_back(screen_taxel(taxel, geometry.transform, spacing));
+    screens.push_back(screen_taxel(taxel, geometry.transform, spacing, style.min_taxel_pixels));
     const ScreenTaxel& screen = screens.back();
     // Missing values (a short array) are drawn like NaN, grey, never read past the end.
     const float value =

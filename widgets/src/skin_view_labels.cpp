@@ -88,9 +88,10 @@ class NamePlacer {
   // with either end of it. A name must lie nearer its own patch than any other part's, so it
   // is not read as theirs.
   bool place_beside(const Patch& patch, const std::string& text) {
+    if (share_name(patch, text)) return true;
     for (const ImVec2& at : candidates(patch, text, kNameGap)) {
       const SkinViewBox box = text_box(ImVec2(std::floor(at.x), std::floor(at.y)), text);
-      if (free(box, false) && nearest_to_own(box, patch)) {
+      if (free(box, false) && nearest_to_own(box, patch) && !echoes(box, text)) {
         draw(patch.group->id, text, box);
         return true;
       }
@@ -101,6 +102,7 @@ class NamePlacer {
   // For a part with no room beside it, once every part has had its turn there: further out
   // with a line to the patch, the nearest place whose line crosses no other taxel.
   bool place_with_line(const Patch& patch, const std::string& text) {
+    if (share_name(patch, text)) return true;
     const SkinViewBox& own = patch.box;
     for (int step = 1; step <= kLeaderSteps; ++step)
       for (const ImVec2& at :
@@ -210,6 +212,43 @@ class NamePlacer {
     for (const SkinViewLabel& leader : leaders_)
       if (boxes_overlap(inner, leader.box)) return false;
     return true;
+  }
+
+  // A part seen on the front and on the back whose name, written for one side, lies within a
+  // name's width of the other side's patch (between the two figures): a line from this patch to
+  // that name, not the name again beside it.
+  bool share_name(const Patch& patch, const std::string& text) {
+    for (const SkinViewLabel& other : placed_) {
+      if (other.id != patch.group->id || other.text != text) continue;
+      if (box_distance(other.box, patch.box) > other.box.max.x - other.box.min.x) continue;
+      const auto [from, to] = leader_ends(patch.box, other.box);
+      // Stopping short of the name, which the line is meant to reach.
+      const float length = std::hypot(to.x - from.x, to.y - from.y);
+      const float short_of = length > 3.0f ? (length - 3.0f) / length : 0.0f;
+      if (crosses_a_taxel(from, ImVec2(from.x + short_of * (to.x - from.x),
+                                        from.y + short_of * (to.y - from.y)), patch))
+        continue;
+      draw_.AddLine(from, to, kLeader, 1.0f);
+      draw_.AddCircleFilled(from, 2.0f, kText);
+      leaders_.push_back({"",
+                          "",
+                          {ImVec2(std::min(from.x, to.x), std::min(from.y, to.y)),
+                           ImVec2(std::max(from.x, to.x) + 1, std::max(from.y, to.y) + 1)}});
+      placed_.push_back({patch.group->id, text, other.box});
+      return true;
+    }
+    return false;
+  }
+
+  // The same name already written on the same line within a name's width: a part seen on the
+  // front and the back named twice between the figures read "left hand left hand".
+  bool echoes(const SkinViewBox& box, const std::string& text) const {
+    const float width = box.max.x - box.min.x;
+    for (const SkinViewLabel& other : placed_)
+      if (other.text == text && box.min.y < other.box.max.y && other.box.min.y < box.max.y &&
+          box_distance(box, other.box) < width)
+        return true;
+    return false;
   }
 
   // The name's middle lies nearer its own patch than any other part's, by kClearance.
@@ -502,6 +541,13 @@ float category_legend_width(const SkinViewCategories& categories, float height) 
   const auto [rows, column_width] = category_legend_columns(categories, height);
   const size_t columns = std::max<size_t>(1, (categories.names.size() + rows - 1) / rows);
   return static_cast<float>(columns) * column_width + 8.0f;
+}
+
+float category_legend_height(const SkinViewCategories& categories, float width) {
+  const auto [unused, column_width] = category_legend_columns(categories, 0.0f);
+  const auto columns = static_cast<size_t>(std::max(1.0f, std::floor((width - 8.0f) / column_width)));
+  const size_t rows = (categories.names.size() + columns - 1) / columns;
+  return static_cast<float>(rows) * category_line() + 8.0f;
 }
 
 std::vector<SkinViewLabel> draw_category_legend(ImDrawList& draw, ImVec2 top_left, ImVec2 size,

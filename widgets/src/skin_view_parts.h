@@ -23,6 +23,8 @@ float bottom_legend_height();
 // The width of a category legend `height` high: its longest name, a swatch and margins, once
 // per column (a second column when the names do not fit one above the other).
 float category_legend_width(const SkinViewCategories& categories, float height);
+// The height of the legend laid under the map in as many columns as `width` holds.
+float category_legend_height(const SkinViewCategories& categories, float width);
 
 bool boxes_overlap(const SkinViewBox& a, const SkinViewBox& b);
 

@@ -136,6 +136,7 @@ void Document::mark_store_seen() {
   if (!store) return;
   store_changes = store->change_count();
   journal_seen = store->last_sequence();
+  if (journal_at_open < 0) journal_at_open = journal_seen;
 }
 
 LabelStore& Document::label_store() {

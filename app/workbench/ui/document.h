@@ -32,6 +32,9 @@ struct Document {
   // edits are reloaded and named (follow_other_writers, labelling.h).
   int64_t store_changes = 0;
   int64_t journal_seen = 0;
+  // The store's newest journal row when this document first saw it: an undo of an edit at or
+  // before it takes back work of an earlier session, and says so.
+  int64_t journal_at_open = -1;
   // The skin's class vocabulary: the store's for this layout, else the layout's own.
   std::vector<std::string> classes;
   // Damaged label rows left out of `labels`, or why the label store did not open,

@@ -135,7 +135,8 @@ std::vector<KeyBinding> make_bindings() {
        [](S& s, int) { remove_selected_label(s); }},
       {"Labelling",
        {"Ctrl+Z", "Ctrl+Shift+Z"},
-       "undo / redo your last edit (also after a restart)",
+       "undo / redo your last edit, also one of an earlier session (the status bar says what it "
+       "took back and when), and go to it; while a segmenter runs, Ctrl+Z cancels the run",
        has_document,
        [](S& s, int k) { undo_edit(s, k == 1); }},
       {"Labelling",
@@ -148,9 +149,14 @@ std::vector<KeyBinding> make_bindings() {
        }},
       {"Suggestions",
        {"G"},
-       "run the segmenter again (the skin's own at first)",
+       "run the last segmenter again (on opening a skin's first recording: the skin's own)",
        has_document,
-       [](S& s, int) { run_segmenter(s, s.labelling.last_segmenter); }},
+       [](S& s, int) { run_segmenter(s, s.labelling.last_segmenter); },
+       false,
+       [](const S& s) {
+         const std::string params = s.labelling.segmenter_params.data();
+         return "now: " + s.labelling.last_segmenter + (params.empty() ? "" : " " + params);
+       }},
       {"Suggestions",
        {"A"},
        "accept the selected suggestion with the chosen class",
@@ -239,6 +245,12 @@ std::string keys_text(const KeyBinding& binding) {
   return keys.size() == 2 ? keys[0] + " / " + keys[1] : keys.front();
 }
 
+std::string key_sheet_text(const KeyBinding& binding, const WorkbenchState& state) {
+  std::string text = binding.what;
+  if (binding.now && state.document) text += "; " + binding.now(state);
+  return text;
+}
+
 std::string class_key(int position) {
   if (position < 1 || position > 20) return "";
   const std::string digit = std::to_string(position % 10);
@@ -293,7 +305,7 @@ void draw_key_sheet(WorkbenchState& state) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(keys_text(binding).c_str());
       ImGui::TableNextColumn();
-      ImGui::TextWrapped("%s", binding.what);
+      ImGui::TextWrapped("%s", key_sheet_text(binding, state).c_str());
     }
     ImGui::EndTable();
   }

@@ -22,12 +22,17 @@ struct KeyBinding {
   // `index`: which of `keys` was pressed.
   void (*act)(WorkbenchState&, int index) = nullptr;
   bool repeat = false;  // held down, the key repeats (arrows)
+  // What the key would do now, when that depends on the state (G: the segmenter it runs);
+  // the sheet shows it after `what`.
+  std::string (*now)(const WorkbenchState&) = nullptr;
 };
 
 // The table, in the sheet's order.
 const std::vector<KeyBinding>& key_bindings();
 // The keys of a binding as the sheet shows them: "Ctrl+Z", "1 ... 9, 0", "Tab / Shift+Tab".
 std::string keys_text(const KeyBinding& binding);
+// A binding's line on the sheet: `what`, and what it would do now when that depends on the state.
+std::string key_sheet_text(const KeyBinding& binding, const WorkbenchState& state);
 // The key that chooses class `position` (1-based) of a vocabulary: 1-9, 0 for the tenth,
 // Shift+1 ... Shift+0 for the 11th to 20th; "" beyond (the C picker reaches every class).
 std::string class_key(int position);

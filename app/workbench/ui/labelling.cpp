@@ -293,19 +293,66 @@ bool remove_selected_label(WorkbenchState& state) {
   return true;
 }
 
+namespace {
+
+// "2026-11-28T17:20:59.123Z" as "2026-11-28 17:20:59 UTC".
+std::string readable_time(std::string time) {
+  if (time.size() >= 19 && time[10] == 'T') return time.substr(0, 10) + " " + time.substr(11, 8) + " UTC";
+  return time;
+}
+
+// Brings [t0, t1] into the plot's view (keeping its width when it fits) and the cursor to t0.
+void show_span(WorkbenchState& state, double t0, double t1) {
+  if (t0 > t1) return;
+  SignalPlotState& plot = state.plot;
+  const double width = plot.view_t1 - plot.view_t0;
+  if (t1 - t0 > 0.9 * width) {
+    const double margin = 0.1 * std::max(0.2, t1 - t0);
+    plot.view_t0 = t0 - margin;
+    plot.view_t1 = t1 + margin;
+  } else if (t0 < plot.view_t0 || t1 > plot.view_t1) {
+    plot.view_t0 = 0.5 * (t0 + t1) - 0.5 * width;
+    plot.view_t1 = plot.view_t0 + width;
+  }
+  plot.fitted = true;
+  state.clock.seek(t0);
+}
+
+}  // namespace
+
 bool undo_edit(WorkbenchState& state, bool redo) {
   if (!state.document) return false;
+  LabellingState& labelling = state.labelling;
+  // While a segmenter run goes on, Ctrl+Z stops it: the newest thing the operator did is that
+  // run, not the label before it.
+  if (!redo && labelling.segment_job && labelling.segment_job->status() == JobStatus::kRunning) {
+    labelling.segment_job->cancel();
+    labelling.run_cancelled_by_undo = true;
+    state.error.clear();
+    state.notice = labelling.segment_job->name() + " cancelled (Ctrl+Z): nothing of it is kept";
+    return true;
+  }
+  EditSummary taken_back, changed;
   try {
     LabelStore& store = state.document->label_store();
-    const bool done = redo ? store.redo(state.labelling.annotator)
-                           : store.undo(state.labelling.annotator);
+    if (!redo) taken_back = summarize_edit(store.next_undo(labelling.annotator));
+    const int64_t before = store.last_sequence();
+    const bool done = redo ? store.redo(labelling.annotator) : store.undo(labelling.annotator);
     if (!done) return fail(state, redo ? "nothing to redo" : "nothing to undo");
+    changed = summarize_edit(store.journal_after(before));
   } catch (const EditConflict& conflict) {
     return refuse(state, conflict);
   } catch (const Error& error) {
     return fail(state, error.what());
   }
-  after_edit(state, 0, redo ? "redone" : "undone");
+  // Says what was taken back, and when it was made before this recording was opened (the last
+  // session's segmenter run, say), so that a first Ctrl+Z takes nothing back unseen.
+  std::string notice = redo ? "redone: " + describe_edit(changed) : "undone: " + describe_edit(taken_back);
+  if (!redo && taken_back.first_sequence <= state.document->journal_at_open)
+    notice += ", made in an earlier session (" + readable_time(taken_back.time) +
+              "); Ctrl+Shift+Z redoes it";
+  after_edit(state, 0, notice);
+  show_span(state, changed.t0, changed.t1);
   return true;
 }
 
@@ -331,6 +378,7 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
   if (!state.document) return false;
   Document& document = *state.document;
   state.labelling.last_segmenter = method;
+  state.labelling.run_cancelled_by_undo = false;
   try {
     const Parameters parameters =
         Parameters::parse(state.labelling.segmenter_params.data(), "segmenter parameters");
@@ -364,7 +412,22 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
 }
 
 void apply_finished_segmenter(WorkbenchState& state) {
-  std::optional<LabellingState::SegmentsFound> found = finished_job(state, state.labelling.segment_job);
+  LabellingState& labelling = state.labelling;
+  const bool ended = labelling.segment_job && labelling.segment_job->status() != JobStatus::kRunning;
+  std::optional<LabellingState::SegmentsFound> found = finished_job(state, labelling.segment_job);
+  if (ended && std::exchange(labelling.run_cancelled_by_undo, false) && found) {
+    // Ctrl+Z came after the run's last place to stop, as it stored its suggestions: they are
+    // taken back, as the cancel promised.
+    try {
+      if (state.document && state.document->path == found->document)
+        state.document->label_store().undo(labelling.annotator);
+      state.notice = found->method + " cancelled (Ctrl+Z): its suggestions, stored as it ended, are undone";
+    } catch (const std::exception& error) {
+      fail(state, error.what());
+    }
+    if (state.document) state.document->reload_labels();
+    return;
+  }
   if (!found || !state.document || state.document->path != found->document) return;
   after_edit(state, 0,
              found->method + ": " + std::to_string(found->added) + " suggestions" +

@@ -274,7 +274,19 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
   if (!live.channels_chosen && source.duration() >= 2.0) {
     live.channels_chosen = true;
     plot_moving_channels(state);
-    state.rest_scale_modality = -1;
+    live.scale_learnt_at = -1.0;
+  }
+  // The colour scale learnt again every two seconds over the whole buffer, as a replay learns it
+  // over the whole file: learnt once from the first two seconds, it stayed at their noise.
+  constexpr double kLearnEverySeconds = 2.0;
+  if (source.sample_count() > 0 && (source.end_time() >= live.scale_learnt_at + kLearnEverySeconds ||
+                                    source.end_time() < live.scale_learnt_at)) {
+    live.scale_learnt_at = source.end_time();
+    const bool same = state.rest_scale_modality == state.modality;
+    const std::vector<int> columns =
+        taxel_columns(state.document->layout, source.info().channels, state.modality);
+    state.rest_scale = live_rest_scale(source, columns, same ? state.rest_scale.max_change : 0.0);
+    state.rest_scale_modality = state.modality;
   }
   plot_active_channels(state);
   auto_record(state, services);
@@ -351,6 +363,7 @@ void draw_live_bar(WorkbenchState& state) {
   LiveState& live = state.live;
   const LiveCounters& counters = live.counters;
   const bool recording = !live.recording.empty();
+  const ImGuiStyle& style = ImGui::GetStyle();
   ImGui::TextColored(live.failure.empty() ? ImVec4(0.3f, 0.9f, 0.4f, 1.0f) : ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
                      live.failure.empty() ? "LIVE" : "FAILED");
   ImGui::SameLine();
@@ -385,11 +398,14 @@ void draw_live_bar(WorkbenchState& state) {
   remember_item(state, "input:pretrigger",
                 "Seconds before the press of Record that the file starts with");
   live.pretrigger_seconds = std::clamp(live.pretrigger_seconds, 0.0f, 600.0f);
-  ImGui::SameLine();
+  same_line_if_fits(ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                    ImGui::CalcTextSize("start on contact").x);
   ImGui::Checkbox("start on contact", &live.auto_record);
   remember_item(state, "checkbox:auto-record",
                 "Start a recording when a contact begins, stop it after a quiet time");
-  ImGui::SameLine();
+  // The model's field and Classify together, on the next line when they do not fit (at 1280
+  // x 720 Classify was cut off at the view's edge).
+  same_line_if_fits(160.0f + style.ItemSpacing.x + ImGui::CalcTextSize("Classify").x + 2 * style.FramePadding.x);
   ImGui::SetNextItemWidth(160);
   ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(), live.model_input.size());
   remember_item(state, "input:model",

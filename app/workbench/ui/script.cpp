@@ -306,6 +306,20 @@ void ScriptPlayer::click_recording(const ScriptStep& step) {
 void ScriptPlayer::click_item(const ScriptStep& step) {
   // The rest of the line after "item": names may hold spaces.
   const std::string name = step.rest.substr(step.rest.find_first_not_of(" \t", 4));
+  if (name.starts_with("menu:") && name.find('/') != std::string::npos) {
+    // An item of a menu that is not open (`menu:Help/Keys` with the Help menu closed): its
+    // menus are opened first, as `menu` does; an open one is clicked as it is.
+    actions_.push_back([this, name, step](Workbench& workbench, ImGuiIO&) {
+      if (workbench.state().frame < 1) return false;  // nothing drawn yet
+      if (workbench.state().targets.items.contains(name)) return true;
+      std::deque<Action> rest(actions_.begin() + 1, actions_.end());
+      actions_.clear();
+      actions_.push_back([](Workbench&, ImGuiIO&) { return true; });  // this one, popped
+      open_menus(menu_parts(name.substr(5)), step);
+      actions_.insert(actions_.end(), rest.begin(), rest.end());
+      return true;
+    });
+  }
   click_named(name, "no item '" + name + "' on screen", step);
 }
 
@@ -334,16 +348,20 @@ void ScriptPlayer::click_view(const ScriptStep& step) {
       step);
 }
 
-// "File/Export view as PNG/Skin": click the bar entry, hover each submenu, click the item.
-void ScriptPlayer::choose_menu(const ScriptStep& step) {
+std::vector<std::string> ScriptPlayer::menu_parts(const std::string& path) {
   std::vector<std::string> parts;
-  std::stringstream path(step.rest);
-  for (std::string part; std::getline(path, part, '/');) parts.push_back(part);
+  std::stringstream in(path);
+  for (std::string part; std::getline(in, part, '/');) parts.push_back(part);
+  return parts;
+}
+
+// The menus above the last part of `parts`: the bar entry clicked, each submenu hovered.
+void ScriptPlayer::open_menus(const std::vector<std::string>& parts, const ScriptStep& step) {
   std::string name = "menu:";
-  for (size_t k = 0; k < parts.size(); ++k) {
+  for (size_t k = 0; k + 1 < parts.size(); ++k) {
     name += (k ? "/" : "") + parts[k];
     const std::string missing = "no menu item '" + name.substr(5) + "'";
-    if (k > 0 && k + 1 < parts.size()) {  // a submenu: hovered, not clicked
+    if (k > 0) {  // a submenu: hovered, not clicked
       actions_.push_back([this, step, name, missing](Workbench& workbench, ImGuiIO& io) {
         const auto& items = workbench.state().targets.items;
         const auto found = items.find(name);
@@ -358,6 +376,15 @@ void ScriptPlayer::choose_menu(const ScriptStep& step) {
       click_named(name, missing, step);
     }
   }
+}
+
+// "File/Export view as PNG/Skin": click the bar entry, hover each submenu, click the item.
+void ScriptPlayer::choose_menu(const ScriptStep& step) {
+  const std::vector<std::string> parts = menu_parts(step.rest);
+  open_menus(parts, step);
+  std::string name = "menu:";
+  for (size_t k = 0; k < parts.size(); ++k) name += (k ? "/" : "") + parts[k];
+  click_named(name, "no menu item '" + name.substr(5) + "'", step);
 }
 
 void ScriptPlayer::wait_frames(const ScriptStep& step) {

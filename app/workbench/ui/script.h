@@ -49,6 +49,8 @@ class ScriptPlayer {
   void mouse_frame(std::function<ImVec2()> position, bool down);
   void click_named(const std::string& name, const std::string& missing, const ScriptStep& step);
   void drag(bool taxels, const ScriptStep& step);
+  static std::vector<std::string> menu_parts(const std::string& path);  // "File/Open..."
+  void open_menus(const std::vector<std::string>& parts, const ScriptStep& step);
   void draw_until(std::function<bool(Workbench&)> finished, const std::string& timeout,
                   const ScriptStep& step);
 

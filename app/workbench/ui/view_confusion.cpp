@@ -86,10 +86,13 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
       if (ImGui::InvisibleButton("cell", ImVec2(cell - 1, cell - 1))) select_cell(state, row, predicted);
       ImGui::PopID();
       remember_item(state, "cell:" + name + "/" + class_name(result, predicted));
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("true %s, predicted %s\n%d segments, %.1f %% of the row\nrecall %.1f %%",
-                          name.c_str(), class_name(result, predicted).c_str(), count,
-                          100.0 * share, 100.0 * result.per_class[static_cast<size_t>(row)].recall);
+      if (ImGui::IsItemHovered()) {
+        char tip[512];
+        std::snprintf(tip, sizeof tip, "true %s, predicted %s\n%d segments, %.1f %% of the row\nrecall %.1f %%",
+                      name.c_str(), class_name(result, predicted).c_str(), count, 100.0 * share,
+                      100.0 * result.per_class[static_cast<size_t>(row)].recall);
+        view_tooltip(state, tip);
+      }
     }
   }
   // The colour scale: share of the true class's row.

@@ -33,7 +33,18 @@ void draw_legend(WorkbenchState& state, const char* view, std::vector<std::strin
                        class_colour(state, classes[k]));
     remember_legend(state, view, classes[k], ImVec2(row.x, row.y + 3), 10.0f);
     draw.AddText(ImVec2(row.x + 14, row.y), IM_COL32(220, 220, 220, 255), classes[k].c_str());
+    const ImVec2 text = ImGui::CalcTextSize(classes[k].c_str());
+    remember_box(state, std::string("legend-row:") + view + ":" + classes[k], row,
+                 ImVec2(row.x + 14 + text.x, row.y + text.y));
   }
+}
+
+// The legend's width: its longest class name's, up to 45 % of the view (130 pixels cut names
+// of Robovie's scenario stages off).
+float legend_width_for(const std::vector<std::string>& classes, float available) {
+  float widest = 0.0f;
+  for (const std::string& name : classes) widest = std::max(widest, ImGui::CalcTextSize(name.c_str()).x);
+  return std::min(std::max(100.0f, widest + 14.0f + 16.0f), 0.45f * available);
 }
 
 // The prediction of a dataset row in the current evaluation, for landing on it.
@@ -65,12 +76,13 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
   int64_t wrong = 0;
   for (const RowOutcome& outcome : outcomes) wrong += outcome.tested && outcome.truth != outcome.predicted;
-  ImGui::Text("PCA of %lld rows x %lld features: PC1-PC2 explain %.0f %%   %lld misclassified (ringed)",
-              static_cast<long long>(dataset.rows()), static_cast<long long>(dataset.features.cols()),
-              100.0 * analysis.scatter_explained, static_cast<long long>(wrong));
+  ImGui::TextWrapped("PCA of %lld rows x %lld features: PC1-PC2 explain %.0f %%   %lld misclassified (ringed)",
+                     static_cast<long long>(dataset.rows()), static_cast<long long>(dataset.features.cols()),
+                     100.0 * analysis.scatter_explained, static_cast<long long>(wrong));
+  remember_box(state, "text:scatter-header", ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
-  const float legend_width = 130.0f;
+  const float legend_width = legend_width_for(classes, available.x);
   const ImVec2 plot(std::max(50.0f, available.x - legend_width), std::max(50.0f, available.y));
   ImGui::InvisibleButton("scatter", plot);
   remember_item(state, "scatter");
@@ -112,9 +124,9 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
     std::string predicted = "-";
     if (outcome.tested && result)
       predicted = outcome.predicted >= 0 ? result->classes[static_cast<size_t>(outcome.predicted)] : "unknown";
-    ImGui::SetTooltip("%s  segment %lld\nclass %s, predicted %s\nclick: go to the segment",
-                      dataset.recordings[row].c_str(), static_cast<long long>(dataset.segment_ids[row]),
-                      dataset.classes[row].c_str(), predicted.c_str());
+    view_tooltip(state, dataset.recordings[row] + "  segment " + std::to_string(dataset.segment_ids[row]) +
+                            "\nclass " + dataset.classes[row] + ", predicted " + predicted +
+                            "\nclick: go to the segment");
     if (clicked)
       if (auto prediction = prediction_of(state, nearest)) land_on(state, *prediction);
   }
@@ -134,20 +146,21 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   }
   const ml::SomMap& map = analysis.som->map();
   const std::vector<std::string>& classes = analysis.som_classes;
-  ImGui::Text("SOM %d x %d: neurons coloured by their class, each row a dot on its winner", map.rows, map.columns);
-  if (analysis.som_quality) {
-    ImGui::SameLine();
-    ImGui::TextDisabled("(quantisation error %.3g, topographic error %.0f %%)",
-                        analysis.som_quality->quantisation_error,
-                        100.0 * analysis.som_quality->topographic_error);
-  }
-  ImGui::SameLine();
+  // The check box first and the words wrapped after it: at the end of the line it ran off a
+  // narrow view.
   ImGui::Checkbox("U-matrix", &analysis.u_matrix);
   remember_item(state, "U-matrix",
                 "Shade each neuron by its distance to its neighbours: dark valleys are clusters");
+  ImGui::SameLine();
+  ImGui::TextWrapped("SOM %d x %d: neurons coloured by their class, each row a dot on its winner",
+                     map.rows, map.columns);
+  if (analysis.som_quality)
+    ImGui::TextDisabled("quantisation error %.3g, topographic error %.0f %%",
+                        analysis.som_quality->quantisation_error,
+                        100.0 * analysis.som_quality->topographic_error);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
-  const float legend_width = 130.0f;
+  const float legend_width = legend_width_for(classes, available.x);
   const float list_height = analysis.som_neuron >= 0 ? std::min(140.0f, available.y * 0.3f) : 0.0f;
   const float cell = std::max(8.0f, std::min((available.x - legend_width) / map.columns,
                                              (available.y - list_height - 8) / map.rows));
@@ -182,10 +195,13 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
       if (ImGui::InvisibleButton("neuron", ImVec2(cell - 2, cell - 2))) analysis.som_neuron = k;
       ImGui::PopID();
       remember_item(state, "neuron:" + std::to_string(k));
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("neuron %d (%d, %d): %s, %d training wins", k, x, y,
-                          owner >= 0 ? classes[static_cast<size_t>(owner)].c_str() : "unlabelled",
-                          k < static_cast<int>(map.hits.size()) ? map.hits[static_cast<size_t>(k)] : 0);
+      if (ImGui::IsItemHovered()) {
+        char tip[256];
+        std::snprintf(tip, sizeof tip, "neuron %d (%d, %d): %s, %d training wins", k, x, y,
+                      owner >= 0 ? classes[static_cast<size_t>(owner)].c_str() : "unlabelled",
+                      k < static_cast<int>(map.hits.size()) ? map.hits[static_cast<size_t>(k)] : 0);
+        view_tooltip(state, tip);
+      }
     }
   // The rows' winners: a dot per row in its true class's colour, spread inside the neuron,
   // ringed red when the evaluation got it wrong.

@@ -113,7 +113,12 @@ void draw_results_table(WorkbenchState& state, float height) {
                                 ImGuiTableFlags_Resizable;
   if (!ImGui::BeginTable("results", 4, flags, ImVec2(0, height))) return;
   ImGui::TableSetupScrollFreeze(0, 1);
-  ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthStretch);
+  // The classifier's column as wide as its longest name ("coarse-gaussian-svm" was cut when the
+  // four columns shared the width); the numbers share the rest.
+  float names = ImGui::CalcTextSize("classifier").x;
+  for (const ml::PresetOutcome& outcome : analysis.results)
+    names = std::max(names, ImGui::CalcTextSize(outcome.classifier.c_str()).x);
+  ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthFixed, names + 8.0f);
   ImGui::TableSetupColumn("accuracy", ImGuiTableColumnFlags_DefaultSort |
                                           ImGuiTableColumnFlags_PreferSortDescending);
   ImGui::TableSetupColumn("mean recall", ImGuiTableColumnFlags_PreferSortDescending);
@@ -146,6 +151,11 @@ void draw_results_table(WorkbenchState& state, float height) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
     const bool selected = static_cast<int>(index) == analysis.current;
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    remember_box(state, "result-cell:" + outcome.classifier, at,
+                 ImVec2(at.x + ImGui::GetContentRegionAvail().x, at.y + ImGui::GetTextLineHeight()));
+    const ImVec2 extent = ImGui::CalcTextSize(outcome.classifier.c_str());
+    remember_box(state, "result-name:" + outcome.classifier, at, ImVec2(at.x + extent.x, at.y + extent.y));
     if (ImGui::Selectable(outcome.classifier.c_str(), selected,
                           ImGuiSelectableFlags_SpanAllColumns) &&
         outcome.result)

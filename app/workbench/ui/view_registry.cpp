@@ -73,17 +73,55 @@ std::string format_seconds(double seconds) {
 ScreenRect to_rect(ImVec2 min, ImVec2 max) { return {min.x, min.y, max.x, max.y}; }
 
 void remember_item(WorkbenchState& state, const std::string& name) {
-  state.targets.items[name] = to_rect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
+  // The part of the item that is visible: a table row spanning its columns is wider than a
+  // narrow sidebar, and the middle of the whole row lay beyond the sidebar's edge, where a
+  // click reached the next panel (`click item label-row:ID` did nothing).
+  const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
+  const ImDrawList& draw = *ImGui::GetWindowDrawList();
+  const ImVec2 clip_min = draw.GetClipRectMin(), clip_max = draw.GetClipRectMax();
+  const ImVec2 shown_min(std::max(min.x, clip_min.x), std::max(min.y, clip_min.y));
+  const ImVec2 shown_max(std::min(max.x, clip_max.x), std::min(max.y, clip_max.y));
+  const bool visible = shown_min.x < shown_max.x && shown_min.y < shown_max.y;
+  state.targets.items[name] = visible ? to_rect(shown_min, shown_max) : to_rect(min, max);
+  state.targets.boxes[name] = to_rect(min, max);
+}
+
+void remember_box(WorkbenchState& state, const std::string& name, ImVec2 min, ImVec2 max) {
+  state.targets.boxes[name] = to_rect(min, max);
+}
+
+bool tooltips_allowed() {
+  // Not while the mouse rests where it last clicked: after a click (Train all, a cell) the
+  // tooltip of whatever lies under the pointer stood over the view the click opened.
+  const ImGuiIO& io = ImGui::GetIO();
+  return io.MouseClickedTime[0] <= 0.0 || io.MousePos.x != io.MouseClickedPos[0].x ||
+         io.MousePos.y != io.MouseClickedPos[0].y;
+}
+
+void view_tooltip(WorkbenchState& state, const std::string& text) {
+  if (!tooltips_allowed()) return;
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  state.targets.items["tooltip"] = to_rect(at, ImVec2(at.x + size.x, at.y + size.y));
+  ImGui::EndTooltip();
+}
+
+void same_line_if_fits(float width) {
+  const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right) ImGui::SameLine();
 }
 
 void remember_item(WorkbenchState& state, const std::string& name, const std::string& tip) {
   remember_item(state, name);
   state.targets.tips[name] = tip;
-  tooltip(tip.c_str());
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) view_tooltip(state, tip);
 }
 
 void tooltip(const char* text) {
-  if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+  if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled) || !tooltips_allowed()) return;
   // Wrapped at a reading width: a long tip on one line ran past the window's edge.
   ImGui::BeginTooltip();
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36.0f);

@@ -80,7 +80,7 @@ SkinViewCategories body_regions(const SkinLayout& layout) {
       if (group.kind != kind) continue;
       const int category = static_cast<int>(regions.names.size());
       regions.names.push_back(group.name.empty() ? group.id : group.name);
-      regions.colours.push_back(class_palette_colour(regions.names.size() - 1));
+      regions.colours.push_back(distinct_palette_colour(regions.names.size() - 1));
       for (int64_t id : group.taxels) {
         const auto found = index_of.find(id);
         if (found != index_of.end() && regions.of_taxel[found->second] < 0)
@@ -208,6 +208,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   }
   double value_min = 0.0, value_max = 1.0;
   const std::vector<float> values = skin_values_now(state, value_min, value_max);
+  state.targets.skin_scale = {value_min, value_max};
   SkinViewStyle style;
   style.modality_label = current;
   style.values_are_change = !state.show_raw_values;
@@ -232,6 +233,9 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   if (on_map) {
     if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id)
       state.analysis.map_layout = layout_on_map(layout, *state.analysis.map);
+    // Robovie's 274 dots were 5 pixels across in the default window's panel, too small to tell
+    // their colours apart.
+    style.min_taxel_pixels = 8.0f;
     drawn = &*state.analysis.map_layout;
     style.show_group_names = false;
     const SomatosensoryMap& map = *state.analysis.map;
@@ -243,12 +247,15 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
         static_cast<long long>(map.samples), map.source.c_str());
     ImGui::PopStyleColor();
     remember_item(state, "somatosensory:caption");
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "%zu taxels placed by classical MDS of the distances -ln|R| between their signals\n"
-          "(R: Pearson correlation over %s).\nShare of the distances no flat map can hold "
-          "(negative eigenvalues): %.2f",
-          map.taxels.size(), map.source.c_str(), map.negative_eigenvalue_ratio);
+    if (ImGui::IsItemHovered()) {
+      char tip[512];
+      std::snprintf(tip, sizeof tip,
+                    "%zu taxels placed by classical MDS of the distances -ln|R| between their "
+                    "signals\n(R: Pearson correlation over %s).\nShare of the distances no flat "
+                    "map can hold (negative eigenvalues): %.2f",
+                    map.taxels.size(), map.source.c_str(), map.negative_eigenvalue_ratio);
+      view_tooltip(state, tip);
+    }
   } else if (state.analysis.somatosensory) {
     // Computing: the body map meanwhile, the job's progress above it.
     draw_job(state, state.analysis.map_job.get(), nullptr, "somatosensory map");

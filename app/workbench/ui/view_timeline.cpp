@@ -207,6 +207,9 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
   }
   if (!collapsed) {
     const std::string title = lane_title(id);
+    const ImVec2 extent = ImGui::CalcTextSize(title.c_str());
+    remember_box(state, "lane-name:" + id, ImVec2(origin.x + 2.0f, origin.y + 4.0f),
+                 ImVec2(origin.x + 2.0f + extent.x, origin.y + 4.0f + extent.y));
     draw.PushClipRect(origin, ImVec2(left - 2.0f, origin.y + height), true);
     draw.AddText(ImVec2(origin.x + 2.0f, origin.y + 4.0f),
                  own ? IM_COL32(255, 200, 120, 255) : IM_COL32(190, 190, 190, 255), title.c_str());
@@ -269,10 +272,16 @@ void draw_lanes(WorkbenchState& state, float width) {
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   // Aligned under the plot's data area (its value axis takes the left strip, where the
   // lanes' names go).
-  const auto axis = state.targets.time_axes.find("signals");
-  const float left = axis != state.targets.time_axes.end() ? axis->second.area.x0 : origin.x + 60.0f;
-  const float right = axis != state.targets.time_axes.end() ? axis->second.area.x1 : origin.x + width;
+  // Without the plot (another tab shown), the names' column is as wide as the longest name: 60
+  // pixels cut "proximity" to "proximit".
   const auto lanes = shown_lanes(state);
+  float names = 60.0f;
+  for (const auto& [id, lane] : lanes)
+    names = std::max(names, ImGui::CalcTextSize(lane_title(id).c_str()).x + 10.0f);
+  const auto axis = state.targets.time_axes.find("signals");
+  const bool aligned = axis != state.targets.time_axes.end();
+  const float left = aligned ? std::max(axis->second.area.x0, origin.x + names) : origin.x + names;
+  const float right = aligned ? axis->second.area.x1 : origin.x + width;
   std::vector<std::string> ids;
   for (const auto& [id, lane] : lanes) ids.push_back(id);
   for (const auto& [id, lane] : lanes) {

@@ -60,6 +60,15 @@ void remember_item(WorkbenchState& state, const std::string& name);
 void remember_item(WorkbenchState& state, const std::string& name, const std::string& tip);
 // A tooltip for the last item while it is hovered.
 void tooltip(const char* text);
+// An item's whole box (the state's `boxes`), for what is drawn without an item of its own.
+void remember_box(WorkbenchState& state, const std::string& name, ImVec2 min, ImVec2 max);
+// False while the mouse rests where it last clicked: no tooltip then.
+bool tooltips_allowed();
+// A tooltip of `text` now (when tooltips_allowed), wrapped at a reading width; its box is the
+// item `tooltip` of this frame.
+void view_tooltip(WorkbenchState& state, const std::string& text);
+// ImGui::SameLine when an item `width` wide still fits on the line, else the next line.
+void same_line_if_fits(float width);
 ScreenRect to_rect(ImVec2 min, ImVec2 max);
 // The rest scale of the current modality (`columns`: its taxel columns), computed once
 // per recording and modality.

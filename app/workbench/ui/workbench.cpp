@@ -771,9 +771,16 @@ nlohmann::json Workbench::state_json() const {
   json["legends"] = legends;
   json["tips"] = state_.targets.tips;
   json["help"] = {{"keys", state_.help.keys_open}, {"getting_started", state_.help.about_open}};
+  // The sheet of keys as F1 shows it now: each row's keys and what they do.
+  for (const KeyBinding& binding : key_bindings())
+    json["help"]["sheet"][keys_text(binding)] = key_sheet_text(binding, state_);
   nlohmann::json items = nlohmann::json::array();
   for (const auto& [name, rect] : state_.targets.items) items.push_back(name);
   json["items"] = items;
+  nlohmann::json boxes = nlohmann::json::object();
+  for (const auto& [name, rect] : state_.targets.boxes)
+    boxes[name] = {{"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+  json["boxes"] = boxes;
   // The skin as drawn: each taxel's box (a touched one's enlarged box), the touched taxels,
   // the names on the map, and the columns of a strip laid in rows (0: as the layout lies).
   const auto box_json = [](const ScreenRect& rect) {
@@ -792,7 +799,9 @@ nlohmann::json Workbench::state_json() const {
   json["skin"] = {{"taxels", skin_taxels},
                   {"touched", state_.targets.touched_taxels},
                   {"names", skin_names},
-                  {"columns", state_.skin_drawing.columns}};
+                  {"columns", state_.skin_drawing.columns},
+                  {"scale", {{"min", state_.targets.skin_scale.first},
+                             {"max", state_.targets.skin_scale.second}}}};
   if (const auto caption = state_.targets.items.find("somatosensory:caption");
       caption != state_.targets.items.end())
     json["skin"]["caption"] = box_json(caption->second);

@@ -54,12 +54,16 @@ struct TimeAxis {
 // Where things were drawn on the last frame (screen pixels), by name.
 struct UiTargets {
   std::map<std::string, ScreenRect> items;  // "view:skin", "menu:File", "menu:File/Open..."
+  // An item's whole box as laid out, also the part cut off by its view (the state's `boxes`:
+  // tests hold what a view draws to fitting inside it).
+  std::map<std::string, ScreenRect> boxes;
   std::map<std::string, TimeAxis> time_axes;  // view name -> axis
   std::map<int64_t, std::pair<float, float>> taxels;  // taxel id -> centre on screen
   ScreenRect skin_map;                                // the skin view's drawing area
   std::map<std::string, std::string> tips;            // a control's tooltip, by its item name
   std::map<int64_t, ScreenRect> taxel_boxes;          // taxel id -> its box as drawn
   std::vector<int64_t> touched_taxels;                // drawn enlarged as touched
+  std::pair<double, double> skin_scale{0.0, 1.0};      // the colour scale's ends as drawn
   std::vector<std::pair<std::string, ScreenRect>> skin_names;  // group id or taxel name, box
 };
 
@@ -87,6 +91,7 @@ struct LabellingState {
   std::set<std::string> hidden, collapsed;
   std::array<char, 256> segmenter_params{};  // typed in the Labels menu
   bool snap = true;
+  bool run_cancelled_by_undo = false;  // Ctrl+Z cancelled the running segmenter job
   std::string last_segmenter = "adaptive";   // G runs it again; on opening, the skin's own
   std::string segmenter_skin;                // the skin last_segmenter was chosen for
   bool picker_open = false;                  // the type-ahead class picker (key C)
@@ -220,6 +225,7 @@ struct LiveState {
   bool resize_request = false;   // the buffer's length changed: a new buffer next frame
   double active_checked_at = -1.0;  // stream time the plot last followed the active channels
   bool channels_chosen = false;  // the moving channels are picked once data has arrived
+  double scale_learnt_at = -1.0;  // stream time the colour scale was last learnt (live_rest_scale)
   std::string recording;            // the file being recorded; "" when not recording
   int64_t recorded_samples = 0;     // taken into it so far
   RecorderRoom room;                // its disk, as of the recorder's last flush

@@ -137,6 +137,32 @@ bool LabelStore::redo(const std::string& annotator) {
   return true;
 }
 
+std::vector<JournalEntry> LabelStore::next_undo(const std::string& annotator) const {
+  int64_t target_batch = 0;
+  {
+    // The batch undo() finds, the same way.
+    sqlite::Statement find(database_, path_,
+                           std::string("SELECT batch FROM journal WHERE ") + kEditActions +
+                               " AND undone = 0" + (annotator.empty() ? "" : " AND annotator = ?") +
+                               " ORDER BY sequence DESC LIMIT 1");
+    if (!annotator.empty()) find.bind(1, annotator);
+    if (!find.step()) return {};
+    target_batch = find.integer(0);
+  }
+  sqlite::Statement select(database_, path_,
+                           std::string("SELECT ") + label_rows::kJournalColumns +
+                               " FROM journal WHERE " + kEditActions +
+                               " AND undone = 0 AND batch = ? ORDER BY sequence ASC");
+  select.bind(1, target_batch);
+  std::vector<JournalEntry> entries;
+  while (select.step()) {
+    label_rows::CheckedJournal row = label_rows::read_journal(select);
+    if (row.problem) throw label_rows::problem_error(*row.problem, path_);
+    entries.push_back(std::move(*row.entry));
+  }
+  return entries;
+}
+
 std::vector<JournalEntry> LabelStore::journal(int64_t limit) const {
   sqlite::Statement select(database_, path_,
                            std::string("SELECT ") + label_rows::kJournalColumns +

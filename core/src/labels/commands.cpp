@@ -1,5 +1,8 @@
 #include "tactile/labels/commands.h"
 
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
 namespace tactile {
 
 Label adopted_label(const Label& label, const std::string& class_name, const std::string& annotator) {
@@ -83,6 +86,53 @@ LabelEdit annotator_import(const LabelStore& store, const std::string& recording
   previous.annotator = annotator;
   previous.source = LabelSource::kManual;
   return replacing_import(store, previous, labels);
+}
+
+EditSummary summarize_edit(const std::vector<JournalEntry>& rows) {
+  EditSummary edit;
+  bool spanned = false;
+  for (const JournalEntry& row : rows) {
+    if (edit.time.empty()) edit.time = row.time, edit.first_sequence = row.sequence;
+    const bool before = !row.before_json.empty(), after = !row.after_json.empty();
+    if (!before && after)
+      ++edit.added;
+    else if (before && !after)
+      ++edit.removed;
+    else
+      ++edit.changed;
+    for (const std::string* text : {&row.before_json, &row.after_json}) {
+      if (text->empty()) continue;
+      const nlohmann::json label = nlohmann::json::parse(*text, nullptr, false);
+      if (!label.is_object()) continue;
+      if (label.contains("annotator") && label["annotator"].is_string()) {
+        const std::string lane = label["annotator"];
+        if (std::find(edit.lanes.begin(), edit.lanes.end(), lane) == edit.lanes.end())
+          edit.lanes.push_back(lane);
+      }
+      if (label.contains("t0") && label["t0"].is_number() && label.contains("t1") &&
+          label["t1"].is_number()) {
+        const double t0 = label["t0"], t1 = label["t1"];
+        edit.t0 = spanned ? std::min(edit.t0, t0) : t0;
+        edit.t1 = spanned ? std::max(edit.t1, t1) : t1;
+        spanned = true;
+      }
+    }
+  }
+  return edit;
+}
+
+std::string describe_edit(const EditSummary& edit) {
+  const bool segmenter = edit.lanes.size() == 1 && edit.lanes.front().starts_with("segmenter:");
+  const int labels = edit.added + edit.removed + edit.changed;
+  std::string what;
+  for (const auto& [n, verb] : {std::pair{edit.added, "added"}, {edit.removed, "removed"},
+                                 {edit.changed, "changed"}})
+    if (n > 0) what += (what.empty() ? "" : " and ") + std::string(verb) + " " + std::to_string(n);
+  what += segmenter ? (labels == 1 ? " suggestion" : " suggestions") : (labels == 1 ? " label" : " labels");
+  if (segmenter) return edit.lanes.front().substr(10) + "'s segmenter run, which " + what;
+  std::string lanes;
+  for (const std::string& lane : edit.lanes) lanes += (lanes.empty() ? "" : ", ") + lane;
+  return "an edit of " + (lanes.empty() ? std::string("the labels") : lanes) + ", which " + what;
 }
 
 }  // namespace tactile

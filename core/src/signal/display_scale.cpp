@@ -105,6 +105,17 @@ RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int 
   return scale;
 }
 
+RestScale live_rest_scale(const SampleSource& source, const std::vector<int>& columns,
+                          double previous_top) {
+  RestScale scale = rest_scale(source, columns);
+  std::vector<float> bands;
+  for (size_t k = 0; k < scale.noise_band.size(); ++k)
+    if (std::isfinite(scale.rest[k])) bands.push_back(scale.noise_band[k]);
+  const double quiet_top = bands.empty() ? 0.0 : kQuietTopBands * stats::median(bands);
+  scale.max_change = std::max({scale.max_change, previous_top, quiet_top});
+  return scale;
+}
+
 std::vector<float> change_from_rest(const std::vector<float>& values, const RestScale& scale) {
   std::vector<float> changes(values.size(), std::numeric_limits<float>::quiet_NaN());
   for (size_t k = 0; k < values.size() && k < scale.rest.size(); ++k) {

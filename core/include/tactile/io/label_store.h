@@ -209,6 +209,9 @@ class LabelStore {
   // leaving the store unchanged: an undo never takes back someone else's work.
   bool undo(const std::string& annotator = {});
   bool redo(const std::string& annotator = {});
+  // The journal rows of the edit undo(annotator) would revert now, oldest first (empty when
+  // there is none): what Ctrl+Z is about to take back, to say so.
+  std::vector<JournalEntry> next_undo(const std::string& annotator = {}) const;
   // The newest `limit` journal rows, newest first (a negative limit: all rows).
   std::vector<JournalEntry> journal(int64_t limit = 1000) const;
 

@@ -39,6 +39,22 @@ LabelEdit reject_edit(const Label& suggestion);
 LabelEdit class_edit(Label label, const std::string& class_name);
 LabelEdit bounds_edit(Label label, double t0, double t1);
 
+// What an edit did (or an undo or redo of it), read from its journal rows: labels added,
+// removed (or rejected) and changed; whose lanes they were in ("segmenter:threshold", "ana"),
+// the span of the recording they cover (t0 > t1 when the rows name no times), and when the
+// edit was written (its first row).
+struct EditSummary {
+  int added = 0, removed = 0, changed = 0;
+  std::vector<std::string> lanes;
+  double t0 = 1.0, t1 = 0.0;
+  int64_t first_sequence = 0;
+  std::string time;
+};
+EditSummary summarize_edit(const std::vector<JournalEntry>& rows);
+// "threshold's segmenter run, which added 12 suggestions", "an edit of ana, which added 1
+// label": the edit an undo takes back (or a redo puts back), in words.
+std::string describe_edit(const EditSummary& edit);
+
 // Imported ground truth of one recording: the recording's earlier ground truth removed, the
 // imported labels added, as one edit (importing the same file again replaces, never doubles).
 LabelEdit ground_truth_import(const LabelStore& store, const std::string& recording,

@@ -34,6 +34,15 @@ inline constexpr int64_t kRestScaleExactSamples = 32768;
 RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns,
                      int probes = 2048);
 
+// The scale of a live stream, learnt again over what its buffer holds as it arrives: rest_scale
+// of `source`, whose top never falls below `previous_top` (a touch once seen keeps its place on
+// the scale) nor below kQuietTopBands times the median noise band: before the first touch the
+// top of a quiet skin's changes was its noise (+1 where a replay of the same samples read
+// +198), and the noise lit taxels at random.
+inline constexpr double kQuietTopBands = 10.0;
+RestScale live_rest_scale(const SampleSource& source, const std::vector<int>& columns,
+                          double previous_top);
+
 // max(0, |value - rest| - noise band) per entry; NaN stays NaN.
 std::vector<float> change_from_rest(const std::vector<float>& values, const RestScale& scale);
 

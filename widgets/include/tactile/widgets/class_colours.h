@@ -17,6 +17,10 @@ inline constexpr uint32_t kNeutralClassColour = 0xFF969696u;  // (150, 150, 150)
 // The colour of place `index`: nine Tableau colours (Tableau 10 without its grey), then hues
 // spread by the golden angle, so that no two places share a colour.
 uint32_t class_palette_colour(size_t index);
+// The index-th of a palette for many categories at once (a skin's 21 body regions): each new
+// colour the farthest (CIELAB) from those before it among colours that read on the dark
+// background; no two of the first 21 closer than 34 (dE76; the class palette's came within 10).
+uint32_t distinct_palette_colour(size_t index);
 
 class ClassColours {
  public:

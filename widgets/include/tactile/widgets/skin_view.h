@@ -63,6 +63,9 @@ struct SkinViewStyle {
   // a taxel smaller than its spacing is drawn larger, up to a pixel short of touching its
   // neighbours, so its drawn size follows the panel. Empty: each taxel at its own size.
   std::span<const double> neighbour_distances = {};
+  // Taxels drawn smaller than this many pixels across are drawn this large, about their centres
+  // (a somatosensory map's dots); 0: as the layout sizes them.
+  float min_taxel_pixels = 0.0f;
   // Fill by category, legend of the categories; the values then show only as a ring around
   // touched taxels. Null: fill by value, colour-scale legend.
   const SkinViewCategories* categories = nullptr;
