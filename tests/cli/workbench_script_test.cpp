@@ -157,7 +157,7 @@ TEST_F(WorkbenchScript, ArgumentsThatFitNoFormOfTheCommandNameTheFormsItHas) {
        "script.txt:1: drag: expected 'drag time T0 T1 [in VIEW]' or 'drag taxel A B'"},
       {"wait 1 2\n",
        "script.txt:1: wait: wrong number of arguments, expected 'wait N', 'wait training', "
-       "'wait jobs' or 'wait labels N'"}};
+       "'wait jobs', 'wait labels N' or 'wait results N'"}};
   for (const auto& [text, error] : cases) {
     const auto result = run("--script " + script(text));
     EXPECT_NE(result.exit_code, 0) << text;
