@@ -39,6 +39,21 @@ TEST(RestScale, NoiseStaysDarkAndATouchShowsAboveIt) {
   EXPECT_GT(change_from_rest({130.0f}, scale)[0], 0.8 * scale.max_change);
 }
 
+TEST(RestScale, ALiveScaleOfQuietNoiseTopsAtTenNoiseBandsAndNeverFalls) {
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 10;
+  stream.channels = {"a"};
+  stream.samples = SampleMatrix::Zero(200, 1);
+  for (int k = 0; k < 200; ++k) stream.samples(k, 0) = 100.0f + static_cast<float>(k % 3 - 1);
+  const MemorySampleSource source(stream, "strip:1", "r");
+  const RestScale quiet = live_rest_scale(source, {0}, 0.0);
+  EXPECT_NEAR(quiet.max_change, kQuietTopBands * quiet.noise_band[0], 1e-4);
+  // A noise sample just beyond the band stays near the bottom of the scale.
+  EXPECT_LT(change_from_rest({100.0f + quiet.noise_band[0] + 1.0f}, quiet)[0], 0.1 * quiet.max_change);
+  EXPECT_DOUBLE_EQ(live_rest_scale(source, {0}, 500.0).max_change, 500.0);
+}
+
 TEST(RestScale, FlatRecordingKeepsAPositiveScale) {
   Stream stream;
   stream.rate_hz = 10;

@@ -164,6 +164,26 @@ TEST_F(LabelStoreTest, UndoAfterASegmenterRunTakesBackTheRunNotTheLabelBeforeIt)
   EXPECT_EQ(table(store), before);
 }
 
+TEST_F(LabelStoreTest, NextUndoIsTheRunThatUndoTakesBackAndItsSummarySaysSo) {
+  LabelStore store(path_);
+  store.add(make_label("r1", 0.5, 1.5, "poke", "ana"));
+  store.apply(segmenter_run(store, "r1", "threshold", suggestions("threshold", 5)).edit, "ana");
+  const EditSummary next = summarize_edit(store.next_undo("ana"));
+  EXPECT_EQ(next.added, 5);
+  EXPECT_EQ(next.removed, 0);
+  EXPECT_EQ(next.lanes, std::vector<std::string>{"segmenter:threshold"});
+  EXPECT_LE(next.t0, next.t1);
+  EXPECT_EQ(describe_edit(next), "threshold's segmenter run, which added 5 suggestions");
+  const int64_t before = store.last_sequence();
+  ASSERT_TRUE(store.undo("ana"));
+  const EditSummary undone = summarize_edit(store.journal_after(before));
+  EXPECT_EQ(undone.removed, 5);
+  EXPECT_DOUBLE_EQ(undone.t0, next.t0);
+  EXPECT_DOUBLE_EQ(undone.t1, next.t1);
+  // Then the label before it.
+  EXPECT_EQ(describe_edit(summarize_edit(store.next_undo("ana"))), "an edit of ana, which added 1 label");
+}
+
 TEST_F(LabelStoreTest, ASegmenterRunNamesUnknownClassesAndKeepsOtherMethodsAndLanes) {
   LabelStore store(path_);
   store.add_many(suggestions("threshold", 3, 0.0, kUnknownClass));

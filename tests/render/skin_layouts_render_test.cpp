@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -35,7 +36,11 @@ TEST_P(SkinLayoutRender, TaxelCentresShowTheirValueColour) {
   const SkinLayout layout = load_layout(GetParam());
   ASSERT_FALSE(layout.taxels.empty());
   std::vector<float> values(layout.taxels.size());
-  for (size_t index = 0; index < values.size(); ++index) values[index] = (index % 5) / 4.0f;
+  // Values over the lower half of the scale, and every tenth taxel touched (at the top): a
+  // touched tiny taxel is drawn 18 pixels across over its neighbours (TSA here), so touches
+  // are kept apart enough to leave centres to check.
+  for (size_t index = 0; index < values.size(); ++index)
+    values[index] = index % 10 == 9 ? 1.0f : static_cast<float>(index % 5) / 10.0f;
 
   OffscreenRenderer renderer(1000, 700);
   for (bool names : {true, false}) {
@@ -50,15 +55,33 @@ TEST_P(SkinLayoutRender, TaxelCentresShowTheirValueColour) {
       continue;
     }
     // Screen outlines, in drawing order, to find the topmost taxel at a point and
-    // keep clear of edges (outlines and anti-aliased fringes).
+    // keep clear of edges (outlines and anti-aliased fringes). Touched taxels are drawn again
+    // last (weakest first), enlarged about their centres to their drawn boxes.
     std::vector<std::vector<Point2>> outlines;
-    for (const Taxel& taxel : layout.taxels) {
+    std::vector<size_t> order;
+    for (size_t index = 0; index < layout.taxels.size(); ++index) {
       std::vector<Point2> screen;
-      for (const Point2& point : taxel_outline(taxel)) {
+      for (const Point2& point : taxel_outline(layout.taxels[index])) {
         const ImVec2 pixel = result.transform.apply(point);
         screen.push_back({pixel.x, pixel.y});
       }
       outlines.push_back(screen);
+      order.push_back(index);
+    }
+    for (const int64_t id : result.touched_taxels) {
+      const auto found = std::find_if(layout.taxels.begin(), layout.taxels.end(),
+                                      [id](const Taxel& taxel) { return taxel.id == id; });
+      const auto index = static_cast<size_t>(found - layout.taxels.begin());
+      const ImVec2 centre = result.transform.apply(layout.taxels[index].position);
+      double low = 1e9, high = -1e9;
+      for (const Point2& point : outlines[index]) low = std::min(low, point.x), high = std::max(high, point.x);
+      const double factor =
+          high > low ? (result.taxels[index].max.x - result.taxels[index].min.x) / (high - low) : 1.0;
+      std::vector<Point2> enlarged;
+      for (const Point2& point : outlines[index])
+        enlarged.push_back({centre.x + factor * (point.x - centre.x), centre.y + factor * (point.y - centre.y)});
+      outlines.push_back(enlarged);
+      order.push_back(index);
     }
     int checked = 0;
     const size_t step = std::max<size_t>(1, layout.taxels.size() / 40);
@@ -67,14 +90,14 @@ TEST_P(SkinLayoutRender, TaxelCentresShowTheirValueColour) {
       const Point2 pixel_centre{std::floor(centre.x) + 0.5, std::floor(centre.y) + 0.5};
       int topmost = -1;
       double clearance = 1e9;
-      for (size_t other = 0; other < outlines.size(); ++other) {
-        const std::vector<Point2>& outline = outlines[other];
+      for (size_t drawn = 0; drawn < outlines.size(); ++drawn) {
+        const std::vector<Point2>& outline = outlines[drawn];
         for (size_t corner = 0; corner < outline.size(); ++corner) {
           clearance =
               std::min(clearance, distance_to_segment(pixel_centre, outline[corner],
                                                       outline[(corner + 1) % outline.size()]));
         }
-        if (point_in_polygon(outline, pixel_centre)) topmost = static_cast<int>(other);
+        if (point_in_polygon(outline, pixel_centre)) topmost = static_cast<int>(order[drawn]);
       }
       if (topmost < 0 || clearance < 2.5) continue;
       const Image::Rgba pixel = image.at(static_cast<int>(centre.x), static_cast<int>(centre.y));

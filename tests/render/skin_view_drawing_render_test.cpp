@@ -66,8 +66,9 @@ TEST(SkinViewDrawing, SmallTaxelsGrowTowardsTheirNeighboursWithoutTouchingThem) 
   EXPECT_LT(grown.result.taxels[4].max.x, grown.result.taxels[5].min.x);
 }
 
-TEST(SkinViewDrawing, ATouchedSmallTaxelIsDrawnOnTopAtLeastTenPixelsAcross) {
-  // 30 x 40 pads in 240 x 220 pixels: about 4 pixels a pad.
+TEST(SkinViewDrawing, ATouchedTinyTaxelIsDrawnOnTopEighteenPixelsAcross) {
+  // 30 x 40 pads in 240 x 220 pixels: about 4 pixels a pad (TSA's in the default window, whose
+  // touches drawn 10 pixels across read as dots; issue 41).
   OffscreenRenderer renderer(240, 220);
   const SkinLayout layout = pad_sheet(30, 40);
   std::vector<float> values(layout.taxels.size(), 0.0f);
@@ -79,14 +80,14 @@ TEST(SkinViewDrawing, ATouchedSmallTaxelIsDrawnOnTopAtLeastTenPixelsAcross) {
   ASSERT_EQ(drawn.result.touched_taxels, std::vector<int64_t>{layout.taxels[touched].id});
   EXPECT_LT(5.0 * drawn.result.transform.scale, 6.0);
   const SkinViewBox& box = drawn.result.taxels[touched];
-  EXPECT_GE(box_width(box), 9.5f);
-  EXPECT_LE(box_width(box), 11.0f);
+  EXPECT_GE(box_width(box), 17.5f);
+  EXPECT_LE(box_width(box), 19.0f);
   int lit = 0;
   const Colour top = viridis(1.0f);
   for (int y = static_cast<int>(box.min.y); y <= static_cast<int>(box.max.y); ++y)
     for (int x = static_cast<int>(box.min.x); x <= static_cast<int>(box.max.x); ++x)
       lit += close_to(drawn.image.at(x, y), top, 12);
-  EXPECT_GE(lit, 50);
+  EXPECT_GE(lit, 150);
 }
 
 TEST(SkinViewDrawing, TheBodyOutlineIsDrawnUnderTheTaxels) {

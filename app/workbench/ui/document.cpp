@@ -175,6 +175,7 @@ void Document::keep_labels_in_own_store() {
   store = std::move(mine);
   labels_path = own;
   labels_read_only.clear();
+  journal_at_open = -1;  // another store: its own journal
   mark_store_seen();  // the copy is ours, not another writer's news
   reload_labels();
 }

@@ -97,7 +97,7 @@ EditSummary summarize_edit(const std::vector<JournalEntry>& rows) {
     if (!before && after)
       ++edit.added;
     else if (before && !after)
-      ++edit.removed;
+      ++edit.removed, edit.rejected += row.action == "reject";
     else
       ++edit.changed;
     for (const std::string* text : {&row.before_json, &row.after_json}) {
@@ -122,8 +122,12 @@ EditSummary summarize_edit(const std::vector<JournalEntry>& rows) {
 }
 
 std::string describe_edit(const EditSummary& edit) {
-  const bool segmenter = edit.lanes.size() == 1 && edit.lanes.front().starts_with("segmenter:");
   const int labels = edit.added + edit.removed + edit.changed;
+  if (edit.rejected > 0 && edit.rejected == labels)
+    return "the rejection of " + std::to_string(labels) + (labels == 1 ? " suggestion" : " suggestions");
+  // A run stores suggestions (and drops the lane's earlier ones); a rejection is said above.
+  const bool segmenter = edit.lanes.size() == 1 && edit.lanes.front().starts_with("segmenter:") &&
+                         edit.changed == 0;
   std::string what;
   for (const auto& [n, verb] : {std::pair{edit.added, "added"}, {edit.removed, "removed"},
                                  {edit.changed, "changed"}})

@@ -45,6 +45,7 @@ LabelEdit bounds_edit(Label label, double t0, double t1);
 // edit was written (its first row).
 struct EditSummary {
   int added = 0, removed = 0, changed = 0;
+  int rejected = 0;  // of `removed`: suggestions rejected
   std::vector<std::string> lanes;
   double t0 = 1.0, t1 = 0.0;
   int64_t first_sequence = 0;
