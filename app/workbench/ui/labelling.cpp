@@ -414,8 +414,12 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
 void apply_finished_segmenter(WorkbenchState& state) {
   LabellingState& labelling = state.labelling;
   const bool ended = labelling.segment_job && labelling.segment_job->status() != JobStatus::kRunning;
+  const bool by_undo = ended && std::exchange(labelling.run_cancelled_by_undo, false);
+  const std::string undo_notice = state.notice;
   std::optional<LabellingState::SegmentsFound> found = finished_job(state, labelling.segment_job);
-  if (ended && std::exchange(labelling.run_cancelled_by_undo, false) && found) {
+  // Stopped by Ctrl+Z before it stored anything: the undo's notice says more than "cancelled".
+  if (by_undo && !found) state.notice = undo_notice;
+  if (by_undo && found) {
     // Ctrl+Z came after the run's last place to stop, as it stored its suggestions: they are
     // taken back, as the cancel promised.
     try {

@@ -111,14 +111,18 @@ void draw_results_table(WorkbenchState& state, float height) {
   const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg |
                                 ImGuiTableFlags_BordersOuter | ImGuiTableFlags_ScrollY |
                                 ImGuiTableFlags_Resizable;
-  if (!ImGui::BeginTable("results", 4, flags, ImVec2(0, height))) return;
-  ImGui::TableSetupScrollFreeze(0, 1);
   // The classifier's column as wide as its longest name ("coarse-gaussian-svm" was cut when the
-  // four columns shared the width); the numbers share the rest.
+  // four columns shared the width); the numbers share the rest. A table keeps the widths of its
+  // first frame, and Train all's results arrive one by one: a longer name makes it afresh.
   float names = ImGui::CalcTextSize("classifier").x;
   for (const ml::PresetOutcome& outcome : analysis.results)
     names = std::max(names, ImGui::CalcTextSize(outcome.classifier.c_str()).x);
-  ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthFixed, names + 8.0f);
+  analysis.results_name_width = std::max(analysis.results_name_width, names);
+  const std::string table_id = "results##" + std::to_string(static_cast<int>(analysis.results_name_width));
+  if (!ImGui::BeginTable(table_id.c_str(), 4, flags, ImVec2(0, height))) return;
+  ImGui::TableSetupScrollFreeze(0, 1);
+  ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthFixed,
+                          analysis.results_name_width + 8.0f);
   ImGui::TableSetupColumn("accuracy", ImGuiTableColumnFlags_DefaultSort |
                                           ImGuiTableColumnFlags_PreferSortDescending);
   ImGui::TableSetupColumn("mean recall", ImGuiTableColumnFlags_PreferSortDescending);

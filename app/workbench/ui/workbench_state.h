@@ -140,6 +140,7 @@ struct AnalysisState {
   // them the results hold.
   std::shared_ptr<TrainingSoFar> so_far;
   size_t so_far_shown = 0;
+  float results_name_width = 0.0f;  // the results table's longest classifier name so far
   // The results: one per classifier tried (one row of the train-all table each).
   std::vector<ml::PresetOutcome> results;
   std::string results_from;  // what they are of ("nao, kaboli features", a file)
