@@ -191,6 +191,7 @@ TEST(TrainAllPlan, OnAWideTableBoostingBaggingAndCovariancesLearnFromChosenColum
   EXPECT_TRUE(has("select:k=2000,base=bagged-trees"));
   EXPECT_TRUE(has("select:k=500,base=qda"));
   EXPECT_TRUE(has("select:k=500,base=gaussian-ml"));
+  EXPECT_TRUE(has("select:k=500,base=em"));
   EXPECT_TRUE(has("som"));  // trained in the span of its rows: whole
   EXPECT_TRUE(has("linear-svm"));
   for (const std::string& name : names) EXPECT_NO_THROW(make_classifier(name)) << name;

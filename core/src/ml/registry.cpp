@@ -40,9 +40,9 @@ struct ClassifierRow {
   int64_t widest = 0;  // ClassifierEntry::widest
 };
 
-// ClassifierEntry::widest of the full-covariance models, and of those that go over every
-// column many times (every node of every boosted or bagged tree). The SOM is not one: it
-// trains a wide table in the span of its rows (som.h).
+// ClassifierEntry::widest of the covariance models (EM's ten restarts of a mixture too), and
+// of those that go over every column many times (every node of every boosted or bagged tree).
+// The SOM is not one: it trains a wide table in the span of its rows (som.h).
 constexpr int64_t kWidestCovariance = 500;
 constexpr int64_t kWidestScanned = 2000;
 // Boosting weighs every column's histogram in every node of 100 trees per class.
@@ -126,7 +126,8 @@ const std::vector<ClassifierRow>& classifier_table() {
        "one-vs-rest ridge on z-scores, alpha by exact leave-one-out over 10^-3..10^3 (as "
        "scikit-learn's RidgeClassifierCV; alpha_min, alpha_max, alphas)",
        make_ridge_classifier},
-      {"em", "EM Gaussian mixture, clusters mapped to classes (Kaboli Fig. 4)", make_em_classifier},
+      {"em", "EM Gaussian mixture, clusters mapped to classes (Kaboli Fig. 4)", make_em_classifier,
+       true, kWidestCovariance},
   };
   return table;
 }
