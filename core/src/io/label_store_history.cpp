@@ -2,6 +2,7 @@
 // the label's state before and after; undo walks them back, redo forward.
 #include <algorithm>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "label_rows.h"
 #include "row_checksum.h"
@@ -84,25 +85,30 @@ void move_label(sqlite3* database, const std::string& path, const EditRow& row,
                             label_rows::state_json(target));
 }
 
+// The batch undo() takes back for `annotator` (anyone's when empty): the newest edit batch
+// not undone; none when there is none.
+std::optional<int64_t> newest_undoable_batch(sqlite3* database, const std::string& path,
+                                             const std::string& annotator) {
+  sqlite::Statement find(database, path,
+                         std::string("SELECT batch FROM journal WHERE ") + kEditActions +
+                             " AND undone = 0" + (annotator.empty() ? "" : " AND annotator = ?") +
+                             " ORDER BY sequence DESC LIMIT 1");
+  if (!annotator.empty()) find.bind(1, annotator);
+  if (!find.step()) return std::nullopt;
+  return find.integer(0);
+}
+
 }  // namespace
 
 bool LabelStore::undo(const std::string& annotator) {
   sqlite::Transaction transaction(database_, path_);
   note_others_commits();
-  int64_t target_batch = 0;
-  {
-    sqlite::Statement find(database_, path_,
-                           std::string("SELECT batch FROM journal WHERE ") + kEditActions +
-                               " AND undone = 0" + (annotator.empty() ? "" : " AND annotator = ?") +
-                               " ORDER BY sequence DESC LIMIT 1");
-    if (!annotator.empty()) find.bind(1, annotator);
-    if (!find.step()) return false;
-    target_batch = find.integer(0);
-  }
+  const std::optional<int64_t> target_batch = newest_undoable_batch(database_, path_, annotator);
+  if (!target_batch) return false;
   const int64_t undo_batch = label_rows::next_batch(database_, path_);
   // Newest first, so a label edited twice in one batch steps back in order.
   for (const EditRow& row :
-       edit_rows(database_, path_, "undone = 0 AND batch = ?", target_batch, "DESC")) {
+       edit_rows(database_, path_, "undone = 0 AND batch = ?", *target_batch, "DESC")) {
     move_label(database_, path_, row, row.after_json, row.before_json, "undo", undo_batch,
                annotator);
     label_rows::set_undone(database_, path_, row.sequence, true, undo_batch);
@@ -138,22 +144,13 @@ bool LabelStore::redo(const std::string& annotator) {
 }
 
 std::vector<JournalEntry> LabelStore::next_undo(const std::string& annotator) const {
-  int64_t target_batch = 0;
-  {
-    // The batch undo() finds, the same way.
-    sqlite::Statement find(database_, path_,
-                           std::string("SELECT batch FROM journal WHERE ") + kEditActions +
-                               " AND undone = 0" + (annotator.empty() ? "" : " AND annotator = ?") +
-                               " ORDER BY sequence DESC LIMIT 1");
-    if (!annotator.empty()) find.bind(1, annotator);
-    if (!find.step()) return {};
-    target_batch = find.integer(0);
-  }
+  const std::optional<int64_t> target_batch = newest_undoable_batch(database_, path_, annotator);
+  if (!target_batch) return {};
   sqlite::Statement select(database_, path_,
                            std::string("SELECT ") + label_rows::kJournalColumns +
                                " FROM journal WHERE " + kEditActions +
                                " AND undone = 0 AND batch = ? ORDER BY sequence ASC");
-  select.bind(1, target_batch);
+  select.bind(1, *target_batch);
   std::vector<JournalEntry> entries;
   while (select.step()) {
     label_rows::CheckedJournal row = label_rows::read_journal(select);
