@@ -10,7 +10,6 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <unordered_map>
 
 #include "libsvm_support.h"
 #include "tactile/error.h"
@@ -133,49 +132,6 @@ std::vector<double> balanced_class_weights(const std::vector<int64_t>& counts, b
   return weights;
 }
 
-// The distinct support vectors of all learners, and per learner where each of its own is.
-struct DistinctRows {
-  Matrix rows;
-  std::vector<std::vector<Eigen::Index>> of_learner;
-};
-
-DistinctRows distinct_support_vectors(const std::vector<PairwiseSvm>& learners) {
-  DistinctRows distinct;
-  std::unordered_multimap<uint64_t, Eigen::Index> seen;  // hash -> place in `kept`
-  std::vector<std::pair<size_t, Eigen::Index>> kept;     // learner and row of each distinct
-  for (size_t index = 0; index < learners.size(); ++index) {
-    const Matrix& vectors = learners[index].support_vectors;
-    std::vector<Eigen::Index>& columns = distinct.of_learner.emplace_back();
-    for (Eigen::Index row = 0; row < vectors.rows(); ++row) {
-      uint64_t hash = 1469598103934665603ull;  // FNV-1a over the values' bits
-      for (Eigen::Index column = 0; column < vectors.cols(); ++column) {
-        uint64_t bits = 0;
-        const double value = vectors(row, column);
-        std::memcpy(&bits, &value, sizeof bits);
-        hash = (hash ^ bits) * 1099511628211ull;
-      }
-      Eigen::Index found = -1;
-      const auto [begin, end] = seen.equal_range(hash);
-      for (auto it = begin; it != end && found < 0; ++it) {
-        const auto& [learner, at] = kept[static_cast<size_t>(it->second)];
-        if (learners[learner].support_vectors.row(at) == vectors.row(row)) found = it->second;
-      }
-      if (found < 0) {
-        found = static_cast<Eigen::Index>(kept.size());
-        kept.emplace_back(index, row);
-        seen.emplace(hash, found);
-      }
-      columns.push_back(found);
-    }
-  }
-  const Eigen::Index width = learners.empty() ? 0 : learners.front().support_vectors.cols();
-  distinct.rows.resize(static_cast<Eigen::Index>(kept.size()), width);
-  for (size_t at = 0; at < kept.size(); ++at)
-    distinct.rows.row(static_cast<Eigen::Index>(at)) =
-        learners[kept[at].first].support_vectors.row(kept[at].second);
-  return distinct;
-}
-
 }  // namespace
 
 //---- Kernel scale --------------------------------------------------------------------------
@@ -280,6 +236,7 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
   silence_libsvm();
   fitted_ = false;
   learners_.clear();
+  support_vectors_ = Matrix();
   class_weights_ = balanced_class_weights(counts, balanced_weights_);
   probabilities_ = false;
   class_count_ = class_count;
@@ -310,6 +267,11 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
     fold_gram = z * z.transpose();
     fold_norms = z.rowwise().squaredNorm();
   }
+  // The support vectors of every pair: training rows, each once (a linear kernel: each
+  // pair's direction instead).
+  std::vector<Eigen::Index> pool_place(static_cast<size_t>(z.rows()), -1);
+  std::vector<int64_t> pool_rows;
+  std::vector<Vector> directions;
   std::mt19937_64 engine(seed);
   for (size_t first = 0; first < present.size(); ++first) {
     for (size_t second = first + 1; second < present.size(); ++second) {
@@ -416,32 +378,47 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
             problem, parameter, std::mt19937_64(derive_seed(seed, learners_.size())), preset_);
 
       // libsvm's decision value favours its first label; make f > 0 mean the positive class.
+      // Its support vectors are the pair's rows sv_indices names (1-based), kept once for
+      // every pair: 105 pairs of Robovie's 37,401 features held their own copies, 0.8 GB.
       const double sign = model->label[0] == 1 ? 1.0 : -1.0;
       learner.rho = sign * model->rho[0];
       learner.coefficients.resize(model->l);
-      learner.support_vectors = Matrix::Zero(model->l, feature_count);
+      std::vector<int64_t> rows_of_vectors(static_cast<size_t>(model->l));
       for (int vector = 0; vector < model->l; ++vector) {
         learner.coefficients(vector) = sign * model->sv_coef[0][vector];
-        if (precomputed) {  // a support vector is its serial number: the pair's row
-          const auto row = static_cast<Eigen::Index>(model->SV[vector][0].value) - 1;
-          learner.support_vectors.row(vector) =
-              z.row(static_cast<Eigen::Index>(order[static_cast<size_t>(row)]));
-        } else {
-          for (const svm_node* node = model->SV[vector]; node->index != -1; ++node)
-            learner.support_vectors(vector, node->index - 1) = node->value;
-        }
+        rows_of_vectors[static_cast<size_t>(vector)] =
+            order[static_cast<size_t>(model->sv_indices[vector] - 1)];
       }
-      // A linear learner is one direction, w = Σ coef_i sv_i: kept as its only support vector
-      // with coefficient 1, the decision z·w - rho is the same sum. A model of Robovie's 37401
-      // correlation features shrinks from every support vector (1.6 GB of JSON) to one row per
-      // learner, and predicts at one dot product per learner.
-      if (kernel_ == SvmKernel::kLinear && learner.support_vectors.rows() > 1) {
-        const Vector direction = learner.support_vectors.transpose() * learner.coefficients;
-        learner.support_vectors = direction.transpose();
+      if (kernel_ == SvmKernel::kLinear) {
+        // A linear learner is one direction, w = Σ coef_i sv_i: kept as its only support
+        // vector with coefficient 1, the decision z·w - rho is the same sum, at one dot
+        // product per learner.
+        Vector direction = Vector::Zero(feature_count);
+        for (int vector = 0; vector < model->l; ++vector)
+          direction += learner.coefficients(vector) *
+                       z.row(rows_of_vectors[static_cast<size_t>(vector)]).transpose();
+        learner.support = {static_cast<Eigen::Index>(directions.size())};
         learner.coefficients = Vector::Ones(1);
+        directions.push_back(std::move(direction));
+      } else {
+        for (const int64_t row : rows_of_vectors) {
+          Eigen::Index& place = pool_place[static_cast<size_t>(row)];
+          if (place < 0) {
+            place = static_cast<Eigen::Index>(pool_rows.size());
+            pool_rows.push_back(row);
+          }
+          learner.support.push_back(place);
+        }
       }
       learners_.push_back(std::move(learner));
     }
+  }
+  if (kernel_ == SvmKernel::kLinear) {
+    support_vectors_.resize(static_cast<Eigen::Index>(directions.size()), feature_count);
+    for (size_t at = 0; at < directions.size(); ++at)
+      support_vectors_.row(static_cast<Eigen::Index>(at)) = directions[at].transpose();
+  } else {
+    support_vectors_ = gather_rows(z, pool_rows);
   }
   probabilities_ = fit_probabilities_ && !skip_scores_;
   fitted_ = true;
@@ -449,14 +426,9 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
 
 //---- Prediction --------------------------------------------------------------------------------
 
-Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const {
-  return kernel_matrix(z, learner.support_vectors, learner.scale);
-}
-
-Matrix SupportVectorMachine::kernel_matrix(const Matrix& z, const Matrix& support,
-                                           double scale) const {
-  return kernel_from_gram(z * support.transpose(), z.rowwise().squaredNorm(),
-                          support.rowwise().squaredNorm(), scale);
+Matrix SupportVectorMachine::kernel_matrix(const Matrix& a, const Matrix& b, double scale) const {
+  return kernel_from_gram(a * b.transpose(), a.rowwise().squaredNorm(), b.rowwise().squaredNorm(),
+                          scale);
 }
 
 Matrix SupportVectorMachine::kernel_from_gram(const Matrix& gram, const Vector& row_norms,
@@ -485,30 +457,19 @@ Matrix SupportVectorMachine::decision_values(const Matrix& x) const {
   check_query(x, standardizer_.mean.size(), preset_);
   const Matrix z = standardizer_.transform(x);
   Matrix decision(x.rows(), static_cast<Eigen::Index>(learners_.size()));
-  // Long rows, a non-linear kernel: a training row is a support vector of up to k - 1 pairs,
-  // so one product with the distinct support vectors serves every learner.
-  if (kernel_ != SvmKernel::kLinear && z.cols() >= kPrecomputedKernelFeatures &&
-      learners_.size() > 1) {
-    const DistinctRows distinct = distinct_support_vectors(learners_);
-    const Matrix gram = z * distinct.rows.transpose();
-    const Vector query_norms = z.rowwise().squaredNorm();
-    const Vector support_norms = distinct.rows.rowwise().squaredNorm();
-    for (size_t index = 0; index < learners_.size(); ++index) {
-      const PairwiseSvm& learner = learners_[index];
-      const std::vector<Eigen::Index>& columns = distinct.of_learner[index];
-      decision.col(static_cast<Eigen::Index>(index)) =
-          (kernel_from_gram(gram(Eigen::all, columns), query_norms, support_norms(columns),
-                            learner.scale) *
-           learner.coefficients)
-              .array() -
-          learner.rho;
-    }
-    return decision;
-  }
+  // A training row is a support vector of up to k - 1 pairs, so one product with the shared
+  // support vectors serves every learner.
+  const Matrix gram = z * support_vectors_.transpose();
+  const Vector query_norms = z.rowwise().squaredNorm();
+  const Vector support_norms = support_vectors_.rowwise().squaredNorm();
   for (size_t index = 0; index < learners_.size(); ++index) {
     const PairwiseSvm& learner = learners_[index];
     decision.col(static_cast<Eigen::Index>(index)) =
-        (kernel_matrix(z, learner) * learner.coefficients).array() - learner.rho;
+        (kernel_from_gram(gram(Eigen::all, learner.support), query_norms,
+                          support_norms(learner.support), learner.scale) *
+         learner.coefficients)
+            .array() -
+        learner.rho;
   }
   return decision;
 }
@@ -592,11 +553,6 @@ nlohmann::json SupportVectorMachine::save() const {
   if (!fitted_) throw Error(preset_, "save() before fit()");
   nlohmann::json learners = nlohmann::json::array();
   for (const PairwiseSvm& learner : learners_) {
-    nlohmann::json support_vectors = nlohmann::json::array();
-    for (Eigen::Index row = 0; row < learner.support_vectors.rows(); ++row) {
-      const Vector vector = learner.support_vectors.row(row).transpose();
-      support_vectors.push_back(std::vector<double>(vector.data(), vector.data() + vector.size()));
-    }
     nlohmann::json saved = {{"positive_class", learner.positive_class},
                             {"negative_class", learner.negative_class},
                             {"scale", learner.scale},
@@ -604,7 +560,7 @@ nlohmann::json SupportVectorMachine::save() const {
                             {"coefficients", std::vector<double>(learner.coefficients.data(),
                                                                  learner.coefficients.data() +
                                                                      learner.coefficients.size())},
-                            {"support_vectors", std::move(support_vectors)}};
+                            {"support", learner.support}};
     if (probabilities_) {
       saved["probability_a"] = learner.sigmoid.a;
       saved["probability_b"] = learner.sigmoid.b;
@@ -615,6 +571,12 @@ nlohmann::json SupportVectorMachine::save() const {
       {"kernel", kernel_name(kernel_)},       {"degree", degree_},
       {"class_count", class_count_},          {"only_class", only_class_},
       {"standardizer", standardizer_.save()}, {"learners", std::move(learners)}};
+  nlohmann::json support_vectors = nlohmann::json::array();
+  for (Eigen::Index row = 0; row < support_vectors_.rows(); ++row) {
+    const Vector vector = support_vectors_.row(row).transpose();
+    support_vectors.push_back(std::vector<double>(vector.data(), vector.data() + vector.size()));
+  }
+  saved["support_vectors"] = std::move(support_vectors);
   if (balanced_weights_) saved["class_weights"] = class_weights_;
   return saved;
 }
@@ -634,6 +596,9 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
     standardizer.load(model.at("standardizer"));
     const Eigen::Index feature_count = standardizer.mean.size();
     std::vector<PairwiseSvm> learners;
+    std::vector<std::vector<double>> vectors;
+    if (model.contains("support_vectors"))
+      vectors = model.at("support_vectors").get<std::vector<std::vector<double>>>();
     size_t with_sigmoid = 0;
     for (const auto& saved : model.at("learners")) {
       PairwiseSvm learner;
@@ -642,29 +607,26 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
       learner.scale = saved.at("scale").get<double>();
       learner.rho = saved.at("rho").get<double>();
       const auto coefficients = saved.at("coefficients").get<std::vector<double>>();
-      const auto support_vectors =
-          saved.at("support_vectors").get<std::vector<std::vector<double>>>();
       if (learner.positive_class < 0 || learner.positive_class >= class_count ||
           learner.negative_class < 0 || learner.negative_class >= class_count)
         throw Error(where, "learner class out of range");
       if (!std::isfinite(learner.scale) || learner.scale <= 0.0 || !std::isfinite(learner.rho))
         throw Error(where, "learner scale or rho is not a positive finite number");
-      if (coefficients.size() != support_vectors.size())
-        throw Error(where, "coefficient and support vector counts differ");
-      const auto count = static_cast<Eigen::Index>(coefficients.size());
-      learner.coefficients = Eigen::Map<const Vector>(coefficients.data(), count);
-      learner.support_vectors.resize(count, feature_count);
-      for (Eigen::Index row = 0; row < count; ++row) {
-        const auto& vector = support_vectors[static_cast<size_t>(row)];
-        if (static_cast<Eigen::Index>(vector.size()) != feature_count)
-          throw Error(where, "support vector " + std::to_string(row) + " has " +
-                                 std::to_string(vector.size()) + " values, expected " +
-                                 std::to_string(feature_count));
-        learner.support_vectors.row(row) =
-            Eigen::Map<const Vector>(vector.data(), feature_count).transpose();
+      learner.coefficients =
+          Eigen::Map<const Vector>(coefficients.data(), static_cast<Eigen::Index>(coefficients.size()));
+      if (!learner.coefficients.allFinite()) throw Error(where, "non-finite coefficient");
+      if (saved.contains("support_vectors")) {
+        // A model saved before the pairs shared their support vectors: each pair's own.
+        for (const auto& vector : saved.at("support_vectors").get<std::vector<std::vector<double>>>()) {
+          learner.support.push_back(static_cast<Eigen::Index>(vectors.size()));
+          vectors.push_back(vector);
+        }
+      } else {
+        for (const int64_t row : saved.at("support").get<std::vector<int64_t>>())
+          learner.support.push_back(static_cast<Eigen::Index>(row));
       }
-      if (!learner.coefficients.allFinite() || !learner.support_vectors.allFinite())
-        throw Error(where, "non-finite coefficient or support vector");
+      if (learner.coefficients.size() != static_cast<Eigen::Index>(learner.support.size()))
+        throw Error(where, "coefficient and support vector counts differ");
       // A model saved before the sigmoids were kept has none: its scores are vote shares.
       if (saved.contains("probability_a") || saved.contains("probability_b")) {
         learner.sigmoid = {saved.at("probability_a").get<double>(),
@@ -676,6 +638,21 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
       learners.push_back(std::move(learner));
     }
     if (only_class < 0 && learners.empty()) throw Error(where, "no learners");
+    Matrix support_vectors(static_cast<Eigen::Index>(vectors.size()), feature_count);
+    for (size_t row = 0; row < vectors.size(); ++row) {
+      if (static_cast<Eigen::Index>(vectors[row].size()) != feature_count)
+        throw Error(where, "support vector " + std::to_string(row) + " has " +
+                               std::to_string(vectors[row].size()) + " values, expected " +
+                               std::to_string(feature_count));
+      support_vectors.row(static_cast<Eigen::Index>(row)) =
+          Eigen::Map<const Vector>(vectors[row].data(), feature_count).transpose();
+    }
+    if (!support_vectors.allFinite()) throw Error(where, "non-finite support vector");
+    for (const PairwiseSvm& learner : learners)
+      for (const Eigen::Index row : learner.support)
+        if (row < 0 || row >= support_vectors.rows())
+          throw Error(where, "a learner names support vector " + std::to_string(row) + " of " +
+                                 std::to_string(support_vectors.rows()));
     if (with_sigmoid != 0 && with_sigmoid != learners.size())
       throw Error(where, "some learners have a probability sigmoid and some do not");
     // The weights only shaped the training; kept for the record (a model saved before they
@@ -695,6 +672,7 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
     class_weights_ = std::move(class_weights);
     standardizer_ = std::move(standardizer);
     learners_ = std::move(learners);
+    support_vectors_ = std::move(support_vectors);
     probabilities_ = with_sigmoid > 0;
   } catch (const nlohmann::json::exception& error) {
     throw Error(where, error.what());

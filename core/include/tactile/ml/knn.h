@@ -97,8 +97,6 @@ class SubspaceKnnClassifier : public Classifier {
   const std::vector<std::vector<int64_t>>& subspaces() const { return subspaces_; }
 
  private:
-  void build_learners();
-
   int learners_ = 30;
   int dimensions_ = 0;
   KnnMetric metric_ = KnnMetric::kEuclidean;
@@ -107,8 +105,7 @@ class SubspaceKnnClassifier : public Classifier {
   Standardizer standardizer_;
   Matrix samples_;  // standardised training samples, rows = samples
   std::vector<int> labels_;
-  std::vector<std::vector<int64_t>> subspaces_;
-  std::vector<KnnClassifier> members_;  // one 1-NN per subspace, rebuilt from the above
+  std::vector<std::vector<int64_t>> subspaces_;  // one 1-NN learner each, made as it votes
 };
 
 std::unique_ptr<Classifier> make_knn_classifier(const Parameters& parameters);

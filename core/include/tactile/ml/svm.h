@@ -76,8 +76,11 @@ struct PairwiseSvm {
   int negative_class = 1;
   double scale = 1.0;
   double rho = 0.0;
-  Vector coefficients;     // y_i alpha_i per support vector
-  Matrix support_vectors;  // rows, standardised; a linear learner keeps one: w, coefficient 1
+  Vector coefficients;  // y_i alpha_i per support vector
+  // Its support vectors: rows of SupportVectorMachine::support_vectors(), which every pair
+  // shares (a training row serves in up to k - 1 pairs). A linear learner has one: w, with
+  // coefficient 1.
+  std::vector<Eigen::Index> support;
   PlattSigmoid sigmoid;    // P(positive | f); fitted only with probability=true
 };
 
@@ -108,6 +111,8 @@ class SupportVectorMachine : public Classifier {
   // Decision value of every pair, rows = samples, columns = learners() in order.
   Matrix decision_values(const Matrix& x) const;
   const std::vector<PairwiseSvm>& learners() const { return learners_; }
+  // The distinct support vectors of every pair, standardised (the linear kernel: each pair's w).
+  const Matrix& support_vectors() const { return support_vectors_; }
   // Whether scores() are probabilities (every learner has its sigmoid) or vote shares.
   bool has_probabilities() const { return probabilities_; }
   SvmKernel kernel() const { return kernel_; }
@@ -116,12 +121,11 @@ class SupportVectorMachine : public Classifier {
   const std::vector<double>& class_weights() const { return class_weights_; }
 
  private:
-  Matrix kernel_matrix(const Matrix& z, const PairwiseSvm& learner) const;
   std::vector<int> vote_winners(const Matrix& decision) const;
   Matrix vote_shares(const Matrix& decision) const;
   Matrix probabilities(const Matrix& decision) const;
-  // K(z_i, s_j) for every row of z and of `support`, with kernel scale `scale`.
-  Matrix kernel_matrix(const Matrix& z, const Matrix& support, double scale) const;
+  // K(a_i, b_j) for every row of a and of b, with kernel scale `scale`.
+  Matrix kernel_matrix(const Matrix& a, const Matrix& b, double scale) const;
   // The kernel from the inner products `gram` (rows x columns) and both sides' squared norms.
   Matrix kernel_from_gram(const Matrix& gram, const Vector& row_norms, const Vector& column_norms,
                           double scale) const;
@@ -140,6 +144,7 @@ class SupportVectorMachine : public Classifier {
   int only_class_ = -1;  // the single class seen in training, else -1
   Standardizer standardizer_;
   std::vector<PairwiseSvm> learners_;
+  Matrix support_vectors_;  // rows that learners_' `support` indexes
   bool probabilities_ = false;  // every learner has its sigmoid
   std::vector<double> class_weights_;  // per class: C's factor in training (1 unless balanced)
 };
