@@ -1,10 +1,13 @@
 // Segmenter "adaptive": no calibration, each channel's own noise band.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "io_test_files.h"
 #include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
 #include "tactile/segment/segmenter.h"
 
 namespace tactile {
@@ -71,7 +74,7 @@ struct GridScene {
       for (int k = column; k < column + 2; ++k)
         for (int64_t t = first; t <= last; ++t) values(t, r * kRows + k) += by;
   }
-  std::vector<Label> segments(const std::string& parameters = "") const {
+  Recording recording() const {
     Recording recording;
     recording.id = "grid";
     recording.layout_id = "grid:4x4";
@@ -81,7 +84,10 @@ struct GridScene {
     for (int c = 0; c < kRows * kRows; ++c) stream.channels.push_back("ch" + std::to_string(c));
     stream.samples = values;
     recording.streams = {stream};
-    return segment_recording("adaptive", recording, load_layout("grid:4x4"),
+    return recording;
+  }
+  std::vector<Label> segments(const std::string& parameters = "") const {
+    return segment_recording("adaptive", recording(), load_layout("grid:4x4"),
                              Parameters::parse(parameters, "test"));
   }
 };
@@ -101,6 +107,43 @@ TEST(AdaptiveSegmenter, TwoContactsOneFrameApartAreOneTouchUnlessJoinIsZero) {
   EXPECT_NEAR(labels[0].t1, 210 / GridScene::kRate, 1e-9);
   EXPECT_NEAR(labels[1].t0, 211 / GridScene::kRate, 1e-9);
   EXPECT_NEAR(labels[1].t1, 221 / GridScene::kRate, 1e-9);
+}
+
+// From a file read a channel at a time (the workbench's G), the labels of the whole recording
+// read into memory; a step that throws (a cancelled job) stops the reading.
+TEST(AdaptiveSegmenter, AFileReadAChannelAtATimeGivesTheSameTouches) {
+  GridScene scene(1200);
+  scene.press(200, 240);
+  scene.press(500, 530, 0, 2);
+  scene.press(800, 900, 2, 0, 30.0f);
+  const testing::TemporaryDirectory folder;
+  const std::string path = folder.file("grid.h5");
+  write_recording(path, scene.recording());
+  FileSourceOptions options;
+  options.cache_bytes = 1 << 16;  // less than one channel: nothing held between reads
+  const FileSampleSource source(path, options);
+  const Parameters none;
+  const std::vector<Label> whole = segment_recording("adaptive", scene.recording(), load_layout("grid:4x4"));
+  std::vector<double> shares;
+  const std::vector<Label> read = segment_source("adaptive", source, load_layout("grid:4x4"), none,
+                                                 [&](double share) { shares.push_back(share); });
+  ASSERT_EQ(whole.size(), 3u);
+  ASSERT_EQ(read.size(), whole.size());
+  for (size_t k = 0; k < whole.size(); ++k) {
+    EXPECT_EQ(read[k].t0, whole[k].t0);
+    EXPECT_EQ(read[k].t1, whole[k].t1);
+    EXPECT_EQ(read[k].region, whole[k].region);
+    EXPECT_EQ(read[k].note, whole[k].note);
+    EXPECT_EQ(read[k].annotator, "segmenter:adaptive");
+    EXPECT_EQ(read[k].recording, "grid");
+  }
+  ASSERT_FALSE(shares.empty());
+  EXPECT_TRUE(std::is_sorted(shares.begin(), shares.end()));
+  EXPECT_DOUBLE_EQ(shares.back(), 1.0);
+  EXPECT_THROW(segment_source("adaptive", source, load_layout("grid:4x4"), none,
+                              [](double share) { if (share > 0.3) throw Error("job", "cancelled"); }),
+               Error);
+  EXPECT_THROW(segment_source("no-such-method", source, load_layout("grid:4x4")), Error);
 }
 
 TEST(AdaptiveSegmenter, ABurstOfFiveTapsGivesFiveSegments) {

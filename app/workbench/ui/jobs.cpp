@@ -7,20 +7,27 @@
 
 namespace tactile {
 
-std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
-                                                         double to) {
+std::function<std::shared_ptr<const SampleSource>()> source_for_job(const Document& document) {
   const SampleSource& source = document.samples();
   if (dynamic_cast<const FileSampleSource*>(&source))
-    return [path = document.path, stream = source.info().stream, from, to](JobProgress& progress) {
+    return [path = document.path, stream = source.info().stream]() -> std::shared_ptr<const SampleSource> {
       FileSourceOptions options;
       options.stream = stream;
       options.cache_bytes = int64_t{8} << 20;
       options.damaged_chunks_as_gaps = true;
-      return read_all(FileSampleSource(path, options), progress.steps("reading the recording", from, to));
+      return std::make_shared<FileSampleSource>(path, options);
     };
   // A live stream: what has arrived so far (a bounded buffer), copied now.
-  auto copy = std::make_shared<const Recording>(read_all(source));
-  return [copy](JobProgress&) { return *copy; };
+  Recording copy = read_all(source);
+  auto memory = std::make_shared<const MemorySampleSource>(copy, copy.streams.front());
+  return [memory] { return memory; };
+}
+
+std::function<Recording(JobProgress&)> recording_for_job(const Document& document, double from,
+                                                         double to) {
+  return [open = source_for_job(document), from, to](JobProgress& progress) {
+    return read_all(*open(), progress.steps("reading the recording", from, to));
+  };
 }
 
 void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job) {

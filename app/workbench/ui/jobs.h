@@ -19,6 +19,10 @@
 
 namespace tactile {
 
+// A job's own source of the open recording's samples, opened on its worker: a reader of its own
+// on the file (a small cache; the window's source stays the window's), or for a live stream a
+// copy of what has arrived, taken now.
+std::function<std::shared_ptr<const SampleSource>()> source_for_job(const Document& document);
 // How a job reads the whole open recording: through a reader of its own on the file (the
 // window's source stays the window's), reporting progress from `from` to `to` of the job; for
 // a live stream, a copy of what has arrived, taken now.

@@ -387,13 +387,14 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
     // when it ran in one frame). A second G replaces a run still going.
     start_job<LabellingState::SegmentsFound>(
         state, state.labelling.segment_job, "segmenter " + method,
-        [read = recording_for_job(document, 0.0, 0.8), layout = document.layout, method, parameters,
+        [open = source_for_job(document), layout = document.layout, method, parameters,
          path = document.path, database, recording = document.recording_id(),
          annotator = state.labelling.annotator](JobProgress& progress) {
-          const Recording whole = read(progress);
-          progress.report(0.8, "finding segments");
+          // adaptive reads the file a channel at a time: 30 minutes of Robovie are never held
+          // whole (they were 207 MB, and the method's copies twice that again).
+          std::vector<Label> segments = segment_source(
+              method, *open(), layout, parameters, progress.steps("finding segments", 0.0, 0.9));
           progress.check();
-          std::vector<Label> segments = segment_recording(method, whole, layout, parameters);
           progress.report(0.95, "storing the suggestions");
           LabelStore store(database, LabelStore::OpenMode::kExisting);
           const SegmenterRun run = segmenter_run(store, recording, method, std::move(segments));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -159,12 +160,37 @@ std::vector<float> adaptive_baseline(const float* column, int64_t samples, int64
 
 }  // namespace
 
+// A channel's excursion where it can count: the runs of frames where it is past its noise
+// band (the lowest band decide() can give it; margin x 3 sigma, 0 for a noiseless sensor),
+// every other frame being at or below that. Kept this way a touched skin's excursions take a
+// few MB where every frame of every channel took the recording's size again (207 MB for 30
+// minutes of Robovie's 274 films).
+struct SparseExcursion {
+  bool counts = false;          // false: the channel is never on (unusable, stuck or dead)
+  std::vector<int64_t> first;   // each run's first frame
+  std::vector<size_t> begin;    // where each run's values start in `values`, then the end
+  std::vector<float> values;
+
+  // f(frame, value) for every kept value in frames [from, to].
+  template <typename F>
+  void each(int64_t from, int64_t to, F f) const {
+    for (size_t run = 0; run < first.size(); ++run) {
+      const int64_t start = first[run];
+      const auto length = static_cast<int64_t>(begin[run + 1] - begin[run]);
+      if (start + length <= from) continue;
+      if (start > to) break;
+      for (int64_t t = std::max(from, start); t <= std::min(to, start + length - 1); ++t)
+        f(t, values[begin[run] + static_cast<size_t>(t - start)]);
+    }
+  }
+};
+
 struct AdaptiveScan {
   std::string recording;
   double rate = 0.0;
   int64_t samples = 0;
   std::vector<double> times;                // of each frame
-  std::vector<std::vector<float>> moved;    // each channel's excursion (empty: never counts)
+  std::vector<SparseExcursion> moved;       // each channel's excursion past its noise band
   std::vector<float> sigmas;                // each channel's noise sigma
   std::vector<std::string> kinds;           // each channel's kind (modality|unit)
   std::map<std::string, float> amplitude;   // each kind's touch amplitude
@@ -175,21 +201,102 @@ struct AdaptiveScan {
 
 namespace {
 
-// The slow half: each channel's rest, noise, excursion and peak, and each kind's amplitude.
-std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const SkinLayout& layout,
-                                            const AdaptiveOptions& options) {
-  auto scan = std::make_shared<AdaptiveScan>();
-  scan->recording = recording.id;
+// What the scan reads: one stream, a whole channel at a time, from memory or from a file, so
+// that it never holds more than a few channels.
+struct ScanInput {
+  std::string recording;
+  std::string where;  // the stream, for errors
+  double rate = 0.0;
+  int64_t samples = 0;
+  std::vector<std::string> channels;
+  std::function<double(int64_t)> time_of;
+  std::function<void(int, std::vector<float>&)> column;  // channel c's every sample into out
+  std::function<void(double)> step;                     // the share read so far (may throw)
+};
+
+ScanInput scan_input(const Recording& recording) {
   if (recording.streams.empty()) throw Error(recording.id, "no stream to segment");
   const Stream& stream = recording.streams.front();
-  if (!(stream.rate_hz > 0)) throw Error(recording.id + ":/streams/" + stream.name, "needs a sample rate");
-  const double rate = stream.rate_hz;
-  const int channels = static_cast<int>(stream.channel_count());
-  const int64_t samples = stream.sample_count();
+  ScanInput input;
+  input.recording = recording.id;
+  input.where = recording.id + ":/streams/" + stream.name;
+  input.rate = stream.rate_hz;
+  input.samples = stream.sample_count();
+  input.channels = stream.channels;
+  input.time_of = [&stream](int64_t t) { return stream.time_of(t); };
+  input.column = [&stream](int c, std::vector<float>& out) {
+    const float* values = stream.samples.col(c).data();
+    out.assign(values, values + stream.sample_count());
+  };
+  return input;
+}
+
+ScanInput scan_input(const SampleSource& source, const std::function<void(double)>& step) {
+  ScanInput input;
+  input.recording = source.info().recording_id;
+  input.where = input.recording + ":/streams/" + source.info().stream;
+  input.rate = source.rate_hz();
+  input.samples = source.sample_count();
+  input.channels = source.info().channels;
+  input.time_of = [&source](int64_t t) { return source.time_of(t); };
+  input.column = [&source, samples = input.samples](int c, std::vector<float>& out) {
+    const int channel[1] = {c};
+    const SampleMatrix values = source.read(channel, 0, samples);
+    out.assign(values.data(), values.data() + values.size());
+  };
+  input.step = step;
+  return input;
+}
+
+// A noisy channel's runs of one unchanging value for `stuck` frames or more become missing
+// (NaN), as do long runs of NaN; returns how often the value changes from one frame to the
+// next outside the long runs (noise changes it nearly every frame, a noiseless sensor only at
+// its edges).
+double mask_stuck_runs(std::vector<float>& column, int64_t stuck) {
+  const auto samples = static_cast<int64_t>(column.size());
+  int64_t changes = 0, outside = 0;
+  std::vector<std::pair<int64_t, int64_t>> long_runs;
+  for (int64_t t = 0; t < samples;) {
+    const float value = column[static_cast<size_t>(t)];
+    int64_t end = t + 1;
+    while (end < samples && (column[static_cast<size_t>(end)] == value ||
+                             (std::isnan(column[static_cast<size_t>(end)]) && std::isnan(value))))
+      ++end;
+    if (end - t >= stuck) {
+      long_runs.emplace_back(t, end);
+    } else {
+      outside += end - t;
+      changes += 1;
+    }
+    t = end;
+  }
+  const double share = outside > 1 ? static_cast<double>(changes) / static_cast<double>(outside) : 0.0;
+  const bool noisy = share >= 0.5;
+  for (const auto& [from, to] : long_runs)
+    if (noisy || std::isnan(column[static_cast<size_t>(from)]))
+      std::fill(column.begin() + from, column.begin() + to, std::numeric_limits<float>::quiet_NaN());
+  return share;
+}
+
+// The slow half: each channel's rest, noise, excursion and peak, and each kind's amplitude.
+// Two passes over the channels, each reading one at a time: the first finds each channel's
+// direction (which the skin's lends to channels without one), the second its excursion.
+std::shared_ptr<AdaptiveScan> adaptive_scan(const ScanInput& input, const SkinLayout& layout,
+                                            const AdaptiveOptions& options) {
+  auto scan = std::make_shared<AdaptiveScan>();
+  scan->recording = input.recording;
+  if (!(input.rate > 0)) throw Error(input.where, "needs a sample rate");
+  const double rate = input.rate;
+  const int channels = static_cast<int>(input.channels.size());
+  const int64_t samples = input.samples;
   scan->rate = rate;
   scan->samples = samples;
-  for (int64_t t = 0; t < samples; ++t) scan->times.push_back(stream.time_of(t));
+  scan->times.reserve(static_cast<size_t>(samples));
+  for (int64_t t = 0; t < samples; ++t) scan->times.push_back(input.time_of(t));
   if (samples == 0) return scan;
+  const auto report = [&](int pass, int c) {
+    if (input.step) input.step((pass + static_cast<double>(c + 1) / channels) / 2.0);
+  };
   const auto frames_of = [&](double seconds) {
     return std::max<int64_t>(1, std::llround(seconds * rate));
   };
@@ -204,40 +311,18 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
   // half's). A run of one unchanging value for stuck_seconds or more on a noisy channel is a stuck
   // taxel: missing everywhere below. A channel with no noise at all (binary, integer-step,
   // clipped at zero) holds its rest for long stretches by nature, so the rule skips it.
-  std::vector<std::vector<float>>& score = scan->moved;
+  std::vector<SparseExcursion>& score = scan->moved;
   score.resize(static_cast<size_t>(channels));
   std::vector<float> residual(static_cast<size_t>(samples));
   std::vector<float> deviations;
-  std::vector<std::vector<float>> kept_columns(static_cast<size_t>(channels));
+  std::vector<float> kept;
   std::vector<int> directions(static_cast<size_t>(channels), 0);
   std::vector<uint8_t> usable_channel(static_cast<size_t>(channels), 0);
   std::vector<double> change_share(static_cast<size_t>(channels), 0.0);
   for (int c = 0; c < channels; ++c) {
-    const float* raw = stream.samples.col(c).data();
-    std::vector<float>& kept = kept_columns[static_cast<size_t>(c)];
-    kept.assign(raw, raw + samples);
-    // How often the value changes from one frame to the next outside the long unchanging
-    // runs: noise changes it nearly every frame, a noiseless sensor only at its edges.
-    int64_t changes = 0, outside = 0;
-    std::vector<std::pair<int64_t, int64_t>> long_runs;
-    for (int64_t t = 0; t < samples;) {
-      int64_t end = t + 1;
-      while (end < samples && (raw[end] == raw[t] || (std::isnan(raw[end]) && std::isnan(raw[t]))))
-        ++end;
-      if (end - t >= stuck) {
-        long_runs.emplace_back(t, end);
-      } else {
-        outside += end - t;
-        changes += 1;
-      }
-      t = end;
-    }
-    change_share[static_cast<size_t>(c)] =
-        outside > 1 ? static_cast<double>(changes) / static_cast<double>(outside) : 0.0;
-    const bool noisy = change_share[static_cast<size_t>(c)] >= 0.5;
-    for (const auto& [from, to] : long_runs)
-      if (noisy || std::isnan(raw[from]))
-        std::fill(kept.begin() + from, kept.begin() + to, std::numeric_limits<float>::quiet_NaN());
+    input.column(c, kept);
+    report(0, c);
+    change_share[static_cast<size_t>(c)] = mask_stuck_runs(kept, stuck);
     const float* column = kept.data();
     // Which way touches move the channel: the side of its median with the longer tail, once
     // a running median over baseline_seconds is taken off (drift has no tail of its own; a
@@ -269,12 +354,20 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
       if (direction == 0) direction = skin_direction;
   }
   // Each channel's excursion in its own units (one-sided where touches move it one way),
-  // closed over envelope_seconds, and its noise sigma (0 for a noiseless sensor).
+  // closed over envelope_seconds, its noise sigma (0 for a noiseless sensor), and its peak:
+  // the highest excursion it holds for min_seconds.
   std::vector<float>& sigmas = scan->sigmas;
   sigmas.assign(static_cast<size_t>(channels), 0.0f);
+  const float noise_bands = static_cast<float>(options.margin * 3.0);
+  scan->noise_bands = noise_bands;
+  std::vector<float> peaks(static_cast<size_t>(channels), 0.0f);
+  std::vector<float> moved, copy;
   for (int c = 0; c < channels; ++c) {
     if (!usable_channel[static_cast<size_t>(c)]) continue;
-    const float* column = kept_columns[static_cast<size_t>(c)].data();
+    input.column(c, kept);
+    report(1, c);
+    mask_stuck_runs(kept, stuck);
+    const float* column = kept.data();
     const int direction = directions[static_cast<size_t>(c)];
     const std::vector<float> rest = adaptive_baseline(column, samples, block, window,
                                                       direction > 0   ? 0.25
@@ -297,7 +390,6 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
       for (float& value : deviations) value = std::fabs(value - centre);
       sigmas[static_cast<size_t>(c)] = 1.4826f / std::sqrt(2.0f) * stats::median(deviations);
     }
-    std::vector<float>& moved = score[static_cast<size_t>(c)];
     moved.assign(static_cast<size_t>(samples), 0.0f);
     for (int64_t t = 0; t < samples; ++t) {
       const float value = residual[static_cast<size_t>(t)];
@@ -325,20 +417,38 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
       }
       moved = std::move(closed);
     }
+    copy = moved;
+    const auto index = static_cast<size_t>(
+        std::max<int64_t>(0, samples - std::max<int64_t>(1, peak_frames)));
+    peaks[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
+    // Kept where past the noise band: every band decide() gives is at least that.
+    SparseExcursion& sparse = score[static_cast<size_t>(c)];
+    sparse.counts = true;
+    const float floor = noise_bands * sigmas[static_cast<size_t>(c)];
+    for (int64_t t = 0; t < samples; ++t) {
+      if (!(moved[static_cast<size_t>(t)] > floor)) continue;
+      if (sparse.first.empty() ||
+          sparse.first.back() + static_cast<int64_t>(sparse.values.size() - sparse.begin.back()) != t) {
+        sparse.first.push_back(t);
+        sparse.begin.push_back(sparse.values.size());
+      }
+      sparse.values.push_back(moved[static_cast<size_t>(t)]);
+    }
+    sparse.begin.push_back(sparse.values.size());
   }
   // A noisy channel with a tenth of the median noisy channel's sigma or less, changing
   // smoothly, is stuck under a drifting offset, or dead: it never counts.
   {
     std::vector<float> noises;
     for (int c = 0; c < channels; ++c)
-      if (!score[static_cast<size_t>(c)].empty() && sigmas[static_cast<size_t>(c)] > 0)
+      if (score[static_cast<size_t>(c)].counts && sigmas[static_cast<size_t>(c)] > 0)
         noises.push_back(sigmas[static_cast<size_t>(c)]);
     if (noises.size() >= 3) {
       const float typical_noise = stats::median(noises);
       for (int c = 0; c < channels; ++c)
         if (sigmas[static_cast<size_t>(c)] < 0.1f * typical_noise &&
             change_share[static_cast<size_t>(c)] >= 0.5)
-          score[static_cast<size_t>(c)].clear();
+          score[static_cast<size_t>(c)] = SparseExcursion();
     }
   }
 
@@ -355,20 +465,12 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
   std::vector<std::string>& kinds = scan->kinds;
   kinds.resize(static_cast<size_t>(channels));
   for (int c = 0; c < channels; ++c) {
-    const auto found = kind_of_name.find(stream.channels[static_cast<size_t>(c)]);
+    const auto found = kind_of_name.find(input.channels[static_cast<size_t>(c)]);
     if (found != kind_of_name.end()) kinds[static_cast<size_t>(c)] = found->second;
   }
-  const float noise_bands = static_cast<float>(options.margin * 3.0);
-  std::vector<float> peaks(static_cast<size_t>(channels), 0.0f);
-  scan->noise_bands = noise_bands;
   std::map<std::string, std::vector<float>> kind_peaks;
   for (int c = 0; c < channels; ++c) {
-    const std::vector<float>& moved = score[static_cast<size_t>(c)];
-    if (moved.empty()) continue;
-    std::vector<float> copy = moved;
-    const auto index = static_cast<size_t>(std::max<int64_t>(
-        0, static_cast<int64_t>(copy.size()) - std::max<int64_t>(1, peak_frames)));
-    peaks[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
+    if (!score[static_cast<size_t>(c)].counts) continue;
     if (peaks[static_cast<size_t>(c)] > noise_bands * sigmas[static_cast<size_t>(c)])
       kind_peaks[kinds[static_cast<size_t>(c)]].push_back(peaks[static_cast<size_t>(c)]);
   }
@@ -378,7 +480,7 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const Recording& recording, const Sk
         values, static_cast<size_t>(std::llround(0.95 * static_cast<double>(values.size() - 1))));
   // Which group a channel's taxel belongs to, for the region.
   std::map<std::string, int> channel_of_name;
-  for (int c = 0; c < channels; ++c) channel_of_name[stream.channels[static_cast<size_t>(c)]] = c;
+  for (int c = 0; c < channels; ++c) channel_of_name[input.channels[static_cast<size_t>(c)]] = c;
   std::vector<std::vector<int>>& group_channels = scan->group_channels;
   group_channels.resize(layout.groups.size());
   for (const auto& group : layout.groups) scan->group_ids.push_back(group.id);
@@ -403,7 +505,7 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
     return std::max<int64_t>(1, std::llround(seconds * rate));
   };
   // Each channel's band (0: never on); its excursion over the band is > 1 where it is on.
-  const std::vector<std::vector<float>>& moved = scan.moved;
+  const std::vector<SparseExcursion>& moved = scan.moved;
   std::vector<float> bands(static_cast<size_t>(channels), 0.0f);
   const std::vector<float>& sigmas = scan.sigmas;
   const std::vector<std::string>& kinds = scan.kinds;
@@ -412,7 +514,7 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   const auto& group_channels = scan.group_channels;
   int usable = 0;
   for (int c = 0; c < channels; ++c) {
-    if (moved[static_cast<size_t>(c)].empty()) continue;
+    if (!moved[static_cast<size_t>(c)].counts) continue;
     const auto found = amplitude.find(kinds[static_cast<size_t>(c)]);
     const float band =
         std::max(noise_bands * sigmas[static_cast<size_t>(c)],
@@ -435,11 +537,10 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   for (int c = 0; c < channels; ++c) {
     const float band = bands[static_cast<size_t>(c)];
     if (!(band > 0)) continue;
-    const std::vector<float>& excursion = moved[static_cast<size_t>(c)];
-    for (int64_t t = 0; t < samples; ++t) {
-      on_count[static_cast<size_t>(t)] += excursion[static_cast<size_t>(t)] > band;
-      strong[static_cast<size_t>(t)] += excursion[static_cast<size_t>(t)] > alone * band;
-    }
+    moved[static_cast<size_t>(c)].each(0, samples - 1, [&](int64_t t, float value) {
+      on_count[static_cast<size_t>(t)] += value > band;
+      strong[static_cast<size_t>(t)] += value > alone * band;
+    });
   }
   int64_t needed = std::min<int64_t>(options.taxels, std::max(1, usable));
   {
@@ -517,8 +618,9 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
         for (int c : group_channels[g]) {
           const float band = bands[static_cast<size_t>(c)];
           if (!(band > 0)) continue;
-          for (int64_t t = first; t <= last; ++t)
-            past += std::max(0.0f, moved[static_cast<size_t>(c)][static_cast<size_t>(t)] / band - 1.0f);
+          moved[static_cast<size_t>(c)].each(first, last, [&](int64_t, float value) {
+            past += std::max(0.0f, value / band - 1.0f);
+          });
         }
         if (past > best) best = past, label.region = scan.group_ids[g];
       }
@@ -533,12 +635,19 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
 std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout& layout,
                                     const Parameters& parameters) {
   const AdaptiveOptions options = adaptive_options(parameters);
-  return adaptive_decide(*adaptive_scan(recording, layout, options), options);
+  return adaptive_decide(*adaptive_scan(scan_input(recording), layout, options), options);
+}
+
+std::vector<Label> segment_adaptive(const SampleSource& source, const SkinLayout& layout,
+                                    const Parameters& parameters,
+                                    const std::function<void(double)>& step) {
+  const AdaptiveOptions options = adaptive_options(parameters);
+  return adaptive_decide(*adaptive_scan(scan_input(source, step), layout, options), options);
 }
 
 AdaptiveSegmenter::AdaptiveSegmenter(const Recording& recording, const SkinLayout& layout,
                                      const Parameters& slow)
-    : scan_(adaptive_scan(recording, layout, adaptive_options(slow))),
+    : scan_(adaptive_scan(scan_input(recording), layout, adaptive_options(slow))),
       slow_(slow) {
   for (const std::string& key : adaptive_fast_parameters())
     if (slow.has(key))

@@ -35,6 +35,7 @@
 // name. Region: the layout group whose channels went furthest past their bands over the
 // touch, else "all".
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,11 +44,18 @@
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
+#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 
 std::vector<Label> segment_adaptive(const Recording& recording, const SkinLayout& layout,
                                     const Parameters& parameters);
+// The same from a source read one channel at a time (twice), so that a recording file is never
+// held whole: the same labels as segment_adaptive(read_all(source), ...). `step(share)` is
+// called after each channel read and may throw to stop (a cancelled job).
+std::vector<Label> segment_adaptive(const SampleSource& source, const SkinLayout& layout,
+                                    const Parameters& parameters,
+                                    const std::function<void(double)>& step = {});
 
 struct AdaptiveScan;
 

@@ -3,6 +3,7 @@
 // source kSegmenter, annotator "segmenter:<method>", a region (a layout group id or
 // "all") and class "" (unknown) unless the method knows it (scenario time stamps).
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
+#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 
@@ -18,5 +20,11 @@ std::vector<std::string> segmenter_methods();
 // Throws tactile::Error naming the method when unknown, or a parameter when bad.
 std::vector<Label> segment_recording(const std::string& method, const Recording& recording,
                                      const SkinLayout& layout, const Parameters& parameters = {});
+// The same labels from a source's stream. A method that reads a channel at a time (adaptive)
+// never holds the whole recording; the others read it whole first. `step(share)` reports the
+// share read and may throw to stop (a cancelled job).
+std::vector<Label> segment_source(const std::string& method, const SampleSource& source,
+                                  const SkinLayout& layout, const Parameters& parameters = {},
+                                  const std::function<void(double)>& step = {});
 
 }  // namespace tactile
