@@ -266,7 +266,7 @@ bool predict_open_recording(WorkbenchState& state) {
     // a 64-taxel strip when it ran in one frame). A second Predict replaces a run still going.
     start_job<AnalysisState::PredictionsMade>(
         state, analysis.predict_job, "predict",
-        [read = recording_for_job(document, 0.2, 0.4), layout = document.layout,
+        [open = source_for_job(document), layout = document.layout,
          path = document.path, model_path, table, classifier, request = analysis.last_request,
          segments = std::move(segments), database, recording = document.recording_id(),
          annotator = state.labelling.annotator](JobProgress& progress) {
@@ -278,10 +278,11 @@ bool predict_open_recording(WorkbenchState& state) {
                             "model");
           }
           const SavedModel model = read_model_file(model_path, progress.steps("reading the model", 0.0, 0.2));
-          const Recording whole = read(progress);
+          // A pipeline that reads only the segments' samples (Robovie's correlations) reads
+          // their windows from the file; the recording is never held whole.
           const Predictions predictions = predict_segments(
-              model, whole, layout, segments,
-              progress.steps("features of " + std::to_string(segments.size()) + " segments", 0.4, 1.0));
+              model, *open(), layout, segments,
+              progress.steps("features of " + std::to_string(segments.size()) + " segments", 0.2, 1.0));
           LabelStore store(database, LabelStore::OpenMode::kExisting);
           const LabelEdit edit = prediction_edit(store, recording, predictions.labels);
           progress.check();  // the last place to stop: what follows is one transaction

@@ -109,6 +109,9 @@ class RobovieXcorrExtractor : public FeatureExtractor {
     return columns;
   }
 
+  // The films' samples inside the segment, nothing else (no preprocessing).
+  bool reads_segment_only() const override { return true; }
+
   FeatureResult extract(const SegmentInput& input) const override {
     const Stream& stream = film_stream(input.recording, input.layout);
     const std::vector<Eigen::Index> columns =

@@ -144,29 +144,34 @@ SavedModel read_model_file(const std::string& path, const std::function<void(dou
   return model_from_json(document, path);
 }
 
-Predictions predict_segments(const SavedModel& model, const Recording& recording,
-                             const SkinLayout& layout, const std::vector<Label>& segments,
-                             const std::function<void(double)>& step) {
-  const std::string where = recording.id.empty() ? std::string("predict") : recording.id;
+namespace {
+
+// The model's pipeline, checked against the layout and the model's features.
+std::unique_ptr<FeatureExtractor> model_extractor(const SavedModel& model, const SkinLayout& layout,
+                                                  const std::string& where,
+                                                  std::vector<FeatureColumn>& columns) {
   if (model.pipeline.empty())
     throw Error(where, "the model does not say which feature pipeline made its features");
   if (!model.layout.empty() && model.layout != layout.id)
     throw Error(where, "a recording of skin '" + layout.id + "', the model is for '" +
                            model.layout + "'");
-  const auto extractor = make_feature_extractor(
+  auto extractor = make_feature_extractor(
       model.pipeline, Parameters::parse(model.pipeline_params, "model pipeline_params"));
-  const std::vector<FeatureColumn> columns = extractor->columns(layout);
+  columns = extractor->columns(layout);
   bool same = columns.size() == model.features.size();
   for (size_t i = 0; same && i < columns.size(); ++i) same = columns[i].name == model.features[i];
   if (!same)
     throw Error(where, "pipeline " + model.pipeline + " gives " + std::to_string(columns.size()) +
                            " columns on " + layout.id + ", not the model's " +
                            std::to_string(model.features.size()) + " features");
-  if (step) step(0.0);
-  const FeatureExtractor::Segments extracted =
-      extractor->extract_segments(recording, layout, segments, [&](size_t done) {
-        if (step) step(static_cast<double>(done) / static_cast<double>(segments.size()));
-      });
+  return extractor;
+}
+
+// The model's answer for every segment the pipeline gave a row for.
+Predictions classify_segments(const SavedModel& model, const std::string& recording,
+                              const std::vector<FeatureColumn>& columns,
+                              const std::vector<Label>& segments,
+                              const FeatureExtractor::Segments& extracted) {
   Predictions predictions;
   std::vector<std::vector<double>> rows;
   std::vector<const Label*> kept;
@@ -179,7 +184,7 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
     for (size_t i = 0; reason.empty() && i < result.values.size(); ++i)
       if (!std::isfinite(result.values[i])) reason = "non-finite value in " + columns[i].name;
     if (!reason.empty()) {
-      predictions.skipped.push_back({recording.id, segment.id, segment.t0, segment.t1, reason});
+      predictions.skipped.push_back({recording, segment.id, segment.t0, segment.t1, reason});
       continue;
     }
     rows.push_back(result.values);
@@ -197,7 +202,7 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
     const ml::Confidence confidence =
         ml::confidence_of(decisions.scores.row(static_cast<Eigen::Index>(row)).transpose(), answer);
     Label label;
-    label.recording = recording.id;
+    label.recording = recording;
     label.t0 = kept[row]->t0;
     label.t1 = kept[row]->t1;
     label.region = kept[row]->region;
@@ -211,6 +216,44 @@ Predictions predict_segments(const SavedModel& model, const Recording& recording
     predictions.labels.push_back(std::move(label));
   }
   return predictions;
+}
+
+}  // namespace
+
+Predictions predict_segments(const SavedModel& model, const Recording& recording,
+                             const SkinLayout& layout, const std::vector<Label>& segments,
+                             const std::function<void(double)>& step) {
+  const std::string where = recording.id.empty() ? std::string("predict") : recording.id;
+  std::vector<FeatureColumn> columns;
+  const auto extractor = model_extractor(model, layout, where, columns);
+  if (step) step(0.0);
+  const FeatureExtractor::Segments extracted =
+      extractor->extract_segments(recording, layout, segments, [&](size_t done) {
+        if (step) step(static_cast<double>(done) / static_cast<double>(segments.size()));
+      });
+  return classify_segments(model, recording.id, columns, segments, extracted);
+}
+
+Predictions predict_segments(const SavedModel& model, const SampleSource& source,
+                             const SkinLayout& layout, const std::vector<Label>& segments,
+                             const std::function<void(double)>& step) {
+  const std::string& id = source.info().recording_id;
+  std::vector<FeatureColumn> columns;
+  const auto extractor = model_extractor(model, layout, id.empty() ? "predict" : id, columns);
+  // Reading the whole stream (a pipeline that preprocesses it) is the first third.
+  const double read_share = extractor->reads_segment_only() ? 0.0 : 1.0 / 3.0;
+  if (step) step(0.0);
+  const FeatureExtractor::Segments extracted = extract_source_segments(
+      *extractor, source, layout, segments,
+      [&](size_t done) {
+        if (step)
+          step(read_share + (1.0 - read_share) * static_cast<double>(done) /
+                                static_cast<double>(segments.size()));
+      },
+      [&](double share) {
+        if (step) step(read_share * share);
+      });
+  return classify_segments(model, id, columns, segments, extracted);
 }
 
 std::vector<Label> segments_to_predict(const std::vector<Label>& labels) {

@@ -11,6 +11,7 @@
 #include "tactile/io/label.h"
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/signal/sample_source.h"
 #include "tactile/parameters.h"
 
 namespace tactile {
@@ -59,7 +60,22 @@ class FeatureExtractor {
   // What the pipeline chose for this layout, in one line for the user (`tactile features`
   // prints it); empty when it has nothing to say.
   virtual std::string layout_note(const SkinLayout& layout) const;
+  // True when a segment's features read only its own samples, [t0, t1) of one stream, and
+  // nothing else of the recording (no preprocessing over it): a segment can then be extracted
+  // from its window alone (extract_source_segments), so a long recording is never held whole.
+  virtual bool reads_segment_only() const { return false; }
 };
+
+// A recording's segments from a source: each segment's window read alone when the pipeline
+// reads nothing else (reads_segment_only), the same results as extract_segments on the whole
+// recording; else the whole stream read once (`read_step(share)` while reading) and
+// extract_segments on it. `each(done)` as extract_segments's.
+FeatureExtractor::Segments extract_source_segments(const FeatureExtractor& extractor,
+                                                   const SampleSource& source,
+                                                   const SkinLayout& layout,
+                                                   const std::vector<Label>& segments,
+                                                   const std::function<void(size_t)>& each = {},
+                                                   const std::function<void(double)>& read_step = {});
 
 // The stream a pipeline reads: the one named `name`, else the recording's first. Throws
 // tactile::Error naming the recording when it has none.

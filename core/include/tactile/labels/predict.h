@@ -66,6 +66,12 @@ struct Predictions {
 Predictions predict_segments(const SavedModel& model, const Recording& recording,
                              const SkinLayout& layout, const std::vector<Label>& segments,
                              const std::function<void(double)>& step = {});
+// The same from a source's stream: a pipeline that reads only each segment's samples
+// (FeatureExtractor::reads_segment_only) reads their windows alone, so a long recording is
+// never held whole; any other reads the stream once. The same predictions either way.
+Predictions predict_segments(const SavedModel& model, const SampleSource& source,
+                             const SkinLayout& layout, const std::vector<Label>& segments,
+                             const std::function<void(double)>& step = {});
 
 // The segments a model predicts on by default: the recording's segmenter suggestions among
 // `labels` (one recording's), else its ground truth; none when it has neither.
