@@ -11,12 +11,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "long_robovie.h"
+#include "process_memory.h"
 #include "tactile/error.h"
 #include "tactile/features/corpus.h"
 #include "tactile/features/dataset.h"
@@ -30,15 +30,6 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// The process's peak resident memory in MB since the last reset_peak() (Linux's VmHWM).
-double peak_mb() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return 0.0;
-}
-void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -125,7 +116,7 @@ int main(int argc, char** argv) {
                 static_cast<long long>(table.rows()), static_cast<long long>(table.features.cols()),
                 table.class_names().size());
     for (const std::string& part : parts) {
-      reset_peak();
+      tactile::bench::reset_peak_memory();
       if (part == "som") {
         std::printf("| SOM | seconds | quantisation error | topographic error |\n|---|---|---|---|\n");
         som_rows(table);
@@ -136,7 +127,7 @@ int main(int argc, char** argv) {
         throw tactile::Error("real_size_bench", "unknown part '" + part + "' (som, train)");
       }
       std::printf("\n%s: peak resident memory %.0f MB (the table itself %.0f MB)\n\n", part.c_str(),
-                  peak_mb(), static_cast<double>(table.features.size()) * 8.0 / 1e6);
+                  tactile::bench::peak_memory_mb(), static_cast<double>(table.features.size()) * 8.0 / 1e6);
       std::fflush(stdout);
     }
     return 0;

@@ -24,6 +24,7 @@
 #include "bench_support.h"
 #include "jobs.h"
 #include "long_robovie.h"
+#include "process_memory.h"
 #include "labelling.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/hdf5_file.h"
@@ -65,12 +66,16 @@ struct Measured {
   std::vector<double> frames;
   double seconds = 0.0;
   double after_median = 0.0;  // the same view's frames once the result is shown (60 frames)
+  double resident_mb = 0.0;   // resident memory before the job
+  double peak_mb = 0.0;       // the process's peak while the job ran and its result was applied
 };
 
 // Frames drawn from `start` until no job is pending.
 template <typename Draw>
 Measured until_done(tactile::Workbench& workbench, Draw draw, const std::function<void()>& start) {
   Measured measured;
+  tactile::bench::reset_peak_memory();
+  measured.resident_mb = tactile::bench::peak_memory_mb();
   const auto begin = Clock::now();
   start();
   measured.frames.push_back(draw());
@@ -78,6 +83,7 @@ Measured until_done(tactile::Workbench& workbench, Draw draw, const std::functio
     measured.frames.push_back(draw());
   measured.frames.push_back(draw());  // the frame that applies a training result
   measured.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  measured.peak_mb = tactile::bench::peak_memory_mb();
   std::vector<double> after;
   for (int k = 0; k < 60; ++k) after.push_back(draw());
   measured.after_median = percentile(after, 0.5);
@@ -105,11 +111,12 @@ void print_job(const char* name, const Measured& job, double idle_median, double
   std::printf(
       ",\n \"%s\": {\"seconds\": %.2f, \"frames\": %zu, \"ms_median\": %.2f, \"ms_p99\": %.2f, "
       "\"ms_max\": %.2f, \"longest_frame\": %zu, \"max_over_idle_median\": %.2f, "
-      "\"after_ms_median\": %.2f, \"max_over_after_median\": %.2f, \"cancel_seconds\": %.3f}",
+      "\"after_ms_median\": %.2f, \"max_over_after_median\": %.2f, \"cancel_seconds\": %.3f, "
+      "\"resident_mb_before\": %.0f, \"peak_mb\": %.0f}",
       name, job.seconds, job.frames.size(), percentile(job.frames, 0.5),
       percentile(job.frames, 0.99), percentile(job.frames, 1.0), longest,
       percentile(job.frames, 1.0) / idle_median, job.after_median,
-      percentile(job.frames, 1.0) / job.after_median, cancel_seconds);
+      percentile(job.frames, 1.0) / job.after_median, cancel_seconds, job.resident_mb, job.peak_mb);
 }
 
 }  // namespace

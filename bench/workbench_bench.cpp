@@ -12,13 +12,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "osmesa_renderer.h"
+#include "process_memory.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/signal/sample_source.h"
 #include "tactile/widgets/signal_plot.h"
@@ -56,13 +56,6 @@ void make(const std::string& path, double seconds) {
   recording.layout_id = "robovie";
   recording.streams = {std::move(stream)};
   tactile::write_recording(path, recording);
-}
-
-long peak_resident_kib() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
-  return -1;
 }
 
 int browse(const std::string& path, double max_span) {
@@ -130,7 +123,7 @@ int browse(const std::string& path, double max_span) {
               "\"vertices_per_column_per_channel_max\": %.2f, \"peak_rss_mb\": %.1f, "
               "\"source_memory_mb\": %.1f, \"chunks_read\": %lld}\n",
               path.c_str(), end - start, median, p90, build_median, build_p90, worst_vertices_per_column,
-              peak_resident_kib() / 1024.0, source.memory_bytes() / 1048576.0,
+              tactile::bench::peak_memory_mb(), source.memory_bytes() / 1048576.0,
               static_cast<long long>(source.chunks_read()));
   return 0;
 }

@@ -64,15 +64,16 @@ MinMaxPyramid::MinMaxPyramid(int64_t sample_count, std::span<const float> overvi
   for (int64_t block = 0; block < blocks; ++block) {
     const float low = overview_min[block];
     const float high = overview_max[block];
-    const std::string block_where = where + " overview block " + std::to_string(block);
+    // Named only when wrong: a string per block was most of an hour's opening.
+    const auto block_where = [&] { return where + " overview block " + std::to_string(block); };
     if (std::isnan(low) != std::isnan(high)) {
-      throw Error(block_where, "NaN on one side only (min " + std::to_string(low) + ", max " +
+      throw Error(block_where(), "NaN on one side only (min " + std::to_string(low) + ", max " +
                                    std::to_string(high) + ")");
     }
     const bool gap =
         std::isnan(low) || (std::isinf(low) && low > 0 && std::isinf(high) && high < 0);
     if (!gap && low > high) {
-      throw Error(block_where,
+      throw Error(block_where(),
                   "min " + std::to_string(low) + " is above max " + std::to_string(high));
     }
     if (!gap) overview.buckets[block] = {low, high};  // a gap stays the empty range
