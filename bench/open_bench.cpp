@@ -2,10 +2,14 @@
 // headless, opens a minute and an hour of Robovie's 274 films (named as its layout names them,
 // so the skin view reads them) and draws until the skin and the plot have been drawn; five
 // runs of each, alternated, the median of each and their ratio. The files are made once in
-// DIR (rest with 8-bit noise, a touch on a few films every 20 s).
+// DIR (rest with 8-bit noise, a touch on a few films every 20 s). Then the parts that read the
+// file, alone: the source, the skin's colour scale, the first instant.
 //   open_bench DIR
+//   OPEN_BENCH_VIEW=signals open_bench DIR   (only that view, over the whole window)
+//   OPEN_BENCH_NO_PARTS=1 open_bench DIR     (the openings alone)
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <random>
@@ -16,6 +20,8 @@
 #include "process_memory.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/layout/skin_layout.h"
+#include "tactile/signal/display_scale.h"
+#include "tactile/signal/sample_source.h"
 #include "workbench.h"
 
 namespace {
@@ -66,6 +72,7 @@ Opened open_once(tactile::bench::PacedFrames& frames, const std::string& path,
   options.settings_path = folder + "/settings.json";
   options.labels_path = folder + "/open-bench-labels.db";
   options.annotator = "bench";
+  if (const char* view = std::getenv("OPEN_BENCH_VIEW")) options.only_view = view;
   Opened opened;
   const auto start = Clock::now();
   tactile::Workbench workbench(options);
@@ -80,6 +87,29 @@ Opened open_once(tactile::bench::PacedFrames& frames, const std::string& path,
   if (!workbench.state().error.empty())
     std::fprintf(stderr, "open_bench: %s\n", workbench.state().error.c_str());
   return opened;
+}
+
+// The parts of an opening that read the file, timed alone on a source of their own: opening
+// the source (attributes, the overview and its pyramid), the skin's colour scale over every
+// channel (display_scale.h) and the values of every channel at the first instant.
+struct Parts {
+  double source = 0.0, scale = 0.0, instant = 0.0;
+};
+
+Parts parts_of(const std::string& path) {
+  Parts parts;
+  auto start = Clock::now();
+  const tactile::FileSampleSource source(path);
+  parts.source = std::chrono::duration<double>(Clock::now() - start).count();
+  std::vector<int> columns(static_cast<size_t>(source.channel_count()));
+  for (int k = 0; k < source.channel_count(); ++k) columns[static_cast<size_t>(k)] = k;
+  start = Clock::now();
+  const tactile::RestScale scale = tactile::rest_scale(source, columns);
+  parts.scale = std::chrono::duration<double>(Clock::now() - start).count();
+  start = Clock::now();
+  const std::vector<float> values = source.values_at(0);
+  parts.instant = std::chrono::duration<double>(Clock::now() - start).count();
+  return parts;
 }
 
 double median_of(const std::vector<Opened>& runs, double (*part)(const Opened&)) {
@@ -108,6 +138,21 @@ int main(int argc, char** argv) {
     minutes.push_back(open_once(frames, minute, folder));
     hours.push_back(open_once(frames, hour, folder));
   }
+  std::vector<Parts> minute_parts, hour_parts;
+  for (int run = 0; run < 5 && !std::getenv("OPEN_BENCH_NO_PARTS"); ++run) {
+    minute_parts.push_back(parts_of(minute));
+    hour_parts.push_back(parts_of(hour));
+  }
+  const auto part_median = [](const std::vector<Parts>& runs, double Parts::*part) {
+    std::vector<double> values;
+    for (const Parts& run : runs) values.push_back(run.*part);
+    return tactile::bench::percentile(values, 0.5);
+  };
+  std::printf("{\"parts\": \"minute / hour, s\", \"source\": [%.4f, %.4f], \"colour_scale\": [%.4f, %.4f], "
+              "\"instant\": [%.4f, %.4f]}\n",
+              part_median(minute_parts, &Parts::source), part_median(hour_parts, &Parts::source),
+              part_median(minute_parts, &Parts::scale), part_median(hour_parts, &Parts::scale),
+              part_median(minute_parts, &Parts::instant), part_median(hour_parts, &Parts::instant));
   const auto total = [](const Opened& run) { return run.total(); };
   const auto open = [](const Opened& run) { return run.open; };
   const auto drawn = [](const Opened& run) { return run.frames; };

@@ -179,7 +179,11 @@ void MinMaxPyramid::query_edges(std::span<const int64_t> edges, std::span<MinMax
   const int64_t first = std::max<int64_t>(edges.front(), 0);
   const int64_t last = std::min(edges.back(), sample_count_);
   const int64_t columns = static_cast<int64_t>(out.size());
-  if (reader_ && first < last && last - first <= kOverviewBlock * columns) {
+  // Edges all on block boundaries (or outside the data) are answered by the levels alone.
+  const bool on_blocks = std::all_of(edges.begin(), edges.end(), [&](int64_t edge) {
+    return edge <= 0 || edge >= sample_count_ || edge % kOverviewBlock == 0;
+  });
+  if (reader_ && !on_blocks && first < last && last - first <= kOverviewBlock * columns) {
     // Zoomed in: the visible samples are few, read them in one piece rather than
     // column edge by column edge.
     std::vector<float> visible(static_cast<size_t>(last - first));

@@ -70,15 +70,32 @@ std::vector<MinMax> SampleSource::minmax_over_time(int channel, double t0, doubl
   const double column_time = (t1 - t0) / columns;
   const double samples_per_column = rate_hz() > 0 ? column_time * rate_hz() : 0.0;
   const int64_t block = std::max<int64_t>(1, coarse_block());
-  const bool snap = block > 1 && samples_per_column >= static_cast<double>(block);
+  // Edges go to the nearest block boundary, half a block at most: under one column while a
+  // column spans half a block or more. Below that a column's edges read raw samples, so the
+  // raw reads stay within what half a block per column covers, whatever the recording's
+  // length (an hour at 105 Hz across 1600 columns was every chunk of every plotted channel).
+  const bool snap = block > 1 && 2.0 * samples_per_column >= static_cast<double>(block);
   const int64_t count = sample_count();
-  std::vector<int64_t> edges(static_cast<size_t>(columns) + 1);
+  std::vector<int64_t> edges(static_cast<size_t>(columns) + 1), exact(edges.size());
   for (int column = 0; column <= columns; ++column) {
     const int64_t edge = first_index_at_or_after(t0 + column * column_time);
+    exact[static_cast<size_t>(column)] = edge;
     // The end of the data stays where it is: the overview covers its partial block.
-    edges[static_cast<size_t>(column)] = snap && edge > 0 && edge < count ? edge / block * block : edge;
+    edges[static_cast<size_t>(column)] =
+        snap && edge > 0 && edge < count ? std::min(count, (edge + block / 2) / block * block) : edge;
   }
   minmax(channel, edges, out);
+  // A column narrower than a block whose two edges snapped to one boundary shows the block
+  // around its middle, rather than a gap.
+  for (int column = 0; snap && column < columns; ++column) {
+    const auto at = static_cast<size_t>(column);
+    if (edges[at] != edges[at + 1] || exact[at] >= exact[at + 1] || exact[at + 1] <= 0 ||
+        exact[at] >= count)
+      continue;
+    const int64_t middle = std::clamp<int64_t>((exact[at] + exact[at + 1]) / 2, 0, count - 1);
+    const int64_t around[2] = {middle / block * block, std::min(count, (middle / block + 1) * block)};
+    minmax(channel, around, std::span<MinMax>(&out[at], 1));
+  }
   return out;
 }
 

@@ -87,8 +87,8 @@ class SampleSource {
   int64_t first_index_at_or_after(double t) const;
   int channel_index(const std::string& name) const;  // -1 when absent
 
-  // `columns` equal time columns over [t0, t1). When a column spans at least one
-  // coarse block, edges snap down to block multiples (an error under a pixel), so a
+  // `columns` equal time columns over [t0, t1). When a column spans at least half a
+  // coarse block, edges snap to the nearest block multiple (an error under a pixel), so a
   // zoomed-out view never reads a raw sample; zoomed in, the samples are read.
   std::vector<MinMax> minmax_over_time(int channel, double t0, double t1, int columns) const;
   // Min/max of a whole channel (from the coarse data: no raw read on a file).
