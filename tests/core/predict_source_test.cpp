@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io_test_files.h"
+#include "tactile/features/corpus.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/labels/predict.h"
@@ -100,6 +101,26 @@ TEST(PredictFromASource, RobovieSegmentsReadAloneGiveTheWholeRecordingsFeatures)
     EXPECT_EQ(from_file.labels[k].t0, in_memory.labels[k].t0);
     EXPECT_EQ(from_file.labels[k].recording, robovie.trial.recording.id);
   }
+}
+
+// Training reads the same way: a corpus of a file gives the rows of the recording in memory.
+TEST(PredictFromASource, ACorpusOfRobovieReadsTheSegmentsWindowsAndGivesTheSameRows) {
+  const testing::TemporaryDirectory folder;
+  const Trial robovie = simulated("robovie", folder);
+  const auto extractor = make_feature_extractor(default_pipeline("robovie"), {});
+  CorpusRecording job;
+  job.id = robovie.trial.recording.id;
+  job.path = robovie.path;
+  job.segments = robovie.trial.labels;
+  job.ground_truth = robovie.trial.labels;
+  const CorpusDataset corpus = extract_corpus(*extractor, {job});
+  const FeatureExtractor::Segments whole =
+      extractor->extract_segments(robovie.trial.recording, robovie.layout, robovie.trial.labels);
+  ASSERT_EQ(corpus.dataset.rows(), static_cast<Eigen::Index>(whole.results.size()));
+  for (size_t row = 0; row < whole.results.size(); ++row)
+    for (size_t column = 0; column < whole.results[row].values.size(); ++column)
+      ASSERT_EQ(corpus.dataset.features(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column)),
+                whole.results[row].values[column]);
 }
 
 TEST(PredictFromASource, APipelineThatPreprocessesReadsTheWholeStream) {

@@ -1,5 +1,9 @@
 #include "jobs.h"
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <imgui.h>
 
 #include "tactile/signal/sample_source.h"
@@ -28,6 +32,12 @@ std::function<Recording(JobProgress&)> recording_for_job(const Document& documen
   return [open = source_for_job(document), from, to](JobProgress& progress) {
     return read_all(*open(), progress.steps("reading the recording", from, to));
   };
+}
+
+void return_freed_memory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
 }
 
 void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job) {

@@ -48,6 +48,10 @@ void start_job(WorkbenchState& state, std::unique_ptr<Job<Result>>& job, const s
   log_job_start(state, name);
 }
 
+// Gives the memory a finished job freed back to the system (glibc keeps freed heap pages of
+// a large job's tables resident otherwise: 240 MB after training on 30 minutes of Robovie).
+void return_freed_memory();
+
 // A job's end, on the window's thread: its result when it gave one (a failure goes to the
 // status bar). The handle is emptied once the job has ended.
 template <typename Result>
@@ -58,6 +62,7 @@ std::optional<Result> finished_job(WorkbenchState& state, std::unique_ptr<Job<Re
   if (job->status() == JobStatus::kCancelled) state.notice = job->name() + ": cancelled";
   log_job_end(state, job->name(), to_string(job->status()));
   job.reset();
+  return_freed_memory();
   return result;
 }
 

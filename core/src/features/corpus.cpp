@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "tactile/error.h"
@@ -40,14 +41,23 @@ RecordingRows extract_recording(const FeatureExtractor& extractor, const CorpusR
     if (cancel != nullptr && cancel->load()) throw Error("features", "cancelled");
   };
   RecordingRows rows;
-  const Recording raw = read_recording(job.path, [&](double) { stop_if_cancelled(); });
-  const SkinLayout layout = load_layout(raw.layout_id);
+  // A pipeline that reads only the segments' samples reads their windows from the file (30
+  // minutes of Robovie are never held whole); any other reads the whole recording.
+  std::optional<FileSampleSource> source;
+  std::optional<Recording> raw;
+  if (extractor.reads_segment_only())
+    source.emplace(job.path);
+  else
+    raw = read_recording(job.path, [&](double) { stop_if_cancelled(); });
+  const SkinLayout layout = load_layout(source ? source->info().layout_id : raw->layout_id);
   rows.layout_id = layout.id;
   rows.columns = extractor.columns(layout);
   stop_if_cancelled();
   // A long recording has many segments: a cancel stops between two.
+  const auto each = [&](size_t) { stop_if_cancelled(); };
   const FeatureExtractor::Segments extracted =
-      extractor.extract_segments(raw, layout, job.segments, [&](size_t) { stop_if_cancelled(); });
+      source ? extract_source_segments(extractor, *source, layout, job.segments, each)
+             : extractor.extract_segments(*raw, layout, job.segments, each);
   const auto subject = extracted.metadata.find("subject");
   Metadata shared = extracted.metadata;
   // These have columns of their own in a dataset.
