@@ -26,35 +26,6 @@ FeatureExtractor::Segments FeatureExtractor::extract_segments(
 }
 std::string FeatureExtractor::layout_note(const SkinLayout&) const { return {}; }
 
-namespace {
-
-// Samples [first, first + count) of every channel of the source's stream, as a recording of
-// that stream whose sample 0 is the source's sample `first` (its time, or its time stamps).
-Recording source_window(const SampleSource& source, int64_t first, int64_t count) {
-  const SourceInfo& info = source.info();
-  Recording recording;
-  recording.id = info.recording_id;
-  recording.layout_id = info.layout_id;
-  recording.metadata = info.metadata;
-  Stream stream;
-  stream.name = info.stream;
-  stream.rate_hz = info.rate_hz;
-  stream.channels = info.channels;
-  stream.units = info.units;
-  stream.start_time = source.time_of(first);
-  std::vector<int> channels(info.channels.size());
-  std::iota(channels.begin(), channels.end(), 0);
-  if (count > 0)
-    stream.samples = source.read(channels, first, count);
-  else
-    stream.samples.resize(0, static_cast<Eigen::Index>(channels.size()));
-  if (const std::vector<double>* stamps = source.timestamps())
-    stream.timestamps.assign(stamps->begin() + first, stamps->begin() + first + count);
-  recording.streams.push_back(std::move(stream));
-  return recording;
-}
-
-}  // namespace
 
 FeatureExtractor::Segments extract_source_segments(const FeatureExtractor& extractor,
                                                    const SampleSource& source,
@@ -72,7 +43,7 @@ FeatureExtractor::Segments extract_source_segments(const FeatureExtractor& extra
     // A sample either side of [t0, t1): the window's own sample range finds the same samples.
     const int64_t first = std::max<int64_t>(0, source.first_index_at_or_after(segment.t0) - 1);
     const int64_t last = std::min(count, source.first_index_at_or_after(segment.t1) + 1);
-    const Recording window = source_window(source, first, std::max<int64_t>(0, last - first));
+    const Recording window = read_window(source, first, std::max<int64_t>(0, last - first));
     extracted.results.push_back(extractor.extract(SegmentInput{window, layout, segment}));
     if (each) each(extracted.results.size());
   }

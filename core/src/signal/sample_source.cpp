@@ -180,7 +180,11 @@ int64_t MemorySampleSource::memory_bytes() const {
   return bytes;
 }
 
-Recording read_all(const SampleSource& source, const std::function<void(double)>& step) {
+namespace {
+
+// A recording of the source's stream holding no samples yet, its sample 0 the source's
+// sample `first`.
+Recording empty_recording_of(const SampleSource& source, int64_t first) {
   const SourceInfo& info = source.info();
   Recording recording;
   recording.id = info.recording_id;
@@ -189,12 +193,27 @@ Recording read_all(const SampleSource& source, const std::function<void(double)>
   Stream stream;
   stream.name = info.stream;
   stream.rate_hz = info.rate_hz;
-  stream.start_time = info.start_time;
+  stream.start_time = first == 0 ? info.start_time : source.time_of(first);
   stream.channels = info.channels;
   stream.units = info.units;
-  const int64_t count = source.sample_count();
+  stream.samples.resize(0, static_cast<Eigen::Index>(info.channels.size()));
+  recording.streams = {std::move(stream)};
+  return recording;
+}
+
+std::vector<int> every_channel(const SampleSource& source) {
   std::vector<int> channels(static_cast<size_t>(source.channel_count()));
   for (size_t k = 0; k < channels.size(); ++k) channels[k] = static_cast<int>(k);
+  return channels;
+}
+
+}  // namespace
+
+Recording read_all(const SampleSource& source, const std::function<void(double)>& step) {
+  Recording recording = empty_recording_of(source, 0);
+  Stream& stream = recording.streams.front();
+  const int64_t count = source.sample_count();
+  const std::vector<int> channels = every_channel(source);
   stream.samples.resize(count, static_cast<Eigen::Index>(channels.size()));
   const int64_t block = std::max<int64_t>(1, (int64_t{1} << 20) / std::max<int64_t>(1, channels.size()));
   for (int64_t first = 0; first < count; first += block) {
@@ -204,7 +223,15 @@ Recording read_all(const SampleSource& source, const std::function<void(double)>
   }
   if (const std::vector<double>* times = source.timestamps())
     stream.timestamps.assign(times->begin(), times->begin() + std::min<int64_t>(count, times->size()));
-  recording.streams = {std::move(stream)};
+  return recording;
+}
+
+Recording read_window(const SampleSource& source, int64_t first, int64_t count) {
+  Recording recording = empty_recording_of(source, first);
+  Stream& stream = recording.streams.front();
+  if (count > 0) stream.samples = source.read(every_channel(source), first, count);
+  if (const std::vector<double>* times = source.timestamps())
+    stream.timestamps.assign(times->begin() + first, times->begin() + first + std::max<int64_t>(0, count));
   return recording;
 }
 

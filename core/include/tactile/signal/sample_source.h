@@ -100,6 +100,9 @@ class SampleSource {
 // in blocks of about a million values; `step(fraction)` is called after each block, so a job
 // reports its progress there and ends there when cancelled (the callback throws).
 Recording read_all(const SampleSource& source, const std::function<void(double)>& step = {});
+// Samples [first, first + count) of every channel, as a recording of the source's stream whose
+// sample 0 is the source's sample `first` (its time, or its time stamps). Throws as read().
+Recording read_window(const SampleSource& source, int64_t first, int64_t count);
 
 //---- Samples held in memory
 
