@@ -176,12 +176,13 @@ TEST(AutoBlocks, SearchesTheBlocksOfAStackedTableAndNamesTheChosenPipeline) {
 // Column 0 tells the classes apart the same way for everyone, but blurred; column 1 tells
 // them apart perfectly within each subject, and for no one else. Inner folds that mix a
 // subject's rows favour column 1; when the outer evaluation leaves subjects out, so do auto's
-// inner folds, and it picks column 0, which holds for a subject it has not seen.
-TEST(AutoBlocks, InnerFoldsKeepTheOuterGroupsWhole) {
+// inner folds, and it picks column 0, which holds for a subject it has not seen. With six
+// subjects the last rung leaves one of the five others out at a time; with twelve it deals
+// the eleven into five folds of whole subjects (not eleven folds), and still picks column 0.
+Dataset general_and_personal(int subjects, int per_subject) {
   std::mt19937_64 engine(5);
   std::normal_distribution<double> normal(0.0, 1.0);
   Dataset dataset;
-  const int subjects = 6, per_subject = 24;
   dataset.features.resize(subjects * per_subject, 2);
   for (int subject = 0; subject < subjects; ++subject) {
     // Each subject's own pair of levels, far from the others': a neighbour from another
@@ -199,16 +200,23 @@ TEST(AutoBlocks, InnerFoldsKeepTheOuterGroupsWhole) {
     }
   }
   dataset.columns = {{"general/f0", ""}, {"personal/f1", ""}};
+  return dataset;
+}
+
+TEST(AutoBlocks, InnerFoldsKeepTheOuterGroupsWhole) {
   const std::string specification = "auto:candidates=knn:k=3,blocks=general:0-0|personal:1-1";
-  EXPECT_EQ(protocol_groups(dataset, Protocol::parse("loso")), dataset.subjects);
-  EXPECT_TRUE(protocol_groups(dataset, Protocol::parse("kfold:3")).empty());
-  const EvaluationResult by_subject = evaluate(dataset, specification, Protocol::parse("loso"), 3);
-  for (const std::string& model : by_subject.fold_models)
-    EXPECT_EQ(model.rfind("general/", 0), 0u) << model;
-  // Without groups held out, the personal column wins the inner folds.
-  const EvaluationResult mixed = evaluate(dataset, specification, Protocol::parse("kfold:3"), 3);
-  for (const std::string& model : mixed.fold_models)
-    EXPECT_EQ(model.rfind("personal/", 0), 0u) << model;
+  for (const int subjects : {6, 12}) {
+    const Dataset dataset = general_and_personal(subjects, 24);
+    EXPECT_EQ(protocol_groups(dataset, Protocol::parse("loso")), dataset.subjects);
+    EXPECT_TRUE(protocol_groups(dataset, Protocol::parse("kfold:3")).empty());
+    const EvaluationResult by_subject = evaluate(dataset, specification, Protocol::parse("loso"), 3);
+    for (const std::string& model : by_subject.fold_models)
+      EXPECT_EQ(model.rfind("general/", 0), 0u) << subjects << " subjects: " << model;
+    // Without groups held out, the personal column wins the inner folds.
+    const EvaluationResult mixed = evaluate(dataset, specification, Protocol::parse("kfold:3"), 3);
+    for (const std::string& model : mixed.fold_models)
+      EXPECT_EQ(model.rfind("personal/", 0), 0u) << subjects << " subjects: " << model;
+  }
 }
 
 TEST(StackBlocks, NeedTwoPipelinesEachSideBySide) {
