@@ -74,19 +74,31 @@ constexpr size_t kFewestInnerGroups = 3;
 
 // An early rung's one split of grouped rows: about 30 % of the groups (at least one, drawn
 // by `seed`) tested, the others trained on, as `split:auto_part=train/auto_part=test`.
-Protocol grouped_holdout(Dataset& inner, uint64_t seed) {
+// The distinct groups of the inner rows (their subjects), in an order shuffled by `seed`.
+std::vector<std::string> shuffled_groups(const Dataset& inner, uint64_t seed) {
   std::vector<std::string> names = inner.subjects;
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
   std::mt19937_64 engine(seed);
   shuffle(names, engine);
-  const size_t tested = std::max<size_t>(
-      1, static_cast<size_t>(std::llround(0.3 * static_cast<double>(names.size()))));
-  const std::set<std::string> test(names.begin(),
-                                   names.begin() + static_cast<std::ptrdiff_t>(tested));
+  return names;
+}
+
+// Each inner row's metadata replaced by one key: its group's value in `value_of`.
+void mark_groups(Dataset& inner, const std::string& key,
+                 const std::map<std::string, std::string>& value_of) {
   inner.metadata.clear();
   for (const std::string& subject : inner.subjects)
-    inner.metadata.push_back({{"auto_part", test.count(subject) ? "test" : "train"}});
+    inner.metadata.push_back({{key, value_of.at(subject)}});
+}
+
+Protocol grouped_holdout(Dataset& inner, uint64_t seed) {
+  const std::vector<std::string> names = shuffled_groups(inner, seed);
+  const size_t tested = std::max<size_t>(
+      1, static_cast<size_t>(std::llround(0.3 * static_cast<double>(names.size()))));
+  std::map<std::string, std::string> part_of;
+  for (size_t k = 0; k < names.size(); ++k) part_of[names[k]] = k < tested ? "test" : "train";
+  mark_groups(inner, "auto_part", part_of);
   return Protocol::parse("split:auto_part=train/auto_part=test");
 }
 
@@ -97,17 +109,11 @@ Protocol grouped_holdout(Dataset& inner, uint64_t seed) {
 constexpr size_t kInnerGroupFolds = 5;
 
 Protocol grouped_folds(Dataset& inner, uint64_t seed) {
-  std::vector<std::string> names = inner.subjects;
-  std::sort(names.begin(), names.end());
-  names.erase(std::unique(names.begin(), names.end()), names.end());
-  std::mt19937_64 engine(seed);
-  shuffle(names, engine);
+  const std::vector<std::string> names = shuffled_groups(inner, seed);
   const size_t folds = std::min(kInnerGroupFolds, names.size());
-  std::map<std::string, size_t> fold_of;
-  for (size_t k = 0; k < names.size(); ++k) fold_of[names[k]] = k % folds;
-  inner.metadata.clear();
-  for (const std::string& subject : inner.subjects)
-    inner.metadata.push_back({{"auto_fold", std::to_string(fold_of[subject] + 1)}});
+  std::map<std::string, std::string> fold_of;
+  for (size_t k = 0; k < names.size(); ++k) fold_of[names[k]] = std::to_string(k % folds + 1);
+  mark_groups(inner, "auto_fold", fold_of);
   return Protocol::parse("group:auto_fold");
 }
 
@@ -196,8 +202,8 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
 GridSearchClassifier::GridSearchClassifier(std::vector<std::string> specifications, Protocol inner,
                                            std::string listed, std::string blocks)
     : auto_(true),
-      listed_(std::move(listed)),
       blocks_(std::move(blocks)),
+      listed_(std::move(listed)),
       inner_(std::move(inner)) {
   if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
       inner_.kind == Protocol::Kind::kSplit)
