@@ -1,12 +1,14 @@
 // Opening a recording costs the same whatever its length (issue 41): the whole workbench,
 // headless, opens a minute and an hour of Robovie's 274 films (named as its layout names them,
-// so the skin view reads them) and draws until the skin and the plot have been drawn; five
-// runs of each, alternated, the median of each and their ratio. The files are made once in
+// so the skin view reads them) and draws until the skin and the plot have been drawn; nine
+// runs of each, alternated, the median of each and their ratio, and of each of the three
+// frames. The files are made once in
 // DIR (rest with 8-bit noise, a touch on a few films every 20 s). Then the parts that read the
 // file, alone: the source, the skin's colour scale, the first instant.
 //   open_bench DIR
 //   OPEN_BENCH_VIEW=signals open_bench DIR   (only that view, over the whole window)
 //   OPEN_BENCH_NO_PARTS=1 open_bench DIR     (the openings alone)
+//   OPEN_BENCH_ONLY=hour open_bench DIR      (one of the two files, to profile it)
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -28,6 +30,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kRate = 105.0;  // Robovie's films as the simulator records them
+constexpr int kRuns = 9;  // openings of each file, alternated; the medians are reported
 
 void make(const std::string& path, double seconds) {
   if (std::filesystem::exists(path)) return;
@@ -62,6 +65,7 @@ void make(const std::string& path, double seconds) {
 struct Opened {
   double open = 0.0;
   double frames = 0.0;
+  double frame[3] = {};  // each frame: building it, then drawing it
   double total() const { return open + frames; }
 };
 
@@ -79,9 +83,11 @@ Opened open_once(tactile::bench::PacedFrames& frames, const std::string& path,
   const auto open = Clock::now();
   opened.open = std::chrono::duration<double>(open - start).count();
   for (int k = 0; k < 3; ++k) {
+    const auto begun = Clock::now();
     frames.renderer.new_frame();
     workbench.frame(1.0 / 60.0);
     frames.renderer.render();
+    opened.frame[k] = std::chrono::duration<double>(Clock::now() - begun).count();
   }
   opened.frames = std::chrono::duration<double>(Clock::now() - open).count();
   if (!workbench.state().error.empty())
@@ -134,9 +140,11 @@ int main(int argc, char** argv) {
   open_once(frames, minute, folder);  // warm up: fonts, the layout, the file system's cache
   open_once(frames, hour, folder);
   std::vector<Opened> minutes, hours;
-  for (int run = 0; run < 5; ++run) {
-    minutes.push_back(open_once(frames, minute, folder));
-    hours.push_back(open_once(frames, hour, folder));
+  // OPEN_BENCH_ONLY=minute or hour: that file alone, to profile it.
+  const std::string only = std::getenv("OPEN_BENCH_ONLY") ? std::getenv("OPEN_BENCH_ONLY") : "";
+  for (int run = 0; run < kRuns; ++run) {
+    if (only != "hour") minutes.push_back(open_once(frames, minute, folder));
+    if (only != "minute") hours.push_back(open_once(frames, hour, folder));
   }
   std::vector<Parts> minute_parts, hour_parts;
   for (int run = 0; run < 5 && !std::getenv("OPEN_BENCH_NO_PARTS"); ++run) {
@@ -156,6 +164,12 @@ int main(int argc, char** argv) {
   const auto total = [](const Opened& run) { return run.total(); };
   const auto open = [](const Opened& run) { return run.open; };
   const auto drawn = [](const Opened& run) { return run.frames; };
+  const auto first = [](const Opened& run) { return run.frame[0]; };
+  const auto second = [](const Opened& run) { return run.frame[1]; };
+  const auto third = [](const Opened& run) { return run.frame[2]; };
+  std::printf("{\"frames_minute_s\": [%.3f, %.3f, %.3f], \"frames_hour_s\": [%.3f, %.3f, %.3f]}\n",
+              median_of(minutes, first), median_of(minutes, second), median_of(minutes, third),
+              median_of(hours, first), median_of(hours, second), median_of(hours, third));
   std::printf("{\"minute_s\": %.3f, \"hour_s\": %.3f, \"hour_over_minute\": %.2f, "
               "\"open_minute_s\": %.3f, \"open_hour_s\": %.3f, "
               "\"three_frames_minute_s\": %.3f, \"three_frames_hour_s\": %.3f, \"peak_mb\": %.0f}\n",

@@ -11,6 +11,7 @@
 
 #include "cli_test_support.h"
 #include "png_test_support.h"
+#include "tactile/io/label_store.h"
 
 namespace tactile {
 namespace {
@@ -147,6 +148,55 @@ TEST_F(WorkbenchScript, AScriptErrorNamesItsLineAndFails) {
   EXPECT_NE(result.err.find("script.txt:1: wait: 0.5 is not a whole number of frames"),
             std::string::npos)
       << result.err;
+}
+
+// A long recording opens on its first minute (an hour opens as fast as a minute), or on the
+// minute of its first label; View > Fit time axis shows the whole; a short one opens whole.
+TEST_F(WorkbenchScript, ALongRecordingOpensOnAMinuteWithItsFirstLabelAndFitShowsTheWhole) {
+  {
+    std::ofstream csv(folder.file("long.csv"));
+    csv << "t,ch0,ch1,ch2,ch3\n";
+    for (int k = 0; k < 3000; ++k)  // 300 s at 10 Hz, ch3 pressed from 200 s to 202 s
+      csv << k / 10.0 << ",0,0.1,0.2," << (k >= 2000 && k < 2020 ? 1.0 : 0.0) << "\n";
+  }
+  const std::string long_recording = folder.file("long.h5");
+  ASSERT_EQ(test::run_program("tactile",
+                              "import " + folder.file("long.csv") + " --layout grid:2x2 --out " +
+                                  long_recording,
+                              folder)
+                .exit_code,
+            0);
+  auto result = run(long_recording + " --script " +
+                    script("wait 2\nstate @open.json\nmenu View/Fit time axis\nstate @fit.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_DOUBLE_EQ(state("open.json")["plot"]["t0"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(state("open.json")["plot"]["t1"].get<double>(), 60.0);
+  EXPECT_NEAR(state("fit.json")["plot"]["t1"].get<double>(), 300.0, 1e-9);
+  {
+    LabelStore store(folder.file("labels.db"));
+    Label press;
+    press.recording = "long";
+    press.t0 = 200.0;
+    press.t1 = 202.0;
+    press.class_name = "press";
+    press.annotator = "test";
+    store.add(press);
+  }
+  // Opened again: the minute that holds the first label, the cursor inside it.
+  result = run(long_recording + " --script " + script("wait 2\nstate @again.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json again = state("again.json");
+  const double t0 = again["plot"]["t0"].get<double>(), t1 = again["plot"]["t1"].get<double>();
+  EXPECT_NEAR(t1 - t0, 60.0, 1e-9);
+  EXPECT_LT(t0, 200.0);
+  EXPECT_GT(t1, 202.0);
+  EXPECT_EQ(again["labels"].get<int>(), 1);
+  EXPECT_GE(again["time"].get<double>(), 200.0);
+  EXPECT_LE(again["time"].get<double>(), 202.0);
+  // The four seconds of press.h5 open whole.
+  result = run(recording() + " --script " + script("wait 2\nstate @short.json\n"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NEAR(state("short.json")["plot"]["t1"].get<double>(), 4.0, 1e-9);
 }
 
 TEST_F(WorkbenchScript, ArgumentsThatFitNoFormOfTheCommandNameTheFormsItHas) {

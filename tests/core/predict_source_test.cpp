@@ -101,6 +101,22 @@ TEST(PredictFromASource, RobovieSegmentsReadAloneGiveTheWholeRecordingsFeatures)
     EXPECT_EQ(from_file.labels[k].t0, in_memory.labels[k].t0);
     EXPECT_EQ(from_file.labels[k].recording, robovie.trial.recording.id);
   }
+
+  // The model as fitted (the workbench keeps it after training, and Predict reads no file)
+  // answers as its document read back does, to the last bit of every score.
+  const SavedModel fitted = fit_model(table, "linear-svm", 1, default_pipeline("robovie"));
+  const SavedModel read_back = model_from_json(model_document(fitted), "test model");
+  EXPECT_EQ(read_back.features, fitted.features);
+  EXPECT_EQ(read_back.pipeline_params, fitted.pipeline_params);
+  EXPECT_EQ(read_back.layout, "robovie");
+  const Predictions fitted_answers = predict_segments(fitted, source, robovie.layout, segments);
+  const Predictions read_answers = predict_segments(read_back, source, robovie.layout, segments);
+  ASSERT_EQ(fitted_answers.labels.size(), read_answers.labels.size());
+  for (size_t k = 0; k < fitted_answers.labels.size(); ++k) {
+    EXPECT_EQ(fitted_answers.labels[k].class_name, read_answers.labels[k].class_name);
+    EXPECT_EQ(fitted_answers.labels[k].confidence, read_answers.labels[k].confidence);
+    EXPECT_EQ(fitted_answers.labels[k].note, read_answers.labels[k].note);
+  }
 }
 
 // Training reads the same way: a corpus of a file gives the rows of the recording in memory.

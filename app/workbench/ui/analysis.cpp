@@ -166,6 +166,7 @@ void poll_training(WorkbenchState& state) {
   if (!outcome->model_path.empty()) {
     analysis.model_path = outcome->model_path;
     analysis.model_classifier = request.classifier;
+    analysis.model = outcome->model;
   }
   // Every result is a file: the evaluation beside the model.
   if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
@@ -261,27 +262,32 @@ bool predict_open_recording(WorkbenchState& state) {
     const std::string model_path =
         fit ? model_file_for(analysis.last_request, classifier) : analysis.model_path;
     std::shared_ptr<const Dataset> table = fit ? analysis.dataset : nullptr;
+    std::shared_ptr<const SavedModel> fitted = fit ? nullptr : analysis.model;
     const std::string database = document.label_store().path();
     // On a worker, from reading the model to storing the answers (2.6-3.3 s for 40 minutes of
     // a 64-taxel strip when it ran in one frame). A second Predict replaces a run still going.
     start_job<AnalysisState::PredictionsMade>(
         state, analysis.predict_job, "predict",
         [open = source_for_job(document), layout = document.layout,
-         path = document.path, model_path, table, classifier, request = analysis.last_request,
+         path = document.path, model_path, table, fitted, classifier, request = analysis.last_request,
          segments = std::move(segments), database, recording = document.recording_id(),
          annotator = state.labelling.annotator](JobProgress& progress) {
+          // The model fitted in this session, else fitted now (and saved), else its file.
+          std::shared_ptr<const SavedModel> model = fitted;
           if (table) {
             progress.report(0.0, "fitting " + classifier + " on every row");
-            write_json_file(model_path,
-                            fit_model_document(*table, classifier, request.seed, request.pipeline,
-                                               request.pipeline_params),
-                            "model");
+            auto made = std::make_shared<SavedModel>(fit_model(
+                *table, classifier, request.seed, request.pipeline, request.pipeline_params));
+            write_json_file(model_path, model_document(*made), "model");
+            model = std::move(made);
           }
-          const SavedModel model = read_model_file(model_path, progress.steps("reading the model", 0.0, 0.2));
+          if (!model)
+            model = std::make_shared<SavedModel>(
+                read_model_file(model_path, progress.steps("reading the model", 0.0, 0.2)));
           // A pipeline that reads only the segments' samples (Robovie's correlations) reads
           // their windows from the file; the recording is never held whole.
           const Predictions predictions = predict_segments(
-              model, *open(), layout, segments,
+              *model, *open(), layout, segments,
               progress.steps("features of " + std::to_string(segments.size()) + " segments", 0.2, 1.0));
           LabelStore store(database, LabelStore::OpenMode::kExisting);
           const LabelEdit edit = prediction_edit(store, recording, predictions.labels);
@@ -289,7 +295,8 @@ bool predict_open_recording(WorkbenchState& state) {
           // The model's lane replaced as one command of the operator's: Ctrl+Z takes it back.
           store.apply(edit, annotator);
           return AnalysisState::PredictionsMade{path, fs::path(model_path).stem().string(),
-                                                predictions.labels.size(), model_path, classifier};
+                                                predictions.labels.size(), model_path, classifier,
+                                                model};
         });
   } catch (const std::exception& error) {
     return fail(state, std::string("predict: ") + error.what());
@@ -306,6 +313,7 @@ void apply_finished_prediction(WorkbenchState& state) {
   if (!made) return;
   state.analysis.model_path = made->model_path;
   state.analysis.model_classifier = made->classifier;
+  state.analysis.model = made->fitted;
   if (!state.document || state.document->path != made->document) return;
   state.document->reload_labels();
   state.error.clear();

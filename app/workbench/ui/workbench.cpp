@@ -35,6 +35,7 @@ constexpr float kSplitterThickness = 6.0f;
 constexpr float kMinimumPanel = 80.0f;
 // A label longer than this is searched for its peak only in its first part.
 constexpr int64_t kPeakSearchSamples = 20000;
+constexpr double kOpeningSpanSeconds = 60.0;  // the plot's span when a recording opens
 
 // A bar between two panels; dragging it moves the boundary. Returns true while dragged.
 bool splitter(WorkbenchState& state, const char* id, bool vertical, float length, float& value,
@@ -189,13 +190,21 @@ void Workbench::choose_default_view() {
   plot_moving_channels(state_);
   const std::vector<int> columns = taxel_columns(document.layout, source.info().channels, state_.modality);
   state_.plot = SignalPlotState{};
+  // The first minute, or the whole of a shorter recording (View > Fit time axis shows the
+  // whole): touches last seconds, and the plot of a minute reads a minute's samples, so an
+  // hour opens as fast as a minute.
+  const double span = std::min(kOpeningSpanSeconds, std::max(1e-3, source.duration()));
   state_.plot.view_t0 = source.start_time();
-  state_.plot.view_t1 = source.start_time() + std::max(1e-3, source.duration());
+  state_.plot.view_t1 = source.start_time() + span;
   state_.plot.fitted = true;
   state_.clock.seek(source.start_time());
   if (document.labels.empty() || source.sample_count() == 0) return;
-  // The instant of the first labelled touch where the skin changes most from rest.
+  // The instant of the first labelled touch where the skin changes most from rest, in view.
   const Label& first = document.labels.front();
+  if (first.t1 > state_.plot.view_t1) {
+    state_.plot.view_t0 = std::max(source.start_time(), first.t0 - 0.1 * span);
+    state_.plot.view_t1 = state_.plot.view_t0 + span;
+  }
   try {
     state_.clock.seek(peak_change_time(source, columns, current_rest_scale(state_, columns), first.t0,
                                        first.t1, kPeakSearchSamples));

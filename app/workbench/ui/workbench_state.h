@@ -147,6 +147,9 @@ struct AnalysisState {
   int current = -1;          // the row whose views are shown
   std::string model_path;    // the last single classifier trained, fitted on every row
   std::string model_classifier;  // the classifier of model_path
+  // model_path's model as fitted in this session (Predict reads no file then); null when
+  // only its file is known.
+  std::shared_ptr<const SavedModel> model;
   // Predict on a worker, which also stores the answers (one command of the operator's).
   struct PredictionsMade {
     std::string document;  // the recording's path
@@ -154,6 +157,7 @@ struct AnalysisState {
     size_t predicted = 0;
     std::string model_path;  // the model file, written by the job when it fitted one
     std::string classifier;  // its classifier
+    std::shared_ptr<const SavedModel> fitted;  // the model predicted with
   };
   std::unique_ptr<Job<PredictionsMade>> predict_job;
   // The feature table the results are about; shared (never changed) with the views' jobs,

@@ -54,12 +54,12 @@ void check_recording(const std::string& path, const Recording& recording) {
 // along the second dimension, shuffled, deflated and checksummed.
 void write_chunked(hid_t location, const std::string& name, hid_t file_type, hid_t memory_type,
                    const void* data, hsize_t rows, hsize_t columns, hsize_t chunk_columns,
-                   const std::string& where) {
+                   const std::string& where, bool compress = true) {
   const hsize_t shape[2] = {rows, columns};
   Object space = checked(H5Screate_simple(2, shape, nullptr), H5Sclose, where, "dataspace");
   Object properties = hdf5::untimed_dataset_properties(where);
   const hsize_t chunk[2] = {1, std::min(columns, chunk_columns)};
-  hdf5::add_checked_storage(properties.id(), 2, shape, chunk, true, where);
+  hdf5::add_checked_storage(properties.id(), 2, shape, chunk, compress, where);
   Object dataset = checked(H5Dcreate2(location, name.c_str(), file_type, space.id(), H5P_DEFAULT,
                                       properties.id(), H5P_DEFAULT),
                            H5Dclose, where, "cannot create dataset");
@@ -105,9 +105,9 @@ void write_overview(hid_t group, const Stream& stream, const std::string& where)
   const auto rows = static_cast<hsize_t>(channels);
   const auto columns = static_cast<hsize_t>(blocks);
   write_chunked(group, "overview_min", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, minima.data(), rows,
-                columns, kChunkSamples, where + "/overview_min");
+                columns, kChunkSamples, where + "/overview_min", false);
   write_chunked(group, "overview_max", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, maxima.data(), rows,
-                columns, kChunkSamples, where + "/overview_max");
+                columns, kChunkSamples, where + "/overview_max", false);
 }
 
 void write_stream(hid_t streams, const Stream& stream, const std::string& file_where) {

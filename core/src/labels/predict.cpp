@@ -22,40 +22,29 @@
 
 namespace tactile {
 
-namespace {
-
-}  // namespace
-
-nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
-                                  uint64_t seed, const std::string& pipeline,
-                                  const std::string& pipeline_params) {
-  const std::vector<std::string> classes = dataset.class_names();
+SavedModel fit_model(const Dataset& dataset, const std::string& specification, uint64_t seed,
+                     const std::string& pipeline, const std::string& pipeline_params) {
+  SavedModel model;
+  model.classes = dataset.class_names();
   std::map<std::string, int> index;
-  for (size_t k = 0; k < classes.size(); ++k) index[classes[k]] = static_cast<int>(k);
+  for (size_t k = 0; k < model.classes.size(); ++k) index[model.classes[k]] = static_cast<int>(k);
   std::vector<int> labels;
   labels.reserve(dataset.classes.size());
   for (const std::string& name : dataset.classes) labels.push_back(index.at(name));
   // auto on a stacked table searches its pipelines too.
-  auto classifier = ml::make_classifier(ml::searched_specification(specification, dataset.columns));
-  classifier->fit(dataset.features, labels, static_cast<int>(classes.size()), seed);
-  nlohmann::json document = ml::save_classifier(*classifier);
-  document["classes"] = classes;
-  nlohmann::json columns = nlohmann::json::array();
-  for (const FeatureColumn& column : dataset.columns) columns.push_back(column.name);
-  document["features"] = columns;
+  model.classifier = ml::make_classifier(ml::searched_specification(specification, dataset.columns));
+  model.classifier->fit(dataset.features, labels, static_cast<int>(model.classes.size()), seed);
+  for (const FeatureColumn& column : dataset.columns) model.features.push_back(column.name);
   // The skin, when every row names the same one.
-  const std::string layout = dataset.shared_metadata("layout");
-  document["layout"] = layout;
-  const std::string& used = pipeline;
-  document["pipeline"] = used;
+  model.layout = dataset.shared_metadata("layout");
+  model.pipeline = pipeline;
   // Every setting of the pipeline, defaults included, so that predicting with this model
   // extracts as its training data was extracted even after a default changes.
-  document["pipeline_params"] =
-      used.empty() ? pipeline_params
-                   : effective_pipeline_parameters(used, pipeline_params, "pipeline parameters");
+  model.pipeline_params =
+      pipeline.empty() ? pipeline_params
+                       : effective_pipeline_parameters(pipeline, pipeline_params, "pipeline parameters");
   // What every recording it learnt from had in common (a device's calibration, its signal
   // convention): given to a stream that carries no metadata (live packets).
-  nlohmann::json common = nlohmann::json::object();
   if (!dataset.metadata.empty()) {
     for (const auto& entry : dataset.metadata.front()) {
       const std::string& key = entry.first;
@@ -70,11 +59,29 @@ nlohmann::json fit_model_document(const Dataset& dataset, const std::string& spe
         const auto found = row.find(key);
         return found != row.end() && found->second == value;
       });
-      if (shared) common[key] = value;
+      if (shared) model.recording_metadata[key] = value;
     }
   }
+  return model;
+}
+
+nlohmann::json model_document(const SavedModel& model) {
+  nlohmann::json document = ml::save_classifier(*model.classifier);
+  document["classes"] = model.classes;
+  document["features"] = model.features;
+  document["layout"] = model.layout;
+  document["pipeline"] = model.pipeline;
+  document["pipeline_params"] = model.pipeline_params;
+  nlohmann::json common = nlohmann::json::object();
+  for (const auto& [key, value] : model.recording_metadata) common[key] = value;
   document["recording_metadata"] = common;
   return document;
+}
+
+nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
+                                  uint64_t seed, const std::string& pipeline,
+                                  const std::string& pipeline_params) {
+  return model_document(fit_model(dataset, specification, seed, pipeline, pipeline_params));
 }
 
 void write_json_file(const std::string& path, const nlohmann::json& document,
@@ -179,6 +186,11 @@ std::unique_ptr<FeatureExtractor> model_extractor(const SavedModel& model, const
   return extractor;
 }
 
+// Rows asked of a model at once, and segments whose windows are read at once: 16 rows of
+// Robovie's 37,401 correlations are 4.8 MB (64 were 19 MB, held three times over as values,
+// the batch's rows and their standardized copy).
+constexpr size_t kPredictBatch = 16;
+
 // The model's answer for every segment the pipeline gave a row for, asked a batch of rows at
 // a time (each row's answer is its own) and each segment's values dropped once asked: 195
 // segments of Robovie's 37,401 correlations were 58 MB, copied twice more before.
@@ -186,7 +198,6 @@ Predictions classify_segments(const SavedModel& model, const std::string& record
                               const std::vector<FeatureColumn>& columns,
                               const std::vector<Label>& segments,
                               FeatureExtractor::Segments extracted) {
-  constexpr size_t kBatch = 64;
   Predictions predictions;
   std::vector<size_t> kept;
   for (size_t index = 0; index < segments.size(); ++index) {
@@ -204,8 +215,8 @@ Predictions classify_segments(const SavedModel& model, const std::string& record
     kept.push_back(index);
   }
   const std::string specification = ml::specification_of(*model.classifier);
-  for (size_t from = 0; from < kept.size(); from += kBatch) {
-    const size_t count = std::min(kBatch, kept.size() - from);
+  for (size_t from = 0; from < kept.size(); from += kPredictBatch) {
+    const size_t count = std::min(kPredictBatch, kept.size() - from);
     ml::Matrix x(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(columns.size()));
     for (size_t row = 0; row < count; ++row) {
       std::vector<double>& values = extracted.results[kept[from + row]].values;
@@ -277,12 +288,11 @@ Predictions predict_segments(const SavedModel& model, const SampleSource& source
   }
   // Each segment's window alone, a batch at a time: the features of a batch, not of every
   // segment, are held at once.
-  constexpr size_t kBatch = 64;
   Predictions predictions;
-  for (size_t from = 0; from < segments.size(); from += kBatch) {
+  for (size_t from = 0; from < segments.size(); from += kPredictBatch) {
     const std::vector<Label> batch(segments.begin() + static_cast<std::ptrdiff_t>(from),
                                    segments.begin() + static_cast<std::ptrdiff_t>(
-                                                          std::min(segments.size(), from + kBatch)));
+                                                          std::min(segments.size(), from + kPredictBatch)));
     Predictions part = classify_segments(
         model, id, columns, batch,
         extract_source_segments(*extractor, source, layout, batch,

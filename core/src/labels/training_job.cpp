@@ -106,11 +106,12 @@ TrainingOutcome run_training(const TrainingRequest& request, JobProgress& progre
       outcome.results.push_back(std::move(one));
       if (!request.save_model.empty()) {
         progress.report(progress.fraction(), "fitting the model on every row");
-        write_json_file(request.save_model,
-                        fit_model_document(*outcome.dataset, request.classifier, request.seed,
-                                           outcome.pipeline, request.pipeline_params),
-                        "model");
+        auto model = std::make_shared<SavedModel>(fit_model(*outcome.dataset, request.classifier,
+                                                            request.seed, outcome.pipeline,
+                                                            request.pipeline_params));
+        write_json_file(request.save_model, model_document(*model), "model");
         outcome.model_path = request.save_model;
+        outcome.model = std::move(model);
       }
     }
     progress.report(1.0, "done");

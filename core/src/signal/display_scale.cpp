@@ -39,15 +39,20 @@ RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns
   scale.rest.assign(columns.size(), std::numeric_limits<float>::quiet_NaN());
   scale.noise_band.assign(columns.size(), 0.0f);
   if (probes < 1) return scale;
-  // Buckets of at least one coarse block, so that a file answers from its overview alone.
+  // Buckets of whole coarse blocks, so that a file answers from its overview alone, with
+  // no lookup of times (the buckets are the same for every column).
   const int64_t block = std::max<int64_t>(1, source.coarse_block());
-  probes = static_cast<int>(std::clamp<int64_t>(count / block, 1, probes));
+  const int64_t blocks = (count + block - 1) / block;
+  probes = static_cast<int>(std::clamp<int64_t>(blocks, 1, probes));
+  std::vector<int64_t> edges(static_cast<size_t>(probes) + 1);
+  for (int64_t bucket = 0; bucket <= probes; ++bucket)
+    edges[static_cast<size_t>(bucket)] = std::min(count, bucket * blocks / probes * block);
+  std::vector<MinMax> buckets(static_cast<size_t>(probes));
   std::vector<float> centres, halves, excess;
   for (size_t k = 0; k < columns.size(); ++k) {
     const int column = columns[k];
     if (column < 0 || column >= source.channel_count()) continue;
-    const std::vector<MinMax> buckets =
-        source.minmax_over_time(column, source.start_time(), source.end_time(), probes);
+    source.minmax(column, edges, buckets);
     centres.clear();
     halves.clear();
     for (const MinMax& bucket : buckets) {

@@ -33,11 +33,17 @@ struct SavedModel {
   Metadata recording_metadata;
 };
 
-// Fits `specification` on every row of `dataset` and returns the model document:
-// save_classifier's fields plus classes, features, layout (the rows' `layout` metadata
-// when all agree), pipeline (as given: a skin's own is default_pipeline, skins/skin.h) and
-// pipeline_params: every setting that pipeline reads, the given ones and the defaults of this build
-// (see effective_pipeline_parameters). Throws tactile::Error on a bad pipeline or parameter.
+// Fits `specification` on every row of `dataset`: the classifier with the classes, the
+// features, the layout (the rows' `layout` metadata when all agree), the pipeline (as given:
+// a skin's own is default_pipeline, skins/skin.h) and pipeline_params: every setting that
+// pipeline reads, the given ones and the defaults of this build (see
+// effective_pipeline_parameters). Throws tactile::Error on a bad pipeline or parameter.
+SavedModel fit_model(const Dataset& dataset, const std::string& specification, uint64_t seed,
+                     const std::string& pipeline = "", const std::string& pipeline_params = "");
+// The model as its document (save_classifier's fields plus the rest), which
+// model_from_json reads back to the same predictions.
+nlohmann::json model_document(const SavedModel& model);
+// model_document(fit_model(...)).
 nlohmann::json fit_model_document(const Dataset& dataset, const std::string& specification,
                                   uint64_t seed, const std::string& pipeline = "",
                                   const std::string& pipeline_params = "");
