@@ -162,7 +162,7 @@ GridRest grid_rest(const Eigen::MatrixXd& values, bool reversed) {
 //---- Per frame
 
 GridFrames grid_frames(const Eigen::MatrixXd& values, const GridRest& rest, const GridMap& map,
-                       double threshold) {
+                       double threshold, double peak_share) {
   const Eigen::Index frames = values.rows(), taxels = values.cols();
   GridFrames out;
   for (Eigen::VectorXd* series :
@@ -176,7 +176,9 @@ GridFrames grid_frames(const Eigen::MatrixXd& values, const GridRest& rest, cons
   const Eigen::ArrayXXd past_rest = (map.reversed ? Eigen::ArrayXXd((-values).rowwise() + rest.rest)
                                                   : Eigen::ArrayXXd(values.rowwise() - rest.rest))
                                         .cwiseMax(0.0);
-  const Eigen::ArrayXXd level = (threshold * rest.noise).replicate(frames, 1).array();
+  const double largest = past_rest.size() > 0 ? past_rest.maxCoeff() : 0.0;
+  const Eigen::ArrayXXd level =
+      (threshold * rest.noise).replicate(frames, 1).array().max(peak_share * largest);
   const Eigen::ArrayXXd weights = (past_rest > level).select(past_rest, 0.0);
   std::vector<int> label(static_cast<size_t>(taxels));
   std::vector<int> stack;
@@ -441,7 +443,7 @@ GridMap grid_region(const GridMap& map, const SkinLayout& layout, const std::str
 
 std::vector<double> grid_segment(const Recording& recording, const Stream& stream,
                                  const GridMap& map, int64_t first, int64_t count, double threshold,
-                                 std::string& skip_reason) {
+                                 std::string& skip_reason, double peak_share) {
   Eigen::MatrixXd values(count, static_cast<Eigen::Index>(map.channels.size()));
   for (size_t k = 0; k < map.channels.size(); ++k)
     values.col(static_cast<Eigen::Index>(k)) =
@@ -461,7 +463,7 @@ std::vector<double> grid_segment(const Recording& recording, const Stream& strea
   } else {
     rest = grid_rest(values, map.reversed);
   }
-  return grid_summary(grid_frames(values, rest, map, threshold), map, stream.rate_hz);
+  return grid_summary(grid_frames(values, rest, map, threshold, peak_share), map, stream.rate_hz);
 }
 
 //---- The extractor
@@ -470,9 +472,11 @@ namespace {
 
 class GridExtractor : public FeatureExtractor {
  public:
-  GridExtractor(std::string modality, double threshold, std::string stream, std::string where)
+  GridExtractor(std::string modality, double threshold, double peak_share, std::string stream,
+                std::string where)
       : modality_(std::move(modality)),
         threshold_(threshold),
+        peak_share_(peak_share),
         stream_(std::move(stream)),
         where_(std::move(where)) {}
 
@@ -510,7 +514,8 @@ class GridExtractor : public FeatureExtractor {
     if (last <= first) return FeatureResult::skip("segment holds no samples");
     FeatureResult result;
     result.values =
-        grid_segment(input.recording, stream, map, first, last - first, threshold_, skip_reason);
+        grid_segment(input.recording, stream, map, first, last - first, threshold_, skip_reason,
+                     peak_share_);
     if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
     return result;
   }
@@ -542,6 +547,7 @@ class GridExtractor : public FeatureExtractor {
 
   std::string modality_;
   double threshold_;
+  double peak_share_;
   std::string stream_;
   std::string where_;
 };
@@ -549,12 +555,15 @@ class GridExtractor : public FeatureExtractor {
 }  // namespace
 
 std::unique_ptr<FeatureExtractor> make_grid_extractor(const Parameters& parameters) {
-  parameters.expect_only({"modality", "threshold", "stream"});
+  parameters.expect_only({"modality", "threshold", "share", "stream"});
   const double threshold = parameters.number("threshold", kGridDefaultThreshold);
   if (!(threshold > 0.0))
     throw Error(parameters.where(),
                 "threshold=" + parameters.text("threshold", "") + ": must be positive");
-  return std::make_unique<GridExtractor>(parameters.text("modality", "display"), threshold,
+  const double share = parameters.number("share", kGridDefaultPeakShare);
+  if (!(share >= 0.0 && share < 1.0))
+    throw Error(parameters.where(), "share=" + parameters.text("share", "") + ": must be in [0, 1)");
+  return std::make_unique<GridExtractor>(parameters.text("modality", "display"), threshold, share,
                                          parameters.text("stream", ""), parameters.where());
 }
 

@@ -6,7 +6,10 @@
 // wherever on it the touch lands (no absolute position: only motion and shape).
 //
 // Parameters: modality = a layout modality or "display" (default); threshold = contact
-// level in noise deviations past rest (default 4); stream = the stream to read (default: the
+// level in noise deviations past rest (default 4); share = a taxel is in contact only where it
+// is also past this share of the segment's largest excursion (default 0.5: the region where the
+// touch presses at least half as hard as its hardest point, as a full width at half maximum
+// measures a peak; 0: every taxel past the noise); stream = the stream to read (default: the
 // first). preprocess() finds each taxel's rest level (median over the recording) and noise
 // (1.4826 x its median absolute deviation, floored at half the median of the taxels' noises,
 // so a stuck or quantised taxel does not count every count as contact). Small values mean
@@ -60,9 +63,10 @@ struct GridFrames {
   Eigen::VectorXd centroid_x, centroid_y;  // excursion-weighted, map units; NaN without contact
   std::vector<bool> contact;               // any contact taxel in the frame
 };
-// A taxel is in contact when its excursion exceeds threshold x its noise deviation.
+// A taxel is in contact when its excursion exceeds threshold x its noise deviation and
+// peak_share x the largest excursion of any taxel in the segment.
 GridFrames grid_frames(const Eigen::MatrixXd& values, const GridRest& rest, const GridMap& map,
-                       double threshold);
+                       double threshold, double peak_share = 0.0);
 
 // The columns of grid_summary, each name prefixed by `prefix` ("grid." in the grid pipeline),
 // `unit` the values' unit and `map_unit` the map's.
@@ -72,6 +76,7 @@ std::vector<FeatureColumn> grid_columns(const std::string& prefix, const std::st
 std::vector<double> grid_summary(const GridFrames& frames, const GridMap& map, double rate_hz);
 inline constexpr size_t kGridColumnCount = 46;
 inline constexpr double kGridDefaultThreshold = 4.0;
+inline constexpr double kGridDefaultPeakShare = 0.5;
 
 // What preprocess() does: adds a stream "grid.rest" to `recording` holding, per channel of
 // `stream`, its rest level (row 0) and noise deviation (row 1); map taxels only, 0 elsewhere.
@@ -85,7 +90,7 @@ GridMap grid_region(const GridMap& map, const SkinLayout& layout, const std::str
 // Empty with a reason in `skip_reason` when a value is not finite.
 std::vector<double> grid_segment(const Recording& recording, const Stream& stream,
                                  const GridMap& map, int64_t first, int64_t count, double threshold,
-                                 std::string& skip_reason);
+                                 std::string& skip_reason, double peak_share = 0.0);
 
 // Throws tactile::Error naming the parameter on an unknown key or a threshold that is not
 // positive.
