@@ -72,11 +72,9 @@ std::vector<double> grid_row_of(const FeatureExtractor& extractor, const Recordi
   return result.values;
 }
 
-// The invariances of the descriptors, on every taxel past the noise (share=0: a contour at a
-// share of the peak cuts a rasterised patch differently at each place and turn).
 TEST(GridFeatures, TheSameTouchShiftedOnTheGridGivesTheSameRow) {
   const SkinLayout layout = make_grid_layout(16, 16);
-  const auto extractor = make_grid_extractor(Parameters::parse("share=0", "--params"));
+  const auto extractor = make_grid_extractor({});
   Recording here = resting_grid(layout), there = resting_grid(layout);
   stroke(here, 16, 3.0, 2.0, 0.5);
   stroke(there, 16, 9.0, 7.0, 0.5);
@@ -103,7 +101,7 @@ TEST(GridFeatures, TheSameTouchShiftedOnTheGridGivesTheSameRow) {
 
 TEST(GridFeatures, ARotatedStrokeChangesItsOrientationOnly) {
   const SkinLayout layout = make_grid_layout(16, 16);
-  const auto extractor = make_grid_extractor(Parameters::parse("share=0", "--params"));
+  const auto extractor = make_grid_extractor({});
   Recording straight = resting_grid(layout), turned = resting_grid(layout);
   stroke(straight, 16, 4.0, 3.0, 0.4);
   stroke(turned, 16, 4.0, 3.0, 0.4,
@@ -135,8 +133,9 @@ TEST(GridFeatures, EveryGridSizeGivesTheSameColumns) {
   EXPECT_THROW(make_grid_extractor(Parameters::parse("threshold=0", "--params")), Error);
 }
 
-// By default the pressed region is where the touch presses at least half as hard as its
-// hardest point in the segment: a weak skirt around a firm press is not its area.
+// With share=0.5 the pressed region is where the touch presses at least half as hard as its
+// hardest point in the segment: a weak skirt around a firm press is not its area. By default
+// (share=0) every taxel past the noise is.
 TEST(GridFeatures, TheContactRegionIsWhereTheTouchPressesAtLeastHalfItsPeak) {
   const SkinLayout layout = make_grid_layout(8, 8);
   Recording recording = resting_grid(layout);
@@ -157,9 +156,9 @@ TEST(GridFeatures, TheContactRegionIsWhereTheTouchPressesAtLeastHalfItsPeak) {
     return 0.0;
   };
   const double taxel_area = area("share=0.99");  // the five core taxels
-  EXPECT_DOUBLE_EQ(area(""), taxel_area);
   EXPECT_DOUBLE_EQ(area("share=0.5"), taxel_area);
   EXPECT_DOUBLE_EQ(area("share=0"), taxel_area * 25.0 / 5.0);
+  EXPECT_DOUBLE_EQ(area(""), taxel_area * 25.0 / 5.0);
   EXPECT_DOUBLE_EQ(area("share=0.15"), taxel_area * 25.0 / 5.0);  // 40 is past 0.15 x 200
   EXPECT_THROW(make_grid_extractor(Parameters::parse("share=1", "--params")), Error);
   EXPECT_THROW(make_grid_extractor(Parameters::parse("share=-0.1", "--params")), Error);
@@ -208,8 +207,7 @@ TEST(GridFeatures, GenericOnALargeGridWritesTheGridPipelinesFigures) {
   Recording recording = resting_grid(layout);
   stroke(recording, 10, 2.0, 2.0, 0.3);
   const auto generic = make_generic_extractor({});
-  // generic's whole-grid block counts every taxel past the noise as contact (share=0).
-  const auto grid = make_grid_extractor(Parameters::parse("share=0", "--params"));
+  const auto grid = make_grid_extractor({});
   const std::vector<double> generic_row = grid_row_of(*generic, recording, layout);
   const std::vector<double> grid_row = grid_row_of(*grid, recording, layout);
   ASSERT_GE(generic_row.size(), grid_row.size());

@@ -7,10 +7,10 @@
 //
 // Parameters: modality = a layout modality or "display" (default); threshold = contact
 // level in noise deviations past rest (default 4); share = a taxel is in contact only where it
-// is also past this share of the segment's largest excursion (default 0.5: the region where the
+// is also past this share of the segment's largest excursion (default 0: every taxel past the
+// noise; 0.5, the route for people's touches on a grid (docs/FEATURES.md): the region where the
 // touch presses at least half as hard as its hardest point, as a full width at half maximum
-// measures a peak; 0: every taxel past the noise); stream = the stream to read (default: the
-// first). preprocess() finds each taxel's rest level (median over the recording) and noise
+// measures a peak); stream = the stream to read (default: the first). preprocess() finds each taxel's rest level (median over the recording) and noise
 // (1.4826 x its median absolute deviation, floored at half the median of the taxels' noises,
 // so a stuck or quantised taxel does not count every count as contact). Small values mean
 // touch when the layout's display_min > display_max.
@@ -76,7 +76,7 @@ std::vector<FeatureColumn> grid_columns(const std::string& prefix, const std::st
 std::vector<double> grid_summary(const GridFrames& frames, const GridMap& map, double rate_hz);
 inline constexpr size_t kGridColumnCount = 46;
 inline constexpr double kGridDefaultThreshold = 4.0;
-inline constexpr double kGridDefaultPeakShare = 0.5;
+inline constexpr double kGridDefaultPeakShare = 0.0;
 
 // What preprocess() does: adds a stream "grid.rest" to `recording` holding, per channel of
 // `stream`, its rest level (row 0) and noise deviation (row 1); map taxels only, 0 elsewhere.
