@@ -92,8 +92,8 @@ std::vector<double> grid_segment(const Recording& recording, const Stream& strea
                                  const GridMap& map, int64_t first, int64_t count, double threshold,
                                  std::string& skip_reason, double peak_share = 0.0);
 
-// Throws tactile::Error naming the parameter on an unknown key or a threshold that is not
-// positive.
+// Throws tactile::Error naming the parameter on an unknown key, a threshold that is not
+// positive or a share outside [0, 1).
 std::unique_ptr<FeatureExtractor> make_grid_extractor(const Parameters& parameters);
 
 }  // namespace tactile

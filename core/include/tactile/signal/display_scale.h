@@ -27,9 +27,10 @@ RestScale rest_scale(const Stream& stream, const std::vector<int>& columns, int 
 // The same through a SampleSource, reading no more than a bounded number of samples:
 // a source of at most kRestScaleExactSamples samples is probed as above; a longer one is
 // cut into up to `probes` buckets of whole coarse blocks, equal in samples, whose min/max
-// come from its coarse data (a file's overview), and then rest = median of the bucket centres, noise band = median of the
-// bucket half-ranges (about 3 sigma for a few hundred samples of Gaussian noise), and a
-// bucket's change = its farthest value from rest less the band.
+// come from its coarse data (a file's overview), and then rest = median of the bucket
+// centres, noise band = median of the bucket half-ranges (about 3 sigma for a few hundred
+// samples of Gaussian noise), and a bucket's change = its farthest value from rest less the
+// band.
 inline constexpr int64_t kRestScaleExactSamples = 32768;
 RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns,
                      int probes = 2048);
