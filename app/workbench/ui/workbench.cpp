@@ -202,7 +202,9 @@ void Workbench::choose_default_view() {
   // The instant of the first labelled touch where the skin changes most from rest, in view.
   const Label& first = document.labels.front();
   if (first.t1 > state_.plot.view_t1) {
-    state_.plot.view_t0 = std::max(source.start_time(), first.t0 - 0.1 * span);
+    // The label a tenth of the span in, the span within the recording.
+    state_.plot.view_t0 = std::max(source.start_time(),
+                                   std::min(first.t0 - 0.1 * span, source.end_time() - span));
     state_.plot.view_t1 = state_.plot.view_t0 + span;
   }
   try {
