@@ -81,6 +81,12 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   request.segments = analysis.segments;
   request.pipeline =
       analysis.pipeline.empty() ? default_pipeline(request.layout) : analysis.pipeline;
+  request.pipeline_params = analysis.pipeline_params.data();
+  try {
+    effective_pipeline_parameters(request.pipeline, request.pipeline_params, "features parameters");
+  } catch (const Error& error) {
+    return fail(state, error.what());
+  }
   request.classifier = classifier;
   request.protocol = analysis.protocol.data();
   // One classifier: also fitted on every row and saved, so it can predict (Predict).

@@ -31,6 +31,13 @@ void draw_choices(WorkbenchState& state) {
     ImGui::EndCombo();
   }
   ImGui::SameLine();
+  ImGui::SetNextItemWidth(110);
+  ImGui::InputTextWithHint("##pipeline-params", "parameters", analysis.pipeline_params.data(),
+                           analysis.pipeline_params.size());
+  remember_item(state, "input:pipeline-params",
+                "The feature set's parameters, key=value,... (tactile features --describe NAME "
+                "lists them); e.g. share=0.5 for grid on people's touches (docs/FEATURES.md)");
+  ImGui::SameLine();
   ImGui::SetNextItemWidth(130);
   const bool segments = ImGui::BeginCombo("segments", to_string(analysis.segments));
   remember_item(state, "combo:segments",

@@ -938,6 +938,8 @@ nlohmann::json Workbench::analysis_json() const {
       {"confusion", confusion},
       {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
       {"classifier_box", std::string(analysis.classifier.data())},
+      {"pipeline", analysis.pipeline},  // "" = the skin's own
+      {"pipeline_params", std::string(analysis.pipeline_params.data())},
       {"model",
        analysis.model_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(analysis.model_path)},
       {"cell",

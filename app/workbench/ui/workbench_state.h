@@ -133,6 +133,7 @@ struct AnalysisState {
   std::string pipeline;  // "" = the skin's own
   std::array<char, 128> classifier{"linear-svm"};
   std::array<char, 64> protocol{"kfold:5"};
+  std::array<char, 128> pipeline_params{};  // the features' parameters (key=value,...)
   LabelSource segments = LabelSource::kGroundTruth;
   std::unique_ptr<TrainingJob> job;
   TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
