@@ -82,10 +82,13 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   request.pipeline =
       analysis.pipeline.empty() ? default_pipeline(request.layout) : analysis.pipeline;
   request.pipeline_params = analysis.pipeline_params.data();
-  try {
-    effective_pipeline_parameters(request.pipeline, request.pipeline_params, "features parameters");
-  } catch (const Error& error) {
-    return fail(state, error.what());
+  // Typed parameters are checked here, so a wrong key is named at once, not after the features.
+  if (!request.pipeline_params.empty()) {
+    try {
+      effective_pipeline_parameters(request.pipeline, request.pipeline_params, "features parameters");
+    } catch (const Error& error) {
+      return fail(state, error.what());
+    }
   }
   request.classifier = classifier;
   request.protocol = analysis.protocol.data();
