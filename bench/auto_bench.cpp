@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
   const std::string shape = grouped ? "330 x 26000, 7 classes, 37 recordings, group:recording"
                                     : "1100 x 345, 11 classes, holdout:0.15x10";
   if (each) {
-    std::printf("| candidate | accuracy %% | seconds (%s, 2 cores) |\n|---|---:|---:|\n", shape.c_str());
+    std::printf("| candidate | accuracy %% | seconds (%s, 2 cores) |\n|---|---:|---:|\n",
+                shape.c_str());
     for (const std::string& candidate : tactile::ml::auto_candidates()) {
       const auto start = std::chrono::steady_clock::now();
       try {

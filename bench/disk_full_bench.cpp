@@ -41,7 +41,8 @@ constexpr int kChannels = 128;
 constexpr double kRate = 1000.0;
 
 float sent_value(int64_t row, int channel) {
-  uint64_t x = static_cast<uint64_t>(row) * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(channel + 1) * 0xBF58476D1CE4E5B9ull;
+  uint64_t x = static_cast<uint64_t>(row) * 0x9E3779B97F4A7C15ull +
+               static_cast<uint64_t>(channel + 1) * 0xBF58476D1CE4E5B9ull;
   x ^= x >> 31;
   x *= 0x94D049BB133111EBull;
   x ^= x >> 29;
@@ -64,21 +65,25 @@ std::string file_text(const std::string& path) {
 }
 
 // Records into `path` until the recorder stops or fails (or 600 s of samples).
-ChildResult record_child(const std::string& path, bool watch, int64_t limit, const std::string& scratch) {
+ChildResult record_child(const std::string& path, bool watch, int64_t limit,
+                         const std::string& scratch) {
   const std::string report = scratch + "/report.txt", errors = scratch + "/stderr.txt";
   const pid_t child = fork();
   if (child == 0) {
     signal(SIGXFSZ, SIG_IGN);
     if (std::freopen(errors.c_str(), "w", stderr) == nullptr) _exit(3);
     if (limit > 0) {
-      struct rlimit size{static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)};
+      struct rlimit size {
+        static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)
+      };
       setrlimit(RLIMIT_FSIZE, &size);
     }
     SourceInfo info;
     info.layout_id = "grid:8x16";
     info.stream = "skin";
     info.rate_hz = kRate;
-    for (int channel = 0; channel < kChannels; ++channel) info.channels.push_back("c" + std::to_string(channel));
+    for (int channel = 0; channel < kChannels; ++channel)
+      info.channels.push_back("c" + std::to_string(channel));
     info.units.assign(kChannels, "V");
     LiveSampleSource source(info, 200000);
     LiveRecorderOptions options;
@@ -91,13 +96,16 @@ ChildResult record_child(const std::string& path, bool watch, int64_t limit, con
     try {
       LiveRecorder recorder(path, source, options);
       std::vector<float> values(kChannels);
-      while (next < 600 * static_cast<int64_t>(kRate) && recorder.error().empty() && !recorder.stopped()) {
+      while (next < 600 * static_cast<int64_t>(kRate) && recorder.error().empty() &&
+             !recorder.stopped()) {
         for (int k = 0; k < 100; ++k, ++next) {
-          for (int channel = 0; channel < kChannels; ++channel) values[static_cast<size_t>(channel)] = sent_value(next, channel);
+          for (int channel = 0; channel < kChannels; ++channel)
+            values[static_cast<size_t>(channel)] = sent_value(next, channel);
           source.add(static_cast<double>(next) / kRate, values);
         }
         recorder.take(source);
-        while (recorder.samples_on_disk() + 1500 < recorder.samples_taken() && recorder.error().empty() && !recorder.stopped())
+        while (recorder.samples_on_disk() + 1500 < recorder.samples_taken() &&
+               recorder.error().empty() && !recorder.stopped())
           std::this_thread::sleep_for(std::chrono::microseconds(200));
         flushed = recorder.samples_on_disk();
       }
@@ -148,7 +156,8 @@ bool flushed_samples_intact(const std::string& path, int64_t flushed) {
 }
 
 struct Totals {
-  int runs = 0, crashes = 0, stopped = 0, failed = 0, verify_before = 0, verify_after = 0, repaired = 0;
+  int runs = 0, crashes = 0, stopped = 0, failed = 0, verify_before = 0, verify_after = 0,
+      repaired = 0;
   int intact = 0, quiet_stderr = 0, one_line = 0;
   int64_t flushed = 0;
 };
@@ -160,8 +169,10 @@ int main(int argc, char** argv) {
   fs::path work = fs::temp_directory_path() / "tactile-disk-full-bench";
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string option = argv[k];
-    if (option == "--points") points = std::stoi(argv[k + 1]);
-    else if (option == "--work") work = argv[k + 1];
+    if (option == "--points")
+      points = std::stoi(argv[k + 1]);
+    else if (option == "--work")
+      work = argv[k + 1];
   }
   bool no_mount = false;
   for (int k = 1; k < argc; ++k) no_mount = no_mount || std::string(argv[k]) == "--no-mount";
@@ -170,7 +181,8 @@ int main(int argc, char** argv) {
   const std::string disk = (work / "disk").string(), scratch = work.string();
   const bool can_mount = !no_mount && ::mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=256k") == 0;
   if (can_mount) ::umount(disk.c_str());
-  std::printf("disk: %s\n", can_mount ? "tmpfs of each size (real ENOSPC)" : "file-size limit of each size (EFBIG)");
+  std::printf("disk: %s\n", can_mount ? "tmpfs of each size (real ENOSPC)"
+                                      : "file-size limit of each size (EFBIG)");
   Totals totals[2];
   for (int mode = 0; mode < 2; ++mode) {
     const bool watch = mode == 0;
@@ -207,21 +219,27 @@ int main(int argc, char** argv) {
       }
       total.verify_after += verified;
       total.intact += flushed_samples_intact(path, result.flushed);
-      std::printf("  %s %2d: %5.1f MB, %6.1f s flushed, %s%s\n", watch ? "stop" : "fail", point, size / 1e6,
-                  static_cast<double>(result.flushed) / kRate, result.stopped ? "stopped" : "failed",
-                  whole ? ", whole" : ", repaired");
-      if (!result.stderr_text.empty()) std::printf("    stderr: %.200s\n", result.stderr_text.c_str());
-      if (can_mount) ::umount(disk.c_str());
-      else fs::remove_all(disk), fs::create_directories(disk);
+      std::printf("  %s %2d: %5.1f MB, %6.1f s flushed, %s%s\n", watch ? "stop" : "fail", point,
+                  size / 1e6, static_cast<double>(result.flushed) / kRate,
+                  result.stopped ? "stopped" : "failed", whole ? ", whole" : ", repaired");
+      if (!result.stderr_text.empty())
+        std::printf("    stderr: %.200s\n", result.stderr_text.c_str());
+      if (can_mount)
+        ::umount(disk.c_str());
+      else
+        fs::remove_all(disk), fs::create_directories(disk);
     }
   }
-  std::printf("\n| runs | recorder | crashes | stopped itself | write failed | verify as left | verify after repair | flushed samples all there | HDF5 stack on stderr | one-line message |\n");
+  std::printf(
+      "\n| runs | recorder | crashes | stopped itself | write failed | verify as left | verify "
+      "after repair | flushed samples all there | HDF5 stack on stderr | one-line message |\n");
   std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int mode = 0; mode < 2; ++mode) {
     const Totals& t = totals[mode];
-    std::printf("| %d | %s | %d | %d | %d | %d | %d | %d of %d (%lld samples) | %d | %d |\n", t.runs,
-                mode == 0 ? "watches its disk" : "does not watch", t.crashes, t.stopped, t.failed, t.verify_before,
-                t.verify_after, t.intact, t.runs, static_cast<long long>(t.flushed), t.runs - t.quiet_stderr, t.one_line);
+    std::printf("| %d | %s | %d | %d | %d | %d | %d | %d of %d (%lld samples) | %d | %d |\n",
+                t.runs, mode == 0 ? "watches its disk" : "does not watch", t.crashes, t.stopped,
+                t.failed, t.verify_before, t.verify_after, t.intact, t.runs,
+                static_cast<long long>(t.flushed), t.runs - t.quiet_stderr, t.one_line);
   }
   return 0;
 }

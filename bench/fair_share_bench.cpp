@@ -92,10 +92,11 @@ int main(int argc, char** argv) {
       const BusyLoops loops(busy);
       beside[busy] = seconds_of(request);
     }
-    std::printf("{\"skin\": \"%s\", \"cores\": %u, \"idle_s\": %.2f, \"beside_one_s\": %.2f, "
-                "\"beside_two_s\": %.2f, \"ratio_one\": %.2f, \"ratio_two\": %.2f}\n",
-                skin.c_str(), std::thread::hardware_concurrency(), idle, beside[1], beside[2],
-                beside[1] / idle, beside[2] / idle);
+    std::printf(
+        "{\"skin\": \"%s\", \"cores\": %u, \"idle_s\": %.2f, \"beside_one_s\": %.2f, "
+        "\"beside_two_s\": %.2f, \"ratio_one\": %.2f, \"ratio_two\": %.2f}\n",
+        skin.c_str(), std::thread::hardware_concurrency(), idle, beside[1], beside[2],
+        beside[1] / idle, beside[2] / idle);
     return 0;
   } catch (const tactile::Error& error) {
     std::fprintf(stderr, "fair_share_bench: %s\n", error.what());

@@ -51,8 +51,7 @@ std::string make_workspace(const std::filesystem::path& folder, int count) {
     std::normal_distribution<float> noise(0.0f, 0.01f);
     for (int64_t row = 0; row < samples; ++row)
       for (int column = 0; column < 16; ++column)
-        stream.samples(row, column) =
-            ((row / 300) % 7 == column % 7 ? 0.8f : 0.0f) + noise(random);
+        stream.samples(row, column) = ((row / 300) % 7 == column % 7 ? 0.8f : 0.0f) + noise(random);
     tactile::Recording recording;
     recording.id = "hour";
     recording.layout_id = "grid:4x4";
@@ -111,7 +110,8 @@ Figures browse(const std::string& recording) {
   tactile::OffscreenRenderer renderer(1400, 800);
   tactile::WorkbenchOptions options;
   options.open_path = recording;
-  options.settings_path = (std::filesystem::path(recording).parent_path() / "settings.json").string();
+  options.settings_path =
+      (std::filesystem::path(recording).parent_path() / "settings.json").string();
   tactile::Workbench workbench(options);
   const tactile::Document& document = *workbench.state().document;
   std::vector<double> frames, lanes, own;
@@ -183,8 +183,9 @@ int main(int argc, char** argv) {
       for (const Figures& figures : runs) values.push_back(figures.*field);
       result.*field = percentile(values, 0.5);
     };
-    for (double Figures::*field : {&Figures::frame_median, &Figures::frame_p90, &Figures::lanes_median_us,
-                                   &Figures::own_median, &Figures::own_p90})
+    for (double Figures::*field :
+         {&Figures::frame_median, &Figures::frame_p90, &Figures::lanes_median_us,
+          &Figures::own_median, &Figures::own_p90})
       pick(field);
     return result;
   };
@@ -196,14 +197,18 @@ int main(int argc, char** argv) {
   std::printf("workbench frame, 1 h, lanes of 100,000 labels: %.2f ms median, %.2f ms p90\n",
               with_many.frame_median, with_many.frame_p90);
   std::printf("  100,000 / 100: %.2fx median, %.2fx p90 (target <= 1.2x)\n",
-              with_many.frame_median / with_few.frame_median, with_many.frame_p90 / with_few.frame_p90);
-  std::printf("the workbench's own work per frame (data, lanes, draw lists): %.3f ms vs %.3f ms "
-              "median: %.2fx; p90 %.2fx\n",
-              with_many.own_median, with_few.own_median, with_many.own_median / with_few.own_median,
-              with_many.own_p90 / with_few.own_p90);
+              with_many.frame_median / with_few.frame_median,
+              with_many.frame_p90 / with_few.frame_p90);
+  std::printf(
+      "the workbench's own work per frame (data, lanes, draw lists): %.3f ms vs %.3f ms "
+      "median: %.2fx; p90 %.2fx\n",
+      with_many.own_median, with_few.own_median, with_many.own_median / with_few.own_median,
+      with_many.own_p90 / with_few.own_p90);
   std::printf("lanes' own part (lane_spans, 3 lanes): %.1f us vs %.1f us median\n",
               with_many.lanes_median_us, with_few.lanes_median_us);
-  std::printf("an edit committed (LabelStore::add, synchronous=FULL) in the store of 100,000: %.2f ms median\n",
-              commit);
+  std::printf(
+      "an edit committed (LabelStore::add, synchronous=FULL) in the store of 100,000: %.2f ms "
+      "median\n",
+      commit);
   return 0;
 }

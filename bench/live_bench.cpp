@@ -82,7 +82,8 @@ int ingest(double factor, double seconds) {
         tactile::parse_live_address("sim://nao?rate=" + std::to_string(factor), "sender"));
     tactile::UdpSocket socket = tactile::UdpSocket::connect_to({"127.0.0.1", port});
     std::vector<uint8_t> datagram;
-    const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(seconds));
     while (!stop && Clock::now() < end) {
       if (!input->next(datagram, 0.05)) continue;
       socket.send(datagram);
@@ -111,20 +112,25 @@ int ingest(double factor, double seconds) {
   sender.join();
   for (int k = 0; k < 10; ++k) frames.draw(workbench);  // the last datagrams in flight
   const tactile::LiveCounters& counters = state.live.counters;
-  std::printf("{\"skin\": \"nao\", \"factor\": %.0f, \"samples_per_second\": %.0f, \"seconds\": %.0f,\n"
-              " \"sent\": %lld, \"received\": %lld, \"lost\": %lld, \"broken\": %lld, \"dropped_at_handover\": %lld,\n"
-              " \"frames\": %zu, \"frame_ms_median\": %.2f, \"frame_ms_p90\": %.2f, \"frame_ms_max\": %.2f,\n"
-              " \"behind_frames_median\": %.2f, \"behind_frames_p99\": %.2f, \"behind_frames_max\": %.2f}\n",
-              factor, 250.0 * factor, seconds, static_cast<long long>(sent.load()),
-              static_cast<long long>(counters.datagrams), static_cast<long long>(counters.lost),
-              static_cast<long long>(counters.broken), static_cast<long long>(counters.overflow), frames.ms.size(),
-              percentile(frames.ms, 0.5), percentile(frames.ms, 0.9), percentile(frames.ms, 1.0),
-              percentile(behind_frames, 0.5), percentile(behind_frames, 0.99), percentile(behind_frames, 1.0));
+  std::printf(
+      "{\"skin\": \"nao\", \"factor\": %.0f, \"samples_per_second\": %.0f, \"seconds\": %.0f,\n"
+      " \"sent\": %lld, \"received\": %lld, \"lost\": %lld, \"broken\": %lld, "
+      "\"dropped_at_handover\": %lld,\n"
+      " \"frames\": %zu, \"frame_ms_median\": %.2f, \"frame_ms_p90\": %.2f, \"frame_ms_max\": "
+      "%.2f,\n"
+      " \"behind_frames_median\": %.2f, \"behind_frames_p99\": %.2f, \"behind_frames_max\": "
+      "%.2f}\n",
+      factor, 250.0 * factor, seconds, static_cast<long long>(sent.load()),
+      static_cast<long long>(counters.datagrams), static_cast<long long>(counters.lost),
+      static_cast<long long>(counters.broken), static_cast<long long>(counters.overflow),
+      frames.ms.size(), percentile(frames.ms, 0.5), percentile(frames.ms, 0.9),
+      percentile(frames.ms, 1.0), percentile(behind_frames, 0.5), percentile(behind_frames, 0.99),
+      percentile(behind_frames, 1.0));
   return 0;
 }
 
-int latency(const std::string& model_path, const std::string& recording_path, const std::string& labels_path,
-            double seconds) {
+int latency(const std::string& model_path, const std::string& recording_path,
+            const std::string& labels_path, double seconds) {
   const tactile::RecordingFile file(recording_path);
   const tactile::SkinLayout layout = tactile::load_layout(file.layout_id());
   tactile::LabelStore store(labels_path);
@@ -134,24 +140,32 @@ int latency(const std::string& model_path, const std::string& recording_path, co
   std::vector<tactile::Label> touches = store.list(filter);
   const double start_time = file.stream("skin").start_time;
   if (seconds > 0.0)  // only the touches of the part replayed
-    std::erase_if(touches, [&](const tactile::Label& touch) { return touch.t1 > start_time + seconds - 1.0; });
-  tactile::LiveReceiver receiver(tactile::open_live_input(tactile::parse_live_address(
-                                     "replay://" + recording_path + "?seconds=" + std::to_string(seconds > 0 ? seconds : 1e9),
-                                     "replay")),
-                                 layout);
-  LiveSampleSource source(receiver.source_info(),
-                          std::llround(receiver.source_info().rate_hz * ((seconds > 0 ? seconds : 600.0) + 10.0)));
-  tactile::OnlineClassifier online(tactile::read_model_file(model_path), layout, receiver.source_info(),
+    std::erase_if(touches, [&](const tactile::Label& touch) {
+      return touch.t1 > start_time + seconds - 1.0;
+    });
+  tactile::LiveReceiver receiver(
+      tactile::open_live_input(tactile::parse_live_address(
+          "replay://" + recording_path + "?seconds=" + std::to_string(seconds > 0 ? seconds : 1e9),
+          "replay")),
+      layout);
+  LiveSampleSource source(
+      receiver.source_info(),
+      std::llround(receiver.source_info().rate_hz * ((seconds > 0 ? seconds : 600.0) + 10.0)));
+  tactile::OnlineClassifier online(tactile::read_model_file(model_path), layout,
+                                   receiver.source_info(),
                                    tactile::default_online_options(layout.id));
   // Wall time each touch's last sample arrived, and its final decision.
   std::vector<double> arrived(touches.size(), -1.0), decided(touches.size(), -1.0);
   std::vector<std::string> answer(touches.size());
-  std::vector<double> compute_ms, end_shift_ms;  // of the final decisions: work, and segment end - touch end
+  std::vector<double> compute_ms,
+      end_shift_ms;  // of the final decisions: work, and segment end - touch end
   const auto start = Clock::now();
   const auto now = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   while (!receiver.ended() || receiver.ring().size() > 0) {
-    receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
-    const double newest = source.sample_count() > 0 ? source.time_of(source.sample_count() - 1) : -1e300;
+    receiver.ring().drain(
+        [&](double time, std::span<const float> values) { source.add(time, values); });
+    const double newest =
+        source.sample_count() > 0 ? source.time_of(source.sample_count() - 1) : -1e300;
     for (size_t k = 0; k < touches.size(); ++k)
       if (arrived[k] < 0.0 && newest >= touches[k].t1) arrived[k] = now();
     online.update(source);
@@ -161,7 +175,8 @@ int latency(const std::string& model_path, const std::string& recording_path, co
       size_t best = touches.size();
       double best_overlap = 0.0;
       for (size_t k = 0; k < touches.size(); ++k) {
-        const double overlap = std::min(decision.t1, touches[k].t1) - std::max(decision.t0, touches[k].t0);
+        const double overlap =
+            std::min(decision.t1, touches[k].t1) - std::max(decision.t0, touches[k].t0);
         if (overlap > best_overlap) best_overlap = overlap, best = k;
       }
       if (best < touches.size() && decided[best] < 0.0) {
@@ -179,7 +194,8 @@ int latency(const std::string& model_path, const std::string& recording_path, co
   const tactile::Predictions offline =
       tactile::predict_segments(tactile::read_model_file(model_path), recording, layout, touches);
   std::map<std::pair<double, double>, std::string> offline_class;
-  for (const tactile::Label& label : offline.labels) offline_class[{label.t0, label.t1}] = label.class_name;
+  for (const tactile::Label& label : offline.labels)
+    offline_class[{label.t0, label.t1}] = label.class_name;
   std::vector<double> latencies;
   int decided_count = 0, agreed = 0;
   for (size_t k = 0; k < touches.size(); ++k) {
@@ -189,16 +205,20 @@ int latency(const std::string& model_path, const std::string& recording_path, co
     const auto found = offline_class.find({touches[k].t0, touches[k].t1});
     if (found != offline_class.end() && found->second == answer[k]) ++agreed;
   }
-  std::printf("{\"skin\": \"%s\", \"rate_hz\": %.0f, \"touches\": %zu, \"decided\": %d, \"agree_with_offline\": %d,\n"
-              " \"latency_ms_median\": %.0f, \"latency_ms_p90\": %.0f, \"latency_ms_max\": %.0f,\n"
-              " \"classify_ms_median\": %.0f, \"segment_end_after_touch_end_ms_median\": %.0f, \"error\": \"%s\"}\n",
-              layout.id.c_str(), receiver.source_info().rate_hz, touches.size(), decided_count, agreed,
-              percentile(latencies, 0.5), percentile(latencies, 0.9), percentile(latencies, 1.0),
-              percentile(compute_ms, 0.5), percentile(end_shift_ms, 0.5), online.error().c_str());
+  std::printf(
+      "{\"skin\": \"%s\", \"rate_hz\": %.0f, \"touches\": %zu, \"decided\": %d, "
+      "\"agree_with_offline\": %d,\n"
+      " \"latency_ms_median\": %.0f, \"latency_ms_p90\": %.0f, \"latency_ms_max\": %.0f,\n"
+      " \"classify_ms_median\": %.0f, \"segment_end_after_touch_end_ms_median\": %.0f, \"error\": "
+      "\"%s\"}\n",
+      layout.id.c_str(), receiver.source_info().rate_hz, touches.size(), decided_count, agreed,
+      percentile(latencies, 0.5), percentile(latencies, 0.9), percentile(latencies, 1.0),
+      percentile(compute_ms, 0.5), percentile(end_shift_ms, 0.5), online.error().c_str());
   return 0;
 }
 
-int soak(const std::string& skin, double factor, double minutes, const std::string& record, double buffer) {
+int soak(const std::string& skin, double factor, double minutes, const std::string& record,
+         double buffer) {
   tactile::WorkbenchOptions options;
   options.connect = "sim://" + skin + "?rate=" + std::to_string(factor);
   options.record_path = record;
@@ -212,18 +232,21 @@ int soak(const std::string& skin, double factor, double minutes, const std::stri
     return 1;
   }
   const auto start = Clock::now();
-  const auto elapsed_minutes = [&] { return std::chrono::duration<double>(Clock::now() - start).count() / 60.0; };
+  const auto elapsed_minutes = [&] {
+    return std::chrono::duration<double>(Clock::now() - start).count() / 60.0;
+  };
   const auto report = [&](const char* when) {
     const auto& source = static_cast<const LiveSampleSource&>(*state.document->source);
     const tactile::LiveCounters& counters = state.live.counters;
-    std::printf("{\"when\": \"%s\", \"minutes\": %.1f, \"device_hours\": %.2f, \"resident_mb\": %.1f, "
-                "\"buffer_mb\": %.1f, \"recorded_samples\": %lld, \"received\": %lld, \"lost\": %lld, "
-                "\"dropped_at_handover\": %lld, \"frame_ms_median\": %.2f, \"error\": \"%s\"}\n",
-                when, elapsed_minutes(), source.duration() / 3600.0, resident_mb(),
-                static_cast<double>(source.memory_bytes()) / (1 << 20),
-                static_cast<long long>(state.live.recorded_samples),
-                static_cast<long long>(counters.datagrams), static_cast<long long>(counters.lost),
-                static_cast<long long>(counters.overflow), percentile(frames.ms, 0.5), state.error.c_str());
+    std::printf(
+        "{\"when\": \"%s\", \"minutes\": %.1f, \"device_hours\": %.2f, \"resident_mb\": %.1f, "
+        "\"buffer_mb\": %.1f, \"recorded_samples\": %lld, \"received\": %lld, \"lost\": %lld, "
+        "\"dropped_at_handover\": %lld, \"frame_ms_median\": %.2f, \"error\": \"%s\"}\n",
+        when, elapsed_minutes(), source.duration() / 3600.0, resident_mb(),
+        static_cast<double>(source.memory_bytes()) / (1 << 20),
+        static_cast<long long>(state.live.recorded_samples),
+        static_cast<long long>(counters.datagrams), static_cast<long long>(counters.lost),
+        static_cast<long long>(counters.overflow), percentile(frames.ms, 0.5), state.error.c_str());
     std::fflush(stdout);
     frames.ms.clear();
   };
@@ -241,7 +264,8 @@ int soak(const std::string& skin, double factor, double minutes, const std::stri
   tactile::stop_recording(state, workbench.services().live);
   const tactile::RecordingFile file(record);
   std::printf("{\"recorded_file_samples\": %lld, \"cut_off\": %s}\n",
-              static_cast<long long>(file.stream("skin").sample_count), file.cut_off() ? "true" : "false");
+              static_cast<long long>(file.stream("skin").sample_count),
+              file.cut_off() ? "true" : "false");
   return 0;
 }
 
@@ -252,9 +276,11 @@ int main(int argc, char** argv) {
   try {
     if (mode == "ingest")
       return ingest(argc > 2 ? std::stod(argv[2]) : 10.0, argc > 3 ? std::stod(argv[3]) : 20.0);
-    if (mode == "latency" && argc >= 5) return latency(argv[2], argv[3], argv[4], argc > 5 ? std::stod(argv[5]) : 0.0);
+    if (mode == "latency" && argc >= 5)
+      return latency(argv[2], argv[3], argv[4], argc > 5 ? std::stod(argv[5]) : 0.0);
     if (mode == "soak" && argc >= 6)
-      return soak(argv[2], std::stod(argv[3]), std::stod(argv[4]), argv[5], argc > 6 ? std::stod(argv[6]) : 600.0);
+      return soak(argv[2], std::stod(argv[3]), std::stod(argv[4]), argv[5],
+                  argc > 6 ? std::stod(argv[6]) : 600.0);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "live_bench: %s\n", error.what());
     return 1;

@@ -258,7 +258,8 @@ Tally run(const std::string& original_path, bool recording, int copies, uint64_t
     const Mutation mutation =
         sweep ? flip_at(original, static_cast<size_t>(copy)) : mutate(original, random);
     const std::string path = (work / ("copy" + extension)).string();
-    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(path + suffix);
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+      std::filesystem::remove(path + suffix);
     write_bytes(path, mutation.bytes);
     const ChildResult result = run_child(
         [&]() {
@@ -332,12 +333,18 @@ int main(int argc, char** argv) {
       return 2;
     }
     const std::string value = argv[index + 1];
-    if (option == "--recording") recording = value;
-    else if (option == "--labels") labels = value;
-    else if (option == "--copies") copies = std::stoi(value);
-    else if (option == "--seed") seed = std::stoull(value);
-    else if (option == "--timeout") timeout = std::stod(value);
-    else if (option == "--work") work = value;
+    if (option == "--recording")
+      recording = value;
+    else if (option == "--labels")
+      labels = value;
+    else if (option == "--copies")
+      copies = std::stoi(value);
+    else if (option == "--seed")
+      seed = std::stoull(value);
+    else if (option == "--timeout")
+      timeout = std::stod(value);
+    else if (option == "--work")
+      work = value;
     else {
       std::cerr << "mutation_bench: unknown option " << option << "\n";
       return 2;

@@ -11,8 +11,8 @@
 //   OPEN_BENCH_ONLY=hour open_bench DIR      (one of the two files, to profile it)
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -30,7 +30,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kRate = 105.0;  // Robovie's films as the simulator records them
-constexpr int kRuns = 9;  // openings of each file, alternated; the medians are reported
+constexpr int kRuns = 9;         // openings of each file, alternated; the medians are reported
 
 void make(const std::string& path, double seconds) {
   if (std::filesystem::exists(path)) return;
@@ -156,11 +156,12 @@ int main(int argc, char** argv) {
     for (const Parts& run : runs) values.push_back(run.*part);
     return tactile::bench::percentile(values, 0.5);
   };
-  std::printf("{\"parts\": \"minute / hour, s\", \"source\": [%.4f, %.4f], \"colour_scale\": [%.4f, %.4f], "
-              "\"instant\": [%.4f, %.4f]}\n",
-              part_median(minute_parts, &Parts::source), part_median(hour_parts, &Parts::source),
-              part_median(minute_parts, &Parts::scale), part_median(hour_parts, &Parts::scale),
-              part_median(minute_parts, &Parts::instant), part_median(hour_parts, &Parts::instant));
+  std::printf(
+      "{\"parts\": \"minute / hour, s\", \"source\": [%.4f, %.4f], \"colour_scale\": [%.4f, %.4f], "
+      "\"instant\": [%.4f, %.4f]}\n",
+      part_median(minute_parts, &Parts::source), part_median(hour_parts, &Parts::source),
+      part_median(minute_parts, &Parts::scale), part_median(hour_parts, &Parts::scale),
+      part_median(minute_parts, &Parts::instant), part_median(hour_parts, &Parts::instant));
   const auto total = [](const Opened& run) { return run.total(); };
   const auto open = [](const Opened& run) { return run.open; };
   const auto drawn = [](const Opened& run) { return run.frames; };
@@ -170,12 +171,13 @@ int main(int argc, char** argv) {
   std::printf("{\"frames_minute_s\": [%.3f, %.3f, %.3f], \"frames_hour_s\": [%.3f, %.3f, %.3f]}\n",
               median_of(minutes, first), median_of(minutes, second), median_of(minutes, third),
               median_of(hours, first), median_of(hours, second), median_of(hours, third));
-  std::printf("{\"minute_s\": %.3f, \"hour_s\": %.3f, \"hour_over_minute\": %.2f, "
-              "\"open_minute_s\": %.3f, \"open_hour_s\": %.3f, "
-              "\"three_frames_minute_s\": %.3f, \"three_frames_hour_s\": %.3f, \"peak_mb\": %.0f}\n",
-              median_of(minutes, total), median_of(hours, total),
-              median_of(hours, total) / median_of(minutes, total), median_of(minutes, open),
-              median_of(hours, open), median_of(minutes, drawn), median_of(hours, drawn),
-              tactile::bench::peak_memory_mb());
+  std::printf(
+      "{\"minute_s\": %.3f, \"hour_s\": %.3f, \"hour_over_minute\": %.2f, "
+      "\"open_minute_s\": %.3f, \"open_hour_s\": %.3f, "
+      "\"three_frames_minute_s\": %.3f, \"three_frames_hour_s\": %.3f, \"peak_mb\": %.0f}\n",
+      median_of(minutes, total), median_of(hours, total),
+      median_of(hours, total) / median_of(minutes, total), median_of(minutes, open),
+      median_of(hours, open), median_of(minutes, drawn), median_of(hours, drawn),
+      tactile::bench::peak_memory_mb());
   return 0;
 }

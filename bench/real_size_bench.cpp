@@ -39,10 +39,12 @@ double seconds_since(Clock::time_point start) {
 tactile::Dataset robovie_table(const std::filesystem::path& folder) {
   const std::filesystem::path cached = folder / "robovie-30min-features.csv";
   if (std::filesystem::exists(cached)) return tactile::read_dataset_csv(cached.string());
-  if (!std::filesystem::exists(folder / "robovie-30min.h5")) tactile::bench::write_long_robovie(folder);
+  if (!std::filesystem::exists(folder / "robovie-30min.h5"))
+    tactile::bench::write_long_robovie(folder);
   const auto start = Clock::now();
-  const std::vector<tactile::CorpusRecording> corpus = tactile::corpus_from_store(
-      {(folder / "labels.db").string(), tactile::LabelSource::kGroundTruth, folder.string(), "robovie"});
+  const std::vector<tactile::CorpusRecording> corpus =
+      tactile::corpus_from_store({(folder / "labels.db").string(),
+                                  tactile::LabelSource::kGroundTruth, folder.string(), "robovie"});
   const auto extractor =
       tactile::make_feature_extractor(tactile::default_pipeline("robovie"), tactile::Parameters());
   tactile::CorpusDataset table = tactile::extract_corpus(*extractor, corpus, {});
@@ -84,18 +86,19 @@ void train_rows(const tactile::Dataset& table) {
   control.threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
   const auto start = Clock::now();
   double last = 0.0;
-  tactile::ml::evaluate_all(table, tactile::ml::Protocol::parse("kfold:5"), 1, control,
-                            [&](const tactile::ml::PresetOutcome& outcome, int index, int total) {
-                              const double now = seconds_since(start);
-                              char accuracy[32];
-                              std::snprintf(accuracy, sizeof accuracy, "%.1f %%",
-                                            outcome.result ? outcome.result->accuracy * 100.0 : 0.0);
-                              std::printf("| %d/%d %s | %.2f s | %.2f s | %s |\n", index + 1, total,
-                                          outcome.classifier.c_str(), now - last, now,
-                                          outcome.result ? accuracy : ("skipped: " + outcome.skipped).c_str());
-                              std::fflush(stdout);
-                              last = now;
-                            });
+  tactile::ml::evaluate_all(
+      table, tactile::ml::Protocol::parse("kfold:5"), 1, control,
+      [&](const tactile::ml::PresetOutcome& outcome, int index, int total) {
+        const double now = seconds_since(start);
+        char accuracy[32];
+        std::snprintf(accuracy, sizeof accuracy, "%.1f %%",
+                      outcome.result ? outcome.result->accuracy * 100.0 : 0.0);
+        std::printf("| %d/%d %s | %.2f s | %.2f s | %s |\n", index + 1, total,
+                    outcome.classifier.c_str(), now - last, now,
+                    outcome.result ? accuracy : ("skipped: " + outcome.skipped).c_str());
+        std::fflush(stdout);
+        last = now;
+      });
   std::printf("| Train all | | %.2f s | |\n", seconds_since(start));
 }
 
@@ -118,16 +121,20 @@ int main(int argc, char** argv) {
     for (const std::string& part : parts) {
       tactile::bench::reset_peak_memory();
       if (part == "som") {
-        std::printf("| SOM | seconds | quantisation error | topographic error |\n|---|---|---|---|\n");
+        std::printf(
+            "| SOM | seconds | quantisation error | topographic error |\n|---|---|---|---|\n");
         som_rows(table);
       } else if (part == "train") {
-        std::printf("\n| preset (in the order run) | seconds | since the start | accuracy |\n|---|---|---|---|\n");
+        std::printf(
+            "\n| preset (in the order run) | seconds | since the start | accuracy "
+            "|\n|---|---|---|---|\n");
         train_rows(table);
       } else {
         throw tactile::Error("real_size_bench", "unknown part '" + part + "' (som, train)");
       }
       std::printf("\n%s: peak resident memory %.0f MB (the table itself %.0f MB)\n\n", part.c_str(),
-                  tactile::bench::peak_memory_mb(), static_cast<double>(table.features.size()) * 8.0 / 1e6);
+                  tactile::bench::peak_memory_mb(),
+                  static_cast<double>(table.features.size()) * 8.0 / 1e6);
       std::fflush(stdout);
     }
     return 0;

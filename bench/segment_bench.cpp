@@ -116,7 +116,8 @@ std::string fitted_cell(const std::vector<Labelled>& items) {
   std::vector<tactile::FitRecording> five;
   for (const Labelled& item : items) {
     std::vector<Label> touches = item.touches;
-    std::sort(touches.begin(), touches.end(), [](const Label& a, const Label& b) { return a.t0 < b.t0; });
+    std::sort(touches.begin(), touches.end(),
+              [](const Label& a, const Label& b) { return a.t0 < b.t0; });
     touches.resize(std::min<size_t>(5, touches.size()));
     five.push_back({&item.recording, &item.layout, touches});
   }
@@ -125,18 +126,22 @@ std::string fitted_cell(const std::vector<Labelled>& items) {
   bool any = false;
   for (const Labelled& item : items) {
     std::vector<Label> touches = item.touches;
-    std::sort(touches.begin(), touches.end(), [](const Label& a, const Label& b) { return a.t0 < b.t0; });
+    std::sort(touches.begin(), touches.end(),
+              [](const Label& a, const Label& b) { return a.t0 < b.t0; });
     if (touches.size() < 6) continue;
     any = true;
     touches.erase(touches.begin(), touches.begin() + 5);
     const double from = touches.front().t0, to = touches.back().t1;
     std::vector<Label> found;
-    for (const Label& segment : tactile::segment_recording(
-             "adaptive", item.recording, item.layout, tactile::Parameters::parse(fit.params, "fit")))
+    for (const Label& segment :
+         tactile::segment_recording("adaptive", item.recording, item.layout,
+                                    tactile::Parameters::parse(fit.params, "fit")))
       if (segment.t1 > from && segment.t0 < to) found.push_back(segment);
     const tactile::Stream& stream = item.recording.streams.front();
-    const auto first = static_cast<int64_t>(std::ceil((from - stream.time_of(0)) * stream.rate_hz - 1e-9));
-    const auto end = static_cast<int64_t>(std::ceil((to - stream.time_of(0)) * stream.rate_hz - 1e-9));
+    const auto first =
+        static_cast<int64_t>(std::ceil((from - stream.time_of(0)) * stream.rate_hz - 1e-9));
+    const auto end =
+        static_cast<int64_t>(std::ceil((to - stream.time_of(0)) * stream.rate_hz - 1e-9));
     unseen += tactile::score_touches(found, touches, stream.time_of(0) + first / stream.rate_hz,
                                      stream.rate_hz, end - first);
   }
@@ -162,9 +167,10 @@ void print_row(const std::string& name, const std::string& own_method,
       // The skin's own segmenter may need what a faulty recording lacks.
     }
     own += score_of(own_found, item);
-    adaptive += score_of(tactile::segment_recording("adaptive", item.recording, item.layout,
-                                                    tactile::Parameters::parse(adaptive_params, "--params")),
-                         item);
+    adaptive += score_of(
+        tactile::segment_recording("adaptive", item.recording, item.layout,
+                                   tactile::Parameters::parse(adaptive_params, "--params")),
+        item);
   }
   std::printf("| %s | %lld | %s | %s | %s | %s |\n", name.c_str(), static_cast<long long>(touches),
               cell(baseline).c_str(), (own_method + ": " + cell(own)).c_str(),
@@ -184,7 +190,8 @@ Labelled made(const std::string& layout_id, double rate, int samples,
   tactile::Stream stream;
   stream.name = "skin";
   stream.rate_hz = rate;
-  for (const tactile::Channel& channel : item.layout.channels) stream.channels.push_back(channel.name);
+  for (const tactile::Channel& channel : item.layout.channels)
+    stream.channels.push_back(channel.name);
   stream.samples.resize(samples, static_cast<Eigen::Index>(stream.channels.size()));
   for (int t = 0; t < samples; ++t)
     for (Eigen::Index c = 0; c < stream.samples.cols(); ++c)
@@ -261,29 +268,35 @@ int main(int argc, char** argv) {
     {
       // Clean pulses (issue 40): channel i = max(0, sin(t / 7)) x (i mod 5), 50 Hz, 10 s.
       std::vector<std::pair<int, int>> halves;
-      for (int k = 0; 44 * k < 500; ++k) halves.emplace_back(static_cast<int>(std::ceil(2 * M_PI * 7 * k)),
-                                                               std::min(500, static_cast<int>(std::ceil(M_PI * 7 * (2 * k + 1)))));
+      for (int k = 0; 44 * k < 500; ++k)
+        halves.emplace_back(static_cast<int>(std::ceil(2 * M_PI * 7 * k)),
+                            std::min(500, static_cast<int>(std::ceil(M_PI * 7 * (2 * k + 1)))));
       print_row("clean pulses, grid:4x4", "adaptive",
-                {made("grid:4x4", 50.0, 500,
-                      [](int t, int c) { return static_cast<float>(std::max(0.0, std::sin(t / 7.0)) * (c % 5)); },
-                      halves)},
+                {made(
+                    "grid:4x4", 50.0, 500,
+                    [](int t, int c) {
+                      return static_cast<float>(std::max(0.0, std::sin(t / 7.0)) * (c % 5));
+                    },
+                    halves)},
                 true);
       // A binary 0/1 strip at 50 Hz: 20 touches of 0.4-1.2 s, each with a 2-frame lift in it.
       std::vector<std::pair<int, int>> touches;
-      for (int k = 0; k < 20; ++k) touches.emplace_back(100 + 120 * k, 100 + 120 * k + 20 + 10 * (k % 5));
+      for (int k = 0; k < 20; ++k)
+        touches.emplace_back(100 + 120 * k, 100 + 120 * k + 20 + 10 * (k % 5));
       print_row("binary 0/1, strip:8", "adaptive",
-                {made("strip:8", 50.0, 100 + 120 * 20,
-                      [&](int t, int c) {
-                        for (int k = 0; k < 20; ++k) {
-                          const auto [first, end] = touches[static_cast<size_t>(k)];
-                          const int middle = (first + end) / 2;
-                          if (t >= first && t < end && !(t >= middle && t < middle + 2) &&
-                              (c == k % 8 || c == (k + 3) % 8))
-                            return 1.0f;
-                        }
-                        return 0.0f;
-                      },
-                      touches)},
+                {made(
+                    "strip:8", 50.0, 100 + 120 * 20,
+                    [&](int t, int c) {
+                      for (int k = 0; k < 20; ++k) {
+                        const auto [first, end] = touches[static_cast<size_t>(k)];
+                        const int middle = (first + end) / 2;
+                        if (t >= first && t < end && !(t >= middle && t < middle + 2) &&
+                            (c == k % 8 || c == (k + 3) % 8))
+                          return 1.0f;
+                      }
+                      return 0.0f;
+                    },
+                    touches)},
                 true);
       // A saturating 8-bit grid at 15 Hz: idle levels 0-40, noise of a count, 20 presses of
       // 1 s clipped at 255, crosstalk of 30 counts elsewhere.
@@ -292,18 +305,19 @@ int main(int argc, char** argv) {
       std::vector<std::pair<int, int>> presses;
       for (int k = 0; k < 20; ++k) presses.emplace_back(30 + 45 * k, 45 + 45 * k);
       print_row("saturating 8-bit, grid:4x4", "adaptive",
-                {made("grid:4x4", 15.0, 30 + 45 * 20 + 30,
-                      [&](int t, int c) {
-                        const int row = c / 4, column = c % 4, local = t - 30;
-                        double value = (c * 7) % 41 + noise(random);
-                        if (local >= 0 && local % 45 < 15 && local / 45 < 20)
-                          value += row >= 1 && row <= 2 && column >= (local / 45) % 3 &&
-                                           column <= (local / 45) % 3 + 1
-                                       ? 400.0
-                                       : 30.0;
-                        return static_cast<float>(std::clamp(std::round(value), 0.0, 255.0));
-                      },
-                      presses)},
+                {made(
+                    "grid:4x4", 15.0, 30 + 45 * 20 + 30,
+                    [&](int t, int c) {
+                      const int row = c / 4, column = c % 4, local = t - 30;
+                      double value = (c * 7) % 41 + noise(random);
+                      if (local >= 0 && local % 45 < 15 && local / 45 < 20)
+                        value += row >= 1 && row <= 2 && column >= (local / 45) % 3 &&
+                                         column <= (local / 45) % 3 + 1
+                                     ? 400.0
+                                     : 30.0;
+                      return static_cast<float>(std::clamp(std::round(value), 0.0, 255.0));
+                    },
+                    presses)},
                 true);
     }
     for (const std::string& skin : skins) {

@@ -61,15 +61,17 @@ int main(int argc, char** argv) {
   const auto alone_start = Clock::now();
   tactile::start_training_job(state.analysis.last_request)->wait();
   const double alone_seconds = std::chrono::duration<double>(Clock::now() - alone_start).count();
-  const double rows = state.analysis.dataset ? static_cast<double>(state.analysis.dataset->rows()) : 0;
-  std::printf("{\"rows\": %.0f, \"presets\": %zu, \"train_all_seconds\": %.2f, "
-              "\"train_all_seconds_without_window\": %.2f, \"frames_while_training\": %zu,\n"
-              " \"idle_ms_median\": %.2f, \"idle_ms_p90\": %.2f, \"training_ms_median\": %.2f, "
-              "\"training_ms_p90\": %.2f, \"median_ratio\": %.3f, \"p90_ratio\": %.3f}\n",
-              rows, presets, seconds, alone_seconds, training.size(), percentile(idle, 0.5), percentile(idle, 0.9),
-              percentile(training, 0.5), percentile(training, 0.9),
-              percentile(training, 0.5) / percentile(idle, 0.5),
-              percentile(training, 0.9) / percentile(idle, 0.9));
+  const double rows =
+      state.analysis.dataset ? static_cast<double>(state.analysis.dataset->rows()) : 0;
+  std::printf(
+      "{\"rows\": %.0f, \"presets\": %zu, \"train_all_seconds\": %.2f, "
+      "\"train_all_seconds_without_window\": %.2f, \"frames_while_training\": %zu,\n"
+      " \"idle_ms_median\": %.2f, \"idle_ms_p90\": %.2f, \"training_ms_median\": %.2f, "
+      "\"training_ms_p90\": %.2f, \"median_ratio\": %.3f, \"p90_ratio\": %.3f}\n",
+      rows, presets, seconds, alone_seconds, training.size(), percentile(idle, 0.5),
+      percentile(idle, 0.9), percentile(training, 0.5), percentile(training, 0.9),
+      percentile(training, 0.5) / percentile(idle, 0.5),
+      percentile(training, 0.9) / percentile(idle, 0.9));
   if (!state.error.empty()) std::fprintf(stderr, "training_bench: %s\n", state.error.c_str());
   return 0;
 }

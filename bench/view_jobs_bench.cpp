@@ -23,9 +23,9 @@
 #include "analysis.h"
 #include "bench_support.h"
 #include "jobs.h"
+#include "labelling.h"
 #include "long_robovie.h"
 #include "process_memory.h"
-#include "labelling.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
@@ -79,8 +79,7 @@ Measured until_done(tactile::Workbench& workbench, Draw draw, const std::functio
   const auto begin = Clock::now();
   start();
   measured.frames.push_back(draw());
-  while (workbench.jobs_running())
-    measured.frames.push_back(draw());
+  while (workbench.jobs_running()) measured.frames.push_back(draw());
   measured.frames.push_back(draw());  // the frame that applies a training result
   measured.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   measured.peak_mb = tactile::bench::peak_memory_mb();
@@ -154,7 +153,7 @@ int main(int argc, char** argv) {
         percentile(idle, 1.0));
     // Each view's job: started by drawing the view, frames drawn until its result is applied.
     for (const char* view : {"scatter", "som"}) {
-    if (!wants(view)) continue;
+      if (!wants(view)) continue;
       state.options.only_view = view;
       const Measured job = until_done(workbench, draw, [] {});
       // Cancel: the view's result dropped, the job started again by drawing it.

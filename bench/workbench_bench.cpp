@@ -1,6 +1,6 @@
 // The workbench on long recordings, for bench/workbench_bench.sh:
-//   workbench_bench make DIR            writes DIR/minute.h5, hour.h5, ten-hours.h5 (274 ch, 100 Hz)
-//   workbench_bench browse FILE [SPAN]  zooms and pans the signal plot over FILE (views up to
+//   workbench_bench make DIR            writes DIR/minute.h5, hour.h5, ten-hours.h5 (274 ch, 100
+//   Hz) workbench_bench browse FILE [SPAN]  zooms and pans the signal plot over FILE (views up to
 //                                       SPAN seconds wide, default all of it) through a
 //                                       file-backed SampleSource, moves the skin cursor, and
 //                                       prints frame times, vertices per column and peak memory
@@ -62,7 +62,8 @@ int browse(const std::string& path, double max_span) {
   tactile::OffscreenRenderer renderer(kWidth, kHeight);
   const tactile::FileSampleSource source(path);
   std::vector<tactile::PlotChannel> channels;
-  for (int k = 0; k < kPlotted; ++k) channels.push_back({source.info().channels[k * 9], &source, k * 9, 0});
+  for (int k = 0; k < kPlotted; ++k)
+    channels.push_back({source.info().channels[k * 9], &source, k * 9, 0});
   const double start = source.start_time(), end = source.end_time();
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -118,13 +119,14 @@ int browse(const std::string& path, double max_span) {
   const double p90 = frame_ms[frame_ms.size() * 9 / 10];
   const double build_median = build_ms[build_ms.size() / 2];
   const double build_p90 = build_ms[build_ms.size() * 9 / 10];
-  std::printf("{\"file\": \"%s\", \"seconds\": %.0f, \"frame_ms_median\": %.3f, \"frame_ms_p90\": %.3f, "
-              "\"build_ms_median\": %.3f, \"build_ms_p90\": %.3f, "
-              "\"vertices_per_column_per_channel_max\": %.2f, \"peak_rss_mb\": %.1f, "
-              "\"source_memory_mb\": %.1f, \"chunks_read\": %lld}\n",
-              path.c_str(), end - start, median, p90, build_median, build_p90, worst_vertices_per_column,
-              tactile::bench::peak_memory_mb(), source.memory_bytes() / 1048576.0,
-              static_cast<long long>(source.chunks_read()));
+  std::printf(
+      "{\"file\": \"%s\", \"seconds\": %.0f, \"frame_ms_median\": %.3f, \"frame_ms_p90\": %.3f, "
+      "\"build_ms_median\": %.3f, \"build_ms_p90\": %.3f, "
+      "\"vertices_per_column_per_channel_max\": %.2f, \"peak_rss_mb\": %.1f, "
+      "\"source_memory_mb\": %.1f, \"chunks_read\": %lld}\n",
+      path.c_str(), end - start, median, p90, build_median, build_p90, worst_vertices_per_column,
+      tactile::bench::peak_memory_mb(), source.memory_bytes() / 1048576.0,
+      static_cast<long long>(source.chunks_read()));
   return 0;
 }
 

@@ -161,8 +161,8 @@ void print_all(const ml::TrainAllResult& all, const Dataset& dataset, bool json,
       continue;
     }
     std::cout << std::setw(10) << percent(outcome.result->accuracy) << std::setw(13)
-              << percent(ml::mean_recall(*outcome.result)) << std::setw(8)
-              << std::setprecision(2) << outcome.result->seconds << " s\n";
+              << percent(ml::mean_recall(*outcome.result)) << std::setw(8) << std::setprecision(2)
+              << outcome.result->seconds << " s\n";
   }
   if (!out.empty()) std::cout << "results     " << out << "\n";
 }
@@ -354,8 +354,9 @@ void register_evaluate(CLI::App& app) {
                       "Write the result as JSON (confusion, per-class figures and every test "
                       "row: recording, t0, t1, region, true, predicted, score)");
   command
-      ->add_option("--protocol", args->protocol,
-                   "kfold:K[xR] | loo | loso | group:COLUMN | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY")
+      ->add_option(
+          "--protocol", args->protocol,
+          "kfold:K[xR] | loo | loso | group:COLUMN | holdout:FxR | split:TRAIN_QUERY/TEST_QUERY")
       ->capture_default_str();
   command->add_option("--seed", args->seed, "Random seed of folds and classifiers")
       ->capture_default_str();

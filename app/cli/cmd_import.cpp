@@ -90,12 +90,15 @@ void register_import(CLI::App& app) {
                       "The array to read: a .npz array's name, an HDF5 file's dataset path, a .mat "
                       "variable (s.field for a "
                       "struct's field; default: the file's one array)");
-  command->add_option("--key", options->key, "The JSON key holding the frames (a.b for nested; default: the top level)");
-  command->add_option("--value-key", options->value_key,
-                      "JSON frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
-                      "frame (e.g. data)");
-  command->add_option("--class-key", options->class_key,
-                      "JSON frames given as objects: the member holding each frame's class (e.g. label)");
+  command->add_option("--key", options->key,
+                      "The JSON key holding the frames (a.b for nested; default: the top level)");
+  command->add_option(
+      "--value-key", options->value_key,
+      "JSON frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
+      "frame (e.g. data)");
+  command->add_option(
+      "--class-key", options->class_key,
+      "JSON frames given as objects: the member holding each frame's class (e.g. label)");
   command->add_flag("--captures", options->captures,
                     "The array is [captures][channels][samples]: captures laid end to end");
   command->add_option(
@@ -105,14 +108,19 @@ void register_import(CLI::App& app) {
       "into the layout's classes; none/empty: no touch");
   command->add_option("--class-column", options->class_column,
                       "Long CSV: the column of class names per row (none/empty: no touch)");
-  command->add_option("--group-columns", options->group_columns,
-                      "Long CSV: columns whose values split the table into recordings (e.g. subject,capture); "
-                      "--out is then a folder")
+  command
+      ->add_option(
+          "--group-columns", options->group_columns,
+          "Long CSV: columns whose values split the table into recordings (e.g. subject,capture); "
+          "--out is then a folder")
       ->delimiter(',');
-  command->add_option("--out", options->out, "Output recording file (.h5), or a folder with --group-columns")
+  command
+      ->add_option("--out", options->out,
+                   "Output recording file (.h5), or a folder with --group-columns")
       ->required();
   command->add_option("--labels", options->labels,
-                      "Label database (SQLite) for the ground-truth labels (--wide, --class-column, --class-array)");
+                      "Label database (SQLite) for the ground-truth labels (--wide, "
+                      "--class-column, --class-array)");
   command->add_option("--recording-id", options->recording_id,
                       "Recording id (default: the output file's stem)");
   command

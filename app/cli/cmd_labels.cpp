@@ -186,8 +186,12 @@ void run_check(const LabelsOptions& options) {
   if (options.as_json) {
     nlohmann::json list = nlohmann::json::array();
     for (const LabelIssue& issue : issues)
-      list.push_back({{"kind", issue.kind}, {"recording", issue.recording}, {"t0", issue.t0},
-                      {"t1", issue.t1}, {"label", issue.label}, {"what", issue.what}});
+      list.push_back({{"kind", issue.kind},
+                      {"recording", issue.recording},
+                      {"t0", issue.t0},
+                      {"t1", issue.t1},
+                      {"label", issue.label},
+                      {"what", issue.what}});
     std::cout << nlohmann::json{{"labels", labels.size()}, {"issues", list}}.dump(2) << "\n";
   } else {
     for (const LabelIssue& issue : issues)
@@ -265,25 +269,30 @@ void register_labels(CLI::App& app) {
   import_command->callback([options] { run_import(*options); });
 
   CLI::App* check_command = labels->add_subcommand(
-      "check", "Labels that overlap in a lane, last implausibly long or short, segmenter events "
-               "without a label, classes outside the vocabulary; exit 1 if any");
+      "check",
+      "Labels that overlap in a lane, last implausibly long or short, segmenter events "
+      "without a label, classes outside the vocabulary; exit 1 if any");
   check_command->add_option("db", options->database, "Label database (SQLite)")->required();
   check_command->add_option("--recording", options->recording, "Only this recording");
-  check_command->add_option("--skin", options->skin, "Check classes against this skin's vocabulary");
+  check_command->add_option("--skin", options->skin,
+                            "Check classes against this skin's vocabulary");
   check_command->add_flag("--json", options->as_json, "Print JSON");
   check_command->callback([options] { run_check(*options); });
 
   CLI::App* agreement_command = labels->add_subcommand(
       "agreement", "Agreement of two lanes: kappa over time, segment F1 at IoU, class confusion");
   agreement_command->add_option("db", options->database, "Label database (SQLite)")->required();
-  agreement_command->add_option("--a", options->a,
-                                "Reference lane: ground-truth, an annotator, segmenter:METHOD, model:NAME")
+  agreement_command
+      ->add_option("--a", options->a,
+                   "Reference lane: ground-truth, an annotator, segmenter:METHOD, model:NAME")
       ->required();
   agreement_command->add_option("--b", options->b, "The lane compared with it")->required();
   agreement_command->add_option("--recording", options->recording, "Only this recording");
-  agreement_command->add_option("--recordings", options->recordings,
-                                "Folder of RECORDING.h5 for spans and rates (default: the database's)");
-  agreement_command->add_option("--iou", options->iou, "Segments match at IoU >= this (default 0.5)")
+  agreement_command->add_option(
+      "--recordings", options->recordings,
+      "Folder of RECORDING.h5 for spans and rates (default: the database's)");
+  agreement_command
+      ->add_option("--iou", options->iou, "Segments match at IoU >= this (default 0.5)")
       ->check(CLI::Range(0.01, 1.0));
   agreement_command->add_flag("--json", options->as_json, "Print JSON");
   agreement_command->callback([options] { run_agreement(*options); });

@@ -3,9 +3,10 @@
 // Runs a segmenter on each recording and stores its labels (source segmenter) in the
 // label database, one transaction per recording. --fit-to first chooses adaptive's parameters
 // from a lane's labelled touches (segment/fit.h), prints them with their held-out scores and
-// saves them as a preset; --score prints each recording's segments scored against a lane. A folder stands for every .h5 file under
-// it. Segments whose class the method does not know are stored with class "unknown"
-// (the store needs a class); `tactile features` gives them the overlapping ground truth.
+// saves them as a preset; --score prints each recording's segments scored against a lane. A folder
+// stands for every .h5 file under it. Segments whose class the method does not know are stored with
+// class "unknown" (the store needs a class); `tactile features` gives them the overlapping ground
+// truth.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -19,10 +20,10 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
+#include "tactile/labels/lanes.h"
 #include "tactile/labels/suggestions.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
-#include "tactile/labels/lanes.h"
 #include "tactile/segment/fit.h"
 #include "tactile/segment/presets.h"
 #include "tactile/segment/scoring.h"
@@ -135,8 +136,9 @@ void check_score_lane(const LabelStore& store, const std::string& lane) {
   std::set<std::string> lanes;
   for (const Label& label : store.list())
     if (label.source != LabelSource::kSegmenter) lanes.insert(lane_of(label).id());
-  throw Error("--score " + lane, "no labels in this lane in " + store.path() + " (lanes with labels: " +
-                                     (lanes.empty() ? "none" : joined({lanes.begin(), lanes.end()})) + ")");
+  throw Error("--score " + lane,
+              "no labels in this lane in " + store.path() + " (lanes with labels: " +
+                  (lanes.empty() ? "none" : joined({lanes.begin(), lanes.end()})) + ")");
 }
 
 // --preset NAME: the preset's method and parameters, unless the line gives its own.
@@ -171,8 +173,8 @@ void fit_to_lane(SegmentOptions& options, const std::vector<std::string>& files)
     layouts.push_back(load_layout(recordings.back().layout_id));
   }
   for (size_t r = 0; r < files.size(); ++r)
-    items.push_back({&recordings[r], &layouts[r],
-                     lane_labels(store, options.fit_to, recordings[r].id)});
+    items.push_back(
+        {&recordings[r], &layouts[r], lane_labels(store, options.fit_to, recordings[r].id)});
   const SegmenterFit fit = fit_segmenter(items);
   std::cout << fit_report(fit);
   const SegmenterPreset preset =

@@ -109,8 +109,9 @@ void register_stream_sim(CLI::App& app) {
   command->add_option("--duration", options->duration,
                       "Seconds of device time to send; trials loop (default: one trial)");
   command->add_option("--seed", options->seed, "Simulator seed (default 1)");
-  command->add_option("--loss", options->loss,
-                      "Fraction of datagrams to drop at random, as a lossy network would (default 0)");
+  command->add_option(
+      "--loss", options->loss,
+      "Fraction of datagrams to drop at random, as a lossy network would (default 0)");
   command->callback([options] { run_stream_sim(*options); });
 }
 

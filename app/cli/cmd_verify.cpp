@@ -95,7 +95,8 @@ void run_repair(const std::vector<std::string>& paths) {
   std::string failure;
   for (const std::string& path : paths) {
     try {
-      for (const std::string& line : repair_lines(path, repair_recording(path))) std::cout << line << "\n";
+      for (const std::string& line : repair_lines(path, repair_recording(path)))
+        std::cout << line << "\n";
     } catch (const Error& error) {
       std::cout.flush();
       std::cerr << "tactile: " << error.what() << "\n";
@@ -126,8 +127,7 @@ void register_verify(CLI::App& app) {
   auto options = std::make_shared<VerifyOptions>();
   CLI::App* command = app.add_subcommand(
       "verify", "Read every chunk, attribute and label row; one line per problem, exit 1 if any");
-  command->add_option("paths", options->paths, "Recordings, label stores or folders")
-      ->required();
+  command->add_option("paths", options->paths, "Recordings, label stores or folders")->required();
   command->add_flag("--json", options->json, "Print a machine-readable report");
   command->add_option("--out", options->out,
                       "Also write the --json report to this file (atomically)");
@@ -141,8 +141,9 @@ void register_verify(CLI::App& app) {
   upgrade->callback([paths] { run_upgrade(*paths); });
 
   auto damaged = std::make_shared<std::vector<std::string>>();
-  CLI::App* repair = app.add_subcommand(
-      "repair", "Mend recordings a failed write left (full disk): rebuild the overview and count, name what was lost");
+  CLI::App* repair = app.add_subcommand("repair",
+                                        "Mend recordings a failed write left (full disk): rebuild "
+                                        "the overview and count, name what was lost");
   repair->add_option("files", *damaged, "Recordings (.h5)")->required();
   repair->callback([damaged] { run_repair(*damaged); });
 }

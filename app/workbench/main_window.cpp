@@ -69,8 +69,8 @@ int main(int argc, char** argv) {
       extra = {"--screenshot", target};
     }
     if (args.script.empty())
-      std::cerr << "tactile-workbench: no display; rendering the main window headless to "
-                << target << "\n";
+      std::cerr << "tactile-workbench: no display; rendering the main window headless to " << target
+                << "\n";
     return run_headless(argc, argv, extra);
   }
 

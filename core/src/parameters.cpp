@@ -113,7 +113,8 @@ void Parameters::expect_only(const std::vector<std::string>& known) const {
     if (listed) continue;
     std::string names;
     for (const std::string& name : known) names += (names.empty() ? "" : ", ") + name;
-    throw Error(where_, "unknown parameter '" + key + "'" + (names.empty() ? "" : " (known: " + names + ")"));
+    throw Error(where_, "unknown parameter '" + key + "'" +
+                            (names.empty() ? "" : " (known: " + names + ")"));
   }
 }
 

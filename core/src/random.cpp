@@ -13,8 +13,8 @@ double uniform01(std::mt19937_64& engine) {
 
 uint64_t uniform_index(std::mt19937_64& engine, uint64_t count) {
   // Draws at or above the largest multiple of count would favour the low values.
-  const uint64_t limit = std::numeric_limits<uint64_t>::max() -
-                         std::numeric_limits<uint64_t>::max() % count;
+  const uint64_t limit =
+      std::numeric_limits<uint64_t>::max() - std::numeric_limits<uint64_t>::max() % count;
   uint64_t draw = engine();
   while (draw >= limit) draw = engine();
   return draw % count;

@@ -20,9 +20,9 @@ class ClusterCommand : public ::testing::Test {
  protected:
   // Runs tactile inside the test's folder, as a user on a login node would.
   CommandResult tactile(const std::string& arguments, const std::string& environment = "") {
-    return test::run_program("tactile", arguments, folder_,
-                             "cd '" + folder_.path().string() + "' &&" +
-                                 (environment.empty() ? "" : " " + environment));
+    return test::run_program(
+        "tactile", arguments, folder_,
+        "cd '" + folder_.path().string() + "' &&" + (environment.empty() ? "" : " " + environment));
   }
   // Runs a written script with bash in the test's folder.
   int bash(const std::string& script, const std::string& environment = "") {
@@ -47,28 +47,29 @@ TEST_F(ClusterCommand, WritesAnArrayOfShardsAMergeAfterThemAndASubmitScript) {
   const std::string merge = read_text(jobs + "/merge.sbatch");
   const std::string submit = read_text(jobs + "/submit.sh");
   const std::string here = folder_.path().string();
-  for (const std::string& line :
-       std::vector<std::string>{"#SBATCH --array=1-3\n", "#SBATCH --chdir=" + here + "\n", "#SBATCH --partition=short\n",
-        "#SBATCH --time=00:10:00\n", "#SBATCH --output=" + jobs + "/logs/shard-%a.job-%A.out\n",
-        "#SBATCH --error=" + jobs + "/logs/shard-%a.job-%A.err\n",
-        " features --pipeline fur --labels rec/labels.db --out table.csv \\\n  --shard "
-        "\"${shard}/3\" --part " +
-            jobs + "/parts/part-\"${shard}\"-of-3\n"})
+  for (const std::string& line : std::vector<std::string>{
+           "#SBATCH --array=1-3\n", "#SBATCH --chdir=" + here + "\n", "#SBATCH --partition=short\n",
+           "#SBATCH --time=00:10:00\n", "#SBATCH --output=" + jobs + "/logs/shard-%a.job-%A.out\n",
+           "#SBATCH --error=" + jobs + "/logs/shard-%a.job-%A.err\n",
+           " features --pipeline fur --labels rec/labels.db --out table.csv \\\n  --shard "
+           "\"${shard}/3\" --part " +
+               jobs + "/parts/part-\"${shard}\"-of-3\n"})
     EXPECT_NE(shards.find(line), std::string::npos) << line << "\nnot in\n" << shards;
   // The command runs as the same tactile, by its absolute path.
   EXPECT_NE(shards.find("\n" + test::bin_dir() + "/tactile features "), std::string::npos)
       << shards;
   EXPECT_EQ(shards.find("--partition=batch"), std::string::npos) << "given, not an example";
-  for (const std::string& line :
-       std::vector<std::string>{" merge \\\n  " + jobs + "/parts/part-1-of-3 \\\n  " + jobs + "/parts/part-2-of-3 \\\n  " +
-            jobs + "/parts/part-3-of-3 \\\n  --out " + here + "/table.csv\n",
-        "#SBATCH --output=" + jobs + "/logs/merge.job-%j.out\n", "#SBATCH --partition=short\n"})
+  for (const std::string& line : std::vector<std::string>{
+           " merge \\\n  " + jobs + "/parts/part-1-of-3 \\\n  " + jobs +
+               "/parts/part-2-of-3 \\\n  " + jobs + "/parts/part-3-of-3 \\\n  --out " + here +
+               "/table.csv\n",
+           "#SBATCH --output=" + jobs + "/logs/merge.job-%j.out\n", "#SBATCH --partition=short\n"})
     EXPECT_NE(merge.find(line), std::string::npos) << line << "\nnot in\n" << merge;
   EXPECT_NE(submit.find("array=$(sbatch --parsable " + jobs + "/shards.sbatch)"), std::string::npos)
       << submit;
-  EXPECT_NE(submit.find("sbatch --parsable --dependency=afterok:\"${array}\" " + jobs +
-                        "/merge.sbatch"),
-            std::string::npos)
+  EXPECT_NE(
+      submit.find("sbatch --parsable --dependency=afterok:\"${array}\" " + jobs + "/merge.sbatch"),
+      std::string::npos)
       << submit;
   EXPECT_FALSE(std::filesystem::exists(jobs + "/jobs.json")) << "nothing was submitted";
   EXPECT_TRUE(std::filesystem::is_directory(jobs + "/parts"));
@@ -83,12 +84,12 @@ TEST_F(ClusterCommand, ScriptsRunByHandGiveTheOneProcessResultUnderANameThatNeed
   const CommandResult one = tactile(features + " --out one.csv");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   // The file name holds a space, a single quote and double quotes: "it's a \"table\".csv".
-  const CommandResult run = tactile(
-      slurm("tactile " + features + " --out 'it'\\\\''s a '\\\\\\\"table\\\\\\\"'.csv'"));
+  const CommandResult run =
+      tactile(slurm("tactile " + features + " --out 'it'\\\\''s a '\\\\\\\"table\\\\\\\"'.csv'"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::string result = folder_.file("it's a \"table\".csv");
-  EXPECT_NE(read_text(folder_.file("jobs/merge.sbatch")).find("'" + folder_.path().string() +
-                                                               "/it'\\''s a \"table\".csv'"),
+  EXPECT_NE(read_text(folder_.file("jobs/merge.sbatch"))
+                .find("'" + folder_.path().string() + "/it'\\''s a \"table\".csv'"),
             std::string::npos)
       << read_text(folder_.file("jobs/merge.sbatch"));
   EXPECT_NE(bash(folder_.file("jobs/shards.sbatch")), 0) << "no task id: refused";
@@ -118,7 +119,8 @@ TEST_F(ClusterCommand, RefusesWhatItCannotSplitOrShardNamingIt) {
            {"tactile info rec", "`tactile info` does not shard"},
            {"python3 features --out t.csv", "'python3' is not tactile"},
            {"tactile features --labels l.db", "`tactile features` names its result with --out"},
-           {"tactile predict --model m.json rec", "`tactile predict` names its result with --labels"},
+           {"tactile predict --model m.json rec",
+            "`tactile predict` names its result with --labels"},
            {"tactile features --out t.csv --shard 1/2", "has --shard already"},
            {"tactile", "give a whole tactile command"},
        }) {

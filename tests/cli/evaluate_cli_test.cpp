@@ -146,12 +146,11 @@ TEST(EvaluateCli, NaNInTheFeaturesIsAnErrorNotAResult) {
 TEST(EvaluateCli, OutWritesEveryTestRowWithItsSegmentAndScore) {
   TempFolder folder;
   write_features(folder.file("features.csv"), 2.5);
-  const CommandResult result =
-      run_program("tactile",
-                  "evaluate --features '" + folder.file("features.csv") +
-                      "' --classifier knn:k=3 --protocol kfold:4 --out '" +
-                      folder.file("result.json") + "'",
-                  folder);
+  const CommandResult result = run_program("tactile",
+                                           "evaluate --features '" + folder.file("features.csv") +
+                                               "' --classifier knn:k=3 --protocol kfold:4 --out '" +
+                                               folder.file("result.json") + "'",
+                                           folder);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json json = nlohmann::json::parse(read_text(folder.file("result.json")));
   ASSERT_EQ(json["rows"].size(), 40u);
@@ -167,10 +166,11 @@ TEST(EvaluateCli, OutWritesEveryTestRowWithItsSegmentAndScore) {
   EXPECT_GT(wrong, 0);
   EXPECT_NEAR(json["accuracy"].get<double>(), (40 - wrong) / 40.0, 1e-12);
   // A name that is not .json is refused before any work.
-  const CommandResult bad = run_program("tactile",
-                                        "evaluate --features '" + folder.file("features.csv") +
-                                            "' --classifier knn --out '" + folder.file("r.txt") + "'",
-                                        folder);
+  const CommandResult bad =
+      run_program("tactile",
+                  "evaluate --features '" + folder.file("features.csv") +
+                      "' --classifier knn --out '" + folder.file("r.txt") + "'",
+                  folder);
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--out"), std::string::npos) << bad.err;
 }
@@ -180,11 +180,11 @@ TEST(EvaluateCli, OutWritesEveryTestRowWithItsSegmentAndScore) {
 TEST(EvaluateCli, AllRunsEveryPresetIntoOneSortedTable) {
   TempFolder folder;
   write_features(folder.file("features.csv"), 3.0);
-  const CommandResult result =
-      run_program("tactile",
-                  "evaluate --features '" + folder.file("features.csv") +
-                      "' --classifier all --protocol kfold:4 --out '" + folder.file("all.json") + "'",
-                  folder);
+  const CommandResult result = run_program("tactile",
+                                           "evaluate --features '" + folder.file("features.csv") +
+                                               "' --classifier all --protocol kfold:4 --out '" +
+                                               folder.file("all.json") + "'",
+                                           folder);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("mean recall"), std::string::npos) << result.out;
   const nlohmann::json json = nlohmann::json::parse(read_text(folder.file("all.json")));
@@ -199,10 +199,10 @@ TEST(EvaluateCli, AllRunsEveryPresetIntoOneSortedTable) {
   EXPECT_EQ(json["evaluations"][0]["rows"].size(), 40u);
   for (const nlohmann::json& preset : json["presets"])
     EXPECT_NE(preset["classifier"], "grid-search");  // a search, not a preset
-  const CommandResult model = run_program(
-      "tactile",
-      "evaluate --features '" + folder.file("features.csv") + "' --classifier all --save-model m.json",
-      folder);
+  const CommandResult model = run_program("tactile",
+                                          "evaluate --features '" + folder.file("features.csv") +
+                                              "' --classifier all --save-model m.json",
+                                          folder);
   EXPECT_NE(model.exit_code, 0);
 }
 

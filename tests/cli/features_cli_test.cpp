@@ -100,7 +100,8 @@ TEST_F(FeaturesCommand, GroundTruthSegmentsBecomeOneCsvRowEach) {
       << run.out;
   const Dataset dataset = read_dataset_csv(folder_.file("table.csv"));
   ASSERT_EQ(dataset.rows(), 8);
-  ASSERT_EQ(dataset.columns.size(), 25u * 26 + 27 + 1 + 5);  // per channel, the busiest, neighbours, the map
+  ASSERT_EQ(dataset.columns.size(),
+            25u * 26 + 27 + 1 + 5);  // per channel, the busiest, neighbours, the map
   EXPECT_EQ(dataset.columns.front().name, "ch0.hjorth_activity");
   EXPECT_EQ(dataset.columns.back().name, "contact.spread");
   // The store's order: by recording, then time.
@@ -187,7 +188,8 @@ TEST_F(FeaturesCommand, SkippedSegmentsAreReportedAndLogged) {
   }
   const CommandResult run = tactile(features("table.csv"));
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.err.find("skipped: grid-s02 segment 9: segment holds no samples"), std::string::npos)
+  EXPECT_NE(run.err.find("skipped: grid-s02 segment 9: segment holds no samples"),
+            std::string::npos)
       << run.err;
   const std::string log = test::read_text(folder_.path() / "table.csv.log");
   EXPECT_NE(log.find("1 of 9 segments skipped"), std::string::npos) << log;
@@ -308,10 +310,10 @@ namespace {
 // labels of source model, one per segment, with score and margin; a second run replaces.
 TEST_F(FeaturesCommand, PredictWritesModelLabelsFromASavedModel) {
   ASSERT_EQ(tactile(features("features.csv")).exit_code, 0);
-  const CommandResult trained = tactile(
-      "evaluate --features " + quoted("features.csv") +
-      " --classifier knn:k=1 --protocol kfold:2 --pipeline generic --save-model " +
-      quoted("model.json"));
+  const CommandResult trained =
+      tactile("evaluate --features " + quoted("features.csv") +
+              " --classifier knn:k=1 --protocol kfold:2 --pipeline generic --save-model " +
+              quoted("model.json"));
   ASSERT_EQ(trained.exit_code, 0) << trained.err;
   const nlohmann::json model = nlohmann::json::parse(test::read_text(folder_.file("model.json")));
   EXPECT_EQ(model["pipeline"], "generic");

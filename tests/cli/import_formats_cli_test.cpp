@@ -21,7 +21,9 @@ const std::string kData = tactile::test::test_data_dir() + "/import/";
 
 class ImportFormats : public ::testing::Test {
  protected:
-  test::CommandResult import(const std::string& arguments) { return run_program("tactile", "import " + arguments, folder); }
+  test::CommandResult import(const std::string& arguments) {
+    return run_program("tactile", "import " + arguments, folder);
+  }
   std::vector<Label> labels_of(const std::string& recording) {
     LabelStore store(folder.file("labels.db"));
     LabelFilter filter;
@@ -49,7 +51,8 @@ TEST_F(ImportFormats, EachFormatWritesTheSameRecording) {
     if (!first) {
       first = std::move(recording);
     } else {
-      EXPECT_TRUE(recording.streams.front().samples.isApprox(first->streams.front().samples, 1e-6)) << inputs[k];
+      EXPECT_TRUE(recording.streams.front().samples.isApprox(first->streams.front().samples, 1e-6))
+          << inputs[k];
     }
   }
 }
@@ -60,23 +63,27 @@ TEST_F(ImportFormats, ClassesPerFrameBecomeGroundTruthLabels) {
         "frames.json --key data.frames --class-array data.gesture",
         "objects.json --key frames --value-key data --class-key label",
         "foreign.h5 --dataset /sensors/pressure --class-array /sensors/gesture"}) {
-    const auto result = import(kData + input + " --layout grid:4x4 --rate 100 --out " + folder.file("g.h5") +
-                               " --labels " + folder.file("labels.db"));
+    const auto result = import(kData + input + " --layout grid:4x4 --rate 100 --out " +
+                               folder.file("g.h5") + " --labels " + folder.file("labels.db"));
     ASSERT_EQ(result.exit_code, 0) << input << ": " << result.err;
     const std::vector<Label> labels = labels_of("g");
     ASSERT_EQ(labels.size(), 2u) << input << " (importing again replaces, never doubles)";
     EXPECT_EQ(labels[0].class_name, "pat");
     EXPECT_EQ(labels[1].class_name, "stroke");
   }
-  const auto captures = import(kData + "caps.npz --dataset x --captures --class-array y --layout grid:4x4 --rate 100 --out " +
-                               folder.file("c.h5") + " --labels " + folder.file("labels.db"));
+  const auto captures =
+      import(kData +
+             "caps.npz --dataset x --captures --class-array y --layout grid:4x4 --rate 100 --out " +
+             folder.file("c.h5") + " --labels " + folder.file("labels.db"));
   ASSERT_EQ(captures.exit_code, 0) << captures.err;
   EXPECT_EQ(labels_of("c").size(), 6u);
 }
 
 TEST_F(ImportFormats, OneTableSplitsIntoRecordingsByItsGroupingColumns) {
-  const auto result = import(kData + "table.csv --layout strip:4 --class-column gesture --group-columns subject,capture --out " +
-                             folder.file("groups") + " --labels " + folder.file("labels.db"));
+  const auto result = import(
+      kData +
+      "table.csv --layout strip:4 --class-column gesture --group-columns subject,capture --out " +
+      folder.file("groups") + " --labels " + folder.file("labels.db"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   for (const std::string id : {"table-s1-1", "table-s1-2", "table-s2-1", "table-s2-2"}) {
     const RecordingFile file(folder.file("groups/" + id + ".h5"));
@@ -85,8 +92,10 @@ TEST_F(ImportFormats, OneTableSplitsIntoRecordingsByItsGroupingColumns) {
     ASSERT_EQ(labels_of(id).size(), 1u) << id;
   }
   // Again: the files exist, and nothing is written over them.
-  const auto again = import(kData + "table.csv --layout strip:4 --class-column gesture --group-columns subject,capture --out " +
-                            folder.file("groups"));
+  const auto again = import(
+      kData +
+      "table.csv --layout strip:4 --class-column gesture --group-columns subject,capture --out " +
+      folder.file("groups"));
   EXPECT_NE(again.exit_code, 0);
   EXPECT_NE(again.err.find("exists already"), std::string::npos) << again.err;
 }

@@ -156,17 +156,26 @@ TEST_F(LabelsCommandTest, ImportRoundTripsWhatExportWrites) {
     label.note = "two\r\nlines, \"quoted\"";
     store.add(label);
   }
-  ASSERT_EQ(run("labels export '" + database_ + "' --json '" + (directory_ / "all.json").string() + "'"), 0);
-  ASSERT_EQ(run("labels export '" + database_ + "' --csv '" + (directory_ / "all.csv").string() + "'"), 0);
+  ASSERT_EQ(
+      run("labels export '" + database_ + "' --json '" + (directory_ / "all.json").string() + "'"),
+      0);
+  ASSERT_EQ(
+      run("labels export '" + database_ + "' --csv '" + (directory_ / "all.csv").string() + "'"),
+      0);
   const nlohmann::json original = nlohmann::json::parse(text_of("all.json"))["labels"];
   for (const char* format : {"csv", "json"}) {
     SCOPED_TRACE(format);
     const std::string copy = (directory_ / (std::string("copy-") + format + ".db")).string();
-    ASSERT_EQ(run("labels import '" + copy + "' '" + (directory_ / (std::string("all.") + format)).string() + "'"), 0)
+    ASSERT_EQ(run("labels import '" + copy + "' '" +
+                  (directory_ / (std::string("all.") + format)).string() + "'"),
+              0)
         << text_of("stderr.txt");
     EXPECT_EQ(text_of("stdout.txt"), "imported 4 labels into " + copy + "\n");
-    ASSERT_EQ(run("labels export '" + copy + "' --json '" + (directory_ / "back.json").string() + "'"), 0);
-    EXPECT_EQ(content_of(nlohmann::json::parse(text_of("back.json"))["labels"]), content_of(original));
+    ASSERT_EQ(
+        run("labels export '" + copy + "' --json '" + (directory_ / "back.json").string() + "'"),
+        0);
+    EXPECT_EQ(content_of(nlohmann::json::parse(text_of("back.json"))["labels"]),
+              content_of(original));
   }
 }
 
@@ -182,9 +191,11 @@ TEST_F(LabelsCommandTest, ImportNamesTheLineOfABadLabelAndAddsNothing) {
             std::string::npos)
       << text_of("stderr.txt");
   EXPECT_FALSE(std::filesystem::exists(copy));
-  std::ofstream(directory_ / "bad.json") << R"({"labels": [{"recording": "r", "t0": 1, "t1": 2, "region": "all", "class": "pat", "annotator": "a", "source": "sometimes"}]})";
+  std::ofstream(directory_ / "bad.json")
+      << R"({"labels": [{"recording": "r", "t0": 1, "t1": 2, "region": "all", "class": "pat", "annotator": "a", "source": "sometimes"}]})";
   EXPECT_EQ(run("labels import '" + copy + "' '" + (directory_ / "bad.json").string() + "'"), 1);
-  EXPECT_NE(text_of("stderr.txt").find("bad.json label 1"), std::string::npos) << text_of("stderr.txt");
+  EXPECT_NE(text_of("stderr.txt").find("bad.json label 1"), std::string::npos)
+      << text_of("stderr.txt");
 }
 
 TEST_F(LabelsCommandTest, AgreementComparesTwoLanes) {

@@ -77,11 +77,12 @@ class ReadOnly : public ::testing::Test {
 };
 
 TEST_F(ReadOnly, AFailedImportLeavesTheOutputThatWasThere) {
-  expect_failure_changing_nothing("import '" + file("ragged.csv") +
-                                  "' --layout strip:3 --out '" + file("existing.h5") + "'");
+  expect_failure_changing_nothing("import '" + file("ragged.csv") + "' --layout strip:3 --out '" +
+                                  file("existing.h5") + "'");
   expect_failure_changing_nothing("import '" + file("truncated.h5") +
                                   "' --dataset /streams/skin/samples --layout flux --rate 1000 "
-                                  "--out '" + file("existing.h5") + "'");
+                                  "--out '" +
+                                  file("existing.h5") + "'");
 }
 
 TEST_F(ReadOnly, AFailedExportLeavesTheOutputAndTheRecording) {

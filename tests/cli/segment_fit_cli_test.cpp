@@ -27,7 +27,8 @@ Label pair_label(const std::string& recording, int pair, const std::string& anno
 class SegmentFitCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    for (const char* id : {"a", "b"}) write_recording(folder.file(std::string(id) + ".h5"), double_tap_recording(id, 8));
+    for (const char* id : {"a", "b"})
+      write_recording(folder.file(std::string(id) + ".h5"), double_tap_recording(id, 8));
     LabelStore store(folder.file("labels.db"));
     for (int pair = 0; pair < 4; ++pair) store.add(pair_label("a", pair, "ana"));
     for (int pair = 0; pair < 3; ++pair) store.add(pair_label("b", pair, "ana"));
@@ -60,8 +61,7 @@ TEST_F(SegmentFitCli, FitsToTheLabelledTouchesSavesAPresetAndSegmentsWithIt) {
   EXPECT_NE(fit.out.find("fitted adaptive to 7 labelled touches"), std::string::npos) << fit.out;
   EXPECT_NE(fit.out.find("held out, by recording (2 folds): frame F1 1.000"), std::string::npos)
       << fit.out;
-  EXPECT_NE(fit.out.find("event F1 1.000 (7 of 7 touches found, 0 false alarms"),
-            std::string::npos)
+  EXPECT_NE(fit.out.find("event F1 1.000 (7 of 7 touches found, 0 false alarms"), std::string::npos)
       << fit.out;
   EXPECT_NE(fit.out.find("saved as preset 'taps'"), std::string::npos) << fit.out;
   EXPECT_NE(fit.out.find("16 segments from 2 recordings"), std::string::npos) << fit.out;
@@ -95,8 +95,8 @@ TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPre
     store.add(pair_label("a", 0, "bo"));
     store.add(pair_label("a", 1, "bo"));
   }
-  const auto few = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
-                           " --fit-to bo");
+  const auto few =
+      tactile("segment " + recordings() + " --labels " + folder.file("labels.db") + " --fit-to bo");
   EXPECT_EQ(few.exit_code, 1);
   EXPECT_NE(few.err.find("needs at least three labelled touches, has 2"), std::string::npos)
       << few.err;
@@ -107,11 +107,12 @@ TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPre
     late.t1 = 41.0;  // a.h5 lasts 34 s
     store.add(late);
   }
-  const auto outside = tactile("segment " + recordings() + " --labels " +
-                               folder.file("labels.db") + " --fit-to bo");
+  const auto outside =
+      tactile("segment " + recordings() + " --labels " + folder.file("labels.db") + " --fit-to bo");
   EXPECT_EQ(outside.exit_code, 1);
-  EXPECT_NE(outside.err.find("a: label 40.000-41.000 s lies outside the recording (0.000-34.000 s)"),
-            std::string::npos)
+  EXPECT_NE(
+      outside.err.find("a: label 40.000-41.000 s lies outside the recording (0.000-34.000 s)"),
+      std::string::npos)
       << outside.err;
   EXPECT_EQ(lane("segmenter:adaptive").size(), 0u) << "nothing is segmented after a refusal";
   EXPECT_FALSE(std::filesystem::exists(folder.file("segmenter-presets.json")));
@@ -123,8 +124,8 @@ TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPre
       << empty_lane.err;
   EXPECT_NE(empty_lane.err.find("manual:ana"), std::string::npos) << empty_lane.err;
   EXPECT_EQ(lane("segmenter:adaptive").size(), 0u) << "nothing is stored after a refusal";
-  const auto unknown = tactile("segment " + recordings() + " --labels " +
-                               folder.file("labels.db") + " --preset nope");
+  const auto unknown = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
+                               " --preset nope");
   EXPECT_EQ(unknown.exit_code, 1);
   EXPECT_NE(unknown.err.find("--preset nope: no such preset"), std::string::npos) << unknown.err;
   // A damaged presets file is named, and a fit does not overwrite it.
@@ -132,7 +133,8 @@ TEST_F(SegmentFitCli, RefusesTooFewTouchesLabelsOutsideTheRecordingAndUnknownPre
   const auto damaged = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
                                " --preset taps");
   EXPECT_EQ(damaged.exit_code, 1);
-  EXPECT_NE(damaged.err.find("segmenter-presets.json: damaged segmenter presets"), std::string::npos)
+  EXPECT_NE(damaged.err.find("segmenter-presets.json: damaged segmenter presets"),
+            std::string::npos)
       << damaged.err;
   const auto over = tactile("segment " + recordings() + " --labels " + folder.file("labels.db") +
                             " --fit-to ana");

@@ -132,8 +132,7 @@ TEST_F(ShardCommands, AMissingShardIsNamedAndARunOfItAloneThenMerges) {
       " " + merged + ".part-1-of-4 " + merged + ".part-2-of-4 " + merged + ".part-4-of-4";
   CommandResult merge = tactile("merge" + parts);
   EXPECT_NE(merge.exit_code, 0);
-  EXPECT_NE(merge.err.find("shard 3/4 (" + merged + ".part-3-of-4) is missing"),
-            std::string::npos)
+  EXPECT_NE(merge.err.find("shard 3/4 (" + merged + ".part-3-of-4) is missing"), std::string::npos)
       << merge.err;
   EXPECT_FALSE(std::filesystem::exists(merged));
   ASSERT_EQ(tactile(arguments + " --shard 3/4").exit_code, 0);

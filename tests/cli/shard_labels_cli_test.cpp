@@ -101,8 +101,7 @@ TEST_F(ShardLabels, SimulateMergeNamesMissingShardsAndRecordings) {
   CommandResult merged =
       tactile("merge " + quoted(stem + ".part-1-of-3") + " " + quoted(stem + ".part-3-of-3"));
   EXPECT_EQ(merged.exit_code, 1);
-  EXPECT_NE(merged.err.find("shard 2/3 (" + stem + ".part-2-of-3) is missing"),
-            std::string::npos)
+  EXPECT_NE(merged.err.find("shard 2/3 (" + stem + ".part-2-of-3) is missing"), std::string::npos)
       << merged.err;
   // Shard 2 run alone (after a kill, say): its recording lost meanwhile is named, run again it
   // merges.
@@ -177,8 +176,7 @@ TEST_F(ShardLabelStores, SegmentMergeRefusesMissingAndMismatchedShards) {
   const std::string stem = file("merged.db.segment");
   CommandResult merged = tactile("merge " + quoted(stem + ".part-1-of-2"));
   EXPECT_EQ(merged.exit_code, 1);
-  EXPECT_NE(merged.err.find("shard 2/2 (" + stem + ".part-2-of-2) is missing"),
-            std::string::npos)
+  EXPECT_NE(merged.err.find("shard 2/2 (" + stem + ".part-2-of-2) is missing"), std::string::npos)
       << merged.err;
   ASSERT_EQ(tactile(segment + " --method threshold --shard 2/2").exit_code, 0);
   merged = tactile("merge" + part_list(stem, 2));

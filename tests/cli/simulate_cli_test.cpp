@@ -25,8 +25,8 @@ TEST(SimulateCommand, TheSameSeedWritesTheSameBytes) {
   }
   EXPECT_EQ(compared, 3);  // two recordings and labels.db
   const auto other = test::run_program(
-      "tactile", "simulate --skin fur --subjects 2 --trials 1 --seed 6 --out " + folder.file("third"),
-      folder);
+      "tactile",
+      "simulate --skin fur --subjects 2 --trials 1 --seed 6 --out " + folder.file("third"), folder);
   ASSERT_EQ(other.exit_code, 0) << other.err;
   EXPECT_NE(test::read_text(folder.file("first") + "/fur-s01-t01.h5"),
             test::read_text(folder.file("third") + "/fur-s01-t01.h5"));

@@ -97,8 +97,7 @@ TEST_F(VerifyCli, UpgradeRewritesFilesOfTheEarlierFormat) {
   const std::string old_store = folder.file("old.db");
   std::filesystem::copy_file(tactile::test::test_data_dir() + "/format_v1/fur-s01-t01.h5",
                              old_recording);
-  std::filesystem::copy_file(tactile::test::test_data_dir() + "/format_v1/labels.db",
-                             old_store);
+  std::filesystem::copy_file(tactile::test::test_data_dir() + "/format_v1/labels.db", old_store);
   EXPECT_EQ(tactile("verify " + old_recording + " " + old_store).exit_code, 1);
   const auto before = tactile("export " + old_recording + " --csv " + folder.file("before.csv"));
   ASSERT_EQ(before.exit_code, 0) << before.err;

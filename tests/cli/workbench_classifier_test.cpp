@@ -20,13 +20,14 @@ namespace {
 class WorkbenchClassifiers : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto made = test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
+    const auto made =
+        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
     ASSERT_EQ(made.exit_code, 0) << made.err;
   }
   std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
   test::CommandResult workbench(const std::string& arguments, std::string script_text = "") {
-    std::string all = arguments + " --annotator ana --size 1400x800 --settings " +
-                      folder.file("settings.json");
+    std::string all =
+        arguments + " --annotator ana --size 1400x800 --settings " + folder.file("settings.json");
     if (!script_text.empty()) {
       all += " --script " + test::write_script(folder, script_text);
     }
@@ -132,10 +133,11 @@ TEST_F(WorkbenchClassifiers, TrainAllThenAWrongCellLandsOnItsSegment) {
       }
   ASSERT_FALSE(truth.empty()) << "the best model made no mistake on the demo";
 
-  auto landed = workbench(recording, std::string(kTrainAll) + "click cell " + truth + " " +
-                                         predicted + "\nwait 2\nstate @cell.json\nkey Enter\n"
-                                         "wait 12\nstate @landed.json\nscreenshot @landed.png\n"
-                                         "key N\nwait 3\nstate @next.json\n");
+  auto landed =
+      workbench(recording, std::string(kTrainAll) + "click cell " + truth + " " + predicted +
+                               "\nwait 2\nstate @cell.json\nkey Enter\n"
+                               "wait 12\nstate @landed.json\nscreenshot @landed.png\n"
+                               "key N\nwait 3\nstate @next.json\n");
   ASSERT_EQ(landed.exit_code, 0) << landed.err;
   const nlohmann::json cell = state("cell.json")["analysis"]["cell"];
   EXPECT_EQ(cell["true"], truth);
@@ -251,20 +253,29 @@ TEST_F(WorkbenchClassifiers, TheSomMapAndTheScatterAreComputedWhileFramesGoOn) {
 
 TEST_F(WorkbenchClassifiers, ResultFilesOpenFromTheCommandLine) {
   // A table and a result of one skin, made with the command line.
-  ASSERT_EQ(test::run_program("tactile", "simulate --skin flux --subjects 2 --repetitions 3 --out " +
-                                             folder.file("flux"), folder).exit_code, 0);
+  ASSERT_EQ(
+      test::run_program(
+          "tactile",
+          "simulate --skin flux --subjects 2 --repetitions 3 --out " + folder.file("flux"), folder)
+          .exit_code,
+      0);
   const std::string table = folder.file("flux/features.csv");
   auto features = test::run_program(
-      "tactile", "features --pipeline flux --labels " + folder.file("flux/labels.db") + " --out " + table, folder);
+      "tactile",
+      "features --pipeline flux --labels " + folder.file("flux/labels.db") + " --out " + table,
+      folder);
   ASSERT_EQ(features.exit_code, 0) << features.err;
   auto evaluated = test::run_program(
-      "tactile", "evaluate --features " + table + " --classifier knn --protocol kfold:3 --out " +
-                     folder.file("flux/result.json") + " --save-model " + folder.file("flux/knn.json"),
+      "tactile",
+      "evaluate --features " + table + " --classifier knn --protocol kfold:3 --out " +
+          folder.file("flux/result.json") + " --save-model " + folder.file("flux/knn.json"),
       folder);
   ASSERT_EQ(evaluated.exit_code, 0) << evaluated.err;
-  auto som = test::run_program("tactile", "evaluate --features " + table +
-                                               " --classifier som:epochs=50 --protocol kfold:3 --save-model " +
-                                               folder.file("flux/som.json"), folder);
+  auto som = test::run_program("tactile",
+                               "evaluate --features " + table +
+                                   " --classifier som:epochs=50 --protocol kfold:3 --save-model " +
+                                   folder.file("flux/som.json"),
+                               folder);
   ASSERT_EQ(som.exit_code, 0) << som.err;
 
   // The confusion view of the result; the scatter of its rows (the table it names).
@@ -286,14 +297,15 @@ TEST_F(WorkbenchClassifiers, ResultFilesOpenFromTheCommandLine) {
   ASSERT_EQ(map.exit_code, 0) << map.err;
   EXPECT_GT(colours_in(read_png(folder.file("som.png"))), 30u);
   // A model of another kind has no map: said, not drawn as nothing.
-  auto knn = workbench("--model " + folder.file("flux/knn.json"),
-                       "wait 2\nstate @knn-model.json\n");
+  auto knn =
+      workbench("--model " + folder.file("flux/knn.json"), "wait 2\nstate @knn-model.json\n");
   ASSERT_EQ(knn.exit_code, 0) << knn.err;
   EXPECT_NE(state("knn-model.json")["error"].get<std::string>().find("only a SOM has a map"),
             std::string::npos);
   // A damaged result is named, and the workbench still runs.
   std::ofstream(folder.file("broken.json")) << "{\"classifier\": \"knn\"}";
-  auto broken = workbench("--evaluation " + folder.file("broken.json"), "wait 2\nstate @broken.json\n");
+  auto broken =
+      workbench("--evaluation " + folder.file("broken.json"), "wait 2\nstate @broken.json\n");
   ASSERT_EQ(broken.exit_code, 0) << broken.err;
   EXPECT_NE(state("broken.json")["error"].get<std::string>().find("missing field 'protocol'"),
             std::string::npos)
@@ -376,7 +388,8 @@ TEST_F(WorkbenchClassifiers, PredictionsRankByMarginAndAreConfirmedAndCorrectedB
       if (lane["id"] == id) return lane["labels"].get<int>();
     return 0;
   };
-  EXPECT_EQ(lane(state("predicted.json"), "model:model"), lane(state("predicted.json"), "ground-truth"));
+  EXPECT_EQ(lane(state("predicted.json"), "model:model"),
+            lane(state("predicted.json"), "ground-truth"));
   EXPECT_EQ(state("uncertain.json")["selection"]["labels"].size(), 1u);
   {  // The margins of the model's labels (their notes: "margin=M model=SPEC"), U's the least.
     const auto predictions = test::run_program(
@@ -434,7 +447,8 @@ TEST_F(WorkbenchClassifiers, PredictionsRankByMarginAndAreConfirmedAndCorrectedB
 // and redone by Ctrl+Shift+Z, the whole label table compared.
 TEST_F(WorkbenchClassifiers, PredictConfirmAndCorrectEachUndoAsOneCommand) {
   const auto all_labels = [&] {
-    const auto listed = test::run_program("tactile", "labels list " + demo("labels.db") + " --json", folder);
+    const auto listed =
+        test::run_program("tactile", "labels list " + demo("labels.db") + " --json", folder);
     nlohmann::json labels = nlohmann::json::parse(listed.out)["labels"];
     for (nlohmann::json& label : labels)
       for (const char* field : {"id", "created", "modified"}) label.erase(field);
@@ -448,7 +462,8 @@ TEST_F(WorkbenchClassifiers, PredictConfirmAndCorrectEachUndoAsOneCommand) {
     ASSERT_EQ(state("done.json")["error"], "");
     const nlohmann::json after = all_labels();
     ASSERT_NE(after, before) << command;
-    ASSERT_EQ(workbench(recording, "wait 2\nkey Ctrl+Z\nwait 1\nstate @undone.json\n").exit_code, 0);
+    ASSERT_EQ(workbench(recording, "wait 2\nkey Ctrl+Z\nwait 1\nstate @undone.json\n").exit_code,
+              0);
     EXPECT_TRUE(state("undone.json")["notice"].get<std::string>().starts_with("undone: "))
         << state("undone.json")["notice"];
     EXPECT_EQ(all_labels(), before) << command;
@@ -478,13 +493,15 @@ TEST_F(WorkbenchClassifiers, CancellingTheSomMapsJobLeavesNoMapAndComputeStartsI
     std::srand(3);
     for (int row = 0; row < 454; ++row) {
       for (int c = 0; c < 1692; ++c) out << 0.3 * (row % 6) + std::rand() / double(RAND_MAX) << ",";
-      out << "class" << row % 6 + 1 << ",s" << row % 10 + 1 << ",r" << row / 20 << "," << row + 1 << "\n";
+      out << "class" << row % 6 + 1 << ",s" << row % 10 + 1 << ",r" << row / 20 << "," << row + 1
+          << "\n";
     }
   }
-  const auto run = workbench("--features " + table,
-                             "wait 2\nclick item tab:som\nwait 3\nclick item button:Cancel\nwait jobs\n"
-                             "wait 1\nstate @cancelled.json\nclick item button:Compute\nwait 3\n"
-                             "state @again.json\n");
+  const auto run =
+      workbench("--features " + table,
+                "wait 2\nclick item tab:som\nwait 3\nclick item button:Cancel\nwait jobs\n"
+                "wait 1\nstate @cancelled.json\nclick item button:Compute\nwait 3\n"
+                "state @again.json\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json cancelled = state("cancelled.json");
   ASSERT_FALSE(cancelled["jobs"].empty()) << cancelled.dump(1);
@@ -516,7 +533,8 @@ TEST_F(WorkbenchClassifiers, TheSomatosensoryMapIsComputedWhileFramesGoOn) {
 // Each classifier view exports headless, and the somatosensory map of Robovie's films.
 TEST_F(WorkbenchClassifiers, SomatosensoryMapRendersAndIsCachedBesideTheRecording) {
   const std::string png = folder.file("somatosensory.png");
-  auto drawn = workbench(demo("robovie-s01-t01.h5") + " --time 12 --view somatosensory --headless --screenshot " + png);
+  auto drawn = workbench(demo("robovie-s01-t01.h5") +
+                         " --time 12 --view somatosensory --headless --screenshot " + png);
   ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
   const Png image = read_png(png);
   ASSERT_TRUE(image.pixels);

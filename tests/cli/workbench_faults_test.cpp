@@ -22,16 +22,20 @@ class WorkbenchFaults : public ::testing::Test {
   void make_recording(const std::string& folder_path) {
     std::ofstream csv(folder.file("long.csv"));
     csv << "t,ch0,ch1,ch2,ch3\n";
-    for (int k = 0; k < 80000; ++k) csv << k / 1000.0 << "," << k % 97 << ",1,2," << (k / 1000) % 7 << "\n";
+    for (int k = 0; k < 80000; ++k)
+      csv << k / 1000.0 << "," << k % 97 << ",1,2," << (k / 1000) % 7 << "\n";
     csv.close();
-    const auto imported = test::run_program(
-        "tactile", "import " + folder.file("long.csv") + " --layout grid:2x2 --rate 1000 --out " + folder_path + "/long.h5",
-        folder);
+    const auto imported =
+        test::run_program("tactile",
+                          "import " + folder.file("long.csv") +
+                              " --layout grid:2x2 --rate 1000 --out " + folder_path + "/long.h5",
+                          folder);
     ASSERT_EQ(imported.exit_code, 0) << imported.err;
   }
   test::CommandResult run(const std::string& arguments, const std::string& environment = "") {
-    return test::run_program("tactile-workbench-headless", arguments + " --settings " + folder.file("settings.json"),
-                             folder, environment);
+    return test::run_program("tactile-workbench-headless",
+                             arguments + " --settings " + folder.file("settings.json"), folder,
+                             environment);
   }
   nlohmann::json state(const std::string& name) {
     std::ifstream in(folder.file(name));
@@ -42,28 +46,33 @@ class WorkbenchFaults : public ::testing::Test {
 
 TEST_F(WorkbenchFaults, ADiskThatHangsOrFailsCostsNoFrameOverASecondAndTheFileReturns) {
   make_recording(folder.path().string());
-  const std::string script = test::write_script(folder,
-                                                "time 1\nwait 3\n"
-                                                "fault read hang\ntime 40\nwait 4\ntime 60\nwait 4\nstate @hang.json\n"
-                                                "fault read off\nsleep 1.3\ntime 40\nwait 4\nstate @back.json\n"
-                                                "fault read fail\ntime 20\nwait 4\nstate @fail.json\n"
-                                                "fault read off\nsleep 1.3\nwait 3\nstate @again.json\n");
+  const std::string script =
+      test::write_script(folder,
+                         "time 1\nwait 3\n"
+                         "fault read hang\ntime 40\nwait 4\ntime 60\nwait 4\nstate @hang.json\n"
+                         "fault read off\nsleep 1.3\ntime 40\nwait 4\nstate @back.json\n"
+                         "fault read fail\ntime 20\nwait 4\nstate @fail.json\n"
+                         "fault read off\nsleep 1.3\nwait 3\nstate @again.json\n");
   const auto result = run(folder.file("long.h5") + " --size 900x600 --script " + script);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json hang = state("hang.json");
-  EXPECT_NE(hang["unavailable"].get<std::string>().find("does not answer"), std::string::npos) << hang["unavailable"];
+  EXPECT_NE(hang["unavailable"].get<std::string>().find("does not answer"), std::string::npos)
+      << hang["unavailable"];
   EXPECT_EQ(state("back.json")["unavailable"], "");
   const nlohmann::json fail = state("fail.json");
-  EXPECT_NE(fail["unavailable"].get<std::string>().find("Input/output error"), std::string::npos) << fail["unavailable"];
+  EXPECT_NE(fail["unavailable"].get<std::string>().find("Input/output error"), std::string::npos)
+      << fail["unavailable"];
   const nlohmann::json again = state("again.json");
   EXPECT_EQ(again["unavailable"], "");
   EXPECT_LE(again["longest_frame_seconds"].get<double>(), 1.0);
-  EXPECT_GT(again["longest_frame_seconds"].get<double>(), 0.3);  // it did wait for the hung read, within its budget
+  EXPECT_GT(again["longest_frame_seconds"].get<double>(),
+            0.3);  // it did wait for the hung read, within its budget
 }
 
 // A folder this process cannot write: a read-only tmpfs for root (who writes anywhere else),
 // a folder without write permission for anyone else. Empty when neither can be made.
-std::string read_only_folder(const test::TempFolder& folder, const std::function<void(const std::string&)>& fill) {
+std::string read_only_folder(const test::TempFolder& folder,
+                             const std::function<void(const std::string&)>& fill) {
   const std::string path = folder.file("ro");
   std::filesystem::create_directories(path);
   if (geteuid() == 0) {
@@ -76,7 +85,8 @@ std::string read_only_folder(const test::TempFolder& folder, const std::function
     return path;
   }
   fill(path);
-  std::filesystem::permissions(path, std::filesystem::perms::owner_write, std::filesystem::perm_options::remove);
+  std::filesystem::permissions(path, std::filesystem::perms::owner_write,
+                               std::filesystem::perm_options::remove);
   return path;
 }
 
@@ -84,34 +94,48 @@ TEST_F(WorkbenchFaults, AReadOnlyRecordingIsViewedAndItsLabelsGoToTheUsersOwnSto
   // A skin with classes (keys 1-9 label), its simulator's labels.db beside it.
   const std::string ro = read_only_folder(folder, [&](const std::string& path) {
     const auto simulated = test::run_program(
-        "tactile", "simulate --skin flux --subjects 1 --repetitions 1 --seed 4 --out '" + path + "'", folder);
+        "tactile",
+        "simulate --skin flux --subjects 1 --repetitions 1 --seed 4 --out '" + path + "'", folder);
     ASSERT_EQ(simulated.exit_code, 0) << simulated.err;
   });
   if (ro.empty()) GTEST_SKIP() << "cannot make a read-only folder here";
-  const std::string script = test::write_script(folder,
-                                                "wait 3\nstate @open.json\n"
-                                                "time 3\nkey [\ntime 4\nkey ]\nkey 1\nkey Enter\nwait 3\nstate @refused.json\n"
-                                                "menu Labels/Keep labels in my own store\nwait 3\n"
-                                                "time 3\nkey [\ntime 4\nkey ]\nkey 1\nkey Enter\nwait 3\nstate @kept.json\n");
+  const std::string script = test::write_script(
+      folder,
+      "wait 3\nstate @open.json\n"
+      "time 3\nkey [\ntime 4\nkey ]\nkey 1\nkey Enter\nwait 3\nstate @refused.json\n"
+      "menu Labels/Keep labels in my own store\nwait 3\n"
+      "time 3\nkey [\ntime 4\nkey ]\nkey 1\nkey Enter\nwait 3\nstate @kept.json\n");
   const auto result = run(ro + "/flux-s01-t01.h5 --annotator ana --size 900x600 --script " + script,
                           "XDG_DATA_HOME='" + folder.file("data") + "'");
-  const auto listed = std::distance(std::filesystem::directory_iterator(ro), std::filesystem::directory_iterator());
-  if (geteuid() == 0) ::umount(ro.c_str());
-  else std::filesystem::permissions(ro, std::filesystem::perms::owner_write, std::filesystem::perm_options::add);
+  const auto listed =
+      std::distance(std::filesystem::directory_iterator(ro), std::filesystem::directory_iterator());
+  if (geteuid() == 0)
+    ::umount(ro.c_str());
+  else
+    std::filesystem::permissions(ro, std::filesystem::perms::owner_write,
+                                 std::filesystem::perm_options::add);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(listed, 2);  // nothing was written beside the recording and its labels.db: no -wal
   const nlohmann::json open = state("open.json");
-  EXPECT_NE(open["labels_read_only"].get<std::string>().find("read-only"), std::string::npos) << open;
-  EXPECT_NE(open["notice"].get<std::string>().find("Keep labels in my own store"), std::string::npos) << open["notice"];
+  EXPECT_NE(open["labels_read_only"].get<std::string>().find("read-only"), std::string::npos)
+      << open;
+  EXPECT_NE(open["notice"].get<std::string>().find("Keep labels in my own store"),
+            std::string::npos)
+      << open["notice"];
   const nlohmann::json refused = state("refused.json");
-  EXPECT_NE(refused["error"].get<std::string>().find("labels cannot be saved here"), std::string::npos) << refused["error"];
+  EXPECT_NE(refused["error"].get<std::string>().find("labels cannot be saved here"),
+            std::string::npos)
+      << refused["error"];
   const int before = open["labels"].get<int>();
   EXPECT_GT(before, 0);  // the read-only store's labels are shown
   EXPECT_EQ(refused["labels"], before);
   const nlohmann::json kept = state("kept.json");
   EXPECT_EQ(kept["labels_read_only"], "");
   EXPECT_EQ(kept["labels"], before + 1);  // its labels came along, and the new one
-  EXPECT_EQ(kept["labels_path"].get<std::string>().rfind(folder.file("data/tactile-workbench/labels/"), 0), 0u) << kept["labels_path"];
+  EXPECT_EQ(kept["labels_path"].get<std::string>().rfind(
+                folder.file("data/tactile-workbench/labels/"), 0),
+            0u)
+      << kept["labels_path"];
   EXPECT_TRUE(std::filesystem::exists(kept["labels_path"].get<std::string>()));
 }
 

@@ -132,11 +132,11 @@ TEST_F(FirstHour, AScriptsFirstClickOnAMenuWaitsForTheFirstFrame) {
 TEST_F(FirstHour, TheLabelTableShowsManyRowsAndFollowsTheSelection) {
   // In a short window only part of Robovie's 15 labels fit; selecting the last one in its lane
   // (the whole trial shown: it opens on its first minute) scrolls its row into view.
-  const auto result =
-      workbench(demo("robovie-s01-t01.h5"),
-                "wait 2\nmenu View/Fit time axis\nstate @before.json\nclick time 135 in lane:ground-truth\nwait 2\n"
-                "state @after.json\n",
-                "1280x480");
+  const auto result = workbench(demo("robovie-s01-t01.h5"),
+                                "wait 2\nmenu View/Fit time axis\nstate @before.json\nclick time "
+                                "135 in lane:ground-truth\nwait 2\n"
+                                "state @after.json\n",
+                                "1280x480");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto rows = [](const nlohmann::json& at) {
     std::set<std::string> shown;

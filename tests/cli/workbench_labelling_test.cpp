@@ -29,10 +29,12 @@ class WorkbenchLabelling : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto made = test::run_program(
-        "tactile", "simulate --skin fur --subjects 1 --repetitions 1 --seed 3 --out " + folder.file("ws"),
+        "tactile",
+        "simulate --skin fur --subjects 1 --repetitions 1 --seed 3 --out " + folder.file("ws"),
         folder);
     ASSERT_EQ(made.exit_code, 0) << made.err;
-    const auto classes = test::run_program("tactile", "labels classes " + database() + " fur", folder);
+    const auto classes =
+        test::run_program("tactile", "labels classes " + database() + " fur", folder);
     ASSERT_EQ(classes.exit_code, 0) << classes.err;
     std::istringstream lines(classes.out);
     for (std::string line; std::getline(lines, line);) vocabulary.push_back(line);
@@ -107,9 +109,9 @@ class WorkbenchLabelling : public ::testing::Test {
 };
 
 TEST_F(WorkbenchLabelling, KeysMakeALabelThatIsInTheDatabaseAtOnce) {
-  const auto result =
-      workbench("wait 2\ntime 3\nkey [\ntime 4.5\nkey ]\nkey 2\nstate @marked.json\nkey Enter\n"
-                "wait 1\nstate @made.json\n");
+  const auto result = workbench(
+      "wait 2\ntime 3\nkey [\ntime 4.5\nkey ]\nkey 2\nstate @marked.json\nkey Enter\n"
+      "wait 1\nstate @made.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json marked = state("marked.json");
   EXPECT_DOUBLE_EQ(marked["marks"]["start"].get<double>(), 3.0);
@@ -128,13 +130,14 @@ TEST_F(WorkbenchLabelling, KeysMakeALabelThatIsInTheDatabaseAtOnce) {
 }
 
 TEST_F(WorkbenchLabelling, UndoAndRedoWorkAcrossRestarts) {
-  ASSERT_EQ(workbench("wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 1\nkey Enter\nwait 1\n").exit_code, 0);
+  ASSERT_EQ(workbench("wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 1\nkey Enter\nwait 1\n").exit_code,
+            0);
   ASSERT_EQ(manual_labels().size(), 1u);
   // A new process: the journal in the database knows what to undo.
   ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nstate @undone.json\n").exit_code, 0);
   EXPECT_EQ(manual_labels().size(), 0u);
   EXPECT_TRUE(state("undone.json")["notice"].get<std::string>().starts_with("undone: "))
-        << state("undone.json")["notice"];
+      << state("undone.json")["notice"];
   ASSERT_EQ(workbench("wait 2\nkey Ctrl+Shift+Z\nwait 1\n").exit_code, 0);
   const nlohmann::json labels = manual_labels();
   ASSERT_EQ(labels.size(), 1u);
@@ -213,7 +216,8 @@ TEST_F(WorkbenchLabelling, SuggestionsAreAcceptedAndRejectedAndARerunLeavesTheRe
 // G, accept one suggestion and reject the next, G again, Ctrl+Z: the database is as it was
 // before the second run (a run was two journal batches, and undo left both runs stacked).
 TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRerunRestoresTheLabelsBeforeIt) {
-  ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\nkey 6\nkey A\nwait 1\nkey R\nwait 1\n").exit_code, 0);
+  ASSERT_EQ(workbench("wait 2\nkey G\nwait jobs\nkey 6\nkey A\nwait 1\nkey R\nwait 1\n").exit_code,
+            0);
   const nlohmann::json before = all_labels();
   ASSERT_GE(before.size(), 3u);
   const auto result = workbench(
@@ -222,7 +226,7 @@ TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRerunRestoresTheLabelsBeforeIt) {
   EXPECT_NE(state("rerun.json")["notice"].get<std::string>().find("(1 rejected before)"),
             std::string::npos);
   EXPECT_TRUE(state("undone.json")["notice"].get<std::string>().starts_with("undone: "))
-        << state("undone.json")["notice"];
+      << state("undone.json")["notice"];
   EXPECT_EQ(all_labels(), before);
   const auto check = test::run_program("tactile", "labels check " + database(), folder);
   EXPECT_EQ(check.out.find("overlap"), std::string::npos) << check.out;
@@ -251,7 +255,8 @@ TEST_F(WorkbenchLabelling, CtrlZAfterASegmenterRunTakesBackTheRunNotTheLabelBefo
 
 // One of every command kind of the labelling keys, each undone exactly (after a restart) and
 // redone.
-constexpr const char* kCommitOne = "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 2\nkey Enter\nwait 1\n";
+constexpr const char* kCommitOne =
+    "wait 2\ntime 1\nkey [\ntime 2\nkey ]\nkey 2\nkey Enter\nwait 1\n";
 
 TEST_F(WorkbenchLabelling, CommittingALabelUndoesAsOneCommand) { expect_one_undo(kCommitOne); }
 
@@ -268,7 +273,9 @@ TEST_F(WorkbenchLabelling, ADeleteUndoesAsOneCommand) {
 }
 
 TEST_F(WorkbenchLabelling, ADraggedEdgeUndoesAsOneCommand) {
-  ASSERT_EQ(workbench("wait 2\nkey S\ndrag time 13 15 in timeline\nkey 1\nkey Enter\nwait 1\n").exit_code, 0);
+  ASSERT_EQ(
+      workbench("wait 2\nkey S\ndrag time 13 15 in timeline\nkey 1\nkey Enter\nwait 1\n").exit_code,
+      0);
   expect_one_undo("wait 2\nkey S\ndrag time 15 17 in timeline\nwait 2\n");
 }
 
@@ -287,7 +294,8 @@ TEST_F(WorkbenchLabelling, ARejectedSuggestionUndoesAsOneCommandAndComesBackInAR
   expect_one_undo("wait 2\nclick time " + std::to_string(t) +
                   " in lane:segmenter:threshold\nkey R\nwait 1\n");
   // Redone: rejected again. Undone once more, then a rerun: nothing left out.
-  ASSERT_EQ(workbench("wait 2\nkey Ctrl+Z\nwait 1\nkey G\nwait jobs\nstate @rerun.json\n").exit_code, 0);
+  ASSERT_EQ(
+      workbench("wait 2\nkey Ctrl+Z\nwait 1\nkey G\nwait jobs\nstate @rerun.json\n").exit_code, 0);
   EXPECT_EQ(state("rerun.json")["notice"].get<std::string>().find("rejected before"),
             std::string::npos)
       << state("rerun.json")["notice"];
@@ -307,7 +315,8 @@ TEST_F(WorkbenchLabelling, TheQualityViewListsIssuesAndAgreementAndAClickGoesThe
   // Two overlapping labels in ana's lane: an issue. Ground truth against ana: agreement.
   const auto result = workbench(
       "wait 2\ntime 10\nkey [\ntime 12\nkey ]\nkey 1\nkey Enter\ntime 11\nkey [\ntime 12.5\n"
-      "key ]\nkey 1\nkey Enter\ntime 0\nclick item tab:quality\nwait 2\nclick item quality:issue:0\n"
+      "key ]\nkey 1\nkey Enter\ntime 0\nclick item tab:quality\nwait 2\nclick item "
+      "quality:issue:0\n"
       "wait 1\nstate @quality.json\nscreenshot @quality.png\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json quality = state("quality.json");
@@ -336,7 +345,8 @@ TEST_F(WorkbenchLabelling, DraggedTimesSnapToTheBoundariesOfOtherLanes) {
   // A drag released a few pixels short of the simulator's first touch's end ends there.
   const auto truth = nlohmann::json::parse(
       test::run_program("tactile", "labels list " + database() + " --source ground-truth --json",
-                        folder).out)["labels"];
+                        folder)
+          .out)["labels"];
   const double end = truth[0]["t1"].get<double>();
   const auto result = workbench("wait 2\ndrag time " + std::to_string(end - 2.5) + " " +
                                 std::to_string(end - 0.08) + " in timeline\nstate @snapped.json\n");
@@ -349,7 +359,9 @@ TEST_F(WorkbenchLabelling, TheTypeAheadPickerAndTheRegionMenuNeedNoTaxelClicks) 
   const std::string last = vocabulary.back();  // any class, by typing part of it
   const auto result = workbench(
       "wait 2\nclick item region\nwait 2\nclick item region:middle\nwait 1\ntime 20\nkey [\n"
-      "time 21\nkey ]\nkey C\nwait 2\ntype " + last.substr(1, 3) + "\nkey Enter\nwait 1\n"
+      "time 21\nkey ]\nkey C\nwait 2\ntype " +
+      last.substr(1, 3) +
+      "\nkey Enter\nwait 1\n"
       "state @picked.json\nkey Enter\nwait 1\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(state("picked.json")["marks"]["class"], last);

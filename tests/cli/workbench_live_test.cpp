@@ -44,12 +44,22 @@ class WorkbenchLive : public ::testing::Test {
 
 TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   // A model fitted on simulated fur touches.
-  ASSERT_EQ(run_program("tactile", "simulate --skin fur --subjects 3 --trials 1 --out " + folder.file("fur"), folder).exit_code, 0);
-  ASSERT_EQ(run_program("tactile", "features --pipeline fur --labels " + folder.file("fur/labels.db") + " --out " +
-                                       folder.file("fur.csv"), folder).exit_code, 0);
-  const CommandResult fitted = run_program("tactile", "evaluate --features " + folder.file("fur.csv") +
-                                                         " --classifier linear-svm --save-model " +
-                                                         folder.file("model.json"), folder);
+  ASSERT_EQ(
+      run_program("tactile",
+                  "simulate --skin fur --subjects 3 --trials 1 --out " + folder.file("fur"), folder)
+          .exit_code,
+      0);
+  ASSERT_EQ(run_program("tactile",
+                        "features --pipeline fur --labels " + folder.file("fur/labels.db") +
+                            " --out " + folder.file("fur.csv"),
+                        folder)
+                .exit_code,
+            0);
+  const CommandResult fitted =
+      run_program("tactile",
+                  "evaluate --features " + folder.file("fur.csv") +
+                      " --classifier linear-svm --save-model " + folder.file("model.json"),
+                  folder);
   ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
 
   const uint16_t port = free_port();
@@ -76,8 +86,8 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   for (int waited = 0; waited < 600 && !std::filesystem::exists(listening); ++waited)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(std::filesystem::exists(listening)) << "the workbench drew no frame in 30 s";
-  const CommandResult sent =
-      run_program("tactile", "stream-sim --skin fur --to " + url + " --rate-factor 4 --duration 20", folder);
+  const CommandResult sent = run_program(
+      "tactile", "stream-sim --skin fur --to " + url + " --rate-factor 4 --duration 20", folder);
   ASSERT_EQ(sent.exit_code, 0) << sent.err;
   ASSERT_EQ(workbench.wait_for(std::chrono::seconds(60)), std::future_status::ready);
   const CommandResult shown = workbench.get();
@@ -93,7 +103,9 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   const Png png = read_png(folder.file("live.png"));
   const nlohmann::json skin = during["views"]["skin"];
   const int x0 = skin["x"].get<int>(), y0 = skin["y"].get<int>();
-  EXPECT_GT(colours_in(png, x0, y0 + 40, x0 + skin["width"].get<int>(), y0 + skin["height"].get<int>()), 6u)
+  EXPECT_GT(
+      colours_in(png, x0, y0 + 40, x0 + skin["width"].get<int>(), y0 + skin["height"].get<int>()),
+      6u)
       << "the skin view is not lit";
 
   // Online decisions, "no touch" between touches and a class of the model during them.
@@ -101,7 +113,8 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   const nlohmann::json predictions = after["live"]["predictions"];
   ASSERT_FALSE(predictions.empty());
   std::set<std::string> classes;
-  for (const nlohmann::json& decision : predictions) classes.insert(decision["class"].get<std::string>());
+  for (const nlohmann::json& decision : predictions)
+    classes.insert(decision["class"].get<std::string>());
   EXPECT_EQ(after["live"]["model"], folder.file("model.json"));
 
   // The label made while recording is in the recording's label database.
@@ -127,12 +140,12 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
 // end of a recorded session the two scales' tops agree, and so do the taxels drawn as touched.
 TEST_F(WorkbenchLive, TheLiveColourScaleIsTheReplaysOfTheSameSamples) {
   const std::string record = folder.file("session.h5");
-  const CommandResult shown = run_program(
-      "tactile-workbench-headless",
-      "--connect sim://fur?seed=3 --record " + record + " --size 1280x720 --settings " +
-          folder.file("settings.json") + " --script " +
-          script("sleep 7\nstate @live.json\nkey Ctrl+R\nwait 2\n"),
-      folder);
+  const CommandResult shown =
+      run_program("tactile-workbench-headless",
+                  "--connect sim://fur?seed=3 --record " + record + " --size 1280x720 --settings " +
+                      folder.file("settings.json") + " --script " +
+                      script("sleep 7\nstate @live.json\nkey Ctrl+R\nwait 2\n"),
+                  folder);
   ASSERT_EQ(shown.exit_code, 0) << shown.err;
   const nlohmann::json live = state("live.json");
   const double time = live["time"];
@@ -145,7 +158,8 @@ TEST_F(WorkbenchLive, TheLiveColourScaleIsTheReplaysOfTheSameSamples) {
   const nlohmann::json replay = state("replay.json");
   const double live_top = live["skin"]["scale"]["max"], replay_top = replay["skin"]["scale"]["max"];
   EXPECT_GT(replay_top, 20.0) << "the session holds no touch to scale by";
-  EXPECT_NEAR(live_top / replay_top, 1.0, 0.3) << live_top << " live, " << replay_top << " replayed";
+  EXPECT_NEAR(live_top / replay_top, 1.0, 0.3)
+      << live_top << " live, " << replay_top << " replayed";
   EXPECT_NEAR(replay["time"].get<double>(), time, 1e-3);
   EXPECT_EQ(live["skin"]["touched"], replay["skin"]["touched"]);
 }
@@ -248,18 +262,23 @@ TEST_F(WorkbenchLive, AnUnpluggedSerialDeviceIsWaitedForShownAndResumes) {
 }
 
 TEST_F(WorkbenchLive, RefusesABadSourceWithTheReason) {
-  const CommandResult refused = run_program(
-      "tactile-workbench-headless", "--connect tcp://x:1 --screenshot " + folder.file("x.png") + " --settings " +
-                                        folder.file("settings.json"), folder);
+  const CommandResult refused =
+      run_program("tactile-workbench-headless",
+                  "--connect tcp://x:1 --screenshot " + folder.file("x.png") + " --settings " +
+                      folder.file("settings.json"),
+                  folder);
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_NE(refused.err.find("not a live source kind"), std::string::npos) << refused.err;
-  const CommandResult no_skin = run_program(
-      "tactile-workbench-headless", "--connect udp://:9 --screenshot " + folder.file("x.png") + " --settings " +
-                                        folder.file("settings.json"), folder);
+  const CommandResult no_skin =
+      run_program("tactile-workbench-headless",
+                  "--connect udp://:9 --screenshot " + folder.file("x.png") + " --settings " +
+                      folder.file("settings.json"),
+                  folder);
   EXPECT_NE(no_skin.exit_code, 0);
   EXPECT_NE(no_skin.err.find("--skin"), std::string::npos) << no_skin.err;
-  const CommandResult both = run_program("tactile-workbench-headless",
-                                         "a.h5 --connect sim://fur --screenshot " + folder.file("x.png"), folder);
+  const CommandResult both =
+      run_program("tactile-workbench-headless",
+                  "a.h5 --connect sim://fur --screenshot " + folder.file("x.png"), folder);
   EXPECT_NE(both.exit_code, 0);
 }
 

@@ -44,11 +44,11 @@ class Newcomer : public ::testing::Test {
   }
   // The recording's labels as `tactile labels list --json` gives them.
   nlohmann::json labels(const std::string& recording, const std::string& source = "") {
-    const auto listed = test::run_program(
-        "tactile",
-        "labels list " + demo("labels.db") + " --recording " + recording +
-            (source.empty() ? "" : " --source " + source) + " --json",
-        folder);
+    const auto listed =
+        test::run_program("tactile",
+                          "labels list " + demo("labels.db") + " --recording " + recording +
+                              (source.empty() ? "" : " --source " + source) + " --json",
+                          folder);
     EXPECT_EQ(listed.exit_code, 0) << listed.err;
     return nlohmann::json::parse(listed.out)["labels"];
   }
@@ -62,8 +62,8 @@ TEST_F(Newcomer, AClickOnARowOfTheLabelTableSelectsItsLabelAndGoesToIt) {
   // A row below the first, whose label starts away from where the recording opens.
   const nlohmann::json& wanted = listed[3];
   const std::string id = wanted["id"].dump();
-  const auto result = workbench(demo("tsa-s01-t01.h5"),
-                                "wait 2\nclick item label-row:" + id + "\nwait 1\nstate @row.json\n");
+  const auto result = workbench(
+      demo("tsa-s01-t01.h5"), "wait 2\nclick item label-row:" + id + "\nwait 1\nstate @row.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json row = state("row.json");
   EXPECT_EQ(row["selection"]["labels"], nlohmann::json::array({wanted["id"]}));
@@ -147,7 +147,8 @@ TEST_F(Newcomer, RobovieNamesAPartBetweenItsTwoFiguresOnce) {
   const double ox = outer["x"], oy = outer["y"], ow = outer["width"], oh = outer["height"];
   if (x >= ox - 1 && y >= oy - 1 && x + w <= ox + ow + 1 && y + h <= oy + oh + 1)
     return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << name << " " << box.dump() << " runs out of " << outer.dump();
+  return ::testing::AssertionFailure()
+         << name << " " << box.dump() << " runs out of " << outer.dump();
 }
 
 TEST_F(Newcomer, TheAnalysisViewsAndLaneNamesFitTheDefaultWindowAndNoTooltipStaysAfterAClick) {
@@ -201,7 +202,8 @@ TEST_F(Newcomer, TheLiveBarsClassifyButtonFitsTheDefaultWindow) {
       folder);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json live = state("live.json");
-  for (const char* item : {"button:classify", "input:model", "checkbox:auto-record", "button:record"})
+  for (const char* item :
+       {"button:classify", "input:model", "checkbox:auto-record", "button:record"})
     EXPECT_TRUE(inside(live, item, live["views"]["timeline"]));
 }
 
@@ -210,7 +212,8 @@ TEST_F(Newcomer, TheFirstUndoOfASessionSaysItTakesBackTheLastSessionsSegmenterRu
   const nlohmann::json suggestions = labels("fur-s01-t01", "segmenter");
   ASSERT_FALSE(suggestions.empty());
   double first = 1e9;
-  for (const nlohmann::json& label : suggestions) first = std::min(first, label["t0"].get<double>());
+  for (const nlohmann::json& label : suggestions)
+    first = std::min(first, label["t0"].get<double>());
   const auto result = workbench(demo("fur-s01-t01.h5"),
                                 "wait 2\ntime 50\nkey Ctrl+Z\nwait 1\nstate @undone.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -227,11 +230,11 @@ TEST_F(Newcomer, TheFirstUndoOfASessionSaysItTakesBackTheLastSessionsSegmenterRu
 }
 
 TEST_F(Newcomer, EveryUndoAndRedoMovesTheCursorToTheLabelItChanged) {
-  const auto result = workbench(
-      demo("fur-s01-t01.h5"),
-      "wait 2\ntime 40\nkey [\ntime 42\nkey ]\nkey 1\nkey Enter\nwait 1\ntime 3\n"
-      "key Ctrl+Z\nwait 1\nstate @undone.json\ntime 7\nkey Ctrl+Shift+Z\nwait 1\n"
-      "state @redone.json\n");
+  const auto result =
+      workbench(demo("fur-s01-t01.h5"),
+                "wait 2\ntime 40\nkey [\ntime 42\nkey ]\nkey 1\nkey Enter\nwait 1\ntime 3\n"
+                "key Ctrl+Z\nwait 1\nstate @undone.json\ntime 7\nkey Ctrl+Shift+Z\nwait 1\n"
+                "state @redone.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json undone = state("undone.json"), redone = state("redone.json");
   EXPECT_NEAR(undone["time"].get<double>(), 40.0, 1e-6);
@@ -296,7 +299,8 @@ TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
     const unsigned char* p = png.at(static_cast<int>(swatch["x"].get<double>() + 5),
                                     static_cast<int>(swatch["y"].get<double>() + 5));
     colours.push_back({p[0], p[1], p[2]});
-    EXPECT_LE(swatch["x"].get<double>() + swatch["width"].get<double>(), view_x + view_width) << name;
+    EXPECT_LE(swatch["x"].get<double>() + swatch["width"].get<double>(), view_x + view_width)
+        << name;
     EXPECT_LE(swatch["y"].get<double>() + swatch["height"].get<double>(),
               view["y"].get<double>() + view["height"].get<double>())
         << name;
@@ -304,8 +308,9 @@ TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
   double closest = 1e9;
   for (size_t a = 0; a < colours.size(); ++a)
     for (size_t b = a + 1; b < colours.size(); ++b)
-      closest = std::min(closest, std::hypot(colours[a][0] - colours[b][0], colours[a][1] - colours[b][1],
-                                             colours[a][2] - colours[b][2]));
+      closest =
+          std::min(closest, std::hypot(colours[a][0] - colours[b][0], colours[a][1] - colours[b][1],
+                                       colours[a][2] - colours[b][2]));
   EXPECT_GE(closest, 50.0);
 }
 

@@ -48,9 +48,10 @@ class WorkbenchScript : public ::testing::Test {
 };
 
 TEST_F(WorkbenchScript, ClickingATaxelSelectsItAndTakesItsChannelOutOfThePlot) {
-  const auto result = run(recording() + " --size 1000x700 --script " +
-                          script("wait 2\nclick taxel 3\nstate @one.json\nclick taxel 0\nkey Shift+A\n"
-                                 "state @two.json\n"));
+  const auto result =
+      run(recording() + " --size 1000x700 --script " +
+          script("wait 2\nclick taxel 3\nstate @one.json\nclick taxel 0\nkey Shift+A\n"
+                 "state @two.json\n"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json one = state("one.json");
   EXPECT_EQ(one["selection"]["taxels"], nlohmann::json::array({3}));
@@ -61,10 +62,11 @@ TEST_F(WorkbenchScript, ClickingATaxelSelectsItAndTakesItsChannelOutOfThePlot) {
 }
 
 TEST_F(WorkbenchScript, ClickingATimeMovesTheCursorThereAndPlaybackAdvancesIt) {
-  const auto result = run(recording() + " --size 1000x700 --script " +
-                          script("wait 2\nclick time 1.25\nstate @clicked.json\nclick time 0.5 in timeline\n"
-                                 "state @lane.json\nplay 1.5\nstate @played.json\nkey Space\nwait 3\n"
-                                 "state @toggled.json\n"));
+  const auto result =
+      run(recording() + " --size 1000x700 --script " +
+          script("wait 2\nclick time 1.25\nstate @clicked.json\nclick time 0.5 in timeline\n"
+                 "state @lane.json\nplay 1.5\nstate @played.json\nkey Space\nwait 3\n"
+                 "state @toggled.json\n"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json clicked = state("clicked.json");
   const double pixel = 4.0 / clicked["views"]["signals"]["width"].get<double>();
@@ -77,9 +79,10 @@ TEST_F(WorkbenchScript, ClickingATimeMovesTheCursorThereAndPlaybackAdvancesIt) {
 }
 
 TEST_F(WorkbenchScript, MenusAreChosenByName) {
-  const auto result = run(recording() + " --script " +
-                          script("wait 2\nmenu View/Stacked lanes\nstate @stacked.json\n"
-                                 "menu File/Export view as PNG/Skin\nwait jobs\nstate @exported.json\n"));
+  const auto result =
+      run(recording() + " --script " +
+          script("wait 2\nmenu View/Stacked lanes\nstate @stacked.json\n"
+                 "menu File/Export view as PNG/Skin\nwait jobs\nstate @exported.json\n"));
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_TRUE(state("stacked.json")["plot"]["stacked"].get<bool>());
   const nlohmann::json exported = state("exported.json");
@@ -94,7 +97,8 @@ TEST_F(WorkbenchScript, MenusAreChosenByName) {
 TEST_F(WorkbenchScript, EveryViewRendersAloneToAPngOfTheAskedSize) {
   for (const char* view : {"workspace", "info", "skin", "signals", "timeline"}) {
     const std::string png_path = folder.file(std::string(view) + ".png");
-    const auto result = run(recording() + " --time 1.5 --view " + view + " --size 640x360 --screenshot " + png_path);
+    const auto result = run(recording() + " --time 1.5 --view " + view +
+                            " --size 640x360 --screenshot " + png_path);
     ASSERT_EQ(result.exit_code, 0) << view << ": " << result.err;
     const Png png = read_png(png_path);
     ASSERT_TRUE(png.pixels) << view;
@@ -160,10 +164,10 @@ TEST_F(WorkbenchScript, ALongRecordingOpensOnAMinuteWithItsFirstLabelAndFitShows
       csv << k / 10.0 << ",0,0.1,0.2," << (k >= 2000 && k < 2020 ? 1.0 : 0.0) << "\n";
   }
   const std::string long_recording = folder.file("long.h5");
-  ASSERT_EQ(test::run_program("tactile",
-                              "import " + folder.file("long.csv") + " --layout grid:2x2 --out " +
-                                  long_recording,
-                              folder)
+  ASSERT_EQ(test::run_program(
+                "tactile",
+                "import " + folder.file("long.csv") + " --layout grid:2x2 --out " + long_recording,
+                folder)
                 .exit_code,
             0);
   auto result = run(long_recording + " --script " +
@@ -260,9 +264,10 @@ TEST_F(WorkbenchScript, AnUnknownCommandListsEveryDocumentedCommandAndNoOther) {
 }
 
 TEST_F(WorkbenchScript, ARelativePathListsItsFolderAsTheWorkspace) {
-  const std::string command = "cd '" + folder.path().string() + "' && " + tactile::test::bin_dir() +
-                              "/tactile-workbench-headless press.h5 --settings settings.json --script " +
-                              script("state @relative.json\n") + " >/dev/null 2>&1";
+  const std::string command =
+      "cd '" + folder.path().string() + "' && " + tactile::test::bin_dir() +
+      "/tactile-workbench-headless press.h5 --settings settings.json --script " +
+      script("state @relative.json\n") + " >/dev/null 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   const nlohmann::json relative = state("relative.json");
   EXPECT_EQ(relative["workspace_files"], nlohmann::json::array({"press.h5"}));
@@ -338,11 +343,10 @@ TEST_F(WorkbenchDamage, DamagedRecordingsAreMarkedWithTheirReasonAndTheRestOpens
                         << "\nclick recording a.h5\nwait 2\nstate " << folder.file("clicked_a.json")
                         << "\nclick recording c.h5\nwait 3\nstate " << folder.file("opened_c.json")
                         << "\nscreenshot " << folder.file("damaged.png") << "\n";
-  const auto result =
-      test::run_program("tactile-workbench-headless",
-                        folder.file("ws") + " --size 1000x700 --time 12 --script " + script +
-                            " --settings " + folder.file("settings.json"),
-                        folder);
+  const auto result = test::run_program("tactile-workbench-headless",
+                                        folder.file("ws") + " --size 1000x700 --time 12 --script " +
+                                            script + " --settings " + folder.file("settings.json"),
+                                        folder);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   // a.h5 is first but does not open: marked, and b.h5 opens instead.
   const nlohmann::json first = state("first.json");

@@ -33,12 +33,12 @@ class WorkbenchSegmentFit : public ::testing::Test {
            "\nkey ]\nkey 1\nkey Enter\nwait 1\n";
   }
   test::CommandResult workbench(const std::string& script_text) {
-    return test::run_program(
-        "tactile-workbench-headless",
-        folder.file("taps.h5") + " --labels " + folder.file("labels.db") +
-            " --annotator ana --size 1200x760 --settings " + folder.file("settings.json") +
-            " --script " + test::write_script(folder, script_text),
-        folder);
+    return test::run_program("tactile-workbench-headless",
+                             folder.file("taps.h5") + " --labels " + folder.file("labels.db") +
+                                 " --annotator ana --size 1200x760 --settings " +
+                                 folder.file("settings.json") + " --script " +
+                                 test::write_script(folder, script_text),
+                             folder);
   }
   nlohmann::json state(const std::string& name) {
     std::ifstream in(folder.file(name));
@@ -101,8 +101,9 @@ TEST_F(WorkbenchSegmentFit, FittedToThreeLabelledTouchesGSuggestsTheWayTheOperat
 }
 
 TEST_F(WorkbenchSegmentFit, FewerThanThreeLabelledTouchesAreRefusedWithWhatIsNeeded) {
-  const auto result = workbench("wait 2\n" + label_pair(0) + label_pair(1) +
-                                "menu Labels/Fit segmenter to my labels\nwait jobs\nstate @refused.json\n");
+  const auto result =
+      workbench("wait 2\n" + label_pair(0) + label_pair(1) +
+                "menu Labels/Fit segmenter to my labels\nwait jobs\nstate @refused.json\n");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const std::string error = state("refused.json")["error"];
   EXPECT_NE(error.find("Fit needs at least three touches labelled in your lane (ana); it has 2"),

@@ -21,7 +21,8 @@ namespace {
 class WorkbenchSkins : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto made = test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
+    const auto made =
+        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
     ASSERT_EQ(made.exit_code, 0) << made.err;
   }
   std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
@@ -30,13 +31,13 @@ class WorkbenchSkins : public ::testing::Test {
   void snapshot(const std::string& arguments, const std::string& name,
                 const std::string& before = "") {
     const std::string script = folder.file(name + ".txt");
-    std::ofstream(script) << before << "wait 2\nwait jobs\nwait 2\nstate " << folder.file(name + ".json")
-                          << "\nscreenshot " << folder.file(name + ".png") << "\n";
-    const auto run = test::run_program(
-        "tactile-workbench-headless",
-        arguments + " --size 1280x720 --settings " + folder.file("settings.json") + " --script " +
-            script,
-        folder);
+    std::ofstream(script) << before << "wait 2\nwait jobs\nwait 2\nstate "
+                          << folder.file(name + ".json") << "\nscreenshot "
+                          << folder.file(name + ".png") << "\n";
+    const auto run = test::run_program("tactile-workbench-headless",
+                                       arguments + " --size 1280x720 --settings " +
+                                           folder.file("settings.json") + " --script " + script,
+                                       folder);
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
   nlohmann::json state(const std::string& name) const {
@@ -57,10 +58,12 @@ class WorkbenchSkins : public ::testing::Test {
 template <typename Lit>
 int pixels_in_shape(const Png& png, const nlohmann::json& box, Lit lit) {
   const double x = box["x"].get<double>(), y = box["y"].get<double>();
-  const double half_width = box["width"].get<double>() / 2, half_height = box["height"].get<double>() / 2;
+  const double half_width = box["width"].get<double>() / 2,
+               half_height = box["height"].get<double>() / 2;
   int count = 0;
   for (int row = static_cast<int>(y); row <= static_cast<int>(y + 2 * half_height); ++row)
-    for (int column = static_cast<int>(x); column <= static_cast<int>(x + 2 * half_width); ++column) {
+    for (int column = static_cast<int>(x); column <= static_cast<int>(x + 2 * half_width);
+         ++column) {
       const double u = (column + 0.5 - x - half_width) / half_width;
       const double v = (row + 0.5 - y - half_height) / half_height;
       if (u * u + v * v <= 1.0 && lit(png.at(column, row))) ++count;
@@ -156,7 +159,8 @@ TEST_F(WorkbenchSkins, AStripOf64FillsItsPanelInRowsOfSquareCells) {
   }
   csv.close();
   const auto imported = test::run_program(
-      "tactile", "import " + folder.file("strip.csv") + " --layout strip:64 --out " + folder.file("strip.h5"),
+      "tactile",
+      "import " + folder.file("strip.csv") + " --layout strip:64 --out " + folder.file("strip.h5"),
       folder);
   ASSERT_EQ(imported.exit_code, 0) << imported.err;
   snapshot(folder.file("strip.h5") + " --time 0.5", "strip");

@@ -31,7 +31,7 @@ TEST(AdaptiveSegmenter, FindsTouchesOnAnUncalibratedGridWithChannelsOfDifferentN
     for (int c = 0; c < 4; ++c) {
       std::normal_distribution<float> gaussian(0.0f, noise[c]);
       float value = level[c] + gaussian(random);
-      if (c == 1 && t >= 300 && t < 400) value += 600.0f;  // 300 sigma
+      if (c == 1 && t >= 300 && t < 400) value += 600.0f;    // 300 sigma
       if (c == 3 && t >= 1200 && t < 1350) value -= 600.0f;  // 20 sigma, downwards
       stream.samples(t, c) = value;
     }
@@ -45,7 +45,9 @@ TEST(AdaptiveSegmenter, FindsTouchesOnAnUncalibratedGridWithChannelsOfDifferentN
   EXPECT_NEAR(labels[1].t1, 13.5, 0.02);
   EXPECT_EQ(labels[0].annotator, "segmenter:adaptive");
   EXPECT_EQ(labels[0].class_name, kUnknownClass);
-  EXPECT_THROW(segment_recording("adaptive", recording, layout, Parameters::parse("margin=0", "test")), Error);
+  EXPECT_THROW(
+      segment_recording("adaptive", recording, layout, Parameters::parse("margin=0", "test")),
+      Error);
 }
 
 }  // namespace
@@ -123,7 +125,8 @@ TEST(AdaptiveSegmenter, AFileReadAChannelAtATimeGivesTheSameTouches) {
   options.cache_bytes = 1 << 16;  // less than one channel: nothing held between reads
   const FileSampleSource source(path, options);
   const Parameters none;
-  const std::vector<Label> whole = segment_recording("adaptive", scene.recording(), load_layout("grid:4x4"));
+  const std::vector<Label> whole =
+      segment_recording("adaptive", scene.recording(), load_layout("grid:4x4"));
   std::vector<double> shares;
   const std::vector<Label> read = segment_source("adaptive", source, load_layout("grid:4x4"), none,
                                                  [&](double share) { shares.push_back(share); });
@@ -141,7 +144,9 @@ TEST(AdaptiveSegmenter, AFileReadAChannelAtATimeGivesTheSameTouches) {
   EXPECT_TRUE(std::is_sorted(shares.begin(), shares.end()));
   EXPECT_DOUBLE_EQ(shares.back(), 1.0);
   EXPECT_THROW(segment_source("adaptive", source, load_layout("grid:4x4"), none,
-                              [](double share) { if (share > 0.3) throw Error("job", "cancelled"); }),
+                              [](double share) {
+                                if (share > 0.3) throw Error("job", "cancelled");
+                              }),
                Error);
   EXPECT_THROW(segment_source("no-such-method", source, load_layout("grid:4x4")), Error);
 }

@@ -32,7 +32,15 @@ std::vector<uint8_t> npy(const std::string& header_dict, const std::vector<uint8
   std::string header = header_dict;
   while ((10 + header.size() + 1) % 64 != 0) header += ' ';
   header += '\n';
-  std::vector<uint8_t> bytes = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, static_cast<uint8_t>(header.size() & 0xFF),
+  std::vector<uint8_t> bytes = {0x93,
+                                'N',
+                                'U',
+                                'M',
+                                'P',
+                                'Y',
+                                1,
+                                0,
+                                static_cast<uint8_t>(header.size() & 0xFF),
                                 static_cast<uint8_t>(header.size() >> 8)};
   bytes.insert(bytes.end(), header.begin(), header.end());
   bytes.insert(bytes.end(), data.begin(), data.end());
@@ -55,7 +63,8 @@ TEST(ArrayImport, EveryFormatGivesTheSameFrames) {
   EXPECT_EQ(fortran.shape, (std::vector<int64_t>{50, 16}));
   EXPECT_EQ(fortran.values, reference.values);
   EXPECT_EQ(read_npz(kData + "frames.npz", "pressure").values, reference.values);  // deflated
-  EXPECT_EQ(read_npz(kData + "plain.npz", "pressure").values, reference.values);   // big-endian f8, stored
+  EXPECT_EQ(read_npz(kData + "plain.npz", "pressure").values,
+            reference.values);  // big-endian f8, stored
   EXPECT_EQ(npz_names(kData + "frames.npz"), (std::vector<std::string>{"pressure", "gesture"}));
   const ImportedArray json = read_json_array(kData + "frames.json", "data.frames");
   EXPECT_EQ(json.shape, reference.shape);
@@ -74,8 +83,8 @@ TEST(ArrayImport, FramesOfAGridAndTheirClassesBecomeARecordingWithLabels) {
   ArrayRecordingOptions options;
   options.rate_hz = 100;
   options.classes = read_npz(kData + "frames.npz", "gesture").strings;
-  const ImportedRecording imported =
-      recording_from_array(read_npy(kData + "frames.npy"), load_layout("grid:4x4"), options, "frames.npy");
+  const ImportedRecording imported = recording_from_array(
+      read_npy(kData + "frames.npy"), load_layout("grid:4x4"), options, "frames.npy");
   const Stream& stream = imported.recording.streams.front();
   EXPECT_EQ(stream.sample_count(), 50);
   EXPECT_EQ(stream.channel_count(), 16);
@@ -93,11 +102,13 @@ TEST(ArrayImport, CapturesLieEndToEndWithOneLabelEach) {
   options.captures = true;
   options.classes = {"a", "b", "c", "a", "b", "c"};
   const ImportedArray captures = read_npz(kData + "caps.npz", "x");
-  const ImportedRecording imported = recording_from_array(captures, load_layout("grid:4x4"), options, "caps");
+  const ImportedRecording imported =
+      recording_from_array(captures, load_layout("grid:4x4"), options, "caps");
   const Stream& stream = imported.recording.streams.front();
   ASSERT_EQ(stream.sample_count(), 180);
   // Capture 2, channel 5, sample 7 is row 2 * 30 + 7.
-  EXPECT_FLOAT_EQ(stream.samples(67, 5), static_cast<float>(captures.values[(2 * 16 + 5) * 30 + 7]));
+  EXPECT_FLOAT_EQ(stream.samples(67, 5),
+                  static_cast<float>(captures.values[(2 * 16 + 5) * 30 + 7]));
   ASSERT_EQ(imported.labels.size(), 6u);
   EXPECT_DOUBLE_EQ(imported.labels[2].t0, 0.6);
   EXPECT_EQ(imported.labels[2].class_name, "c");
@@ -107,15 +118,21 @@ TEST(ArrayImport, ShapesThatDoNotFitAreRefusedWithTheLayout) {
   ArrayRecordingOptions options;
   options.rate_hz = 10;
   const ImportedArray frames = read_npy(kData + "frames.npy");
-  EXPECT_NE(refusal([&] { recording_from_array(frames, load_layout("grid:4x5"), options, "f"); }).find("does not fit grid:4x5"),
+  EXPECT_NE(refusal([&] {
+              recording_from_array(frames, load_layout("grid:4x5"), options, "f");
+            }).find("does not fit grid:4x5"),
             std::string::npos);
   options.classes = {"a", "b"};
-  EXPECT_NE(refusal([&] { recording_from_array(frames, load_layout("grid:4x4"), options, "f"); }).find("2 classes for 50 frames"),
+  EXPECT_NE(refusal([&] {
+              recording_from_array(frames, load_layout("grid:4x4"), options, "f");
+            }).find("2 classes for 50 frames"),
             std::string::npos);
   ImportedArray nan = frames;
   nan.values[3 * 16 + 2 * 4 + 1] = NAN;
   options.classes.clear();
-  EXPECT_NE(refusal([&] { recording_from_array(nan, load_layout("grid:4x4"), options, "f"); }).find("f index [3][2][1]"),
+  EXPECT_NE(refusal([&] {
+              recording_from_array(nan, load_layout("grid:4x4"), options, "f");
+            }).find("f index [3][2][1]"),
             std::string::npos);
 }
 
@@ -125,9 +142,16 @@ TEST(ArrayImport, EveryTruncationOfANpyOrNpzIsRefused) {
     testing::TemporaryDirectory directory;
     const std::string path = directory.file(name);
     for (size_t length = 0; length < whole.size(); length += (length < 200 ? 1 : 97)) {
-      { std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(whole.data()), static_cast<std::streamsize>(length)); }
+      {
+        std::ofstream(path, std::ios::binary)
+            .write(reinterpret_cast<const char*>(whole.data()),
+                   static_cast<std::streamsize>(length));
+      }
       const std::string why = refusal([&] {
-        if (name.ends_with(".npy")) read_npy(path); else read_npz(path, "pressure");
+        if (name.ends_with(".npy"))
+          read_npy(path);
+        else
+          read_npz(path, "pressure");
       });
       ASSERT_FALSE(why.empty()) << name << " cut at " << length << " bytes was read";
     }
@@ -139,36 +163,54 @@ TEST(ArrayImport, ADamagedDeflateStreamIsRefused) {
   bytes[200] ^= 0xFF;  // inside the deflated pressure array
   testing::TemporaryDirectory directory;
   const std::string path = directory.file("bad.npz");
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
   EXPECT_FALSE(refusal([&] { read_npz(path, "pressure"); }).empty());
 }
 
 TEST(ArrayImport, HeadersThatLieAreRefusedBeforeAnyAllocation) {
   const std::vector<uint8_t> eight(8, 0);
-  // 2^40 elements declared over 8 bytes of data: refused by the shape, not by running out of memory.
-  EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1099511627776,), }", eight), "x.npy"); })
-                .find("more than"),
+  // 2^40 elements declared over 8 bytes of data: refused by the shape, not by running out of
+  // memory.
+  EXPECT_NE(refusal([&] {
+              parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1099511627776,), }",
+                            eight),
+                        "x.npy");
+            }).find("more than"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1000, 1000), }", eight), "x.npy"); })
-                .find("truncated"),
+  EXPECT_NE(refusal([&] {
+              parse_npy(
+                  npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1000, 1000), }", eight),
+                  "x.npy");
+            }).find("truncated"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': [('a', '<f8')], 'fortran_order': False, 'shape': (1,), }", eight), "x.npy"); })
-                .find("descr"),
+  EXPECT_NE(refusal([&] {
+              parse_npy(
+                  npy("{'descr': [('a', '<f8')], 'fortran_order': False, 'shape': (1,), }", eight),
+                  "x.npy");
+            }).find("descr"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': '<c16', 'fortran_order': False, 'shape': (1,), }", eight), "x.npy"); })
-                .find("only bool, integer, float and string"),
+  EXPECT_NE(refusal([&] {
+              parse_npy(npy("{'descr': '<c16', 'fortran_order': False, 'shape': (1,), }", eight),
+                        "x.npy");
+            }).find("only bool, integer, float and string"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': '<f8', 'fortran_order': maybe, 'shape': (1,), }", eight), "x.npy"); })
-                .find("fortran_order"),
+  EXPECT_NE(refusal([&] {
+              parse_npy(npy("{'descr': '<f8', 'fortran_order': maybe, 'shape': (1,), }", eight),
+                        "x.npy");
+            }).find("fortran_order"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", eight), "x.npy"); })
-                .find("truncated"),
+  EXPECT_NE(refusal([&] {
+              parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", eight),
+                        "x.npy");
+            }).find("truncated"),
             std::string::npos);
   // Found by the fuzzer (tests/fuzz/regressions/arrays): a header that ends right after the
   // key read past its end instead of being refused.
   const std::string cut = "{'descr': '>i2', 'fortran_order'";
-  std::vector<uint8_t> ends_at_key = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0,
-                                      static_cast<uint8_t>(cut.size()), 0};
+  std::vector<uint8_t> ends_at_key = {
+      0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, static_cast<uint8_t>(cut.size()), 0};
   ends_at_key.insert(ends_at_key.end(), cut.begin(), cut.end());
   EXPECT_NE(refusal([&] { parse_npy(ends_at_key, "x.npy"); }).find("'fortran_order' has no value"),
             std::string::npos);
@@ -178,8 +220,10 @@ TEST(ArrayImport, HeadersThatLieAreRefusedBeforeAnyAllocation) {
   std::vector<uint8_t> two(16);
   const double values[2] = {1.5, -2.0};
   std::memcpy(two.data(), values, 16);
-  EXPECT_EQ(parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", two), "x.npy").values,
-            (std::vector<double>{1.5, -2.0}));
+  EXPECT_EQ(
+      parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", two), "x.npy")
+          .values,
+      (std::vector<double>{1.5, -2.0}));
 }
 
 TEST(ArrayImport, JsonThatIsNotRegularFramesIsRefusedWithItsIndex) {
@@ -189,15 +233,20 @@ TEST(ArrayImport, JsonThatIsNotRegularFramesIsRefusedWithItsIndex) {
     std::ofstream(path) << text;
     return path;
   };
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3]]"), ""); }).find("[1]"), std::string::npos);
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,\"x\"]]"), ""); }).find("[1][1]"), std::string::npos);
-  EXPECT_NE(refusal([&] { read_json_array(write("{\"a\": [1]}"), "b"); }).find("no key 'b'"), std::string::npos);
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,4]"), ""); }).find("not JSON"), std::string::npos);
+  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3]]"), ""); }).find("[1]"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,\"x\"]]"), ""); }).find("[1][1]"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { read_json_array(write("{\"a\": [1]}"), "b"); }).find("no key 'b'"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,4]"), ""); }).find("not JSON"),
+            std::string::npos);
   // Found by the fuzzer (tests/fuzz/regressions/arrays): a number too large for a double
   // escaped as nlohmann's out_of_range instead of naming the file.
   EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,2e342]]"), ""); }).find("f.json"),
             std::string::npos);
-  EXPECT_EQ(read_json_array(write("{\"a\": {\"b\": [[1,2],[3,4]]}}"), "a.b").shape, (std::vector<int64_t>{2, 2}));
+  EXPECT_EQ(read_json_array(write("{\"a\": {\"b\": [[1,2],[3,4]]}}"), "a.b").shape,
+            (std::vector<int64_t>{2, 2}));
 }
 
 // Another program's small float32 dataset (h5py's default for np.float32), stored without
@@ -229,16 +278,21 @@ TEST(ArrayImport, ASmallFloat32DatasetOfAnotherProgramIsRead) {
 }
 
 TEST(ArrayImport, HdfDatasetsNameWhatIsMissing) {
-  EXPECT_NE(refusal([&] { read_hdf5_dataset(kData + "foreign.h5", "/sensors/force"); }).find("no such dataset"),
+  EXPECT_NE(refusal([&] {
+              read_hdf5_dataset(kData + "foreign.h5", "/sensors/force");
+            }).find("no such dataset"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { read_hdf5_dataset(kData + "frames.npy", "/x"); }).find("not an HDF5 file"), std::string::npos);
+  EXPECT_NE(
+      refusal([&] { read_hdf5_dataset(kData + "frames.npy", "/x"); }).find("not an HDF5 file"),
+      std::string::npos);
 }
 
 TEST(CsvTable, AClassColumnAndGroupColumnsMakeRecordingsWithLabels) {
   CsvTableOptions options;
   options.class_column = "gesture";
   options.group_columns = {"subject", "capture"};
-  const std::vector<ImportedRecording> groups = import_csv_table(kData + "table.csv", load_layout("strip:4"), options);
+  const std::vector<ImportedRecording> groups =
+      import_csv_table(kData + "table.csv", load_layout("strip:4"), options);
   ASSERT_EQ(groups.size(), 4u);
   EXPECT_EQ(groups[2].recording.id, "table-s2-1");
   EXPECT_EQ(groups[2].recording.metadata.at("subject"), "s2");
@@ -249,7 +303,9 @@ TEST(CsvTable, AClassColumnAndGroupColumnsMakeRecordingsWithLabels) {
   EXPECT_NEAR(groups[2].labels[0].t0, 0.05, 1e-12);
   EXPECT_NEAR(groups[2].labels[0].t1, 0.12, 1e-12);
   options.class_column = "gest";
-  EXPECT_NE(refusal([&] { import_csv_table(kData + "table.csv", load_layout("strip:4"), options); }).find("no column 'gest'"),
+  EXPECT_NE(refusal([&] {
+              import_csv_table(kData + "table.csv", load_layout("strip:4"), options);
+            }).find("no column 'gest'"),
             std::string::npos);
 }
 

@@ -1,5 +1,7 @@
 // Whole-file atomic writes (tactile/io/atomic_file.h): the target is the old file or the new
 // one, and no temporary file stays behind.
+#include "tactile/io/atomic_file.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +11,6 @@
 
 #include "io_test_files.h"
 #include "tactile/error.h"
-#include "tactile/io/atomic_file.h"
 
 namespace tactile {
 namespace {

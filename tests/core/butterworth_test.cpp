@@ -1,12 +1,13 @@
 // The Butterworth high-pass that takes a moving robot's own motion out of the NAO
 // accelerometers: its gain at, above and below the cut-off for orders 2 and 4, its start at
 // rest, and bad input.
+#include "tactile/dsp/butterworth.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "tactile/dsp/butterworth.h"
 #include "tactile/error.h"
 
 namespace tactile {
@@ -18,7 +19,8 @@ double gain_at(double hz, double cutoff_hz, double rate_hz, int order = 2) {
   Eigen::VectorXd input(count);
   for (int64_t s = 0; s < count; ++s)
     input[s] = std::sin(2.0 * std::numbers::pi * hz * static_cast<double>(s) / rate_hz);
-  const Eigen::VectorXd output = dsp::filter(dsp::butterworth_high_pass(cutoff_hz, rate_hz, order), input);
+  const Eigen::VectorXd output =
+      dsp::filter(dsp::butterworth_high_pass(cutoff_hz, rate_hz, order), input);
   const Eigen::Index half = count / 2;
   const double in = input.tail(count - half).norm(), out = output.tail(count - half).norm();
   return out / in;
@@ -36,7 +38,8 @@ TEST(ButterworthHighPass, FourthOrderHalfPowerAtTheCutOffEightyDecibelsPerDecade
   EXPECT_NEAR(gain_at(70.0, 7.0, 250.0, 4), 1.0, 0.01);
   EXPECT_NEAR(gain_at(0.7, 7.0, 250.0, 4), 1e-4, 2e-5);  // (0.7 / 7)^4
   // Maximally flat: no peak above the cut-off.
-  for (const double hz : {8.0, 10.0, 14.0, 20.0, 40.0}) EXPECT_LT(gain_at(hz, 7.0, 250.0, 4), 1.0 + 1e-3) << hz;
+  for (const double hz : {8.0, 10.0, 14.0, 20.0, 40.0})
+    EXPECT_LT(gain_at(hz, 7.0, 250.0, 4), 1.0 + 1e-3) << hz;
 }
 
 TEST(ButterworthHighPass, StartsAtRestOnTheFirstSample) {

@@ -7,10 +7,10 @@
 #include <atomic>
 #include <filesystem>
 
+#include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/features/generic.h"
 #include "tactile/io/hdf5_file.h"
-#include "io_test_files.h"
 
 namespace tactile {
 namespace {

@@ -10,8 +10,8 @@
 #include <iterator>
 #include <limits>
 
-#include "tactile/error.h"
 #include "io_test_files.h"
+#include "tactile/error.h"
 
 namespace tactile {
 namespace {

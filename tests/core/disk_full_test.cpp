@@ -36,7 +36,8 @@ constexpr double kFullRate = 500.0;
 // Values that do not compress (the file grows as a real skin's does), the same for a row
 // whatever writes or reads it.
 float full_value(int64_t row, int channel) {
-  uint64_t x = static_cast<uint64_t>(row) * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(channel) * 0xBF58476D1CE4E5B9ull;
+  uint64_t x = static_cast<uint64_t>(row) * 0x9E3779B97F4A7C15ull +
+               static_cast<uint64_t>(channel) * 0xBF58476D1CE4E5B9ull;
   x ^= x >> 31;
   x *= 0x94D049BB133111EBull;
   x ^= x >> 29;
@@ -46,13 +47,15 @@ float full_value(int64_t row, int channel) {
 SampleMatrix full_rows(int64_t first, int64_t count) {
   SampleMatrix rows(count, kFullChannels);
   for (int64_t row = 0; row < count; ++row)
-    for (int channel = 0; channel < kFullChannels; ++channel) rows(row, channel) = full_value(first + row, channel);
+    for (int channel = 0; channel < kFullChannels; ++channel)
+      rows(row, channel) = full_value(first + row, channel);
   return rows;
 }
 
 std::vector<std::string> full_channels() {
   std::vector<std::string> names;
-  for (int channel = 0; channel < kFullChannels; ++channel) names.push_back("c" + std::to_string(channel));
+  for (int channel = 0; channel < kFullChannels; ++channel)
+    names.push_back("c" + std::to_string(channel));
   return names;
 }
 
@@ -75,9 +78,11 @@ FilledRun fill_until_it_fails(const std::string& path, int64_t limit) {
     std::string message = "no error";
     std::thread writer_thread([&] {
       try {
-        RecordingWriter writer(path, "filled", "grid:4x6", {}, "skin", kFullRate, 0.0, full_channels(),
-                               std::vector<std::string>(kFullChannels, "V"));
-        struct rlimit size{static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)};
+        RecordingWriter writer(path, "filled", "grid:4x6", {}, "skin", kFullRate, 0.0,
+                               full_channels(), std::vector<std::string>(kFullChannels, "V"));
+        struct rlimit size {
+          static_cast<rlim_t>(limit), static_cast<rlim_t>(limit)
+        };
         setrlimit(RLIMIT_FSIZE, &size);
         for (int64_t first = 0; first < 100000000; first += 50) {
           writer.append(full_rows(first, 50));
@@ -154,12 +159,15 @@ TEST(DiskFull, RepairMakesAFailedWritersFileWholeAndSaysWhatWasCut) {
   EXPECT_FALSE(file.cut_off());
   const int64_t count = file.stream("skin").sample_count;
   EXPECT_GE(count, run.flushed);
-  EXPECT_TRUE(file.read("skin", 0, count).topRows(run.flushed).isApprox(full_rows(0, run.flushed), 0.0f));
+  EXPECT_TRUE(
+      file.read("skin", 0, count).topRows(run.flushed).isApprox(full_rows(0, run.flushed), 0.0f));
   const std::vector<std::string> lines = repair_lines(path, report);
-  EXPECT_NE(std::find_if(lines.begin(), lines.end(),
-                         [](const std::string& line) {
-                           return line.find("rebuilt: /streams/skin: the overview and the sample count") != std::string::npos;
-                         }),
+  EXPECT_NE(std::find_if(
+                lines.begin(), lines.end(),
+                [](const std::string& line) {
+                  return line.find("rebuilt: /streams/skin: the overview and the sample count") !=
+                         std::string::npos;
+                }),
             lines.end());
   // Repairing a whole file does nothing.
   EXPECT_FALSE(repair_recording(path).repaired);
@@ -196,8 +204,10 @@ TEST(DiskFull, RepairNamesTheChannelOfAChunkThatFailsItsChecksumAndKeepsTheRest)
   int64_t same = 0, gaps = 0;
   for (Eigen::Index row = 0; row < samples.rows(); ++row)
     for (Eigen::Index column = 0; column < samples.cols(); ++column) {
-      if (std::isnan(samples(row, column))) ++gaps;
-      else if (samples(row, column) == sent(row, column)) ++same;
+      if (std::isnan(samples(row, column)))
+        ++gaps;
+      else if (samples(row, column) == sent(row, column))
+        ++same;
     }
   EXPECT_GT(gaps, 0);
   EXPECT_EQ(same + gaps, samples.size());
@@ -211,7 +221,8 @@ TEST(DiskFull, RepairOfAFileThatDoesNotOpenSaysSoAndLeavesItAlone) {
     repair_recording(path);
     FAIL() << "expected an error";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("cannot be repaired"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("cannot be repaired"), std::string::npos)
+        << error.what();
   }
   EXPECT_EQ(testing::read_text(path), "not a recording");
   EXPECT_EQ(directory.entry_count(), 1);
@@ -221,7 +232,8 @@ TEST(DiskFull, RepairOfAFileThatDoesNotOpenSaysSoAndLeavesItAlone) {
 void feed_tenth(LiveSampleSource& source, int64_t& next) {
   for (int k = 0; k < 50; ++k, ++next) {
     std::vector<float> values(kFullChannels);
-    for (int channel = 0; channel < kFullChannels; ++channel) values[static_cast<size_t>(channel)] = full_value(next, channel);
+    for (int channel = 0; channel < kFullChannels; ++channel)
+      values[static_cast<size_t>(channel)] = full_value(next, channel);
     source.add(static_cast<double>(next) / kFullRate, values);
   }
 }
@@ -259,7 +271,9 @@ TEST(DiskFull, TheRecorderWarnsThenStopsWithAWholeFileBeforeTheDiskIsFull) {
     *now += 0.1;
     recorder.take(source);
     // The writer thread has its own pace; wait until it caught up with what was taken.
-    for (int wait = 0; wait < 2000 && recorder.samples_on_disk() + 600 < recorder.samples_taken() && !recorder.stopped(); ++wait)
+    for (int wait = 0; wait < 2000 && recorder.samples_on_disk() + 600 < recorder.samples_taken() &&
+                       !recorder.stopped();
+         ++wait)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     const RecorderRoom room = recorder.room();
     if (room.minutes_left > 0.0 && !room.low) seen_plenty = true;
@@ -294,7 +308,8 @@ TEST(DiskFull, RecordingIsRefusedOnADiskWithNoRoomLeft) {
     LiveRecorder recorder(directory.file("none.h5"), source, options);
     FAIL() << "expected an error";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("too little to record"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("too little to record"), std::string::npos)
+        << error.what();
   }
   EXPECT_EQ(directory.entry_count(), 0);
 }
@@ -306,7 +321,9 @@ TEST(DiskFull, RoomToGrowHonoursTheFileSizeLimit) {
   EXPECT_EQ(byte_text(1500000), "1.5 MB");
   const pid_t child = fork();
   if (child == 0) {
-    struct rlimit size{100000, 100000};
+    struct rlimit size {
+      100000, 100000
+    };
     setrlimit(RLIMIT_FSIZE, &size);
     _exit(room_to_grow(directory.file("new.h5")) == 100000 ? 0 : 1);
   }

@@ -50,7 +50,8 @@ TEST(RestScale, ALiveScaleOfQuietNoiseTopsAtTenNoiseBandsAndNeverFalls) {
   const RestScale quiet = live_rest_scale(source, {0}, 0.0);
   EXPECT_NEAR(quiet.max_change, kQuietTopBands * quiet.noise_band[0], 1e-4);
   // A noise sample just beyond the band stays near the bottom of the scale.
-  EXPECT_LT(change_from_rest({100.0f + quiet.noise_band[0] + 1.0f}, quiet)[0], 0.1 * quiet.max_change);
+  EXPECT_LT(change_from_rest({100.0f + quiet.noise_band[0] + 1.0f}, quiet)[0],
+            0.1 * quiet.max_change);
   EXPECT_DOUBLE_EQ(live_rest_scale(source, {0}, 500.0).max_change, 500.0);
 }
 

@@ -1,5 +1,6 @@
 // `robovie-clafic` on a quick simulated corpus: KNN and the six CLAFIC conditions.
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
 
 #include "experiment_test_support.h"

@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "tactile/features/feature_extractor.h"
+
+#include <gtest/gtest.h>
 
 namespace tactile {
 namespace {

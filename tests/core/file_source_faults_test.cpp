@@ -30,7 +30,8 @@ std::string write_away_recording(const testing::TemporaryDirectory& directory) {
   stream.units = {"V", "V", "V", "V"};
   stream.samples = SampleMatrix(100000, 4);
   for (Eigen::Index row = 0; row < stream.samples.rows(); ++row)
-    for (Eigen::Index column = 0; column < 4; ++column) stream.samples(row, column) = static_cast<float>(row * 4 + column);
+    for (Eigen::Index column = 0; column < 4; ++column)
+      stream.samples(row, column) = static_cast<float>(row * 4 + column);
   recording.streams.push_back(stream);
   const std::string path = directory.file("away.h5");
   write_recording(path, recording);
@@ -68,7 +69,8 @@ TEST(FileSourceFaults, AReadThatHangsLeavesTheCallerWithinItsBudgetAndTheFileRet
   hold->store(true);
   // Uncached samples: gaps, at once; cached ones: as they are.
   EXPECT_TRUE(all_gaps(source.read(channel, 90000, 100)));
-  EXPECT_NE(source.unavailable().find("does not answer"), std::string::npos) << source.unavailable();
+  EXPECT_NE(source.unavailable().find("does not answer"), std::string::npos)
+      << source.unavailable();
   EXPECT_EQ(source.read(channel, 10, 1)(0, 0), 41.0f);
   EXPECT_TRUE(all_gaps(source.read(channel, 80000, 10)));  // the reader is still stuck: no wait
   hold->store(false);
@@ -92,7 +94,7 @@ TEST(FileSourceFaults, ASourceClosedWhileAReadHangsDoesNotWaitForIt) {
     FileSampleSource source(path, options);
     const std::vector<int> channel{0};
     EXPECT_TRUE(all_gaps(source.read(channel, 0, 10)));
-  }  // closed with its reader stuck
+  }                    // closed with its reader stuck
   hold->store(false);  // the stuck read ends by itself, later
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
@@ -108,7 +110,8 @@ TEST(FileSourceFaults, ReadsThatFailWithAnIoErrorShowTheCacheAndSayWhyUntilTheFi
   failing->store(true);
   EXPECT_TRUE(source.read(both, 100, 50).isApprox(before, 0.0f));
   EXPECT_TRUE(all_gaps(source.read(both, 70000, 50)));
-  EXPECT_NE(source.unavailable().find("Input/output error"), std::string::npos) << source.unavailable();
+  EXPECT_NE(source.unavailable().find("Input/output error"), std::string::npos)
+      << source.unavailable();
   EXPECT_TRUE(source.damage().empty());  // not damage: nothing is named as broken
   // values_at, the skin's read, is a gap too and does not throw.
   EXPECT_TRUE(std::isnan(source.values_at(60000)[2]));
@@ -140,7 +143,9 @@ TEST(FileSourceFaults, DamagedBytesAreStillDamageNotAnAbsence) {
   testing::TemporaryDirectory directory;
   const std::string path = write_away_recording(directory);
   FileSourceOptions options;
-  options.before_read = [path] { throw Error(path + ":/streams/skin/samples", "data error detected by fletcher32 checksum"); };
+  options.before_read = [path] {
+    throw Error(path + ":/streams/skin/samples", "data error detected by fletcher32 checksum");
+  };
   FileSampleSource source(path, options);
   const std::vector<int> channel{0};
   EXPECT_THROW(source.read(channel, 0, 10), Error);

@@ -166,7 +166,7 @@ struct FurExtraction {
 };
 
 FurExtraction extract_fur(const SkinLayout& layout, const Recording& raw, const Label& label,
-                      const std::string& parameters = "calibration_peak=200") {
+                          const std::string& parameters = "calibration_peak=200") {
   const auto extractor = make_fur_extractor(Parameters::parse(parameters, "--params"));
   const Recording preprocessed = extractor->preprocess(raw, layout);
   return {extractor->columns(layout), extractor->extract({preprocessed, layout, label})};

@@ -209,7 +209,8 @@ TEST(GenericFeatures, TheBusiestChannelsColumnsDoNotDependOnWhereTheTouchLanded)
     EXPECT_NEAR(value_of(*extractor, layout, result, "busiest.activity_share"), 1.0 / 1.01, 1e-9);
     const std::vector<FeatureColumn> columns = extractor->columns(layout);
     for (size_t index = 0; index < columns.size(); ++index)
-      if (columns[index].name.rfind("busiest.", 0) == 0) busiest[which].push_back(result.values[index]);
+      if (columns[index].name.rfind("busiest.", 0) == 0)
+        busiest[which].push_back(result.values[index]);
   }
   EXPECT_EQ(busiest[0], busiest[1]);
 }
@@ -420,7 +421,8 @@ TEST(GenericShape, EachDescriptorMatchesItsDefinition) {
   // A 5 Hz sine at 100 Hz over 2 s riding on a rest level of 10: all its energy below fs/16
   // (6.25 Hz), 20 mean crossings a second.
   std::vector<double> sine(200);
-  for (size_t k = 0; k < sine.size(); ++k) sine[k] = 10.0 + std::sin(2.0 * M_PI * 5.0 * static_cast<double>(k) / 100.0);
+  for (size_t k = 0; k < sine.size(); ++k)
+    sine[k] = 10.0 + std::sin(2.0 * M_PI * 5.0 * static_cast<double>(k) / 100.0);
   const ChannelShape wave = channel_shape(sine, 100.0, 10.0, false);
   EXPECT_NEAR(wave.band_low, 1.0, 1e-9);
   EXPECT_NEAR(wave.band_high, 0.0, 1e-9);
@@ -428,7 +430,8 @@ TEST(GenericShape, EachDescriptorMatchesItsDefinition) {
   EXPECT_NEAR(wave.median, 10.0, 0.05);
   EXPECT_NEAR(wave.q90, 10.95, 0.01);  // a sine's 90th percentile: sin(0.35 pi)
   // A 30 Hz sine: above fs/8 (12.5 Hz).
-  for (size_t k = 0; k < sine.size(); ++k) sine[k] = std::sin(2.0 * M_PI * 30.0 * static_cast<double>(k) / 100.0);
+  for (size_t k = 0; k < sine.size(); ++k)
+    sine[k] = std::sin(2.0 * M_PI * 30.0 * static_cast<double>(k) / 100.0);
   EXPECT_NEAR(channel_shape(sine, 100.0, 0.0, false).band_high, 1.0, 1e-9);
 
   // A press: rest 0 for 0.5 s, a ramp to 4 over 0.2 s, held 0.6 s, released in 0.2 s, rest

@@ -144,7 +144,7 @@ TEST(GridFeatures, TheContactRegionIsWhereTheTouchPressesAtLeastHalfItsPeak) {
     for (int64_t r = 1; r <= 5; ++r)
       for (int64_t c = 1; c <= 5; ++c) {
         const bool core = std::abs(r - 3) + std::abs(c - 3) <= 1;  // 5 taxels
-        samples(frame, r * 8 + c) += core ? 200.0f : 40.0f;       // 20 more in the skirt
+        samples(frame, r * 8 + c) += core ? 200.0f : 40.0f;        // 20 more in the skirt
       }
   const auto area = [&](const std::string& parameters) {
     const auto extractor = make_grid_extractor(Parameters::parse(parameters, "--params"));

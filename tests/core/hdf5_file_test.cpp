@@ -285,7 +285,8 @@ TEST(Hdf5File, FileImageInMemoryReadsAsTheFile) {
   const Recording original = three_stream_recording();
   write_recording(path, original);
   const std::string bytes = testing::read_text(path);
-  const std::span<const uint8_t> image(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  const std::span<const uint8_t> image(reinterpret_cast<const uint8_t*>(bytes.data()),
+                                       bytes.size());
   const RecordingFile file = RecordingFile::from_image(image, "memory.h5");
   EXPECT_EQ(file.path(), "memory.h5");
   EXPECT_EQ(file.format_version(), 2);
@@ -295,7 +296,8 @@ TEST(Hdf5File, FileImageInMemoryReadsAsTheFile) {
     EXPECT_TRUE(bit_equal(loaded.streams[index].samples, original.streams[index].samples));
   EXPECT_EQ(loaded.metadata, original.metadata);
   // Half an image, an empty one and text are refused naming the image.
-  for (const std::string& bad : {bytes.substr(0, bytes.size() / 2), std::string(), std::string("time,a\n0,1\n")}) {
+  for (const std::string& bad :
+       {bytes.substr(0, bytes.size() / 2), std::string(), std::string("time,a\n0,1\n")}) {
     try {
       const std::span<const uint8_t> part(reinterpret_cast<const uint8_t*>(bad.data()), bad.size());
       RecordingFile::from_image(part, "memory.h5").read_all();

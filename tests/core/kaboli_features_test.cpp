@@ -18,8 +18,8 @@ namespace {
 
 using testing::k4_cells;
 using testing::k4_recording;
-using testing::segment;
 using testing::K4Recording;
+using testing::segment;
 using Vector = std::vector<double>;
 
 //---- Test vector K4
@@ -182,8 +182,9 @@ TEST(KaboliExtractor, TheRobotsOwnMotionLeavesTheAccelerometerDescriptorsAlone) 
       const double t = static_cast<double>(s) / testing::kNaoRate;
       const bool stroking = t >= 2.0 && t < 4.0;
       const double shake = stroking ? 0.02 * std::sin(2.0 * std::numbers::pi * 40.0 * t) : 0.0;
-      const double lean =
-          sitting_down && t >= 1.5 && t < 4.0 ? 0.5 * std::pow(std::sin(std::numbers::pi * (t - 1.5) / 2.5), 2) : 0.0;
+      const double lean = sitting_down && t >= 1.5 && t < 4.0
+                              ? 0.5 * std::pow(std::sin(std::numbers::pi * (t - 1.5) / 2.5), 2)
+                              : 0.0;
       ax[s] = 0.5 * shake;
       ay[s] = -std::cos(lean) - 0.3 * shake;
       az[s] = std::sin(lean) + shake;
@@ -198,7 +199,8 @@ TEST(KaboliExtractor, TheRobotsOwnMotionLeavesTheAccelerometerDescriptorsAlone) 
   const Recording still = touched(false), moving = touched(true);
   const Label stroke = segment(1.9, 4.1, "front");
   auto descriptor = [&](const Recording& recording, const Parameters& parameters) {
-    const FeatureResult result = make_kaboli_extractor(parameters)->extract({recording, layout, stroke});
+    const FeatureResult result =
+        make_kaboli_extractor(parameters)->extract({recording, layout, stroke});
     EXPECT_TRUE(result.skip_reason.empty()) << result.skip_reason;
     return result.values;
   };
@@ -207,7 +209,8 @@ TEST(KaboliExtractor, TheRobotsOwnMotionLeavesTheAccelerometerDescriptorsAlone) 
   EXPECT_NEAR(filtered_moving[12] / filtered_still[12], 1.0, 0.05);
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(filtered_moving[k], filtered_still[k], 0.05) << k;
   // As printed (no high-pass), the lean swamps the stroke's az activity a hundred times over.
-  const Vector raw_still = descriptor(still, as_printed()), raw_moving = descriptor(moving, as_printed());
+  const Vector raw_still = descriptor(still, as_printed()),
+               raw_moving = descriptor(moving, as_printed());
   EXPECT_GT(raw_moving[12], 100.0 * raw_still[12]);
   // Force is not filtered: the same either way.
   EXPECT_NEAR(filtered_moving[15], raw_moving[15], 1e-12);
@@ -312,7 +315,8 @@ TEST(KaboliExtractor, AWalkingRobotsGaitLeavesAQuietPushAlone) {
     std::vector<double> ax(samples), ay(samples), az(samples), force(samples);
     for (int64_t s = 0; s < samples; ++s) {
       const double t = static_cast<double>(s) / testing::kNaoRate;
-      const double tremor = t >= 2.0 && t < 4.0 ? 0.005 * std::sin(2.0 * std::numbers::pi * 30.0 * t) : 0.0;
+      const double tremor =
+          t >= 2.0 && t < 4.0 ? 0.005 * std::sin(2.0 * std::numbers::pi * 30.0 * t) : 0.0;
       const double gait = walking ? 0.06 * std::sin(2.0 * std::numbers::pi * 2.0 * t) : 0.0;
       ax[s] = 0.3 * tremor;
       ay[s] = -1.0 + gait + 0.5 * tremor;
@@ -328,7 +332,8 @@ TEST(KaboliExtractor, AWalkingRobotsGaitLeavesAQuietPushAlone) {
   const Recording still = pushed(false), walking = pushed(true);
   const Label push = segment(1.9, 4.1, "front");
   auto activity_ay = [&](const Recording& recording, const Parameters& parameters) {
-    const FeatureResult result = make_kaboli_extractor(parameters)->extract({recording, layout, push});
+    const FeatureResult result =
+        make_kaboli_extractor(parameters)->extract({recording, layout, push});
     EXPECT_TRUE(result.skip_reason.empty()) << result.skip_reason;
     return result.values[9];
   };

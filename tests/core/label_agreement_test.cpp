@@ -1,7 +1,7 @@
 // Agreement between two annotators, on a hand-computed case.
-#include "tactile/labels/agreement.h"
-
 #include <gtest/gtest.h>
+
+#include "tactile/labels/agreement.h"
 
 namespace tactile {
 namespace {

@@ -181,7 +181,8 @@ TEST_F(LabelStoreTest, NextUndoIsTheRunThatUndoTakesBackAndItsSummarySaysSo) {
   EXPECT_DOUBLE_EQ(undone.t0, next.t0);
   EXPECT_DOUBLE_EQ(undone.t1, next.t1);
   // Then the label before it.
-  EXPECT_EQ(describe_edit(summarize_edit(store.next_undo("ana"))), "an edit of ana, which added 1 label");
+  EXPECT_EQ(describe_edit(summarize_edit(store.next_undo("ana"))),
+            "an edit of ana, which added 1 label");
 }
 
 TEST_F(LabelStoreTest, ASegmenterRunNamesUnknownClassesAndKeepsOtherMethodsAndLanes) {

@@ -1,14 +1,14 @@
 // Lanes of labels: grouping into tiers, time lookups, and per-pixel spans whose
 // number is bounded by the pixel columns however many labels a lane holds.
-#include "tactile/labels/lanes.h"
-
 #include <gtest/gtest.h>
+
+#include "tactile/labels/lanes.h"
 
 namespace tactile {
 namespace {
 
-Label make(double t0, double t1, LabelSource source, const std::string& annotator,
-           int64_t id = 0, const std::string& class_name = "pat") {
+Label make(double t0, double t1, LabelSource source, const std::string& annotator, int64_t id = 0,
+           const std::string& class_name = "pat") {
   Label label;
   label.id = id;
   label.t0 = t0;
@@ -20,15 +20,15 @@ Label make(double t0, double t1, LabelSource source, const std::string& annotato
 }
 
 TEST(Lanes, LabelsGroupByTierInAStableOrder) {
-  const Lanes lanes = group_into_lanes({make(0, 1, LabelSource::kSegmenter, "segmenter:threshold"),
-                                        make(0, 1, LabelSource::kManual, "zoe"),
-                                        make(0, 1, LabelSource::kGroundTruth, "simulator"),
-                                        make(2, 3, LabelSource::kManual, "ana"),
-                                        make(4, 5, LabelSource::kManual, "ana"),
-                                        make(0, 1, LabelSource::kModel, "svm")});
+  const Lanes lanes = group_into_lanes(
+      {make(0, 1, LabelSource::kSegmenter, "segmenter:threshold"),
+       make(0, 1, LabelSource::kManual, "zoe"), make(0, 1, LabelSource::kGroundTruth, "simulator"),
+       make(2, 3, LabelSource::kManual, "ana"), make(4, 5, LabelSource::kManual, "ana"),
+       make(0, 1, LabelSource::kModel, "svm")});
   std::vector<std::string> titles;
   for (const LaneKey& key : lanes.keys) titles.push_back(key.title());
-  EXPECT_EQ(titles, (std::vector<std::string>{"ground truth", "ana", "zoe", "threshold", "model svm"}));
+  EXPECT_EQ(titles,
+            (std::vector<std::string>{"ground truth", "ana", "zoe", "threshold", "model svm"}));
   EXPECT_EQ(lanes.lanes[1].size(), 2u);
   EXPECT_EQ(lanes.find({LabelSource::kManual, "zoe"}), 2);
   EXPECT_EQ(lanes.find({LabelSource::kManual, "nobody"}), -1);
@@ -38,8 +38,9 @@ TEST(Lanes, LabelsGroupByTierInAStableOrder) {
 
 TEST(LaneIndex, FindsWhatMeetsARangeIncludingALongEarlierLabel) {
   // A long label from 0 to 10 and short ones inside and after it.
-  const LaneIndex lane({make(0, 10, LabelSource::kManual, "a", 1), make(1, 2, LabelSource::kManual, "a", 2),
-                        make(3, 4, LabelSource::kManual, "a", 3), make(11, 12, LabelSource::kManual, "a", 4)});
+  const LaneIndex lane(
+      {make(0, 10, LabelSource::kManual, "a", 1), make(1, 2, LabelSource::kManual, "a", 2),
+       make(3, 4, LabelSource::kManual, "a", 3), make(11, 12, LabelSource::kManual, "a", 4)});
   auto ids = [&](double t0, double t1) {
     std::vector<int64_t> found;
     for (size_t k : lane.meeting(t0, t1)) found.push_back(lane.labels()[k].id);
@@ -60,7 +61,8 @@ TEST(LaneIndex, FindsWhatMeetsARangeIncludingALongEarlierLabel) {
 }
 
 TEST(LaneSpans, SparseLabelsAreOneSpanEachAtTheirColumns) {
-  const LaneIndex lane({make(1, 2, LabelSource::kManual, "a", 1), make(5, 7, LabelSource::kManual, "a", 2)});
+  const LaneIndex lane(
+      {make(1, 2, LabelSource::kManual, "a", 1), make(5, 7, LabelSource::kManual, "a", 2)});
   const auto spans = lane_spans(lane, 0, 10, 100);
   ASSERT_EQ(spans.size(), 2u);
   EXPECT_EQ(spans[0].first, 10);

@@ -1,8 +1,8 @@
 // Quality checks of labels: overlap in a lane and region, implausible durations,
 // segmenter events without a label, classes outside the vocabulary.
-#include "tactile/labels/quality.h"
-
 #include <gtest/gtest.h>
+
+#include "tactile/labels/quality.h"
 
 namespace tactile {
 namespace {

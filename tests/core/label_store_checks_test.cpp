@@ -146,8 +146,9 @@ TEST_F(LabelStoreChecks, ReadOnlyOpeningChangesNothingBesideTheFile) {
 
 TEST_F(LabelStoreChecks, ADamagedSchemaIsNamedEvenWhereOnlyWritesWouldMeetIt) {
   // A CHECK constraint naming a column that does not exist: reads work, writes fail.
-  tamper("PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, "
-         "'confidence BETWEEN', 'confidenbe BETWEEN') WHERE name = 'labels'");
+  tamper(
+      "PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, "
+      "'confidence BETWEEN', 'confidenbe BETWEEN') WHERE name = 'labels'");
   const auto problems = verify_label_store(path_);
   ASSERT_FALSE(problems.empty());
   EXPECT_NE(problems[0].message.find(path_ + ": schema, table labels: missing or damaged"),
@@ -158,8 +159,9 @@ TEST_F(LabelStoreChecks, ADamagedSchemaIsNamedEvenWhereOnlyWritesWouldMeetIt) {
 TEST_F(LabelStoreChecks, VerifyNamesLabelsOutsideTheirRecordingsSpan) {
   const auto problems = verify_label_store(path_, {{"rec", {0.0, 3.5}}});
   ASSERT_EQ(problems.size(), 1u);
-  EXPECT_NE(problems[0].message.find("labels row 2: [3, 4] s lies outside recording rec [0, 3.5] s"),
-            std::string::npos)
+  EXPECT_NE(
+      problems[0].message.find("labels row 2: [3, 4] s lies outside recording rec [0, 3.5] s"),
+      std::string::npos)
       << problems[0].message;
 }
 
@@ -195,8 +197,9 @@ TEST_F(LabelStoreSchema1, AValueBrokenBeforeTheUpgradeIsStillRefusedByValidation
   // A damaged date sealed by the upgrade's checksum still does not pass as a date.
   sqlite3* database = nullptr;
   ASSERT_EQ(sqlite3_open(path_.c_str(), &database), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(database, "UPDATE labels SET created = '1970-13-01T00:00:00.000Z' "
-                                   "WHERE id = 4",
+  ASSERT_EQ(sqlite3_exec(database,
+                         "UPDATE labels SET created = '1970-13-01T00:00:00.000Z' "
+                         "WHERE id = 4",
                          nullptr, nullptr, nullptr),
             SQLITE_OK);
   sqlite3_close(database);

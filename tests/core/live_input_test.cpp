@@ -58,7 +58,8 @@ TEST(LiveAddress, RefusesWithTheReason) {
   EXPECT_NE(refusal("tcp://1.2.3.4:5").find("not a live source kind"), std::string::npos);
   EXPECT_NE(refusal("nao").find("not a live source"), std::string::npos);
   EXPECT_NE(refusal("udp://:0").find("not in 1-65535"), std::string::npos);
-  EXPECT_NE(refusal("serial:///dev/ttyS0?baud=12345").find("not a standard rate"), std::string::npos);
+  EXPECT_NE(refusal("serial:///dev/ttyS0?baud=12345").find("not a standard rate"),
+            std::string::npos);
   EXPECT_NE(refusal("serial://ttyS0").find("device path"), std::string::npos);
   EXPECT_NE(refusal("sim://cat").find("not a simulated skin"), std::string::npos);
   EXPECT_NE(refusal("sim://nao?speed=2").find("KEY one of seed, rate"), std::string::npos);
@@ -107,7 +108,8 @@ std::vector<std::vector<uint8_t>> fur_datagrams(int64_t count) {
 TEST(PacketFramer, CutsAByteStreamBackIntoDatagramsWhereverItIsSplit) {
   const auto datagrams = fur_datagrams(20);
   std::vector<uint8_t> bytes;
-  for (const auto& datagram : datagrams) bytes.insert(bytes.end(), datagram.begin(), datagram.end());
+  for (const auto& datagram : datagrams)
+    bytes.insert(bytes.end(), datagram.begin(), datagram.end());
   for (size_t piece : {size_t{1}, size_t{7}, size_t{352}, size_t{1000}}) {
     PacketFramer framer;
     std::vector<std::vector<uint8_t>> out;
@@ -125,7 +127,8 @@ TEST(PacketFramer, SkipsNoiseAndDamagedDatagramsAndCountsEachStretchOnce) {
   auto datagrams = fur_datagrams(6);
   datagrams[2][100] ^= 0x40;  // payload damage: the CRC no longer matches
   std::vector<uint8_t> bytes = {'T', 'W', 'x', 0, 1, 2};  // line noise, a false start
-  for (const auto& datagram : datagrams) bytes.insert(bytes.end(), datagram.begin(), datagram.end());
+  for (const auto& datagram : datagrams)
+    bytes.insert(bytes.end(), datagram.begin(), datagram.end());
   PacketFramer framer;
   framer.feed(bytes);
   std::vector<uint8_t> datagram;
@@ -156,7 +159,8 @@ TEST(PacketFramer, AHeaderDeclaringAHugePayloadIsSkippedWithoutWaitingForIt) {
   EXPECT_LT(framer.buffered(), 4u);
   // The decoder refuses the same header by its length, naming the byte.
   try {
-    decode_packet(std::vector<uint8_t>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(datagrams[0].size())),
+    decode_packet(std::vector<uint8_t>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(
+                                                                          datagrams[0].size())),
                   load_layout("fur"));
     FAIL();
   } catch (const Error& error) {
@@ -171,12 +175,14 @@ TEST(SerialInput, ReceivesPacketsThroughAPseudoTerminal) {
   ASSERT_EQ(unlockpt(master), 0);
   const std::string device = ptsname(master);
   const SkinLayout layout = load_layout("fur");
-  LiveReceiver receiver(open_live_input(parse_live_address("serial://" + device + "?baud=115200", "--connect")),
-                        layout);
+  LiveReceiver receiver(
+      open_live_input(parse_live_address("serial://" + device + "?baud=115200", "--connect")),
+      layout);
   auto datagrams = fur_datagrams(30);
   datagrams.erase(datagrams.begin() + 10);  // one lost on the line
   for (const auto& datagram : datagrams) {
-    ASSERT_EQ(write(master, datagram.data(), datagram.size()), static_cast<ssize_t>(datagram.size()));
+    ASSERT_EQ(write(master, datagram.data(), datagram.size()),
+              static_cast<ssize_t>(datagram.size()));
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (receiver.counters().datagrams < 29 && std::chrono::steady_clock::now() < deadline)
@@ -198,7 +204,8 @@ TEST(SerialInput, RefusesAFileThatIsNotAPort) {
     open_live_input(parse_live_address("serial://" + path, "--connect"));
     FAIL() << "a plain file opened as a serial port";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("not a serial port"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("not a serial port"), std::string::npos)
+        << error.what();
   }
 }
 
@@ -395,18 +402,21 @@ TEST(LiveReceiver, ASenderWhoseClockJumpsForwardAndBackIsRecordedWithoutAJumpOrA
 
 TEST(LiveReceiver, TheSimulatorStreamsAtItsRateIntoTheBuffer) {
   // fur at 15 Hz, 8 times as fast: about 120 samples a second.
-  LiveReceiver receiver(open_live_input(parse_live_address("sim://fur?rate=8", "--connect")), load_layout("fur"));
+  LiveReceiver receiver(open_live_input(parse_live_address("sim://fur?rate=8", "--connect")),
+                        load_layout("fur"));
   LiveSampleSource source(receiver.source_info(), 10000);
   // A second and a half of it; the simulator's first trial may take longer to make on a slow
   // or busy machine (a sanitizer build): then until 60 have come, 20 s at most.
   const auto began = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  while (receiver.counters().samples <= 60 && std::chrono::steady_clock::now() - began < std::chrono::seconds(20))
+  while (receiver.counters().samples <= 60 &&
+         std::chrono::steady_clock::now() - began < std::chrono::seconds(20))
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   // Stopped before counting: a sample arriving between the drain and the count would make
   // them differ by one (it did under the sanitizers, which slow the reader down).
   receiver.stop();
-  receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  receiver.ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
   const LiveCounters counters = receiver.counters();
   EXPECT_GT(counters.samples, 60);
   EXPECT_LT(counters.samples, 400);
@@ -427,14 +437,16 @@ TEST(LiveReceiver, AReplayedFileArrivesWholeAndEnds) {
   stream.samples.row(20).setConstant(NAN);                 // a datagram lost when it was recorded
   const std::string path = directory.file("trial.h5");
   write_recording(path, trial.recording);
-  LiveReceiver receiver(open_live_input(parse_live_address("replay://" + path + "?speed=4", "--connect")), layout);
+  LiveReceiver receiver(
+      open_live_input(parse_live_address("replay://" + path + "?speed=4", "--connect")), layout);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (!receiver.ended() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   EXPECT_TRUE(receiver.ended());
   EXPECT_EQ(receiver.failure(), "");
   LiveSampleSource source(receiver.source_info(), 1000);
-  receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  receiver.ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
   EXPECT_EQ(source.sample_count(), 60);
   EXPECT_EQ(source.gap_samples(), 1);
   EXPECT_DOUBLE_EQ(source.start_time(), stream.start_time);
@@ -448,12 +460,14 @@ TEST(LiveReceiver, CountsLossDuplicatesAndBrokenDatagramsOverUdp) {
     UdpSocket probe = UdpSocket::bind_to({"127.0.0.1", 0});  // a free port
     port = probe.local_port();
   }
-  LiveReceiver receiver(open_live_input(parse_live_address("udp://:" + std::to_string(port), "--connect")), layout);
+  LiveReceiver receiver(
+      open_live_input(parse_live_address("udp://:" + std::to_string(port), "--connect")), layout);
   UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", port});
   auto datagrams = fur_datagrams(12);
   std::vector<uint8_t> broken = datagrams[4];
   broken[40] ^= 1;
-  for (int k : {0, 1, 2, 3, 5, 6, 6, 8, 7, 9, 10, 11}) sender.send(datagrams[static_cast<size_t>(k)]);
+  for (int k : {0, 1, 2, 3, 5, 6, 6, 8, 7, 9, 10, 11})
+    sender.send(datagrams[static_cast<size_t>(k)]);
   sender.send(broken);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (receiver.counters().datagrams < 13 && std::chrono::steady_clock::now() < deadline)
@@ -466,7 +480,8 @@ TEST(LiveReceiver, CountsLossDuplicatesAndBrokenDatagramsOverUdp) {
   EXPECT_EQ(counters.broken, 1);
   EXPECT_NE(counters.last_error.find("packet byte"), std::string::npos) << counters.last_error;
   LiveSampleSource source(receiver.source_info(), 1000);
-  receiver.ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  receiver.ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
   EXPECT_EQ(source.sample_count(), 12);
   EXPECT_EQ(source.gap_samples(), 2);  // 4 missing; 7 left a gap that 7 filled when it came
   EXPECT_TRUE(std::isnan(source.values_at(4)[0]));

@@ -1,6 +1,8 @@
 // The live buffer: samples placed by time, gaps where packets were lost, reordered samples
 // filling their place, old samples gone past the buffer's length, min/max answers exactly
 // as a brute-force scan over what is kept.
+#include "tactile/live/live_source.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 
 #include "tactile/error.h"
 #include "tactile/live/live_recorder.h"
-#include "tactile/live/live_source.h"
 #include "tactile/live/sample_ring.h"
 
 namespace tactile {
@@ -118,7 +119,8 @@ TEST(LiveSampleSource, MinMaxMatchesAScanAtEveryZoomAfterManyLaps) {
     MinMax out[1];
     source.minmax(0, edges, out);
     MinMax expected;
-    for (int64_t k = std::max(a, kept); k < std::min(b, count); ++k) expected.add(truth[static_cast<size_t>(k)]);
+    for (int64_t k = std::max(a, kept); k < std::min(b, count); ++k)
+      expected.add(truth[static_cast<size_t>(k)]);
     ASSERT_EQ(out[0], expected) << "samples [" << a << ", " << b << ")";
   }
 }
@@ -128,7 +130,8 @@ TEST(LiveSampleSource, ACostThatDoesNotGrowWithTheStream) {
   // at most a few dozen entries per column whatever its length.
   LiveSampleSource source(two_channels(2500.0), 2500 * 60);
   for (int64_t k = 0; k < 2500 * 60; ++k) source.add(static_cast<double>(k) / 2500.0, pair(1, 2));
-  const std::vector<MinMax> columns = source.minmax_over_time(0, source.start_time(), source.end_time(), 1000);
+  const std::vector<MinMax> columns =
+      source.minmax_over_time(0, source.start_time(), source.end_time(), 1000);
   for (const MinMax& column : columns) EXPECT_EQ(column, (MinMax{1, 1}));
   EXPECT_LT(source.memory_bytes(), int64_t{2500} * 60 * 2 * 4 * 11 / 10);
 }
@@ -213,9 +216,9 @@ TEST(ContactDetector, LearnsTheNoiseBandThenSeesAContactBeginAndAQuietTimeEnd) {
   EXPECT_FALSE(feed(1.0f, 100));  // noise stays inside the band
   EXPECT_TRUE(feed(1.5f, 20));    // a press on channel 1
   EXPECT_EQ(detector.state(), ContactDetector::State::kContact);
-  feed(1.0f, 30);                 // released, 0.3 s quiet: not yet
+  feed(1.0f, 30);  // released, 0.3 s quiet: not yet
   EXPECT_FALSE(detector.quiet_for_long());
-  feed(1.0f, 30);                 // 0.6 s quiet
+  feed(1.0f, 30);  // 0.6 s quiet
   EXPECT_TRUE(detector.quiet_for_long());
   EXPECT_THROW(ContactDetector(0, 100.0), Error);
 }

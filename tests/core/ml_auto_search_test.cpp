@@ -209,7 +209,8 @@ TEST(AutoBlocks, InnerFoldsKeepTheOuterGroupsWhole) {
     const Dataset dataset = general_and_personal(subjects, 24);
     EXPECT_EQ(protocol_groups(dataset, Protocol::parse("loso")), dataset.subjects);
     EXPECT_TRUE(protocol_groups(dataset, Protocol::parse("kfold:3")).empty());
-    const EvaluationResult by_subject = evaluate(dataset, specification, Protocol::parse("loso"), 3);
+    const EvaluationResult by_subject =
+        evaluate(dataset, specification, Protocol::parse("loso"), 3);
     for (const std::string& model : by_subject.fold_models)
       EXPECT_EQ(model.rfind("general/", 0), 0u) << subjects << " subjects: " << model;
     // Without groups held out, the personal column wins the inner folds.

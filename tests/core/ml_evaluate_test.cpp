@@ -235,9 +235,11 @@ TEST(AutoClassifier, PicksAmongWholeClassifiersInsideTheTrainingFold) {
   EXPECT_DOUBLE_EQ(search.candidates()[1].inner_accuracy, 1.0);
   EXPECT_EQ(search.chosen_specification().rfind("knn:k=1,", 0), 0u);
   // Every outer fold chose on its own training rows (the choices are recorded per fold).
-  const auto result = evaluate(dataset, "auto:candidates=knn:k=5|knn:k=1,inner=kfold:3", Protocol::parse("kfold:3"), 2);
+  const auto result = evaluate(dataset, "auto:candidates=knn:k=5|knn:k=1,inner=kfold:3",
+                               Protocol::parse("kfold:3"), 2);
   ASSERT_EQ(result.fold_models.size(), 3u);
-  for (const std::string& model : result.fold_models) EXPECT_EQ(model.rfind("knn:k=1,", 0), 0u) << model;
+  for (const std::string& model : result.fold_models)
+    EXPECT_EQ(model.rfind("knn:k=1,", 0), 0u) << model;
   // Saved and loaded, it answers the same.
   const auto restored = load_classifier(nlohmann::json::parse(save_classifier(*picker).dump()));
   EXPECT_EQ(picker->scores(dataset.features), restored->scores(dataset.features));
@@ -250,7 +252,8 @@ TEST(AutoClassifier, TheDefaultListIsEveryPresetAndAKnnGridButNoSearch) {
     EXPECT_NE(candidate.rfind("grid", 0), 0u);
     EXPECT_NE(candidate, "auto");
   }
-  EXPECT_NE(std::find(candidates.begin(), candidates.end(), "knn:k=5,standardize=true"), candidates.end());
+  EXPECT_NE(std::find(candidates.begin(), candidates.end(), "knn:k=5,standardize=true"),
+            candidates.end());
   EXPECT_THROW(make_classifier("auto:candidates=grid:base=knn"), Error);
   EXPECT_THROW(make_classifier("auto:candidates=knn:neighbours=3"), Error);
   EXPECT_THROW(make_classifier("auto:inner=loso"), Error);

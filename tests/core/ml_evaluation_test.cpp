@@ -43,8 +43,8 @@ TEST(Protocol, ParsesEveryForm) {
 }
 
 TEST(Protocol, PrintsWhatItParses) {
-  for (const char* text :
-       {"kfold:5x10", "kfold:7", "loo", "loso", "group:session", "holdout:0.15x10", "split:side=back/side=front"})
+  for (const char* text : {"kfold:5x10", "kfold:7", "loo", "loso", "group:session",
+                           "holdout:0.15x10", "split:side=back/side=front"})
     EXPECT_EQ(Protocol::parse(text).to_string(), text);
 }
 
@@ -152,11 +152,16 @@ TEST(Folds, LeaveOneGroupOutSplitsByAnyColumn) {
   ASSERT_EQ(folds.size(), 3u);
   for (size_t fold = 0; fold < folds.size(); ++fold) {
     EXPECT_EQ(folds[fold].test.size(), 4u);
-    for (int64_t row : folds[fold].test) EXPECT_EQ(dataset.metadata[static_cast<size_t>(row)]["session"], "day" + std::to_string(fold));
-    for (int64_t row : folds[fold].train) EXPECT_NE(dataset.metadata[static_cast<size_t>(row)]["session"], "day" + std::to_string(fold));
+    for (int64_t row : folds[fold].test)
+      EXPECT_EQ(dataset.metadata[static_cast<size_t>(row)]["session"],
+                "day" + std::to_string(fold));
+    for (int64_t row : folds[fold].train)
+      EXPECT_NE(dataset.metadata[static_cast<size_t>(row)]["session"],
+                "day" + std::to_string(fold));
   }
   // The table's own columns: subject gives loso's folds.
-  EXPECT_EQ(make_folds(dataset, Protocol::parse("group:subject"), 1).size(), make_folds(dataset, Protocol::parse("loso"), 1).size());
+  EXPECT_EQ(make_folds(dataset, Protocol::parse("group:subject"), 1).size(),
+            make_folds(dataset, Protocol::parse("loso"), 1).size());
   // A row without the column, a column with one value, no column: refused with the reason.
   dataset.metadata[4].erase("session");
   EXPECT_THROW(make_folds(dataset, protocol, 1), Error);

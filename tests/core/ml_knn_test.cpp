@@ -293,12 +293,14 @@ TEST(KnnClassifier, BlockSearchMatchesExactSearchIncludingTies) {
         x(r, c) = offset + (dimensions <= 5 ? small(random) : normal(random));
     for (Eigen::Index r = 0; r < queries; ++r)
       for (Eigen::Index c = 0; c < dimensions; ++c)
-        q(r, c) = r % 3 == 0 ? x(r, c) : offset + (dimensions <= 5 ? small(random) : normal(random));
+        q(r, c) =
+            r % 3 == 0 ? x(r, c) : offset + (dimensions <= 5 ? small(random) : normal(random));
     std::vector<int> y(samples);
     for (int r = 0; r < samples; ++r) y[static_cast<size_t>(r)] = r % 3;
-    KnnClassifier knn("knn", KnnSettings{7, std::string(metric) == "cosine" ? KnnMetric::kCosine
-                                                                         : KnnMetric::kEuclidean,
-                                         KnnWeights::kEqual, false});
+    KnnClassifier knn(
+        "knn",
+        KnnSettings{7, std::string(metric) == "cosine" ? KnnMetric::kCosine : KnnMetric::kEuclidean,
+                    KnnWeights::kEqual, false});
     knn.fit(x, y, 3, 1);
     const auto found = knn.neighbours(q);
     for (Eigen::Index r = 0; r < queries; ++r) {
@@ -318,7 +320,8 @@ TEST(KnnClassifier, BlockSearchMatchesExactSearchIncludingTies) {
       for (size_t k = 0; k < 7; ++k) {
         EXPECT_EQ(found[static_cast<size_t>(r)][k].row, all[k].second)
             << metric << " " << dimensions << " query " << r << " rank " << k;
-        EXPECT_NEAR(found[static_cast<size_t>(r)][k].distance, all[k].first, 1e-9 * (1 + all[k].first));
+        EXPECT_NEAR(found[static_cast<size_t>(r)][k].distance, all[k].first,
+                    1e-9 * (1 + all[k].first));
       }
     }
   }

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+
 #include <Eigen/Eigenvalues>
 #include <cstdlib>
 #include <nlohmann/json.hpp>

@@ -37,8 +37,7 @@ TEST(ConfidenceOf, VotesAreSharesAlreadyOtherScoresGoThroughASoftmax) {
   EXPECT_NEAR(distances.score, 1.0 / (1.0 + std::exp(-2.0) + 0.5), 1e-12);
   EXPECT_NEAR(distances.margin, distances.score / 2.0, 1e-12);
   // A class that owns nothing scores lowest(); unknown answers are the least sure.
-  const Confidence lowest =
-      confidence_of(Vector{{-0.5, std::numeric_limits<double>::lowest()}}, 0);
+  const Confidence lowest = confidence_of(Vector{{-0.5, std::numeric_limits<double>::lowest()}}, 0);
   EXPECT_DOUBLE_EQ(lowest.score, 1.0);
   EXPECT_DOUBLE_EQ(confidence_of(Vector{{0.4, 0.6}}, kUnknownClass).score, 0.0);
 }
@@ -47,7 +46,8 @@ TEST(EvaluateRows, EveryTestPredictionIsARowWithItsSegmentAndScore) {
   const Dataset dataset = located_blobs(5.0);  // overlapping: some wrong answers
   EvaluationControl control;
   control.scores = true;
-  const EvaluationResult result = evaluate(dataset, "knn:k=3", Protocol::parse("kfold:3x2"), 2, control);
+  const EvaluationResult result =
+      evaluate(dataset, "knn:k=3", Protocol::parse("kfold:3x2"), 2, control);
   ASSERT_EQ(static_cast<int64_t>(result.rows.size()), result.predictions);
   std::set<int64_t> seen;
   for (const RowPrediction& row : result.rows) {
@@ -88,7 +88,8 @@ TEST(EvaluateRows, JsonRoundTripKeepsConfusionAndRows) {
   const Dataset dataset = located_blobs(5.0);
   EvaluationControl control;
   control.scores = true;
-  const EvaluationResult result = evaluate(dataset, "knn:k=3", Protocol::parse("kfold:4"), 3, control);
+  const EvaluationResult result =
+      evaluate(dataset, "knn:k=3", Protocol::parse("kfold:4"), 3, control);
   const nlohmann::json json = to_json(result, true);
   ASSERT_EQ(json["rows"].size(), result.rows.size());
   EXPECT_NEAR(json["mean_recall"].get<double>(), mean_recall(result), 1e-15);
@@ -111,7 +112,8 @@ TEST(EvaluateRows, JsonRoundTripKeepsConfusionAndRows) {
     evaluation_from_json(broken, "result.json");
     FAIL() << "accepted an unknown class";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("result.json: rows[3]"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("result.json: rows[3]"), std::string::npos)
+        << error.what();
   }
   broken = json;
   broken["confusion"].erase(1);
@@ -130,13 +132,13 @@ TEST(EvaluateAll, EveryPresetRunsOnTheSameFoldsAndMisfitsAreSkipped) {
     EXPECT_GE(done, last_done);  // thousandths of the estimated work, never back
     last_done = done, last_total = total;
   };
-  const std::vector<PresetOutcome> outcomes = evaluate_all(
-      dataset, Protocol::parse("kfold:3"), 1, control,
-      [&](const PresetOutcome&, int index, int total) {
-        EXPECT_EQ(index, calls.load());
-        EXPECT_EQ(total, static_cast<int>(preset_names().size()));
-        ++calls;
-      });
+  const std::vector<PresetOutcome> outcomes =
+      evaluate_all(dataset, Protocol::parse("kfold:3"), 1, control,
+                   [&](const PresetOutcome&, int index, int total) {
+                     EXPECT_EQ(index, calls.load());
+                     EXPECT_EQ(total, static_cast<int>(preset_names().size()));
+                     ++calls;
+                   });
   ASSERT_EQ(outcomes.size(), preset_names().size());
   EXPECT_EQ(last_done, 1000);
   EXPECT_EQ(last_total, 1000);

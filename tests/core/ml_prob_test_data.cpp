@@ -16,7 +16,6 @@ double standard_normal(std::mt19937_64& random) {
   return radius * std::cos(2.0 * std::numbers::pi * uniform_open(random));
 }
 
-
 // `count` rows drawn from N(mean, covariance).
 Eigen::MatrixXd draw(const Blob& blob, int count, std::mt19937_64& random) {
   const Eigen::MatrixXd lower = blob.covariance.llt().matrixL();
@@ -31,7 +30,7 @@ Eigen::MatrixXd draw(const Blob& blob, int count, std::mt19937_64& random) {
 
 // Rows of each blob stacked in blob order, labels = blob index.
 void draw_classes(const std::vector<Blob>& blobs, int per_class, std::mt19937_64& random,
-                         Eigen::MatrixXd& x, std::vector<int>& y) {
+                  Eigen::MatrixXd& x, std::vector<int>& y) {
   x.resize(static_cast<Eigen::Index>(blobs.size()) * per_class, blobs.front().mean.size());
   y.clear();
   for (size_t k = 0; k < blobs.size(); ++k) {

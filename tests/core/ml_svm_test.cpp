@@ -439,7 +439,8 @@ TEST(SupportVectorMachine, AModelWithEachPairsOwnSupportVectorsLoads) {
   nlohmann::json old = svm.save();
   for (auto& learner : old["learners"]) {
     nlohmann::json own = nlohmann::json::array();
-    for (const auto& row : learner["support"]) own.push_back(old["support_vectors"][row.get<size_t>()]);
+    for (const auto& row : learner["support"])
+      own.push_back(old["support_vectors"][row.get<size_t>()]);
     learner["support_vectors"] = own;
     learner.erase("support");
   }
@@ -447,8 +448,9 @@ TEST(SupportVectorMachine, AModelWithEachPairsOwnSupportVectorsLoads) {
   SupportVectorMachine restored = make_svm("quadratic-svm");
   restored.load(old);
   EXPECT_EQ(restored.predict(train.x), svm.predict(train.x));
-  EXPECT_LT((restored.decision_values(train.x) - svm.decision_values(train.x)).cwiseAbs().maxCoeff(),
-            1e-12);
+  EXPECT_LT(
+      (restored.decision_values(train.x) - svm.decision_values(train.x)).cwiseAbs().maxCoeff(),
+      1e-12);
 }
 
 TEST(SupportVectorMachine, LoadRejectsAModelOfAnotherKernelOrBrokenShape) {
@@ -481,7 +483,8 @@ TEST(SupportVectorMachine, NotANumberInTrainingOrTestDataNamesTheRow) {
     svm.fit(train.x, train.y, 3, 1);
     FAIL() << "NaN accepted";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("row 13, feature 1"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("row 13, feature 1"), std::string::npos)
+        << error.what();
   }
   train.x(13, 1) = 0.0;
   svm.fit(train.x, train.y, 3, 1);

@@ -17,8 +17,8 @@ namespace {
 
 using testing::k4_cells;
 using testing::k4_recording;
-using testing::segment;
 using testing::K4Recording;
+using testing::segment;
 using Vector = std::vector<double>;
 
 constexpr double kK4ForceThreshold = 0.15;

@@ -65,14 +65,16 @@ TEST_F(OnlineClassifierTest, DecidesEveryTouchOnceAndNoTouchBetween) {
   std::vector<OnlineDecision> decisions;
   for (int64_t row = 0; row < stream.sample_count(); ++row) {
     const Eigen::VectorXf values = stream.samples.row(row).transpose();
-    source.add(stream.time_of(row), std::span<const float>(values.data(), static_cast<size_t>(values.size())));
+    source.add(stream.time_of(row),
+               std::span<const float>(values.data(), static_cast<size_t>(values.size())));
     online.update(source);
     online.wait_idle();
     for (OnlineDecision& decision : online.take()) decisions.push_back(std::move(decision));
   }
   EXPECT_EQ(online.error(), "");
   // Offline: the same model on the same touches.
-  const Predictions offline = predict_segments(model(), held_out_.recording, layout_, held_out_.labels);
+  const Predictions offline =
+      predict_segments(model(), held_out_.recording, layout_, held_out_.labels);
   ASSERT_EQ(offline.labels.size(), held_out_.labels.size());
   int matched = 0, agreed = 0, no_touch_inside = 0, no_touch = 0;
   for (size_t k = 0; k < held_out_.labels.size(); ++k) {
@@ -99,8 +101,8 @@ TEST_F(OnlineClassifierTest, DecidesEveryTouchOnceAndNoTouchBetween) {
       if (decision.t1 > touch.t0 + 0.3 && decision.t0 < touch.t1 - 0.3) ++no_touch_inside;
   }
   const int touches = static_cast<int>(held_out_.labels.size());
-  std::printf("touches %d, decided %d, agreeing with offline %d; no touch %d (%d inside touches)\n", touches,
-              matched, agreed, no_touch, no_touch_inside);
+  std::printf("touches %d, decided %d, agreeing with offline %d; no touch %d (%d inside touches)\n",
+              touches, matched, agreed, no_touch, no_touch_inside);
   EXPECT_GE(matched, touches * 8 / 10) << matched << " of " << touches << " touches decided";
   EXPECT_GE(agreed, matched * 7 / 10) << agreed << " of " << matched << " agree with offline";
   EXPECT_GT(no_touch, 20);
@@ -111,7 +113,8 @@ TEST_F(OnlineClassifierTest, RefusesAModelOfAnotherSkin) {
   SourceInfo info;
   info.rate_hz = 250;
   info.channels = {"a"};
-  EXPECT_THROW(OnlineClassifier(model(), load_layout("nao"), info, default_online_options("nao")), Error);
+  EXPECT_THROW(OnlineClassifier(model(), load_layout("nao"), info, default_online_options("nao")),
+               Error);
   OnlineOptions options = default_online_options("fur");
   options.segmenter = "guess";
   info.rate_hz = 15;

@@ -1,15 +1,17 @@
+#include "tactile/parameters.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "tactile/error.h"
-#include "tactile/parameters.h"
 
 namespace tactile {
 namespace {
 
 TEST(Parameters, ParsesTypedValuesAndFallsBackWhenAbsent) {
-  const Parameters parameters = Parameters::parse("k=3, metric=cosine,c=0.5,standardize=false", "--classifier");
+  const Parameters parameters =
+      Parameters::parse("k=3, metric=cosine,c=0.5,standardize=false", "--classifier");
   EXPECT_EQ(parameters.integer("k", 1), 3);
   EXPECT_EQ(parameters.text("metric", "euclidean"), "cosine");
   EXPECT_DOUBLE_EQ(parameters.number("c", 1.0), 0.5);

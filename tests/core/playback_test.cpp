@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "tactile/live/playback.h"
+
+#include <gtest/gtest.h>
 
 namespace tactile {
 namespace {

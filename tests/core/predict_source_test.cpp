@@ -135,7 +135,8 @@ TEST(PredictFromASource, ACorpusOfRobovieReadsTheSegmentsWindowsAndGivesTheSameR
   ASSERT_EQ(corpus.dataset.rows(), static_cast<Eigen::Index>(whole.results.size()));
   for (size_t row = 0; row < whole.results.size(); ++row)
     for (size_t column = 0; column < whole.results[row].values.size(); ++column)
-      ASSERT_EQ(corpus.dataset.features(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column)),
+      ASSERT_EQ(corpus.dataset.features(static_cast<Eigen::Index>(row),
+                                        static_cast<Eigen::Index>(column)),
                 whole.results[row].values[column]);
 }
 
@@ -146,9 +147,9 @@ TEST(PredictFromASource, APipelineThatPreprocessesReadsTheWholeStream) {
   ASSERT_FALSE(extractor->reads_segment_only());
   const FileSampleSource source(fur.path);
   std::vector<double> shares;
-  const FeatureExtractor::Segments read = extract_source_segments(
-      *extractor, source, fur.layout, fur.trial.labels, {},
-      [&](double share) { shares.push_back(share); });
+  const FeatureExtractor::Segments read =
+      extract_source_segments(*extractor, source, fur.layout, fur.trial.labels, {},
+                              [&](double share) { shares.push_back(share); });
   expect_same(read, extractor->extract_segments(fur.trial.recording, fur.layout, fur.trial.labels));
   ASSERT_FALSE(shares.empty());
   EXPECT_DOUBLE_EQ(shares.back(), 1.0);

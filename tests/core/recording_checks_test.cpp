@@ -34,7 +34,8 @@ Recording ramp_recording() {
   stream.samples.resize(20000, 3);
   for (int row = 0; row < 20000; ++row)
     for (int column = 0; column < 3; ++column)
-      stream.samples(row, column) = static_cast<float>(row % 977) * 0.5f + static_cast<float>(column);
+      stream.samples(row, column) =
+          static_cast<float>(row % 977) * 0.5f + static_cast<float>(column);
   recording.streams = {stream};
   return recording;
 }
@@ -152,8 +153,8 @@ TEST(RecordingFormat2, ASizeTheFileCannotHoldIsRefusedBeforeAnythingIsAllocated)
   const hid_t properties = H5Pcreate(H5P_DATASET_CREATE);
   H5Pset_chunk(properties, 2, chunk);
   H5Pset_deflate(properties, 4);
-  const hid_t dataset = H5Dcreate2(file, "streams/skin/samples", H5T_IEEE_F32LE, space,
-                                   H5P_DEFAULT, properties, H5P_DEFAULT);
+  const hid_t dataset = H5Dcreate2(file, "streams/skin/samples", H5T_IEEE_F32LE, space, H5P_DEFAULT,
+                                   properties, H5P_DEFAULT);
   ASSERT_GE(dataset, 0);
   H5Dclose(dataset);
   H5Pclose(properties);
@@ -182,8 +183,8 @@ TEST(RecordingFormat2, AHeaderDeclaringTwoToTheFortyChannelsIsRefusedBeforeAnyth
   const hid_t properties = H5Pcreate(H5P_DATASET_CREATE);
   H5Pset_chunk(properties, 1, chunk);
   H5Pset_fletcher32(properties);
-  const hid_t dataset = H5Dcreate2(file, "streams/skin/channels", type, space, H5P_DEFAULT,
-                                   properties, H5P_DEFAULT);
+  const hid_t dataset =
+      H5Dcreate2(file, "streams/skin/channels", type, space, H5P_DEFAULT, properties, H5P_DEFAULT);
   ASSERT_GE(dataset, 0);
   H5Dclose(dataset);
   H5Pclose(properties);

@@ -1,6 +1,8 @@
 // A recording written as it happens: the same samples as write_recording would store, an
 // ordinary file once finished, never written over another file, and after kill -9 at any
 // moment a file that opens with everything up to the last flush.
+#include "tactile/io/recording_writer.h"
+
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -14,7 +16,6 @@
 #include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/recording_writer.h"
 #include "tactile/io/verify.h"
 
 namespace tactile {
@@ -29,8 +30,9 @@ SampleMatrix ramp(int64_t first, int64_t count, int channels) {
 }
 
 std::unique_ptr<RecordingWriter> writer_at(const std::string& path, double rate = 250.0) {
-  return std::make_unique<RecordingWriter>(path, "live-1", "grid:2x2", Metadata{{"subject", "s1"}}, "skin",
-                                           rate, 12.5, std::vector<std::string>{"c0", "c1", "c2", "c3"},
+  return std::make_unique<RecordingWriter>(path, "live-1", "grid:2x2", Metadata{{"subject", "s1"}},
+                                           "skin", rate, 12.5,
+                                           std::vector<std::string>{"c0", "c1", "c2", "c3"},
                                            std::vector<std::string>{"V", "V", "V", "V"});
 }
 

@@ -1,5 +1,7 @@
 // The SampleSource seam: a file read chunk by chunk answers exactly as the same samples
 // held in memory, within its cache limit, and reads only the chunks a query needs.
+#include "tactile/signal/sample_source.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/signal/display_scale.h"
-#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 namespace {

@@ -80,9 +80,8 @@ TEST(SegmentScoring, TouchesTakeTheirSegmentsInTimeOrder) {
 }
 
 TEST(SegmentScoring, ATouchCutInThreeIsSplitWithTwoFalseAlarms) {
-  const TouchScore score = score_touches(
-      {span(0.0, 1.0), span(1.5, 2.0), span(2.5, 4.0)}, {span(0.0, 4.0)},
-      0.0, 2.0, 10);
+  const TouchScore score = score_touches({span(0.0, 1.0), span(1.5, 2.0), span(2.5, 4.0)},
+                                         {span(0.0, 4.0)}, 0.0, 2.0, 10);
   EXPECT_EQ(score.events.hits, 1);
   EXPECT_EQ(score.events.false_alarms, 2);
   EXPECT_EQ(score.split, 1);

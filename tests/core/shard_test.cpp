@@ -93,8 +93,7 @@ TEST(ShardParts, AMissingShardIsNamedWithItsDefaultPath) {
     write_part(paths.back(), square_part({index, 5}, 9));
   }
   const std::string error = gather_error_of(paths);
-  EXPECT_NE(error.find("shards 3/5 (table.csv.part-3-of-5), 5/5"), std::string::npos)
-      << error;
+  EXPECT_NE(error.find("shards 3/5 (table.csv.part-3-of-5), 5/5"), std::string::npos) << error;
   EXPECT_NE(error.find("are missing"), std::string::npos) << error;
 }
 
@@ -141,7 +140,8 @@ TEST(ShardParts, ADamagedCutOrForeignFileIsRefusedByName) {
   EXPECT_NE(gather_error_of({path}).find(path + ": not a part file (cut short"), std::string::npos);
   write_text(path, "{\"rows\": 3}");
   EXPECT_NE(gather_error_of({path}).find("not a part file"), std::string::npos);
-  EXPECT_NE(gather_error_of({directory.file("absent")}).find("no such part file"), std::string::npos);
+  EXPECT_NE(gather_error_of({directory.file("absent")}).find("no such part file"),
+            std::string::npos);
 }
 
 TEST(ShardParts, APartMissingOneOfItsItemsIsRefused) {

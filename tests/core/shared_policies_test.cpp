@@ -30,16 +30,18 @@ ml::PresetOutcome outcome(const std::string& classifier, double accuracy) {
 }
 
 TEST(TrainAllResult, IsSortedBestFirstAndReadsBackAsWritten) {
-  ml::TrainAllResult all{"kfold:5", 7, "table.csv",
-                         {outcome("knn", 0.5), {"gmm", std::nullopt, "too few rows"},
-                          outcome("linear-svm", 0.75)}};
+  ml::TrainAllResult all{
+      "kfold:5",
+      7,
+      "table.csv",
+      {outcome("knn", 0.5), {"gmm", std::nullopt, "too few rows"}, outcome("linear-svm", 0.75)}};
   EXPECT_EQ(ml::best_outcome(all.outcomes), 2);
   ml::sort_best_first(all.outcomes);
   ASSERT_EQ(all.outcomes.size(), 3u);
   EXPECT_EQ(all.outcomes[0].classifier, "linear-svm");
   EXPECT_EQ(all.outcomes[2].classifier, "gmm");  // did not fit: last
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / ("train_all_" + std::to_string(::getpid()) + ".json");
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("train_all_" + std::to_string(::getpid()) + ".json");
   ml::write_train_all_file(path.string(), all);
   const ml::TrainAllResult read = ml::read_train_all_file(path.string());
   EXPECT_EQ(read.protocol, "kfold:5");

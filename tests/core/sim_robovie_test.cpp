@@ -313,8 +313,8 @@ TEST(SimRobovie, TheRobotPlaysEachStagesOwnMovementInEveryTrial) {
   for (int subject = 0; subject < kSubjects; ++subject) {
     const SimulatedTrial& trial = cached_trial(subject);
     const Stream& skin = skin_of(trial);
-    for (const char* stage : {"Whee!", "Let's play!", "What's your name?", "Thanks",
-                              "Nice to meet you."}) {
+    for (const char* stage :
+         {"Whee!", "Let's play!", "What's your name?", "Thanks", "Nice to meet you."}) {
       const Label& label = stage_label(trial, stage);
       const auto rms = part_rms(skin, label.t0, label.t0 + 1.1);
       const double sum = rms.at("upper-arm-right") + rms.at("upper-arm-left") +

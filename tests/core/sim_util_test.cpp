@@ -1,8 +1,9 @@
+#include "tactile/sim/sim_util.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "tactile/sim/sim_util.h"
 #include "tactile/sim/simulator.h"
 
 namespace tactile::sim {

@@ -38,7 +38,8 @@ Stream two_groups(int64_t samples, uint64_t seed) {
 }
 
 double distance(const SomatosensoryMap& map, size_t i, size_t j) {
-  return std::hypot(map.positions[i].x - map.positions[j].x, map.positions[i].y - map.positions[j].y);
+  return std::hypot(map.positions[i].x - map.positions[j].x,
+                    map.positions[i].y - map.positions[j].y);
 }
 
 TEST(SomatosensoryMap, TaxelsTouchedTogetherLieTogether) {
@@ -58,7 +59,8 @@ TEST(SomatosensoryMap, TaxelsTouchedTogetherLieTogether) {
   EXPECT_LT(within * 5.0, across) << "within " << within << " across " << across;
   // Inside the body map's bounding box.
   double x0 = 1e300, x1 = -1e300;
-  for (const Taxel& taxel : layout.taxels) x0 = std::min(x0, taxel.position.x), x1 = std::max(x1, taxel.position.x);
+  for (const Taxel& taxel : layout.taxels)
+    x0 = std::min(x0, taxel.position.x), x1 = std::max(x1, taxel.position.x);
   for (const Point2& point : map.positions) {
     EXPECT_GE(point.x, x0 - 1e-9);
     EXPECT_LE(point.x, x1 + 1e-9);
@@ -109,7 +111,8 @@ TEST(SomatosensoryMap, PooledSumsEqualOnePassAndGapsAreLeftOut) {
 }
 
 TEST(SomatosensoryMap, CacheBesideTheRecordingIsUsedUntilItChanges) {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / ("somatosensory-cache-test-" + std::to_string(::getpid()));
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("somatosensory-cache-test-" + std::to_string(::getpid()));
   std::filesystem::remove_all(folder);
   std::filesystem::create_directories(folder);
   Recording recording;
@@ -123,13 +126,15 @@ TEST(SomatosensoryMap, CacheBesideTheRecordingIsUsedUntilItChanges) {
   EXPECT_FALSE(read_somatosensory_cache(path, "value"));
   const SomatosensoryMap map = somatosensory_map(source, layout, 0);
   ASSERT_TRUE(write_somatosensory_cache(path, map));
-  EXPECT_EQ(somatosensory_cache_path(path, map.modality), (folder / ("r1.somatosensory-" + map.modality + ".json")).string());
+  EXPECT_EQ(somatosensory_cache_path(path, map.modality),
+            (folder / ("r1.somatosensory-" + map.modality + ".json")).string());
   const auto cached = read_somatosensory_cache(path, map.modality);
   ASSERT_TRUE(cached);
   EXPECT_EQ(cached->taxels, map.taxels);
   EXPECT_DOUBLE_EQ(cached->positions[4].y, map.positions[4].y);
   // The recording rewritten: the cache is stale.
-  std::filesystem::last_write_time(path, std::filesystem::last_write_time(path) + std::chrono::seconds(5));
+  std::filesystem::last_write_time(
+      path, std::filesystem::last_write_time(path) + std::chrono::seconds(5));
   EXPECT_FALSE(read_somatosensory_cache(path, map.modality));
   // Too few taxels is an error naming the map.
   EXPECT_THROW(somatosensory_map(layout, 0, {1, 2}, Eigen::MatrixXd::Identity(2, 2)), Error);
@@ -155,13 +160,15 @@ TEST(SomatosensoryMap, ACorpusPoolsItsRecordingsAndItsCacheKnowsWhichOnes) {
   }
   const SkinLayout layout = load_layout("strip:6");
   const SomatosensoryMap pooled = somatosensory_corpus_map(files, layout, 0);
-  const SomatosensoryMap single = somatosensory_map(MemorySampleSource(whole, "strip:6", "w"), layout, 0);
+  const SomatosensoryMap single =
+      somatosensory_map(MemorySampleSource(whole, "strip:6", "w"), layout, 0);
   EXPECT_EQ(pooled.samples, 4000);
   for (size_t k = 0; k < 6; ++k) {
     EXPECT_NEAR(pooled.positions[k].x, single.positions[k].x, 1e-6);
     EXPECT_NEAR(pooled.positions[k].y, single.positions[k].y, 1e-6);
   }
-  const std::string cache = somatosensory_corpus_cache_path(folder.string(), "strip:6", pooled.modality);
+  const std::string cache =
+      somatosensory_corpus_cache_path(folder.string(), "strip:6", pooled.modality);
   ASSERT_TRUE(write_somatosensory_corpus_cache(cache, files, pooled));
   EXPECT_TRUE(read_somatosensory_corpus_cache(cache, files));
   EXPECT_FALSE(read_somatosensory_corpus_cache(cache, {files[0]}));  // another corpus

@@ -1,8 +1,9 @@
 // The table drawn as maps: its rows on two principal components, a SOM with each row's winner.
+#include "tactile/ml/table_maps.h"
+
 #include <gtest/gtest.h>
 
 #include "tactile/jobs/job.h"
-#include "tactile/ml/table_maps.h"
 
 namespace tactile::ml {
 namespace {
@@ -22,7 +23,8 @@ Dataset two_classes(int rows, int columns) {
 TEST(TableMaps, TheScatterSeparatesWhatTheFirstComponentSeparates) {
   const Dataset table = two_classes(20, 40);  // fewer rows than columns, as the workbench meets
   double last = -1.0;
-  const TableScatter scatter = scatter_of(table.features, [&](double fraction) { last = fraction; });
+  const TableScatter scatter =
+      scatter_of(table.features, [&](double fraction) { last = fraction; });
   ASSERT_EQ(scatter.points.rows(), 20);
   ASSERT_EQ(scatter.points.cols(), 2);
   EXPECT_GT(scatter.explained, 0.0);

@@ -11,7 +11,8 @@ SkinLayout two_taxels_two_modalities() {
   SkinLayout layout;
   layout.id = "test";
   layout.modalities = {"force", "proximity"};
-  layout.channels = {{"a.force", "N", "force"}, {"a.prox", "mm", "proximity"}, {"b.force", "N", "force"}};
+  layout.channels = {
+      {"a.force", "N", "force"}, {"a.prox", "mm", "proximity"}, {"b.force", "N", "force"}};
   Taxel a;
   a.id = 1;
   a.channels = {0, 1};
@@ -36,10 +37,12 @@ TEST(TaxelValues, TaxelWithoutTheModalityIsNaN) {
   stream.channels = {"a.force", "a.prox", "b.force"};
   stream.samples.resize(2, 3);
   stream.samples << 1, 2, 3, 4, 5, 6;
-  const std::vector<float> values = taxel_values(stream, taxel_columns(layout, stream.channels, 1), 1);
+  const std::vector<float> values =
+      taxel_values(stream, taxel_columns(layout, stream.channels, 1), 1);
   EXPECT_FLOAT_EQ(values[0], 5.0f);
   EXPECT_TRUE(std::isnan(values[1]));
-  const std::vector<float> forces = taxel_values(stream, taxel_columns(layout, stream.channels, 0), 0);
+  const std::vector<float> forces =
+      taxel_values(stream, taxel_columns(layout, stream.channels, 0), 0);
   EXPECT_FLOAT_EQ(forces[0], 1.0f);
   EXPECT_FLOAT_EQ(forces[1], 3.0f);
 }

@@ -48,11 +48,12 @@ TEST(TouchSegmenter, BinarySensorsWithNoNoiseAreSegmentedTouchForTouch) {
     const int start = 100 + 150 * k, length = 20 + 10 * (k % 5);
     return t >= start && t < start + length && (c == k % 8 || (k % 2 == 1 && c == (k + 1) % 8));
   };
-  const Recording recording = touch_recording("strip:8", 50.0, 100 + 150 * touches, [&](int t, int c) {
-    for (int k = 0; k < touches; ++k)
-      if (on(t, c, k)) return 1.0f;
-    return 0.0f;
-  });
+  const Recording recording =
+      touch_recording("strip:8", 50.0, 100 + 150 * touches, [&](int t, int c) {
+        for (int k = 0; k < touches; ++k)
+          if (on(t, c, k)) return 1.0f;
+        return 0.0f;
+      });
   const std::vector<Label> labels = adaptive(recording);
   ASSERT_EQ(labels.size(), static_cast<size_t>(touches));
   for (int k = 0; k < touches; ++k) {
@@ -124,8 +125,8 @@ TEST(TouchSegmenter, ASaturatingEightBitGridWithUnevenIdleLevelsKeepsEachTouch) 
     double value = (c * 7) % 41 + noise(random);
     const int local = t - 30;
     if (local >= 0 && local % 45 < 15 && local / 45 < 10) {
-      const bool patch = row >= 1 && row <= 2 && column >= (local / 45) % 3 &&
-                         column <= (local / 45) % 3 + 1;
+      const bool patch =
+          row >= 1 && row <= 2 && column >= (local / 45) % 3 && column <= (local / 45) % 3 + 1;
       value += patch ? 400.0 : 30.0;
     }
     return static_cast<float>(std::clamp(std::round(value), 0.0, 255.0));
@@ -153,12 +154,15 @@ TEST(TouchSegmenter, TheScanAndDecideHalvesGiveWhatOneRunGives) {
     }
   }
   EXPECT_THROW(segmenter.segments(Parameters::parse("margin=3", "test")), Error);
-  EXPECT_THROW(AdaptiveSegmenter(recording, load_layout("strip:8"), Parameters::parse("share=0.3", "test")),
-               Error);
+  EXPECT_THROW(
+      AdaptiveSegmenter(recording, load_layout("strip:8"), Parameters::parse("share=0.3", "test")),
+      Error);
 }
 
 Recording double_taps(int pairs) { return test::double_tap_recording("touches", pairs); }
-std::vector<Label> double_tap_labels(int pairs) { return test::double_tap_touches("touches", pairs); }
+std::vector<Label> double_tap_labels(int pairs) {
+  return test::double_tap_touches("touches", pairs);
+}
 
 TEST(SegmenterFit, LearnsThatAPersonLabelsDoubleTapsAsOneTouch) {
   const Recording recording = double_taps(9);

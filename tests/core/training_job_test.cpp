@@ -20,7 +20,8 @@ class TrainingJobTest : public ::testing::Test {
   static void SetUpTestSuite() {
     // One folder per process: ctest runs each test in its own, at the same time.
     folder_ = (std::filesystem::temp_directory_path() /
-               ("training-job-test-" + std::to_string(::getpid()))).string();
+               ("training-job-test-" + std::to_string(::getpid())))
+                  .string();
     std::filesystem::remove_all(folder_);
     SimulationOptions options;
     options.subjects = 2;
@@ -61,7 +62,8 @@ TEST_F(TrainingJobTest, OneClassifierOnOneSkinWithAModel) {
   const EvaluationResult& result = *outcome->results[0].result;
   EXPECT_EQ(result.predictions, outcome->dataset->rows());
   EXPECT_EQ(static_cast<int64_t>(result.rows.size()), outcome->dataset->rows());
-  for (const Metadata& metadata : outcome->dataset->metadata) EXPECT_EQ(metadata.at("layout"), "flux");
+  for (const Metadata& metadata : outcome->dataset->metadata)
+    EXPECT_EQ(metadata.at("layout"), "flux");
   for (const RowPrediction& row : result.rows) {
     EXPECT_LT(row.t0, row.t1);
     EXPECT_GT(row.score, 0.0);  // scores were asked for

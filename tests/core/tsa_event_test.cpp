@@ -227,7 +227,7 @@ struct TsaExtraction {
 };
 
 TsaExtraction extract_tsa(const SkinLayout& layout, const Recording& raw, const Label& label,
-                      const std::string& parameters = "") {
+                          const std::string& parameters = "") {
   const auto extractor = make_tsa_event_extractor(Parameters::parse(parameters, "--params"));
   const Recording preprocessed = extractor->preprocess(raw, layout);
   return {extractor->columns(layout), extractor->extract({preprocessed, layout, label})};
@@ -282,8 +282,8 @@ TEST(TsaEventExtractor, ExtendedAndOneHotColumnsMatchTheirValues) {
   const Recording raw = sliding_touch_recording(layout);
   const std::vector<Label> labels = segment_frame_edge(raw, layout, {});
   ASSERT_EQ(labels.size(), 1u);
-  const TsaExtraction extracted = extract_tsa(layout, raw, labels.front(),
-                                          "tsa_features=EXTENDED,direction=onehot,location=onehot");
+  const TsaExtraction extracted = extract_tsa(
+      layout, raw, labels.front(), "tsa_features=EXTENDED,direction=onehot,location=onehot");
   ASSERT_TRUE(extracted.result.skip_reason.empty()) << extracted.result.skip_reason;
   ASSERT_EQ(extracted.columns.size(), 1u + 11u + 1u + 42u + 8u);
   ASSERT_EQ(extracted.result.values.size(), extracted.columns.size());

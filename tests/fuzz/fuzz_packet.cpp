@@ -40,7 +40,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::vector<uint8_t> out;
   const size_t piece = 1 + (mode & 0x0f);
   for (size_t at = 0; at < datagram.size(); at += piece) {
-    framer.feed(std::span<const uint8_t>(datagram).subspan(at, std::min(piece, datagram.size() - at)));
+    framer.feed(
+        std::span<const uint8_t>(datagram).subspan(at, std::min(piece, datagram.size() - at)));
     while (framer.next(out)) {
       try {
         decode_packet(out, layout);

@@ -29,8 +29,7 @@ inline std::string write_input(std::span<const uint8_t> bytes, const std::string
     if (std::filesystem::is_directory("/dev/shm", error)) return std::string("/dev/shm");
     return std::filesystem::temp_directory_path().string();
   }();
-  const std::string path =
-      directory + "/tactile-fuzz-" + std::to_string(::getpid()) + extension;
+  const std::string path = directory + "/tactile-fuzz-" + std::to_string(::getpid()) + extension;
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (!file) __builtin_trap();
   if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file) != bytes.size())

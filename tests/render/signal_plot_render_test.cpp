@@ -38,7 +38,8 @@ std::unique_ptr<MemorySampleSource> source_of(const std::vector<float>& samples,
   stream.rate_hz = kRate;
   stream.start_time = start_time;
   stream.channels = {"x"};
-  stream.samples = Eigen::Map<const SampleMatrix>(samples.data(), static_cast<Eigen::Index>(samples.size()), 1);
+  stream.samples =
+      Eigen::Map<const SampleMatrix>(samples.data(), static_cast<Eigen::Index>(samples.size()), 1);
   return std::make_unique<MemorySampleSource>(std::move(stream));
 }
 

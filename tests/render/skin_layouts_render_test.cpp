@@ -74,12 +74,15 @@ TEST_P(SkinLayoutRender, TaxelCentresShowTheirValueColour) {
       const auto index = static_cast<size_t>(found - layout.taxels.begin());
       const ImVec2 centre = result.transform.apply(layout.taxels[index].position);
       double low = 1e9, high = -1e9;
-      for (const Point2& point : outlines[index]) low = std::min(low, point.x), high = std::max(high, point.x);
+      for (const Point2& point : outlines[index])
+        low = std::min(low, point.x), high = std::max(high, point.x);
       const double factor =
-          high > low ? (result.taxels[index].max.x - result.taxels[index].min.x) / (high - low) : 1.0;
+          high > low ? (result.taxels[index].max.x - result.taxels[index].min.x) / (high - low)
+                     : 1.0;
       std::vector<Point2> enlarged;
       for (const Point2& point : outlines[index])
-        enlarged.push_back({centre.x + factor * (point.x - centre.x), centre.y + factor * (point.y - centre.y)});
+        enlarged.push_back(
+            {centre.x + factor * (point.x - centre.x), centre.y + factor * (point.y - centre.y)});
       outlines.push_back(enlarged);
       order.push_back(index);
     }

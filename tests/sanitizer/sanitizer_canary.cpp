@@ -1,8 +1,8 @@
 // A deliberate finding for each sanitizer of the sanitizer build: proof, run as a test, that
 // the build's ASan and UBSan are on and stop the program at a finding (tests/CMakeLists.txt).
-// `sanitizer_canary address` copies one element from past a heap array; `sanitizer_canary undefined`
-// overflows a signed int. Both take their operands from the command line, so that no compiler
-// can see the fault and fold it away. After the fault the program prints "not stopped".
+// `sanitizer_canary address` copies one element from past a heap array; `sanitizer_canary
+// undefined` overflows a signed int. Both take their operands from the command line, so that no
+// compiler can see the fault and fold it away. After the fault the program prints "not stopped".
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>

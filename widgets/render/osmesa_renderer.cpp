@@ -12,11 +12,16 @@ namespace tactile {
 
 OffscreenRenderer::OffscreenRenderer(int width, int height)
     : width_(width), height_(height), buffer_(static_cast<size_t>(width) * height * 4) {
-  const int attributes[] = {OSMESA_FORMAT,          OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,      0,
-                            OSMESA_PROFILE,         OSMESA_CORE_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                            OSMESA_CONTEXT_MINOR_VERSION, 3,
+  const int attributes[] = {OSMESA_FORMAT,
+                            OSMESA_RGBA,
+                            OSMESA_DEPTH_BITS,
+                            0,
+                            OSMESA_PROFILE,
+                            OSMESA_CORE_PROFILE,
+                            OSMESA_CONTEXT_MAJOR_VERSION,
+                            3,
+                            OSMESA_CONTEXT_MINOR_VERSION,
+                            3,
                             0};
   context_ = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!context_) throw Error("OSMesa", "cannot create an OpenGL 3.3 core context");

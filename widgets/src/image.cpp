@@ -23,7 +23,8 @@ void Image::flip_vertically() {
 
 Image Image::crop(int x, int y, int crop_width, int crop_height) const {
   const int x0 = std::clamp(x, 0, width), y0 = std::clamp(y, 0, height);
-  const int x1 = std::clamp(x + crop_width, x0, width), y1 = std::clamp(y + crop_height, y0, height);
+  const int x1 = std::clamp(x + crop_width, x0, width),
+            y1 = std::clamp(y + crop_height, y0, height);
   Image part;
   part.width = x1 - x0;
   part.height = y1 - y0;

@@ -32,8 +32,8 @@ struct ChannelView {
 };
 
 bool has_data(const PlotChannel& channel) {
-  return channel.source && channel.channel >= 0 && channel.channel < channel.source->channel_count() &&
-         channel.source->rate_hz() > 0;
+  return channel.source && channel.channel >= 0 &&
+         channel.channel < channel.source->channel_count() && channel.source->rate_hz() > 0;
 }
 
 ChannelView view_channel(const PlotChannel& channel, double t0, double t1, int columns) {

@@ -86,7 +86,8 @@ ScreenTaxel screen_taxel(const Taxel& taxel, const MapTransform& transform, doub
       const double factor = min_pixels / extent;
       const Point2 centre = taxel.position;
       for (Point2& point : screen.map_points)
-        point = {centre.x + factor * (point.x - centre.x), centre.y + factor * (point.y - centre.y)};
+        point = {centre.x + factor * (point.x - centre.x),
+                 centre.y + factor * (point.y - centre.y)};
     }
   }
   ImVec2 low(std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
@@ -123,9 +124,10 @@ void fill_taxel(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 colour) {
 // region's colour, not its value's). Returns its drawn box.
 SkinViewBox draw_touched(ImDrawList& draw, const ScreenTaxel& taxel, ImU32 fill, bool ring) {
   const float least = taxel.extent < kTinyTaxelPixels ? kTinyTouchedPixels : kTouchedMinPixels;
-  const float factor = taxel.extent > 0.0f && taxel.extent < least
-                           ? std::min(least / taxel.extent, taxel.extent < kTinyTaxelPixels ? 5.0f : 3.0f)
-                           : 1.0f;
+  const float factor =
+      taxel.extent > 0.0f && taxel.extent < least
+          ? std::min(least / taxel.extent, taxel.extent < kTinyTaxelPixels ? 5.0f : 3.0f)
+          : 1.0f;
   ScreenTaxel enlarged = taxel;
   SkinViewBox box{taxel.centre, taxel.centre};
   for (ImVec2& point : enlarged.points) {

@@ -225,8 +225,10 @@ class NamePlacer {
       // Stopping short of the name, which the line is meant to reach.
       const float length = std::hypot(to.x - from.x, to.y - from.y);
       const float short_of = length > 3.0f ? (length - 3.0f) / length : 0.0f;
-      if (crosses_a_taxel(from, ImVec2(from.x + short_of * (to.x - from.x),
-                                        from.y + short_of * (to.y - from.y)), patch))
+      if (crosses_a_taxel(
+              from,
+              ImVec2(from.x + short_of * (to.x - from.x), from.y + short_of * (to.y - from.y)),
+              patch))
         continue;
       draw_.AddLine(from, to, kLeader, 1.0f);
       draw_.AddCircleFilled(from, 2.0f, kText);
@@ -545,7 +547,8 @@ float category_legend_width(const SkinViewCategories& categories, float height) 
 
 float category_legend_height(const SkinViewCategories& categories, float width) {
   const auto [unused, column_width] = category_legend_columns(categories, 0.0f);
-  const auto columns = static_cast<size_t>(std::max(1.0f, std::floor((width - 8.0f) / column_width)));
+  const auto columns =
+      static_cast<size_t>(std::max(1.0f, std::floor((width - 8.0f) / column_width)));
   const size_t rows = (categories.names.size() + columns - 1) / columns;
   return static_cast<float>(rows) * category_line() + 8.0f;
 }

@@ -85,7 +85,8 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   // Typed parameters are checked here, so a wrong key is named at once, not after the features.
   if (!request.pipeline_params.empty()) {
     try {
-      effective_pipeline_parameters(request.pipeline, request.pipeline_params, "features parameters");
+      effective_pipeline_parameters(request.pipeline, request.pipeline_params,
+                                    "features parameters");
     } catch (const Error& error) {
       return fail(state, error.what());
     }
@@ -121,7 +122,8 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
 namespace {
 
 // The table the results are about, once: the same table again keeps the views' maps.
-void show_table(WorkbenchState& state, std::shared_ptr<const Dataset> table, const std::string& pipeline) {
+void show_table(WorkbenchState& state, std::shared_ptr<const Dataset> table,
+                const std::string& pipeline) {
   AnalysisState& analysis = state.analysis;
   if (!table || analysis.dataset == table) return;
   analysis.results_from = analysis.last_request.layout + ", " + pipeline + " features, " +
@@ -190,8 +192,9 @@ void poll_training(WorkbenchState& state) {
   show_table(state, outcome->dataset, outcome->pipeline);
   const int best = ml::best_outcome(analysis.results);
   choose_result(state, best);
-  state.notice = best < 0 ? "no classifier fitted the data"
-                          : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
+  state.notice = best < 0
+                     ? "no classifier fitted the data"
+                     : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
 }
 
 const ml::EvaluationResult* current_evaluation(const WorkbenchState& state) {
@@ -277,8 +280,8 @@ bool predict_open_recording(WorkbenchState& state) {
     // a 64-taxel strip when it ran in one frame). A second Predict replaces a run still going.
     start_job<AnalysisState::PredictionsMade>(
         state, analysis.predict_job, "predict",
-        [open = source_for_job(document), layout = document.layout,
-         path = document.path, model_path, table, fitted, classifier, request = analysis.last_request,
+        [open = source_for_job(document), layout = document.layout, path = document.path,
+         model_path, table, fitted, classifier, request = analysis.last_request,
          segments = std::move(segments), database, recording = document.recording_id(),
          annotator = state.labelling.annotator](JobProgress& progress) {
           // The model fitted in this session, else fitted now (and saved), else its file.
@@ -297,14 +300,18 @@ bool predict_open_recording(WorkbenchState& state) {
           // their windows from the file; the recording is never held whole.
           const Predictions predictions = predict_segments(
               *model, *open(), layout, segments,
-              progress.steps("features of " + std::to_string(segments.size()) + " segments", 0.2, 1.0));
+              progress.steps("features of " + std::to_string(segments.size()) + " segments", 0.2,
+                             1.0));
           LabelStore store(database, LabelStore::OpenMode::kExisting);
           const LabelEdit edit = prediction_edit(store, recording, predictions.labels);
           progress.check();  // the last place to stop: what follows is one transaction
           // The model's lane replaced as one command of the operator's: Ctrl+Z takes it back.
           store.apply(edit, annotator);
-          return AnalysisState::PredictionsMade{path, fs::path(model_path).stem().string(),
-                                                predictions.labels.size(), model_path, classifier,
+          return AnalysisState::PredictionsMade{path,
+                                                fs::path(model_path).stem().string(),
+                                                predictions.labels.size(),
+                                                model_path,
+                                                classifier,
                                                 model};
         });
   } catch (const std::exception& error) {
@@ -318,7 +325,8 @@ bool predict_open_recording(WorkbenchState& state) {
 namespace {
 
 void apply_finished_prediction(WorkbenchState& state) {
-  std::optional<AnalysisState::PredictionsMade> made = finished_job(state, state.analysis.predict_job);
+  std::optional<AnalysisState::PredictionsMade> made =
+      finished_job(state, state.analysis.predict_job);
   if (!made) return;
   state.analysis.model_path = made->model_path;
   state.analysis.model_classifier = made->classifier;
@@ -349,7 +357,8 @@ bool open_evaluation_file(WorkbenchState& state, const std::string& path) {
     if (!opened.features.empty()) {
       fs::path table(opened.features);
       if (table.is_relative() && !fs::exists(table)) table = fs::path(path).parent_path() / table;
-      if (fs::exists(table)) set_dataset(state, std::make_shared<const Dataset>(read_dataset_csv(table.string())));
+      if (fs::exists(table))
+        set_dataset(state, std::make_shared<const Dataset>(read_dataset_csv(table.string())));
     }
   } catch (const std::exception& error) {
     return fail(state, std::string("cannot open the evaluation: ") + error.what());
@@ -488,7 +497,8 @@ bool walk_misclassified(WorkbenchState& state, int direction) {
 
 std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
   const AnalysisState& analysis = state.analysis;
-  std::vector<RowOutcome> outcomes(analysis.dataset ? static_cast<size_t>(analysis.dataset->rows()) : 0);
+  std::vector<RowOutcome> outcomes(analysis.dataset ? static_cast<size_t>(analysis.dataset->rows())
+                                                    : 0);
   const ml::EvaluationResult* result = current_evaluation(state);
   if (!result) return outcomes;
   for (const ml::RowPrediction& row : result->rows)
@@ -528,8 +538,7 @@ void poll_jobs(WorkbenchState& state) {
   }
   if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
     analysis.scatter_held = true;
-  if (std::optional<AnalysisState::ScatterFit> fit =
-          finished_job(state, analysis.scatter_job)) {
+  if (std::optional<AnalysisState::ScatterFit> fit = finished_job(state, analysis.scatter_job)) {
     analysis.scatter = std::move(fit->scatter);
     analysis.scatter_explained = fit->explained;
   }
@@ -560,8 +569,9 @@ bool ensure_som(WorkbenchState& state) {
       return false;
     }
     // A loaded map: the winners of this table's rows (a pass over the rows, no fit).
-    analysis.som_winners =
-        analysis.dataset ? ml::som_winners(*analysis.som, analysis.dataset->features) : std::vector<int>{};
+    analysis.som_winners = analysis.dataset
+                               ? ml::som_winners(*analysis.som, analysis.dataset->features)
+                               : std::vector<int>{};
     analysis.som_for = table;
   } catch (const std::exception& error) {
     analysis.som.reset();
@@ -584,9 +594,10 @@ bool ensure_scatter(WorkbenchState& state) {
   // The table on its first two principal components, on a worker (7.8 s at 454 x 1692).
   start_job<AnalysisState::ScatterFit>(
       state, analysis.scatter_job, "scatter", [table = analysis.dataset](JobProgress& progress) {
-        ml::TableScatter scatter = ml::scatter_of(
-            table->features, progress.steps("principal components of " + std::to_string(table->rows()) +
-                                                " x " + std::to_string(table->features.cols())));
+        ml::TableScatter scatter =
+            ml::scatter_of(table->features, progress.steps("principal components of " +
+                                                           std::to_string(table->rows()) + " x " +
+                                                           std::to_string(table->features.cols())));
         return AnalysisState::ScatterFit{std::move(scatter.points), scatter.explained};
       });
   return false;
@@ -598,9 +609,10 @@ bool ensure_somatosensory(WorkbenchState& state) {
   const SkinLayout& layout = state.document->layout;
   const std::string modality =
       layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)];
-  const std::string key = (analysis.somatosensory_corpus ? "corpus:" + state.workspace + ":" + layout.id
-                                                         : state.document->path) +
-                          "#" + modality;
+  const std::string key =
+      (analysis.somatosensory_corpus ? "corpus:" + state.workspace + ":" + layout.id
+                                     : state.document->path) +
+      "#" + modality;
   if (analysis.map_for == key) return analysis.map.has_value();
   analysis.map_for = key;
   analysis.map.reset();
@@ -626,13 +638,15 @@ bool ensure_somatosensory(WorkbenchState& state) {
             }
           }
           AnalysisState::MapMade made{key, {}};
-          if (std::optional<SomatosensoryMap> cached = read_somatosensory_corpus_cache(cache, same_skin)) {
+          if (std::optional<SomatosensoryMap> cached =
+                  read_somatosensory_corpus_cache(cache, same_skin)) {
             made.map = std::move(*cached);
             return made;
           }
           made.map = somatosensory_corpus_map(
               same_skin, layout, index,
-              progress.steps("correlations over " + std::to_string(same_skin.size()) + " recordings"));
+              progress.steps("correlations over " + std::to_string(same_skin.size()) +
+                             " recordings"));
           write_somatosensory_corpus_cache(cache, same_skin, made.map);
           return made;
         });
@@ -640,12 +654,12 @@ bool ensure_somatosensory(WorkbenchState& state) {
     // A live stream: over what has arrived so far, copied now; no cache (nothing on disk yet).
     start_job<AnalysisState::MapMade>(
         state, analysis.map_job, "somatosensory map",
-        [key, read = recording_for_job(*state.document, 0.0, 0.0), layout, index = state.modality](
-            JobProgress& progress) {
+        [key, read = recording_for_job(*state.document, 0.0, 0.0), layout,
+         index = state.modality](JobProgress& progress) {
           const Recording recording = read(progress);
           return AnalysisState::MapMade{
-              key, somatosensory_map(MemorySampleSource(recording, recording.streams.front()), layout,
-                                     index, progress.steps("correlations of the taxels"))};
+              key, somatosensory_map(MemorySampleSource(recording, recording.streams.front()),
+                                     layout, index, progress.steps("correlations of the taxels"))};
         });
   } else {
     start_job<AnalysisState::MapMade>(
@@ -663,7 +677,8 @@ bool ensure_somatosensory(WorkbenchState& state) {
           options.damaged_chunks_as_gaps = true;
           progress.report(0.0, "opening the recording");
           const FileSampleSource source(path, options);
-          made.map = somatosensory_map(source, layout, index, progress.steps("correlations of the taxels"));
+          made.map = somatosensory_map(source, layout, index,
+                                       progress.steps("correlations of the taxels"));
           write_somatosensory_cache(path, made.map);
           return made;
         });

@@ -124,7 +124,9 @@ void Document::reload_labels() {
       label_problems.push_back(problem.where(store->path()) + ": " + problem.what);
   }
   // Without a store the labels are last time's: their transient part is replaced.
-  std::erase_if(labels, [](const Label& label) { return label.id == 0 && label.annotator == kOnlineAnnotator; });
+  std::erase_if(labels, [](const Label& label) {
+    return label.id == 0 && label.annotator == kOnlineAnnotator;
+  });
   labels.insert(labels.end(), transient_labels.begin(), transient_labels.end());
   lanes = group_into_lanes(labels);
   // Unique across documents, so a cache never mistakes a reopened recording for the last.
@@ -176,7 +178,7 @@ void Document::keep_labels_in_own_store() {
   labels_path = own;
   labels_read_only.clear();
   journal_at_open = -1;  // another store: its own journal
-  mark_store_seen();  // the copy is ours, not another writer's news
+  mark_store_seen();     // the copy is ours, not another writer's news
   reload_labels();
 }
 

@@ -22,7 +22,7 @@ struct Document {
   std::vector<std::string> streams;  // the file's streams, to choose from
   SkinLayout layout;
   std::vector<Label> labels;
-  Lanes lanes;  // the labels by tier, indexed by time
+  Lanes lanes;                 // the labels by tier, indexed by time
   int64_t labels_version = 0;  // new at every reload_labels(): views cache what they derive
   // The label store, open while the document is (every edit is one transaction in it);
   // null until there is one (created beside the recording by the first edit).

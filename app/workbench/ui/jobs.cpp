@@ -14,7 +14,8 @@ namespace tactile {
 std::function<std::shared_ptr<const SampleSource>()> source_for_job(const Document& document) {
   const SampleSource& source = document.samples();
   if (dynamic_cast<const FileSampleSource*>(&source))
-    return [path = document.path, stream = source.info().stream]() -> std::shared_ptr<const SampleSource> {
+    return [path = document.path,
+            stream = source.info().stream]() -> std::shared_ptr<const SampleSource> {
       FileSourceOptions options;
       options.stream = stream;
       options.cache_bytes = int64_t{8} << 20;
@@ -50,17 +51,18 @@ void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job) {
 }
 
 void drop_ended_jobs(WorkbenchState& state) {
-  std::erase_if(state.retired_jobs,
-                [](const std::unique_ptr<AnyJob>& job) { return job->status() != JobStatus::kRunning; });
+  std::erase_if(state.retired_jobs, [](const std::unique_ptr<AnyJob>& job) {
+    return job->status() != JobStatus::kRunning;
+  });
 }
 
 std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
   std::vector<AnyJob*> jobs;
   for (AnyJob* job : std::initializer_list<AnyJob*>{
            state.labelling.segment_job.get(), state.labelling.fit_job.get(),
-           state.analysis.predict_job.get(), state.analysis.som_job.get(), state.analysis.scatter_job.get(),
-           state.analysis.map_job.get(), state.export_job.get(), state.analysis.job.get(),
-           state.demo_job.get(), state.files.import.preview_job.get(),
+           state.analysis.predict_job.get(), state.analysis.som_job.get(),
+           state.analysis.scatter_job.get(), state.analysis.map_job.get(), state.export_job.get(),
+           state.analysis.job.get(), state.demo_job.get(), state.files.import.preview_job.get(),
            state.files.labels_import.read_job.get()})
     if (job) jobs.push_back(job);
   for (const auto& [kind, job] : state.files.jobs)

@@ -1,11 +1,11 @@
 #pragma once
 // The workbench's jobs (tactile/jobs/job.h): a segmenter run, a prediction, training, the SOM
 // map, the scatter's PCA, a somatosensory map, a view's PNG export, the demo workspace, the file
-// commands (files.h: import and its preview, exports, labels import, agreement, verify, upgrade). Each is a
-// handle in the state, started by a key, a menu or a view; once a frame the window's thread takes a
-// finished job's result and applies it in one step. A second request replaces the running job: the
-// old one is retired (cancelled, ending on its worker while frames go on, dropped once ended), so
-// the window never waits.
+// commands (files.h: import and its preview, exports, labels import, agreement, verify, upgrade).
+// Each is a handle in the state, started by a key, a menu or a view; once a frame the window's
+// thread takes a finished job's result and applies it in one step. A second request replaces the
+// running job: the old one is retired (cancelled, ending on its worker while frames go on, dropped
+// once ended), so the window never waits.
 
 #include <functional>
 #include <memory>

@@ -208,7 +208,8 @@ bool confirm_prediction(WorkbenchState& state, const std::string& corrected_clas
   if (!selected || selected->source != LabelSource::kModel)
     return fail(state, "select a prediction (a label of the model lane) first");
   const std::string class_name = corrected_class.empty() ? selected->class_name : corrected_class;
-  if (class_name == kUnknownClass) return fail(state, "the model answered unknown: press its digit");
+  if (class_name == kUnknownClass)
+    return fail(state, "the model answered unknown: press its digit");
   if (!apply_command(state, adopt_edit(*selected, class_name, state.labelling.annotator)))
     return false;
   after_edit(state, 0,
@@ -221,11 +222,12 @@ bool confirm_prediction(WorkbenchState& state, const std::string& corrected_clas
 bool next_uncertain_prediction(WorkbenchState& state) {
   if (!state.document) return false;
   const int lane_index = state.document->lanes.find({LabelSource::kModel, kModelAnnotator});
-  if (lane_index < 0) return fail(state, "no predictions: run `tactile predict` or Model > Predict");
+  if (lane_index < 0)
+    return fail(state, "no predictions: run `tactile predict` or Model > Predict");
   const LaneIndex* own_lane = active_lane(state);
-  const Label* best = least_sure_prediction(
-      state.document->lanes.lanes[static_cast<size_t>(lane_index)].labels(),
-      own_lane ? own_lane->labels() : std::span<const Label>{});
+  const Label* best =
+      least_sure_prediction(state.document->lanes.lanes[static_cast<size_t>(lane_index)].labels(),
+                            own_lane ? own_lane->labels() : std::span<const Label>{});
   if (!best) {
     state.notice = "every prediction is decided";
     return false;
@@ -263,16 +265,17 @@ bool commit_label(WorkbenchState& state) {
       labelling.mark_start.reset();
       labelling.mark_end.reset();
       labelling.pending_class.clear();
-      after_edit(state, id, "labelled " + label.class_name + " " + format_seconds(label.t0) +
-                                " to " + format_seconds(label.t1));
+      after_edit(state, id,
+                 "labelled " + label.class_name + " " + format_seconds(label.t0) + " to " +
+                     format_seconds(label.t1));
       return true;
     }
     // No marks: a class key then Enter changes the class of the selected own label.
     const std::optional<Label> selected = selected_label(state);
     if (selected && own(state, *selected) && !labelling.pending_class.empty()) {
       if (!apply_command(state, class_edit(*selected, labelling.pending_class))) return false;
-      after_edit(state, selected->id, "label " + std::to_string(selected->id) + " is now " +
-                                          labelling.pending_class);
+      after_edit(state, selected->id,
+                 "label " + std::to_string(selected->id) + " is now " + labelling.pending_class);
       labelling.pending_class.clear();
       return true;
     }
@@ -297,7 +300,8 @@ namespace {
 
 // "2026-11-28T17:20:59.123Z" as "2026-11-28 17:20:59 UTC".
 std::string readable_time(std::string time) {
-  if (time.size() >= 19 && time[10] == 'T') return time.substr(0, 10) + " " + time.substr(11, 8) + " UTC";
+  if (time.size() >= 19 && time[10] == 'T')
+    return time.substr(0, 10) + " " + time.substr(11, 8) + " UTC";
   return time;
 }
 
@@ -347,7 +351,8 @@ bool undo_edit(WorkbenchState& state, bool redo) {
   }
   // Says what was taken back, and when it was made before this recording was opened (the last
   // session's segmenter run, say), so that a first Ctrl+Z takes nothing back unseen.
-  std::string notice = redo ? "redone: " + describe_edit(changed) : "undone: " + describe_edit(taken_back);
+  std::string notice =
+      redo ? "redone: " + describe_edit(changed) : "undone: " + describe_edit(taken_back);
   if (!redo && taken_back.first_sequence <= state.document->journal_at_open)
     notice += ", made in an earlier session (" + readable_time(taken_back.time) +
               "); Ctrl+Shift+Z redoes it";
@@ -357,7 +362,6 @@ bool undo_edit(WorkbenchState& state, bool redo) {
 }
 
 namespace {
-
 
 // Selects the suggestion of `method` starting after t (or the first), moving the cursor.
 bool select_next_suggestion(WorkbenchState& state, const std::string& method, double after) {
@@ -414,7 +418,8 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
 
 void apply_finished_segmenter(WorkbenchState& state) {
   LabellingState& labelling = state.labelling;
-  const bool ended = labelling.segment_job && labelling.segment_job->status() != JobStatus::kRunning;
+  const bool ended =
+      labelling.segment_job && labelling.segment_job->status() != JobStatus::kRunning;
   const bool by_undo = ended && std::exchange(labelling.run_cancelled_by_undo, false);
   const std::string undo_notice = state.notice;
   std::optional<LabellingState::SegmentsFound> found = finished_job(state, labelling.segment_job);
@@ -426,7 +431,8 @@ void apply_finished_segmenter(WorkbenchState& state) {
     try {
       if (state.document && state.document->path == found->document)
         state.document->label_store().undo(labelling.annotator);
-      state.notice = found->method + " cancelled (Ctrl+Z): its suggestions, stored as it ended, are undone";
+      state.notice =
+          found->method + " cancelled (Ctrl+Z): its suggestions, stored as it ended, are undone";
     } catch (const std::exception& error) {
       fail(state, error.what());
     }
@@ -479,7 +485,8 @@ bool fit_segmenter_to_labels(WorkbenchState& state) {
 }
 
 void apply_finished_fit(WorkbenchState& state) {
-  std::optional<LabellingState::SegmenterFitted> fitted = finished_job(state, state.labelling.fit_job);
+  std::optional<LabellingState::SegmenterFitted> fitted =
+      finished_job(state, state.labelling.fit_job);
   if (!fitted) return;
   const SegmenterFit& fit = fitted->fit;
   state.labelling.last_segmenter = fit.method;
@@ -501,7 +508,8 @@ bool accept_suggestion(WorkbenchState& state) {
   if (!selected || selected->source != LabelSource::kSegmenter)
     return fail(state, "select a suggestion (a segmenter's label) to accept");
   std::string class_name = state.labelling.pending_class;
-  if (class_name.empty() && selected->class_name != kUnknownClass) class_name = selected->class_name;
+  if (class_name.empty() && selected->class_name != kUnknownClass)
+    class_name = selected->class_name;
   if (class_name.empty()) return fail(state, "choose the class with 1-9, then A");
   if (!apply_command(state, adopt_edit(*selected, class_name, state.labelling.annotator)))
     return false;
@@ -529,8 +537,9 @@ bool move_label_bounds(WorkbenchState& state, int64_t id, double t0, double t1) 
   if (!label || !own(state, *label)) return fail(state, "only your own labels are moved");
   if (!(t0 < t1)) return fail(state, "a label must end after it starts");
   if (!apply_command(state, bounds_edit(*label, t0, t1))) return false;
-  after_edit(state, id, "label " + std::to_string(id) + " now " + format_seconds(t0) + " to " +
-                            format_seconds(t1));
+  after_edit(
+      state, id,
+      "label " + std::to_string(id) + " now " + format_seconds(t0) + " to " + format_seconds(t1));
   return true;
 }
 
@@ -541,7 +550,8 @@ std::vector<double> onsets_near(WorkbenchState& state, double t, double toleranc
   const Document& document = *state.document;
   const std::vector<int> columns =
       taxel_columns(document.layout, document.samples().info().channels, state.modality);
-  return activity_edges(document.samples(), columns, current_rest_scale(state, columns), t, tolerance);
+  return activity_edges(document.samples(), columns, current_rest_scale(state, columns), t,
+                        tolerance);
 }
 
 }  // namespace
@@ -590,9 +600,9 @@ void draw_class_picker(WorkbenchState& state) {
   if (!ImGui::BeginPopup("class_picker")) return;
   // Type part of a class name; Enter takes the first match, Escape closes.
   if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-  const bool entered = ImGui::InputTextWithHint("##class", "class...", labelling.picker_text.data(),
-                                                labelling.picker_text.size(),
-                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  const bool entered =
+      ImGui::InputTextWithHint("##class", "class...", labelling.picker_text.data(),
+                               labelling.picker_text.size(), ImGuiInputTextFlags_EnterReturnsTrue);
   remember_item(state, "picker:text",
                 "Type part of a class name; Enter takes the first match, Escape closes");
   const std::string typed = labelling.picker_text.data();

@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kUnrecorded = "live data is not recorded yet: press Ctrl+R to record, then label";
+constexpr const char* kUnrecorded =
+    "live data is not recorded yet: press Ctrl+R to record, then label";
 
 std::string timestamped_name() {
   const std::time_t now = std::time(nullptr);
@@ -45,7 +46,8 @@ void follow(WorkbenchState& state) {
   const SampleSource& source = *state.document->source;
   if (source.sample_count() == 0) return;
   const double end = source.end_time();
-  const double start = std::max(source.time_of(live_source(state).first_kept()), source.start_time());
+  const double start =
+      std::max(source.time_of(live_source(state).first_kept()), source.start_time());
   state.clock.set_range(start, end);
   if (!state.live.follow) return;
   state.clock.seek(source.time_of(source.sample_count() - 1));
@@ -123,7 +125,8 @@ void auto_record(WorkbenchState& state, LiveServices& services) {
   if (!services.detector) {
     ContactDetectorOptions options;
     options.quiet_seconds = live.quiet_seconds;
-    services.detector = std::make_unique<ContactDetector>(source.channel_count(), source.rate_hz(), options);
+    services.detector =
+        std::make_unique<ContactDetector>(source.channel_count(), source.rate_hz(), options);
     live.detected_until = source.sample_count();
   }
   const int64_t count = source.sample_count();
@@ -169,8 +172,9 @@ bool load_online_model(WorkbenchState& state, LiveServices& services, const std:
   try {
     SavedModel model = read_model_file(path);
     const SkinLayout& layout = state.document->layout;
-    services.online = std::make_unique<OnlineClassifier>(std::move(model), layout, state.document->source->info(),
-                                                     default_online_options(layout.id));
+    services.online =
+        std::make_unique<OnlineClassifier>(std::move(model), layout, state.document->source->info(),
+                                           default_online_options(layout.id));
     live.model_path = path;
     live.decisions.clear();
     live.shown.reset();
@@ -199,7 +203,8 @@ bool connect_live(WorkbenchState& state, LiveServices& services, const std::stri
     auto receiver = std::make_unique<LiveReceiver>(std::move(input), layout);
     SourceInfo info = receiver->source_info();
     info.recording_id = "live";
-    const auto capacity = std::max<int64_t>(1, std::llround(state.live.buffer_seconds * info.rate_hz));
+    const auto capacity =
+        std::max<int64_t>(1, std::llround(state.live.buffer_seconds * info.rate_hz));
     auto document = std::make_unique<Document>();
     document->source = std::make_unique<LiveSampleSource>(info, capacity);
     document->layout = std::move(layout);
@@ -216,7 +221,8 @@ bool connect_live(WorkbenchState& state, LiveServices& services, const std::stri
     state.live.channels_chosen = false;
     if (state.workspace.empty()) state.workspace = fs::current_path().string();
     state.selection = {};
-    state.modality = std::max(0, state.document->layout.modality_index(state.document->layout.display_modality));
+    state.modality =
+        std::max(0, state.document->layout.modality_index(state.document->layout.display_modality));
     plot_moving_channels(state);  // the first channels until data has come
     state.rest_scale_modality = -1;
     state.plot = SignalPlotState{};
@@ -264,9 +270,11 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
     live.detected_until = 0;
   }
   LiveSampleSource& source = live_source(state);
-  services.receiver->ring().drain([&](double time, std::span<const float> values) { source.add(time, values); });
+  services.receiver->ring().drain(
+      [&](double time, std::span<const float> values) { source.add(time, values); });
   live.counters = services.receiver->counters();
-  if (const std::string failure = services.receiver->failure(); !failure.empty() && live.failure != failure) {
+  if (const std::string failure = services.receiver->failure();
+      !failure.empty() && live.failure != failure) {
     live.failure = failure;
     state.error = "live source failed: " + failure;
   }
@@ -279,8 +287,9 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
   // The colour scale learnt again every two seconds over the whole buffer, as a replay learns it
   // over the whole file: learnt once from the first two seconds, it stayed at their noise.
   constexpr double kLearnEverySeconds = 2.0;
-  if (source.sample_count() > 0 && (source.end_time() >= live.scale_learnt_at + kLearnEverySeconds ||
-                                    source.end_time() < live.scale_learnt_at)) {
+  if (source.sample_count() > 0 &&
+      (source.end_time() >= live.scale_learnt_at + kLearnEverySeconds ||
+       source.end_time() < live.scale_learnt_at)) {
     live.scale_learnt_at = source.end_time();
     const bool same = state.rest_scale_modality == state.modality;
     const std::vector<int> columns =
@@ -296,7 +305,8 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
     live.recorded_samples = services.recorder->samples_taken();
     live.room = services.recorder->room();
     if (const std::string failure = services.recorder->error(); !failure.empty()) {
-      state.error = "recording failed: " + failure + ". What was flushed is in the file; `tactile repair " +
+      state.error = "recording failed: " + failure +
+                    ". What was flushed is in the file; `tactile repair " +
                     services.recorder->path() + "` rebuilds the rest and says what was lost";
       stop_recording(state, services);
     } else if (services.recorder->stopped()) {
@@ -312,9 +322,11 @@ bool start_recording(WorkbenchState& state, LiveServices& services, const std::s
   if (!services.receiver || services.recorder) return false;
   std::string path = requested;
   if (path.empty()) {
-    const fs::path folder = live.record_folder.empty() ? fs::path(state.workspace) : fs::path(live.record_folder);
+    const fs::path folder =
+        live.record_folder.empty() ? fs::path(state.workspace) : fs::path(live.record_folder);
     path = (folder / (timestamped_name() + ".h5")).string();
-    for (int k = 2; fs::exists(path); ++k) path = (folder / (timestamped_name() + "-" + std::to_string(k) + ".h5")).string();
+    for (int k = 2; fs::exists(path); ++k)
+      path = (folder / (timestamped_name() + "-" + std::to_string(k) + ".h5")).string();
   }
   try {
     LiveRecorderOptions options;
@@ -347,7 +359,8 @@ bool stop_recording(WorkbenchState& state, LiveServices& services) {
   const std::string path = services.recorder->path();
   try {
     services.recorder->finish(live_source(state));
-    state.notice = "recorded " + path + " (" + std::to_string(services.recorder->samples_taken()) + " samples)";
+    state.notice = "recorded " + path + " (" + std::to_string(services.recorder->samples_taken()) +
+                   " samples)";
   } catch (const std::exception& failure) {
     state.error = std::string("recording ended with an error: ") + failure.what();
   }
@@ -364,8 +377,9 @@ void draw_live_bar(WorkbenchState& state) {
   const LiveCounters& counters = live.counters;
   const bool recording = !live.recording.empty();
   const ImGuiStyle& style = ImGui::GetStyle();
-  ImGui::TextColored(live.failure.empty() ? ImVec4(0.3f, 0.9f, 0.4f, 1.0f) : ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
-                     live.failure.empty() ? "LIVE" : "FAILED");
+  ImGui::TextColored(
+      live.failure.empty() ? ImVec4(0.3f, 0.9f, 0.4f, 1.0f) : ImVec4(1.0f, 0.4f, 0.35f, 1.0f),
+      live.failure.empty() ? "LIVE" : "FAILED");
   ImGui::SameLine();
   ImGui::TextUnformatted(live.url.c_str());
   ImGui::SameLine();
@@ -388,7 +402,8 @@ void draw_live_bar(WorkbenchState& state) {
   if (ImGui::Button("Clear")) live.clear_request = true;
   remember_item(state, "button:clear", "Forget what the buffer holds (a recording keeps its file)");
   ImGui::SameLine();
-  if (ImGui::Button(recording ? "Stop recording (Ctrl+R)" : "Record (Ctrl+R)")) live.record_request = true;
+  if (ImGui::Button(recording ? "Stop recording (Ctrl+R)" : "Record (Ctrl+R)"))
+    live.record_request = true;
   remember_item(state, "button:record",
                 "Record the stream into a new file in the workspace, with the pre-trigger's "
                 "seconds (Ctrl+R)");
@@ -405,9 +420,11 @@ void draw_live_bar(WorkbenchState& state) {
                 "Start a recording when a contact begins, stop it after a quiet time");
   // The model's field and Classify together, on the next line when they do not fit (at 1280
   // x 720 Classify was cut off at the view's edge).
-  same_line_if_fits(160.0f + style.ItemSpacing.x + ImGui::CalcTextSize("Classify").x + 2 * style.FramePadding.x);
+  same_line_if_fits(160.0f + style.ItemSpacing.x + ImGui::CalcTextSize("Classify").x +
+                    2 * style.FramePadding.x);
   ImGui::SetNextItemWidth(160);
-  ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(), live.model_input.size());
+  ImGui::InputTextWithHint("##model", "model.json", live.model_input.data(),
+                           live.model_input.size());
   remember_item(state, "input:model",
                 "A saved model (tactile evaluate --save-model) to classify the stream with");
   ImGui::SameLine();
@@ -454,9 +471,9 @@ void draw_live_bar(WorkbenchState& state) {
   }
   if (recording) {
     ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %s %s",
-                       fs::path(live.recording).filename().c_str(),
-                       format_seconds(static_cast<double>(live.recorded_samples) / source.rate_hz()).c_str());
+    ImGui::TextColored(
+        ImVec4(1.0f, 0.35f, 0.3f, 1.0f), "REC %s %s", fs::path(live.recording).filename().c_str(),
+        format_seconds(static_cast<double>(live.recorded_samples) / source.rate_hz()).c_str());
     if (live.room.low) {
       ImGui::SameLine();
       const double left = live.room.minutes_left;
@@ -468,7 +485,8 @@ void draw_live_bar(WorkbenchState& state) {
                          byte_text(static_cast<int64_t>(live.room.bytes_per_second)).c_str(),
                          byte_text(live.room.free_bytes).c_str());
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("The recording stops by itself, with a whole file, before its disk is full.");
+        ImGui::SetTooltip(
+            "The recording stops by itself, with a whole file, before its disk is full.");
     }
   }
 }
@@ -494,13 +512,17 @@ nlohmann::json live_json(const WorkbenchState& state) {
   json["clock_jumps"] = counters.clock_jumps;
   json["late_dropped"] = counters.late_dropped;
   json["gone"] = counters.gone;
-  json["gap_samples"] = state.document ? static_cast<const LiveSampleSource&>(*state.document->source).gap_samples() : 0;
+  json["gap_samples"] =
+      state.document ? static_cast<const LiveSampleSource&>(*state.document->source).gap_samples()
+                     : 0;
   json["follow"] = live.follow;
   json["buffer_seconds"] = live.buffer_seconds;
   json["newest"] = state.document && state.document->source->sample_count() > 0
-                       ? nlohmann::json(state.document->source->time_of(state.document->source->sample_count() - 1))
+                       ? nlohmann::json(state.document->source->time_of(
+                             state.document->source->sample_count() - 1))
                        : nlohmann::json(nullptr);
-  json["recording"] = live.recording.empty() ? nlohmann::json(nullptr) : nlohmann::json(live.recording);
+  json["recording"] =
+      live.recording.empty() ? nlohmann::json(nullptr) : nlohmann::json(live.recording);
   json["recorded_samples"] = live.recording.empty() ? 0 : live.recorded_samples;
   json["disk_free_bytes"] = live.room.free_bytes;
   json["disk_minutes_left"] = live.room.minutes_left;

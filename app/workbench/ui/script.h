@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "tactile/widgets/image.h"
 #include "script_parse.h"
+#include "tactile/widgets/image.h"
 #include "workbench.h"
 
 namespace tactile {

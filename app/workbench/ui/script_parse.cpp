@@ -60,11 +60,16 @@ KeyChord parse_chord(const std::string& text) {
   if (parts.empty()) throw std::invalid_argument("no key");
   for (size_t k = 0; k + 1 < parts.size(); ++k) {
     const std::string modifier = lower(parts[k]);
-    if (modifier == "ctrl" || modifier == "control") chord.ctrl = true;
-    else if (modifier == "shift") chord.shift = true;
-    else if (modifier == "alt") chord.alt = true;
-    else if (modifier == "super" || modifier == "cmd") chord.super = true;
-    else throw std::invalid_argument("unknown modifier '" + parts[k] + "' (Ctrl, Shift, Alt, Super)");
+    if (modifier == "ctrl" || modifier == "control")
+      chord.ctrl = true;
+    else if (modifier == "shift")
+      chord.shift = true;
+    else if (modifier == "alt")
+      chord.alt = true;
+    else if (modifier == "super" || modifier == "cmd")
+      chord.super = true;
+    else
+      throw std::invalid_argument("unknown modifier '" + parts[k] + "' (Ctrl, Shift, Alt, Super)");
   }
   const std::string key = parts.back();
   const auto named = named_keys().find(lower(key));

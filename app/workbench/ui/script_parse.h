@@ -10,7 +10,7 @@ namespace tactile {
 
 struct ScriptStep {
   int line = 0;
-  std::string command;  // "click", "key", ...
+  std::string command;             // "click", "key", ...
   std::vector<std::string> words;  // the arguments, split at spaces
   std::string rest;                // everything after the command, as written
   size_t form = 0;  // which line of TACTILE_SCRIPT_COMMANDS (script_commands.h) it matched
@@ -23,9 +23,9 @@ std::vector<ScriptStep> read_script(const std::string& path);
 
 // GLFW's key codes (glfw3.h); printable keys are their ASCII upper case.
 constexpr int kKeyTab = 258, kKeyLeft = 263, kKeyRight = 262, kKeyUp = 265, kKeyDown = 264,
-              kKeyPageUp = 266, kKeyPageDown = 267, kKeyHome = 268, kKeyEnd = 269,
-              kKeyInsert = 260, kKeyDelete = 261, kKeyBackspace = 259, kKeySpace = 32,
-              kKeyEnter = 257, kKeyEscape = 256, kKeyPadEnter = 335, kKeyF1 = 290;
+              kKeyPageUp = 266, kKeyPageDown = 267, kKeyHome = 268, kKeyEnd = 269, kKeyInsert = 260,
+              kKeyDelete = 261, kKeyBackspace = 259, kKeySpace = 32, kKeyEnter = 257,
+              kKeyEscape = 256, kKeyPadEnter = 335, kKeyF1 = 290;
 
 struct KeyChord {
   bool ctrl = false, shift = false, alt = false, super = false;

@@ -27,7 +27,8 @@ ImU32 text_on(Colour colour) {
 
 void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVec2 size) {
   const int classes = static_cast<int>(result.classes.size());
-  const bool any_unknown = result.confusion.cols() > classes && result.confusion.col(classes).sum() > 0;
+  const bool any_unknown =
+      result.confusion.cols() > classes && result.confusion.col(classes).sum() > 0;
   const int columns = classes + (any_unknown ? 1 : 0);
   float name_width = 0.0f;
   for (const std::string& name : result.classes)
@@ -43,9 +44,11 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
   const ImVec2 grid(origin.x + name_width, origin.y + header);
   // Column names, staggered in two lines when they would collide.
   for (int column = 0; column < columns; ++column) {
-    const std::string name = column < classes ? result.classes[static_cast<size_t>(column)] : "unknown";
+    const std::string name =
+        column < classes ? result.classes[static_cast<size_t>(column)] : "unknown";
     const ImVec2 text = ImGui::CalcTextSize(name.c_str());
-    const float line = text.x > cell - 2 && column % 2 == 1 ? 0.0f : ImGui::GetTextLineHeight() * 1.1f;
+    const float line =
+        text.x > cell - 2 && column % 2 == 1 ? 0.0f : ImGui::GetTextLineHeight() * 1.1f;
     draw.AddText(ImVec2(grid.x + column * cell + (cell - text.x) / 2, origin.y + line),
                  IM_COL32(220, 220, 220, 255), name.c_str());
   }
@@ -65,7 +68,8 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
       const Colour colour = count == 0 ? Colour{38, 38, 44, 255} : viridis(0.15f + 0.85f * share);
       draw.AddRectFilled(low, high, pack_abgr(colour));
       const int predicted = column < classes ? column : ml::kUnknownClass;
-      const bool chosen = state.analysis.cell_true == row && state.analysis.cell_predicted == predicted;
+      const bool chosen =
+          state.analysis.cell_true == row && state.analysis.cell_predicted == predicted;
       if (row != column && count > 0)  // wrong cells are framed: they are the ones to click
         draw.AddRect(low, high, IM_COL32(230, 90, 70, 200), 0.0f, 0, 1.5f);
       if (chosen) draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 0.0f, 0, 3.0f);
@@ -77,18 +81,21 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
       const float line = ImGui::GetTextLineHeight();
       const bool two_lines = cell >= 2.4f * line;
       const float top = low.y + (cell - (two_lines ? 2 * line : line)) / 2;
-      draw.AddText(ImVec2(low.x + (cell - ImGui::CalcTextSize(count_text).x) / 2, top), ink, count_text);
+      draw.AddText(ImVec2(low.x + (cell - ImGui::CalcTextSize(count_text).x) / 2, top), ink,
+                   count_text);
       if (two_lines)
-        draw.AddText(ImVec2(low.x + (cell - ImGui::CalcTextSize(share_text).x) / 2, top + line), ink,
-                     share_text);
+        draw.AddText(ImVec2(low.x + (cell - ImGui::CalcTextSize(share_text).x) / 2, top + line),
+                     ink, share_text);
       ImGui::SetCursorScreenPos(low);
       ImGui::PushID(row * 1000 + column);
-      if (ImGui::InvisibleButton("cell", ImVec2(cell - 1, cell - 1))) select_cell(state, row, predicted);
+      if (ImGui::InvisibleButton("cell", ImVec2(cell - 1, cell - 1)))
+        select_cell(state, row, predicted);
       ImGui::PopID();
       remember_item(state, "cell:" + name + "/" + class_name(result, predicted));
       if (ImGui::IsItemHovered()) {
         char tip[512];
-        std::snprintf(tip, sizeof tip, "true %s, predicted %s\n%d segments, %.1f %% of the row\nrecall %.1f %%",
+        std::snprintf(tip, sizeof tip,
+                      "true %s, predicted %s\n%d segments, %.1f %% of the row\nrecall %.1f %%",
                       name.c_str(), class_name(result, predicted).c_str(), count, 100.0 * share,
                       100.0 * result.per_class[static_cast<size_t>(row)].recall);
         view_tooltip(state, tip);
@@ -113,7 +120,8 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
 void draw_cell_list(WorkbenchState& state, const ml::EvaluationResult& result, ImVec2 size) {
   AnalysisState& analysis = state.analysis;
   if (analysis.cell_true < 0) {
-    ImGui::TextDisabled("Click a cell (framed red: wrong) to list its segments; N walks the mistakes.");
+    ImGui::TextDisabled(
+        "Click a cell (framed red: wrong) to list its segments; N walks the mistakes.");
     return;
   }
   ImGui::Text("true %s, predicted %s: %zu segments, least sure first",

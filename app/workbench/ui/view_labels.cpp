@@ -41,7 +41,8 @@ std::vector<size_t> sorted_rows(WorkbenchState& state, const std::vector<Label>&
     order.ascending = spec.SortDirection != ImGuiSortDirection_Descending;
     const auto less = [&](const Label& a, const Label& b) {
       switch (spec.ColumnIndex) {
-        case 0: return a.class_name < b.class_name;
+        case 0:
+          return a.class_name < b.class_name;
         case 1:
           return table_margin(a) < table_margin(b);
         case 2:
@@ -50,7 +51,8 @@ std::vector<size_t> sorted_rows(WorkbenchState& state, const std::vector<Label>&
           return a.t1 < b.t1;
         case 4:
           return lane_of(a).title() < lane_of(b).title();
-        default: return a.region < b.region;
+        default:
+          return a.region < b.region;
       }
     };
     std::stable_sort(rows.begin(), rows.end(), [&](size_t a, size_t b) {
@@ -99,22 +101,28 @@ void draw_labels_view(WorkbenchState& state, ImVec2 size) {
   const std::vector<Label>& labels = document.labels;
   if (document.labels_path.empty() && state.live.connected) {
     // Before the recording exists, say where its labels will go.
-    const std::string folder = state.live.record_folder.empty() ? state.workspace : state.live.record_folder;
-    ImGui::TextWrapped("Live, not recording: Ctrl+R records into %s; labels then go to %s/labels.db.",
-                       folder.c_str(), folder.c_str());
+    const std::string folder =
+        state.live.record_folder.empty() ? state.workspace : state.live.record_folder;
+    ImGui::TextWrapped(
+        "Live, not recording: Ctrl+R records into %s; labels then go to %s/labels.db.",
+        folder.c_str(), folder.c_str());
   } else if (document.labels_path.empty()) {
     ImGui::TextWrapped("No label database beside this recording.");
   } else if (labels.empty()) {
-    ImGui::TextWrapped("No labels for this recording in %s yet: [ and ] mark, a digit chooses the class, Enter commits.",
-                       document.labels_path.c_str());
+    ImGui::TextWrapped(
+        "No labels for this recording in %s yet: [ and ] mark, a digit chooses the class, Enter "
+        "commits.",
+        document.labels_path.c_str());
   } else if (ImGui::BeginTable("label_table", kLabelColumnCount,
-                               ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
-                                   ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable |
-                                   ImGuiTableFlags_Sortable | ImGuiTableFlags_SortTristate)) {
+                               ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                                   ImGuiTableFlags_ScrollX | ImGuiTableFlags_BordersInnerV |
+                                   ImGuiTableFlags_Resizable | ImGuiTableFlags_Sortable |
+                                   ImGuiTableFlags_SortTristate)) {
     ImGui::TableSetupScrollFreeze(1, 1);
     const float widths[] = {100.0f, 48.0f, 56.0f, 56.0f, 130.0f, 90.0f};
     for (int column = 0; column < kLabelColumnCount; ++column)
-      ImGui::TableSetupColumn(kLabelColumns[column], ImGuiTableColumnFlags_WidthFixed, widths[column]);
+      ImGui::TableSetupColumn(kLabelColumns[column], ImGuiTableColumnFlags_WidthFixed,
+                              widths[column]);
     // The header row by hand, so that a script can click a header (`click item header:margin`).
     ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
     for (int column = 0; column < kLabelColumnCount; ++column) {
@@ -137,7 +145,8 @@ void draw_labels_view(WorkbenchState& state, ImVec2 size) {
         const bool selected =
             std::find(state.selection.labels.begin(), state.selection.labels.end(), label.id) !=
             state.selection.labels.end();
-        const bool under_cursor = label.id == state.labels_view.followed_cursor && state.clock.playing();
+        const bool under_cursor =
+            label.id == state.labels_view.followed_cursor && state.clock.playing();
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::PushID(row);

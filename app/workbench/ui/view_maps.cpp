@@ -43,19 +43,22 @@ void draw_legend(WorkbenchState& state, const char* view, std::vector<std::strin
 // of Robovie's scenario stages off).
 float legend_width_for(const std::vector<std::string>& classes, float available) {
   float widest = 0.0f;
-  for (const std::string& name : classes) widest = std::max(widest, ImGui::CalcTextSize(name.c_str()).x);
+  for (const std::string& name : classes)
+    widest = std::max(widest, ImGui::CalcTextSize(name.c_str()).x);
   return std::min(std::max(100.0f, widest + 14.0f + 16.0f), 0.45f * available);
 }
 
 // The prediction of a dataset row in the current evaluation, for landing on it.
 std::optional<ml::RowPrediction> prediction_of(const WorkbenchState& state, int64_t row) {
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
-  if (row >= 0 && row < static_cast<int64_t>(outcomes.size()) && outcomes[static_cast<size_t>(row)].prediction)
+  if (row >= 0 && row < static_cast<int64_t>(outcomes.size()) &&
+      outcomes[static_cast<size_t>(row)].prediction)
     return *outcomes[static_cast<size_t>(row)].prediction;
   const Dataset& dataset = *state.analysis.dataset;
   ml::RowPrediction prediction = ml::row_place(dataset, row);
   const std::vector<std::string> classes = dataset.class_names();
-  const auto truth = std::find(classes.begin(), classes.end(), dataset.classes[static_cast<size_t>(row)]);
+  const auto truth =
+      std::find(classes.begin(), classes.end(), dataset.classes[static_cast<size_t>(row)]);
   prediction.truth = prediction.predicted = static_cast<int>(truth - classes.begin());
   return prediction;
 }
@@ -75,10 +78,12 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   const std::vector<std::string> classes = dataset.class_names();
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
   int64_t wrong = 0;
-  for (const RowOutcome& outcome : outcomes) wrong += outcome.tested && outcome.truth != outcome.predicted;
-  ImGui::TextWrapped("PCA of %lld rows x %lld features: PC1-PC2 explain %.0f %%   %lld misclassified (ringed)",
-                     static_cast<long long>(dataset.rows()), static_cast<long long>(dataset.features.cols()),
-                     100.0 * analysis.scatter_explained, static_cast<long long>(wrong));
+  for (const RowOutcome& outcome : outcomes)
+    wrong += outcome.tested && outcome.truth != outcome.predicted;
+  ImGui::TextWrapped(
+      "PCA of %lld rows x %lld features: PC1-PC2 explain %.0f %%   %lld misclassified (ringed)",
+      static_cast<long long>(dataset.rows()), static_cast<long long>(dataset.features.cols()),
+      100.0 * analysis.scatter_explained, static_cast<long long>(wrong));
   remember_box(state, "text:scatter-header", ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
@@ -88,7 +93,8 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   remember_item(state, "scatter");
   const bool clicked = ImGui::IsItemClicked();
   ImDrawList& draw = *ImGui::GetWindowDrawList();
-  draw.AddRectFilled(origin, ImVec2(origin.x + plot.x, origin.y + plot.y), IM_COL32(22, 22, 26, 255));
+  draw.AddRectFilled(origin, ImVec2(origin.x + plot.x, origin.y + plot.y),
+                     IM_COL32(22, 22, 26, 255));
   const Eigen::MatrixXd& xy = analysis.scatter;
   const double x0 = xy.col(0).minCoeff(), x1 = xy.col(0).maxCoeff();
   const double y0 = xy.col(1).minCoeff(), y1 = xy.col(1).maxCoeff();
@@ -99,7 +105,8 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
     return ImVec2(origin.x + margin + static_cast<float>(u) * (plot.x - 2 * margin),
                   origin.y + plot.y - margin - static_cast<float>(v) * (plot.y - 2 * margin));
   };
-  draw.AddText(ImVec2(origin.x + plot.x - 40, origin.y + plot.y - 18), IM_COL32(150, 150, 150, 255), "PC1");
+  draw.AddText(ImVec2(origin.x + plot.x - 40, origin.y + plot.y - 18), IM_COL32(150, 150, 150, 255),
+               "PC1");
   draw.AddText(ImVec2(origin.x + 4, origin.y + 2), IM_COL32(150, 150, 150, 255), "PC2");
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   Eigen::Index nearest = -1;
@@ -113,7 +120,8 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
       draw.AddCircle(point, 7.0f, IM_COL32(255, 80, 60, 255), 0, 1.8f);
     const float dx = point.x - mouse.x, dy = point.y - mouse.y;
     if (dx * dx + dy * dy < nearest_distance) nearest_distance = dx * dx + dy * dy, nearest = row;
-    state.targets.items["point:" + std::to_string(row)] = {point.x - 3, point.y - 3, point.x + 4, point.y + 4};
+    state.targets.items["point:" + std::to_string(row)] = {point.x - 3, point.y - 3, point.x + 4,
+                                                           point.y + 4};
   }
   if (nearest >= 0 && ImGui::IsItemHovered()) {
     const ImVec2 point = to_screen(nearest);
@@ -123,9 +131,11 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
     const ml::EvaluationResult* result = current_evaluation(state);
     std::string predicted = "-";
     if (outcome.tested && result)
-      predicted = outcome.predicted >= 0 ? result->classes[static_cast<size_t>(outcome.predicted)] : "unknown";
-    view_tooltip(state, dataset.recordings[row] + "  segment " + std::to_string(dataset.segment_ids[row]) +
-                            "\nclass " + dataset.classes[row] + ", predicted " + predicted +
+      predicted = outcome.predicted >= 0 ? result->classes[static_cast<size_t>(outcome.predicted)]
+                                         : "unknown";
+    view_tooltip(state, dataset.recordings[row] + "  segment " +
+                            std::to_string(dataset.segment_ids[row]) + "\nclass " +
+                            dataset.classes[row] + ", predicted " + predicted +
                             "\nclick: go to the segment");
     if (clicked)
       if (auto prediction = prediction_of(state, nearest)) land_on(state, *prediction);
@@ -189,7 +199,8 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
         const auto shade = static_cast<int>(200.0 * spread[static_cast<size_t>(k)] / spread_max);
         draw.AddRectFilled(low, high, IM_COL32(0, 0, 0, shade), 3.0f);
       }
-      if (analysis.som_neuron == k) draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 3.0f, 0, 3.0f);
+      if (analysis.som_neuron == k)
+        draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 3.0f, 0, 3.0f);
       ImGui::SetCursorScreenPos(low);
       ImGui::PushID(k);
       if (ImGui::InvisibleButton("neuron", ImVec2(cell - 2, cell - 2))) analysis.som_neuron = k;
@@ -215,7 +226,8 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
                         origin.y + (k / map.columns + 0.5f) * cell - 1 + radius * std::sin(angle));
     draw.AddCircleFilled(centre, 3.8f, class_colour(state, analysis.dataset->classes[row]));
     draw.AddCircle(centre, 3.8f, IM_COL32(255, 255, 255, 220));
-    if (row < outcomes.size() && outcomes[row].tested && outcomes[row].truth != outcomes[row].predicted)
+    if (row < outcomes.size() && outcomes[row].tested &&
+        outcomes[row].truth != outcomes[row].predicted)
       draw.AddCircle(centre, 6.5f, IM_COL32(255, 60, 40, 255), 0, 2.0f);
   }
   draw_legend(state, "som", classes, ImVec2(origin.x + map.columns * cell + 10, origin.y));
@@ -227,10 +239,11 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
     for (size_t row = 0; row < analysis.som_winners.size(); ++row) {
       if (analysis.som_winners[row] != analysis.som_neuron) continue;
       const std::string text = dataset.recordings[row] + "  segment " +
-                               std::to_string(dataset.segment_ids[row]) + "  " + dataset.classes[row] +
-                               "##" + std::to_string(row);
+                               std::to_string(dataset.segment_ids[row]) + "  " +
+                               dataset.classes[row] + "##" + std::to_string(row);
       if (ImGui::Selectable(text.c_str()))
-        if (auto prediction = prediction_of(state, static_cast<int64_t>(row))) land_on(state, *prediction);
+        if (auto prediction = prediction_of(state, static_cast<int64_t>(row)))
+          land_on(state, *prediction);
     }
     ImGui::EndChild();
   }

@@ -16,7 +16,8 @@ namespace {
 void draw_choices(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   const std::string own = state.document ? default_pipeline(state.document->layout.id) : "generic";
-  const std::string shown = analysis.pipeline.empty() ? own + " (the skin's own)" : analysis.pipeline;
+  const std::string shown =
+      analysis.pipeline.empty() ? own + " (the skin's own)" : analysis.pipeline;
   ImGui::SetNextItemWidth(180);
   const bool features = ImGui::BeginCombo("features", shown.c_str());
   remember_item(state, "features",
@@ -111,7 +112,8 @@ void draw_run_controls(WorkbenchState& state) {
 void draw_results_table(WorkbenchState& state, float height) {
   AnalysisState& analysis = state.analysis;
   if (analysis.results.empty()) {
-    ImGui::TextDisabled("No results yet: Run one classifier, or Train all to compare every preset.");
+    ImGui::TextDisabled(
+        "No results yet: Run one classifier, or Train all to compare every preset.");
     return;
   }
   ImGui::Text("%s", analysis.results_from.c_str());
@@ -125,13 +127,14 @@ void draw_results_table(WorkbenchState& state, float height) {
   for (const ml::PresetOutcome& outcome : analysis.results)
     names = std::max(names, ImGui::CalcTextSize(outcome.classifier.c_str()).x);
   analysis.results_name_width = std::max(analysis.results_name_width, names);
-  const std::string table_id = "results##" + std::to_string(static_cast<int>(analysis.results_name_width));
+  const std::string table_id =
+      "results##" + std::to_string(static_cast<int>(analysis.results_name_width));
   if (!ImGui::BeginTable(table_id.c_str(), 4, flags, ImVec2(0, height))) return;
   ImGui::TableSetupScrollFreeze(0, 1);
   ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthFixed,
                           analysis.results_name_width + 8.0f);
-  ImGui::TableSetupColumn("accuracy", ImGuiTableColumnFlags_DefaultSort |
-                                          ImGuiTableColumnFlags_PreferSortDescending);
+  ImGui::TableSetupColumn(
+      "accuracy", ImGuiTableColumnFlags_DefaultSort | ImGuiTableColumnFlags_PreferSortDescending);
   ImGui::TableSetupColumn("mean recall", ImGuiTableColumnFlags_PreferSortDescending);
   ImGui::TableSetupColumn("time (s)");
   ImGui::TableHeadersRow();
@@ -142,9 +145,12 @@ void draw_results_table(WorkbenchState& state, float height) {
   const auto key = [&](const ml::PresetOutcome& outcome) -> double {
     if (!outcome.result) return -1.0;
     switch (analysis.sort_column) {
-      case 2: return ml::mean_recall(*outcome.result);
-      case 3: return outcome.result->seconds;
-      default: return outcome.result->accuracy;
+      case 2:
+        return ml::mean_recall(*outcome.result);
+      case 3:
+        return outcome.result->seconds;
+      default:
+        return outcome.result->accuracy;
     }
   };
   std::vector<size_t> order(analysis.results.size());
@@ -163,10 +169,12 @@ void draw_results_table(WorkbenchState& state, float height) {
     ImGui::TableNextColumn();
     const bool selected = static_cast<int>(index) == analysis.current;
     const ImVec2 at = ImGui::GetCursorScreenPos();
-    remember_box(state, "result-cell:" + outcome.classifier, at,
-                 ImVec2(at.x + ImGui::GetContentRegionAvail().x, at.y + ImGui::GetTextLineHeight()));
+    remember_box(
+        state, "result-cell:" + outcome.classifier, at,
+        ImVec2(at.x + ImGui::GetContentRegionAvail().x, at.y + ImGui::GetTextLineHeight()));
     const ImVec2 extent = ImGui::CalcTextSize(outcome.classifier.c_str());
-    remember_box(state, "result-name:" + outcome.classifier, at, ImVec2(at.x + extent.x, at.y + extent.y));
+    remember_box(state, "result-name:" + outcome.classifier, at,
+                 ImVec2(at.x + extent.x, at.y + extent.y));
     if (ImGui::Selectable(outcome.classifier.c_str(), selected,
                           ImGuiSelectableFlags_SpanAllColumns) &&
         outcome.result)

@@ -30,8 +30,9 @@ void go_to(WorkbenchState& state, double t0, double t1, int64_t label) {
 }
 
 bool lane_combo(WorkbenchState& state, const char* name, const Lanes& lanes, int& chosen) {
-  const std::string current =
-      chosen >= 0 && chosen < static_cast<int>(lanes.keys.size()) ? lanes.keys[static_cast<size_t>(chosen)].title() : "-";
+  const std::string current = chosen >= 0 && chosen < static_cast<int>(lanes.keys.size())
+                                  ? lanes.keys[static_cast<size_t>(chosen)].title()
+                                  : "-";
   bool changed = false;
   ImGui::SetNextItemWidth(120);
   const bool open = ImGui::BeginCombo(name, current.c_str());
@@ -90,7 +91,8 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
     const LabelIssue& issue = issues[k];
     ImGui::PushID(static_cast<int>(k));
     char text[96];
-    std::snprintf(text, sizeof(text), "%s %s", format_seconds(issue.t0).c_str(), issue.kind.c_str());
+    std::snprintf(text, sizeof(text), "%s %s", format_seconds(issue.t0).c_str(),
+                  issue.kind.c_str());
     if (ImGui::Selectable(text)) go_to(state, issue.t0, issue.t1, issue.label);
     remember_item(state, "quality:issue:" + std::to_string(k));
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", issue.what.c_str());
@@ -129,7 +131,8 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
                     d.b_class.c_str());
     else
       std::snprintf(text, sizeof(text), "%s only %s: %s", format_seconds(d.t0).c_str(),
-                    d.kind == "missed" ? "A" : "B", (d.kind == "missed" ? d.a_class : d.b_class).c_str());
+                    d.kind == "missed" ? "A" : "B",
+                    (d.kind == "missed" ? d.a_class : d.b_class).c_str());
     if (ImGui::Selectable(text)) go_to(state, d.t0, d.t1, 0);
     remember_item(state, "quality:disagreement:" + std::to_string(k));
     ImGui::PopID();

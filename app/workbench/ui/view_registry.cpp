@@ -111,7 +111,8 @@ void view_tooltip(WorkbenchState& state, const std::string& text) {
 
 void same_line_if_fits(float width) {
   const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
-  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right) ImGui::SameLine();
+  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right)
+    ImGui::SameLine();
 }
 
 void remember_item(WorkbenchState& state, const std::string& name, const std::string& tip) {
@@ -143,7 +144,8 @@ std::vector<float> skin_values_now(WorkbenchState& state, double& value_min, dou
   const SampleSource& source = document.samples();
   const SkinLayout& layout = document.layout;
   const std::vector<int> columns = taxel_columns(layout, source.info().channels, state.modality);
-  const std::vector<float> values = taxel_values(source.values_at_time(state.clock.time()), columns);
+  const std::vector<float> values =
+      taxel_values(source.values_at_time(state.clock.time()), columns);
   value_min = 0.0;
   value_max = 1.0;
   if (state.show_raw_values) {
@@ -178,7 +180,8 @@ void plot_moving_channels(WorkbenchState& state) {
   if (spread.empty())
     for (int column = 0; column < std::min(kMostChannels, source.channel_count()); ++column)
       spread.emplace_back(0.0f, column);
-  std::stable_sort(spread.begin(), spread.end(), [](auto& a, auto& b) { return a.first > b.first; });
+  std::stable_sort(spread.begin(), spread.end(),
+                   [](auto& a, auto& b) { return a.first > b.first; });
   for (size_t k = 0; k < spread.size() && k < static_cast<size_t>(kMostChannels); ++k)
     state.plotted[static_cast<size_t>(spread[k].second)] = 1;
 }

@@ -63,7 +63,8 @@ void draw_signals_view(WorkbenchState& state, ImVec2 size) {
                                         state.plot.view_t0, state.plot.view_t1};
   if (result.clicked_time) state.clock.seek(*result.clicked_time);
   // Live, a zoom or pan of the user's stops following the newest sample (F follows again).
-  if (result.view_changed && state.live.connected && ImGui::IsWindowHovered()) state.live.follow = false;
+  if (result.view_changed && state.live.connected && ImGui::IsWindowHovered())
+    state.live.follow = false;
   ImGui::EndChild();
 }
 

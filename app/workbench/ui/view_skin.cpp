@@ -1,7 +1,6 @@
 // Skin view: the layout lit by each taxel's value at the time cursor; a click on a taxel
 // selects it (shift: adds to the selection) and toggles its channel in the plot.
 #include <algorithm>
-
 #include <cfloat>
 #include <cstdio>
 #include <map>
@@ -142,8 +141,9 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   };
   caption("modality");
   ImGui::SetNextItemWidth(100);
-  const char* current =
-      layout.modalities.empty() ? "" : layout.modalities[static_cast<size_t>(state.modality)].c_str();
+  const char* current = layout.modalities.empty()
+                            ? ""
+                            : layout.modalities[static_cast<size_t>(state.modality)].c_str();
   const bool modalities = ImGui::BeginCombo("##modality", current);
   remember_item(state, "combo:modality",
                 "Which of the skin's senses colours the taxels and is plotted");
@@ -166,7 +166,8 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     if (ImGui::Selectable("all", region == "all")) state.selection.taxels.clear();
     for (const Group& group : layout.groups) {
       const std::string name = group.name.empty() ? group.id : group.name + " (" + group.id + ")";
-      if (ImGui::Selectable(name.c_str(), region == group.id)) state.selection.taxels = group.taxels;
+      if (ImGui::Selectable(name.c_str(), region == group.id))
+        state.selection.taxels = group.taxels;
       remember_item(state, "region:" + group.id);
     }
     ImGui::EndCombo();
@@ -185,7 +186,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   // The body as built, or the somatosensory map: taxels placed by how they are touched together.
   ImGui::SetNextItemWidth(120);
   AnalysisState& analysis = state.analysis;
-  const char* shown = !analysis.somatosensory          ? "body map"
+  const char* shown = !analysis.somatosensory         ? "body map"
                       : analysis.somatosensory_corpus ? "somatosensory (all)"
                                                       : "somatosensory";
   const bool maps = ImGui::BeginCombo("##map", shown);
@@ -288,8 +289,8 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     // Live: the newest decision, large, in its class's colour.
     const OnlineDecision& shown = *state.live.shown;
     char text[160];
-    std::snprintf(text, sizeof text, "%s%s  %.0f%%", shown.class_name.c_str(), shown.final ? "" : "...",
-                  100.0 * shown.score);
+    std::snprintf(text, sizeof text, "%s%s  %.0f%%", shown.class_name.c_str(),
+                  shown.final ? "" : "...", 100.0 * shown.score);
     ImDrawList& draw = *ImGui::GetWindowDrawList();
     ImFont* font = ImGui::GetFont();
     float size = std::min(48.0f, std::max(16.0f, available.y / 10.0f));
@@ -298,12 +299,14 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
       size *= (available.x - 24.0f) / extent.x;
       extent = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
     }
-    const ImVec2 at(origin.x + (available.x - extent.x) * 0.5f, origin.y + available.y - extent.y - 10.0f);
+    const ImVec2 at(origin.x + (available.x - extent.x) * 0.5f,
+                    origin.y + available.y - extent.y - 10.0f);
     const uint32_t colour = shown.class_name == kNoTouchClass
                                 ? IM_COL32(90, 90, 90, 230)
                                 : class_colour(state, shown.class_name, 230);
     // (an unfinished touch is marked "...": its final answer comes when it ends)
-    draw.AddRectFilled(ImVec2(at.x - 10, at.y - 4), ImVec2(at.x + extent.x + 10, at.y + extent.y + 4), colour, 6.0f);
+    draw.AddRectFilled(ImVec2(at.x - 10, at.y - 4),
+                       ImVec2(at.x + extent.x + 10, at.y + extent.y + 4), colour, 6.0f);
     draw.AddText(font, size, at, IM_COL32(255, 255, 255, 255), text);
   }
   state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));

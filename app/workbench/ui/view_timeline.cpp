@@ -58,7 +58,8 @@ std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const Workbenc
   static const LaneIndex kEmpty;
   const Lanes& lanes = state.document->lanes;
   std::vector<std::pair<std::string, const LaneIndex*>> all;
-  for (size_t k = 0; k < lanes.keys.size(); ++k) all.emplace_back(lanes.keys[k].id(), &lanes.lanes[k]);
+  for (size_t k = 0; k < lanes.keys.size(); ++k)
+    all.emplace_back(lanes.keys[k].id(), &lanes.lanes[k]);
   const std::string own = state.labelling.active_lane();
   if (std::none_of(all.begin(), all.end(), [&](const auto& lane) { return lane.first == own; }))
     all.emplace_back(own, &kEmpty);
@@ -69,7 +70,8 @@ std::vector<std::pair<std::string, const LaneIndex*>> shown_lanes(const Workbenc
   };
   std::stable_sort(all.begin(), all.end(),
                    [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
-  std::erase_if(all, [&](const auto& lane) { return state.labelling.hidden.count(lane.first) > 0; });
+  std::erase_if(all,
+                [&](const auto& lane) { return state.labelling.hidden.count(lane.first) > 0; });
   return all;
 }
 
@@ -130,7 +132,9 @@ void draw_legend(WorkbenchState& state) {
                        text.c_str());
   }
   ImGui::SameLine(0, 20);
-  auto mark = [](const std::optional<double>& t) { return t ? format_seconds(*t) : std::string("-"); };
+  auto mark = [](const std::optional<double>& t) {
+    return t ? format_seconds(*t) : std::string("-");
+  };
   ImGui::TextDisabled("[ %s  ] %s  %s   %s", mark(labelling.mark_start).c_str(),
                       mark(labelling.mark_end).c_str(),
                       labelling.pending_class.empty() ? "" : labelling.pending_class.c_str(),
@@ -151,8 +155,10 @@ void drag_in_own_lane(WorkbenchState& state, const LaneIndex& lane, double mouse
     drag.press_time = drag.time = mouse_time;
     for (size_t index : lane.meeting(mouse_time - grab, mouse_time + grab)) {
       const Label& label = lane.labels()[index];
-      if (std::fabs(label.t1 - mouse_time) <= grab) drag.label = label.id, drag.start_edge = false;
-      else if (std::fabs(label.t0 - mouse_time) <= grab) drag.label = label.id, drag.start_edge = true;
+      if (std::fabs(label.t1 - mouse_time) <= grab)
+        drag.label = label.id, drag.start_edge = false;
+      else if (std::fabs(label.t0 - mouse_time) <= grab)
+        drag.label = label.id, drag.start_edge = true;
     }
   }
   if (!drag.active) return;
@@ -197,8 +203,10 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
   if (ImGui::BeginPopupContextItem("lane_menu")) {
     if (ImGui::MenuItem("Hide")) state.labelling.hidden.insert(id);
     if (ImGui::MenuItem(collapsed ? "Expand" : "Collapse")) {
-      if (collapsed) state.labelling.collapsed.erase(id);
-      else state.labelling.collapsed.insert(id);
+      if (collapsed)
+        state.labelling.collapsed.erase(id);
+      else
+        state.labelling.collapsed.insert(id);
     }
     if (ImGui::MenuItem("Move up")) move_lane(state, shown, id, -1);
     if (ImGui::MenuItem("Move down")) move_lane(state, shown, id, +1);
@@ -221,7 +229,8 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
   const ImVec2 lane_max(right, origin.y + height);
   state.targets.time_axes["lane:" + id] = {to_rect(lane_min, lane_max), t0, t1};
   if (own) state.targets.time_axes["timeline"] = {to_rect(lane_min, lane_max), t0, t1};
-  draw.AddRectFilled(lane_min, lane_max, own ? IM_COL32(40, 38, 34, 255) : IM_COL32(30, 30, 36, 255));
+  draw.AddRectFilled(lane_min, lane_max,
+                     own ? IM_COL32(40, 38, 34, 255) : IM_COL32(30, 30, 36, 255));
   const int columns = std::max(1, static_cast<int>(right - left));
   const double seconds_per_pixel = (t1 - t0) / columns;
   for (const LaneSpan& span : lane_spans(lane, t0, t1, columns)) {
@@ -250,7 +259,8 @@ void draw_lane(WorkbenchState& state, const std::string& id, const LaneIndex& la
                        IM_COL32(255, 200, 120, 70));
     draw.AddLine(ImVec2(a, lane_min.y), ImVec2(a, lane_max.y), IM_COL32(255, 200, 120, 255), 2.0f);
     if (state.labelling.mark_end)
-      draw.AddLine(ImVec2(b, lane_min.y), ImVec2(b, lane_max.y), IM_COL32(255, 200, 120, 255), 2.0f);
+      draw.AddLine(ImVec2(b, lane_min.y), ImVec2(b, lane_max.y), IM_COL32(255, 200, 120, 255),
+                   2.0f);
   }
   const float cursor_x = x_of(state.clock.time());
   if (cursor_x >= left && cursor_x <= right)

@@ -41,7 +41,8 @@ void draw_workspace_view(WorkbenchState& state, ImVec2 size) {
       if (damaged != state.damaged.end()) ImGui::PopStyleColor();
       remember_item(state, "recording:" + shown);
       if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("%s%s%s", file.c_str(), damaged != state.damaged.end() ? "\ndamaged: " : "",
+        ImGui::SetTooltip("%s%s%s", file.c_str(),
+                          damaged != state.damaged.end() ? "\ndamaged: " : "",
                           damaged != state.damaged.end() ? damaged->second.c_str() : "");
     }
   ImGui::EndChild();

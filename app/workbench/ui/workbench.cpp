@@ -40,15 +40,16 @@ constexpr double kOpeningSpanSeconds = 60.0;  // the plot's span when a recordin
 // A bar between two panels; dragging it moves the boundary. Returns true while dragged.
 bool splitter(WorkbenchState& state, const char* id, bool vertical, float length, float& value,
               float minimum, float maximum, float direction = 1.0f) {
-  const ImVec2 size = vertical ? ImVec2(kSplitterThickness, length) : ImVec2(length, kSplitterThickness);
+  const ImVec2 size =
+      vertical ? ImVec2(kSplitterThickness, length) : ImVec2(length, kSplitterThickness);
   ImGui::InvisibleButton(id, size);
   remember_item(state, std::string("splitter:") + id);
   const bool active = ImGui::IsItemActive();
   if (ImGui::IsItemHovered() || active)
     ImGui::SetMouseCursor(vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
-  const ImU32 colour = active ? IM_COL32(110, 110, 130, 255)
-                              : (ImGui::IsItemHovered() ? IM_COL32(80, 80, 95, 255)
-                                                        : IM_COL32(45, 45, 52, 255));
+  const ImU32 colour =
+      active ? IM_COL32(110, 110, 130, 255)
+             : (ImGui::IsItemHovered() ? IM_COL32(80, 80, 95, 255) : IM_COL32(45, 45, 52, 255));
   ImGui::GetWindowDrawList()->AddRectFilled(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
                                             colour);
   if (active) {
@@ -143,8 +144,10 @@ bool Workbench::open(const std::string& path) {
     if (state_.workspace.empty()) set_workspace(fs::path(absolute).parent_path().string());
     return false;
   }
-  if (state_.workspace.empty() ||
-      fs::path(state_.document->path).lexically_relative(state_.workspace).string().starts_with(".."))
+  if (state_.workspace.empty() || fs::path(state_.document->path)
+                                      .lexically_relative(state_.workspace)
+                                      .string()
+                                      .starts_with(".."))
     set_workspace(fs::path(state_.document->path).parent_path().string());
   state_.selection = {};
   choose_default_view();
@@ -188,7 +191,8 @@ void Workbench::choose_default_view() {
                     state_.labelling.segmenter_params.size() - 1);
   }
   plot_moving_channels(state_);
-  const std::vector<int> columns = taxel_columns(document.layout, source.info().channels, state_.modality);
+  const std::vector<int> columns =
+      taxel_columns(document.layout, source.info().channels, state_.modality);
   state_.plot = SignalPlotState{};
   // The first minute, or the whole of a shorter recording (View > Fit time axis shows the
   // whole): touches last seconds, and the plot of a minute reads a minute's samples, so an
@@ -203,13 +207,13 @@ void Workbench::choose_default_view() {
   const Label& first = document.labels.front();
   if (first.t1 > state_.plot.view_t1) {
     // The label a tenth of the span in, the span within the recording.
-    state_.plot.view_t0 = std::max(source.start_time(),
-                                   std::min(first.t0 - 0.1 * span, source.end_time() - span));
+    state_.plot.view_t0 =
+        std::max(source.start_time(), std::min(first.t0 - 0.1 * span, source.end_time() - span));
     state_.plot.view_t1 = state_.plot.view_t0 + span;
   }
   try {
-    state_.clock.seek(peak_change_time(source, columns, current_rest_scale(state_, columns), first.t0,
-                                       first.t1, kPeakSearchSamples));
+    state_.clock.seek(peak_change_time(source, columns, current_rest_scale(state_, columns),
+                                       first.t0, first.t1, kPeakSearchSamples));
   } catch (const Error& failure) {
     state_.error = failure.what();
   }
@@ -370,8 +374,8 @@ void Workbench::draw_arrangement(ImVec2 area) {
   ImGui::SameLine(0.0f, 0.0f);
   ImGui::BeginGroup();
   const float right_width = area.x - sizes.sidebar_width - kSplitterThickness;
-  const bool any_analysis = !state_.analysis.results.empty() || state_.analysis.dataset ||
-                            state_.analysis.som;
+  const bool any_analysis =
+      !state_.analysis.results.empty() || state_.analysis.dataset || state_.analysis.som;
   if (!state_.document && any_analysis) {
     // Results opened without a recording: the classifier views take the space.
     ImGui::BeginChild("analysis_frame", ImVec2(right_width, area.y), true);
@@ -380,8 +384,8 @@ void Workbench::draw_arrangement(ImVec2 area) {
   } else if (!state_.document) {
     draw_welcome(ImVec2(right_width, area.y));
   } else {
-    sizes.timeline_height =
-        std::clamp(sizes.timeline_height, kMinimumPanel, std::max(kMinimumPanel, area.y - 2 * kMinimumPanel));
+    sizes.timeline_height = std::clamp(sizes.timeline_height, kMinimumPanel,
+                                       std::max(kMinimumPanel, area.y - 2 * kMinimumPanel));
     const float top_height = area.y - sizes.timeline_height - kSplitterThickness;
     const float skin_width = std::floor(right_width * sizes.skin_fraction);
     ImGui::BeginChild("skin_frame", ImVec2(skin_width, top_height), true);
@@ -393,11 +397,12 @@ void Workbench::draw_arrangement(ImVec2 area) {
                          right_width - kMinimumPanel);
     sizes.skin_fraction = skin_pixels / std::max(1.0f, right_width);
     ImGui::SameLine(0.0f, 0.0f);
-    ImGui::BeginChild("signals_frame", ImVec2(right_width - skin_width - kSplitterThickness, top_height), true);
+    ImGui::BeginChild("signals_frame",
+                      ImVec2(right_width - skin_width - kSplitterThickness, top_height), true);
     draw_tabs({"signals", "model", "confusion", "scatter", "som"});
     ImGui::EndChild();
-    released |= splitter(state_, "timeline", false, right_width, sizes.timeline_height, kMinimumPanel,
-                         area.y - 2 * kMinimumPanel, -1.0f);
+    released |= splitter(state_, "timeline", false, right_width, sizes.timeline_height,
+                         kMinimumPanel, area.y - 2 * kMinimumPanel, -1.0f);
     ImGui::BeginChild("timeline_frame", ImVec2(right_width, sizes.timeline_height), true);
     draw_view("timeline", ImGui::GetContentRegionAvail());
     ImGui::EndChild();
@@ -541,7 +546,8 @@ void Workbench::draw_menu_bar() {
                                  connect_skin_.size());
         remember_item(state_, "input:connect-skin",
                       "The skin whose packets arrive (udp and serial sources)");
-        if (ImGui::MenuItem("Connect")) connect_live(state_, services_.live, connect_url_.data(), connect_skin_.data());
+        if (ImGui::MenuItem("Connect"))
+          connect_live(state_, services_.live, connect_url_.data(), connect_skin_.data());
         remember_item(state_, "menu:File/Connect/Connect");
         if (ImGui::MenuItem("Disconnect", nullptr, false, state_.live.connected))
           disconnect_live(state_, services_.live);
@@ -568,7 +574,8 @@ void Workbench::draw_menu_bar() {
       remember_item(state_, "menu:View/Stacked lanes");
       if (ImGui::MenuItem("Fit time axis", nullptr, false, state_.document != nullptr)) {
         state_.plot.view_t0 = state_.document->samples().start_time();
-        state_.plot.view_t1 = state_.plot.view_t0 + std::max(1e-3, state_.document->samples().duration());
+        state_.plot.view_t1 =
+            state_.plot.view_t0 + std::max(1e-3, state_.document->samples().duration());
       }
       remember_item(state_, "menu:View/Fit time axis");
       if (ImGui::MenuItem("Reset panel sizes")) {
@@ -646,9 +653,8 @@ void Workbench::draw_status_bar() {
                                  !state_.document->label_problems.empty())) {
     // Damage is named until the user moves on: gaps in the plot are not data.
     const auto found = state_.damaged.find(state_.document->path);
-    const std::string& what = found != state_.damaged.end()
-                                  ? found->second
-                                  : state_.document->label_problems.front();
+    const std::string& what =
+        found != state_.damaged.end() ? found->second : state_.document->label_problems.front();
     ImGui::TextColored(ImVec4(1.0f, 0.65f, 0.2f, 1.0f), "damaged: %s", what.c_str());
     if (ImGui::IsItemHovered() && !state_.document->label_problems.empty()) {
       std::string all;
@@ -686,7 +692,8 @@ void Workbench::load_settings() {
   const nlohmann::json& panels = settings["panels"];
   PanelSizes sizes;
   sizes.sidebar_width = panels.value("sidebar_width", sizes.sidebar_width);
-  sizes.skin_fraction = std::clamp(panels.value("skin_fraction", sizes.skin_fraction), 0.05f, 0.95f);
+  sizes.skin_fraction =
+      std::clamp(panels.value("skin_fraction", sizes.skin_fraction), 0.05f, 0.95f);
   sizes.timeline_height = panels.value("timeline_height", sizes.timeline_height);
   state_.sizes = sizes;
   if (settings.contains("labelling") && settings["labelling"].is_object()) {
@@ -743,7 +750,8 @@ nlohmann::json Workbench::state_json() const {
   const Document* document = state_.document.get();
   json["recording"] = document ? nlohmann::json(document->recording_id()) : nlohmann::json(nullptr);
   json["path"] = document ? nlohmann::json(document->path) : nlohmann::json(nullptr);
-  json["stream"] = document ? nlohmann::json(document->samples().info().stream) : nlohmann::json(nullptr);
+  json["stream"] =
+      document ? nlohmann::json(document->samples().info().stream) : nlohmann::json(nullptr);
   json["layout"] = document ? nlohmann::json(document->layout.id) : nlohmann::json(nullptr);
   json["time"] = state_.clock.time();
   json["playing"] = state_.clock.playing();
@@ -760,16 +768,20 @@ nlohmann::json Workbench::state_json() const {
     for (size_t k = 0; k < state_.plotted.size(); ++k)
       if (state_.plotted[k]) plotted.push_back(document->samples().info().channels[k]);
   json["plotted"] = plotted;
-  json["modality"] = document && !document->layout.modalities.empty()
-                         ? nlohmann::json(document->layout.modalities[static_cast<size_t>(state_.modality)])
-                         : nlohmann::json(nullptr);
-  json["plot"] = {{"t0", state_.plot.view_t0}, {"t1", state_.plot.view_t1}, {"stacked", state_.plot.stacked}};
-  json["skin_zoom"] = {{"zoom", state_.skin_zoom.zoom}, {"pan_x", state_.skin_zoom.pan_x},
+  json["modality"] =
+      document && !document->layout.modalities.empty()
+          ? nlohmann::json(document->layout.modalities[static_cast<size_t>(state_.modality)])
+          : nlohmann::json(nullptr);
+  json["plot"] = {
+      {"t0", state_.plot.view_t0}, {"t1", state_.plot.view_t1}, {"stacked", state_.plot.stacked}};
+  json["skin_zoom"] = {{"zoom", state_.skin_zoom.zoom},
+                       {"pan_x", state_.skin_zoom.pan_x},
                        {"pan_y", state_.skin_zoom.pan_y}};
   nlohmann::json views = nlohmann::json::object();
   for (const auto& [name, rect] : state_.targets.items)
     if (name.starts_with("view:"))
-      views[name.substr(5)] = {{"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+      views[name.substr(5)] = {
+          {"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
   json["views"] = views;
   // Each legend's swatch of each class as drawn this frame, by view: "lanes", "scatter", ...
   nlohmann::json legends = nlohmann::json::object();
@@ -790,7 +802,8 @@ nlohmann::json Workbench::state_json() const {
   json["items"] = items;
   nlohmann::json boxes = nlohmann::json::object();
   for (const auto& [name, rect] : state_.targets.boxes)
-    boxes[name] = {{"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
+    boxes[name] = {
+        {"x", rect.x0}, {"y", rect.y0}, {"width", rect.width()}, {"height", rect.height()}};
   json["boxes"] = boxes;
   // The skin as drawn: each taxel's box (a touched one's enlarged box), the touched taxels,
   // the names on the map, and the columns of a strip laid in rows (0: as the layout lies).
@@ -807,12 +820,13 @@ nlohmann::json Workbench::state_json() const {
     entry["id"] = name;
     skin_names.push_back(entry);
   }
-  json["skin"] = {{"taxels", skin_taxels},
-                  {"touched", state_.targets.touched_taxels},
-                  {"names", skin_names},
-                  {"columns", state_.skin_drawing.columns},
-                  {"scale", {{"min", state_.targets.skin_scale.first},
-                             {"max", state_.targets.skin_scale.second}}}};
+  json["skin"] = {
+      {"taxels", skin_taxels},
+      {"touched", state_.targets.touched_taxels},
+      {"names", skin_names},
+      {"columns", state_.skin_drawing.columns},
+      {"scale",
+       {{"min", state_.targets.skin_scale.first}, {"max", state_.targets.skin_scale.second}}}};
   if (const auto caption = state_.targets.items.find("somatosensory:caption");
       caption != state_.targets.items.end())
     json["skin"]["caption"] = box_json(caption->second);
@@ -887,7 +901,8 @@ nlohmann::json Workbench::state_json() const {
 nlohmann::json Workbench::analysis_json() const {
   const AnalysisState& analysis = state_.analysis;
   nlohmann::json results = nlohmann::json::array();
-  for (const ml::PresetOutcome& outcome : analysis.results) results.push_back(ml::summary_json(outcome));
+  for (const ml::PresetOutcome& outcome : analysis.results)
+    results.push_back(ml::summary_json(outcome));
   const ml::EvaluationResult* current = current_evaluation(state_);
   const auto class_name = [&](int k) -> nlohmann::json {
     if (!current) return nullptr;
@@ -909,8 +924,10 @@ nlohmann::json Workbench::analysis_json() const {
   }
   nlohmann::json landed = nullptr;
   if (analysis.landed)
-    landed = {{"recording", analysis.landed->recording}, {"t0", analysis.landed->t0},
-              {"t1", analysis.landed->t1},               {"region", analysis.landed->region},
+    landed = {{"recording", analysis.landed->recording},
+              {"t0", analysis.landed->t0},
+              {"t1", analysis.landed->t1},
+              {"region", analysis.landed->region},
               {"true", class_name(analysis.landed->truth)},
               {"predicted", class_name(analysis.landed->predicted)},
               {"segment_id", analysis.landed->segment_id}};
@@ -925,7 +942,8 @@ nlohmann::json Workbench::analysis_json() const {
     confusion = nlohmann::json::array();
     for (Eigen::Index row = 0; row < current->confusion.rows(); ++row) {
       nlohmann::json counts = nlohmann::json::array();
-      for (Eigen::Index column = 0; column < static_cast<Eigen::Index>(current->classes.size()); ++column)
+      for (Eigen::Index column = 0; column < static_cast<Eigen::Index>(current->classes.size());
+           ++column)
         counts.push_back(current->confusion(row, column));
       confusion.push_back(counts);
     }

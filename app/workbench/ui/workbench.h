@@ -3,9 +3,9 @@
 // program, which only supply the frame loop and the OpenGL backend. It arranges the
 // views (views.h) with splitters, runs the menus and carries out the views' requests.
 
-#include <nlohmann/json_fwd.hpp>
 #include <array>
 #include <initializer_list>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 

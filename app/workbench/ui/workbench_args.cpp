@@ -16,12 +16,14 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
                  "Label database (default: labels.db beside the recording)");
   app.add_option("--time", args.options.time, "Put the time cursor here (seconds)");
   app.add_flag("--play", args.options.play, "Start replaying at once");
-  app.add_option("--screenshot", args.screenshot, "Render the window (or --view) to this PNG and exit");
+  app.add_option("--screenshot", args.screenshot,
+                 "Render the window (or --view) to this PNG and exit");
   app.add_option("--script", args.script, "Replay this input script (docs/SCRIPTING.md), then exit")
       ->check(CLI::ExistingFile);
   app.add_option("--view", args.options.only_view, "Draw only this view: " + view_names())
       ->check([](const std::string& name) {
-        return find_view(name) ? std::string() : "no view '" + name + "' (views: " + view_names() + ")";
+        return find_view(name) ? std::string()
+                               : "no view '" + name + "' (views: " + view_names() + ")";
       });
   std::string size;
   app.add_option("--size", size, "Window size WxH in pixels, e.g. 800x600");
@@ -50,8 +52,10 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
                  "serial:///dev/ttyUSB0?baud=921600, sim://SKIN?rate=X, replay:///FILE.h5?speed=X");
   app.add_option("--skin", args.options.skin,
                  "Skin of a udp:// or serial:// source: " + joined(packet_skin_ids()));
-  app.add_option("--record", args.options.record_path, "Record the live source into this new file (.h5) from the start");
-  app.add_option("--buffer", args.options.buffer_seconds, "Seconds the live buffer holds (default 600)")
+  app.add_option("--record", args.options.record_path,
+                 "Record the live source into this new file (.h5) from the start");
+  app.add_option("--buffer", args.options.buffer_seconds,
+                 "Seconds the live buffer holds (default 600)")
       ->check(CLI::Range(1.0, 86400.0));
   app.add_option("--pretrigger", args.options.pretrigger_seconds,
                  "Seconds before Record that a recording starts with (default 5)")
@@ -61,7 +65,8 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
   try {
     app.parse(argc, argv);
     if (!args.options.connect.empty() && !args.options.open_path.empty())
-      throw CLI::ValidationError("--connect", "opens a live source; give a recording or --connect, not both");
+      throw CLI::ValidationError("--connect",
+                                 "opens a live source; give a recording or --connect, not both");
     if (!args.options.record_path.empty() && args.options.connect.empty())
       throw CLI::ValidationError("--record", "records a live source: give --connect too");
     if (!size.empty()) {
@@ -69,7 +74,8 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
       char extra = 0;
       if (std::sscanf(size.c_str(), "%dx%d%c", &width, &height, &extra) != 2 || width < 64 ||
           height < 64 || width > 8192 || height > 8192)
-        throw CLI::ValidationError("--size", "expected WxH between 64x64 and 8192x8192, got '" + size + "'");
+        throw CLI::ValidationError("--size",
+                                   "expected WxH between 64x64 and 8192x8192, got '" + size + "'");
       args.width = width;
       args.height = height;
     }

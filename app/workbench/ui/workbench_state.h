@@ -17,8 +17,6 @@
 #include "document.h"
 #include "file_browser.h"
 #include "files_state.h"
-#include "tactile/segment/fit.h"
-#include "tactile/segment/scoring.h"
 #include "tactile/jobs/job.h"
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/predict.h"
@@ -31,6 +29,8 @@
 #include "tactile/ml/evaluation.h"
 #include "tactile/ml/som.h"
 #include "tactile/ml/somatosensory.h"
+#include "tactile/segment/fit.h"
+#include "tactile/segment/scoring.h"
 #include "tactile/signal/display_scale.h"
 #include "tactile/widgets/class_colours.h"
 #include "tactile/widgets/signal_plot.h"
@@ -57,21 +57,21 @@ struct UiTargets {
   // An item's whole box as laid out, also the part cut off by its view (the state's `boxes`:
   // tests hold what a view draws to fitting inside it).
   std::map<std::string, ScreenRect> boxes;
-  std::map<std::string, TimeAxis> time_axes;  // view name -> axis
+  std::map<std::string, TimeAxis> time_axes;          // view name -> axis
   std::map<int64_t, std::pair<float, float>> taxels;  // taxel id -> centre on screen
   ScreenRect skin_map;                                // the skin view's drawing area
   std::map<std::string, std::string> tips;            // a control's tooltip, by its item name
   std::map<int64_t, ScreenRect> taxel_boxes;          // taxel id -> its box as drawn
   std::vector<int64_t> touched_taxels;                // drawn enlarged as touched
-  std::pair<double, double> skin_scale{0.0, 1.0};      // the colour scale's ends as drawn
+  std::pair<double, double> skin_scale{0.0, 1.0};     // the colour scale's ends as drawn
   std::vector<std::pair<std::string, ScreenRect>> skin_names;  // group id or taxel name, box
 };
 
 // Sizes of the arrangement, kept per user between runs (settings file).
 struct PanelSizes {
   float sidebar_width = 250.0f;
-  float skin_fraction = 0.42f;      // of the width right of the sidebar
-  float timeline_height = 200.0f;   // transport, label lane and label table
+  float skin_fraction = 0.42f;     // of the width right of the sidebar
+  float timeline_height = 200.0f;  // transport, label lane and label table
 };
 
 struct Selection {
@@ -83,27 +83,28 @@ struct Selection {
 // The operator's labelling: marks set by `[` and `]`, the class chosen by a digit, the
 // lanes as the user arranged them (kept in the settings).
 struct LabellingState {
-  std::string annotator;          // --annotator, the settings, else $USER
-  double reaction_seconds = 0.25; // marks made while playing are moved back by this
+  std::string annotator;           // --annotator, the settings, else $USER
+  double reaction_seconds = 0.25;  // marks made while playing are moved back by this
   std::optional<double> mark_start, mark_end;
-  std::string pending_class;      // chosen by 1-9, committed by Enter
+  std::string pending_class;            // chosen by 1-9, committed by Enter
   std::vector<std::string> lane_order;  // lane ids in the user's order (others after)
   std::set<std::string> hidden, collapsed;
   std::array<char, 256> segmenter_params{};  // typed in the Labels menu
   bool snap = true;
-  bool run_cancelled_by_undo = false;  // Ctrl+Z cancelled the running segmenter job
-  std::string last_segmenter = "adaptive";   // G runs it again; on opening, the skin's own
-  std::string segmenter_skin;                // the skin last_segmenter was chosen for
-  bool picker_open = false;                  // the type-ahead class picker (key C)
-  std::array<char, 64> picker_text{};  // dragged times snap to segmenter and other lanes' boundaries (key S)
+  bool run_cancelled_by_undo = false;       // Ctrl+Z cancelled the running segmenter job
+  std::string last_segmenter = "adaptive";  // G runs it again; on opening, the skin's own
+  std::string segmenter_skin;               // the skin last_segmenter was chosen for
+  bool picker_open = false;                 // the type-ahead class picker (key C)
+  std::array<char, 64>
+      picker_text{};  // dragged times snap to segmenter and other lanes' boundaries (key S)
   // A drag in the operator's lane: over empty space it sets the marks; from an edge of
   // one of their labels it moves that edge (committed on release).
   struct LaneDrag {
     bool active = false;
-    int64_t label = 0;         // 0: setting marks
-    bool start_edge = false;   // which edge of `label` moves
+    int64_t label = 0;        // 0: setting marks
+    bool start_edge = false;  // which edge of `label` moves
     double press_time = 0.0;
-    double time = 0.0;         // where the edge or the mark is now
+    double time = 0.0;  // where the edge or the mark is now
   } drag;
   // A dragged edge's new bounds (label, t0, t1), committed at the start of the next
   // frame: an edit rebuilds the lanes, which the frame that drew them still uses.
@@ -144,9 +145,9 @@ struct AnalysisState {
   float results_name_width = 0.0f;  // the results table's longest classifier name so far
   // The results: one per classifier tried (one row of the train-all table each).
   std::vector<ml::PresetOutcome> results;
-  std::string results_from;  // what they are of ("nao, kaboli features", a file)
-  int current = -1;          // the row whose views are shown
-  std::string model_path;    // the last single classifier trained, fitted on every row
+  std::string results_from;      // what they are of ("nao, kaboli features", a file)
+  int current = -1;              // the row whose views are shown
+  std::string model_path;        // the last single classifier trained, fitted on every row
   std::string model_classifier;  // the classifier of model_path
   // model_path's model as fitted in this session (Predict reads no file then); null when
   // only its file is known.
@@ -164,8 +165,8 @@ struct AnalysisState {
   // The feature table the results are about; shared (never changed) with the views' jobs,
   // so starting one copies nothing on the window's thread.
   std::shared_ptr<const Dataset> dataset;
-  std::string dataset_layout;      // its skin
-  int sort_column = 1;             // the table's: 0 name, 1 accuracy, 2 mean recall, 3 time
+  std::string dataset_layout;  // its skin
+  int sort_column = 1;         // the table's: 0 name, 1 accuracy, 2 mean recall, 3 time
   bool sort_ascending = false;
   // The confusion view: the clicked cell and its segments (indices into the rows).
   int cell_true = -1, cell_predicted = -1;
@@ -175,7 +176,7 @@ struct AnalysisState {
   // The segment landed on: the skin outlines its region and names both classes.
   std::optional<ml::RowPrediction> landed;
   bool landing_pending = false;  // land_on asked; carried out once its recording is open
-  double replay_until = -1.0;  // the clock pauses here (the landed segment's end)
+  double replay_until = -1.0;    // the clock pauses here (the landed segment's end)
   // The SOM map: a SOM fitted on the table (or loaded), and each row's winner.
   struct SomFit {
     std::unique_ptr<ml::SomClassifier> som;
@@ -187,8 +188,8 @@ struct AnalysisState {
   bool som_held = false;                 // cancelled: not started again until asked
   std::unique_ptr<ml::SomClassifier> som;
   std::vector<std::string> som_classes;
-  std::vector<int> som_winners;  // per dataset row
-  const void* som_for = nullptr;  // which table the winners are for
+  std::vector<int> som_winners;               // per dataset row
+  const void* som_for = nullptr;              // which table the winners are for
   std::optional<ml::SomQuality> som_quality;  // of a map fitted here, on its table
   std::vector<double> som_spread;             // the U-matrix of `som`, computed once
   const void* som_spread_for = nullptr;
@@ -205,17 +206,17 @@ struct AnalysisState {
   double scatter_explained = 0.0;
   const void* scatter_for = nullptr;
   // The somatosensory map of the open recording (per modality), computed or from its cache.
-  bool somatosensory = false;  // the skin view shows it instead of the body map
+  bool somatosensory = false;         // the skin view shows it instead of the body map
   bool somatosensory_corpus = false;  // over every recording of the skin in the workspace
   std::optional<SomatosensoryMap> map;
   std::optional<SkinLayout> map_layout;  // the layout with its taxels moved onto the map
-  std::string map_for;  // recording path + modality it was made for
+  std::string map_for;                   // recording path + modality it was made for
   struct MapMade {
     std::string key;  // as map_for
     SomatosensoryMap map;
   };
   std::unique_ptr<Job<MapMade>> map_job;  // computing (or reading the cache of) a map
-  std::string tab_request;  // a view tab to bring to front next frame
+  std::string tab_request;                // a view tab to bring to front next frame
 };
 
 // Live mode (live.h), as data: what the services (services.h) report each frame, the user's
@@ -223,18 +224,18 @@ struct AnalysisState {
 struct LiveState {
   bool connected = false;  // a live source is the open document
   std::string url;
-  LiveCounters counters;  // as of this frame
-  std::string failure;    // the source's, when it failed
-  bool follow = true;     // plots and skin at the newest sample
+  LiveCounters counters;         // as of this frame
+  std::string failure;           // the source's, when it failed
+  bool follow = true;            // plots and skin at the newest sample
   double window_seconds = 10.0;  // shown while following
   float buffer_seconds = 600.0f;
-  bool resize_request = false;   // the buffer's length changed: a new buffer next frame
+  bool resize_request = false;      // the buffer's length changed: a new buffer next frame
   double active_checked_at = -1.0;  // stream time the plot last followed the active channels
-  bool channels_chosen = false;  // the moving channels are picked once data has arrived
+  bool channels_chosen = false;     // the moving channels are picked once data has arrived
   double scale_learnt_at = -1.0;  // stream time the colour scale was last learnt (live_rest_scale)
-  std::string recording;            // the file being recorded; "" when not recording
-  int64_t recorded_samples = 0;     // taken into it so far
-  RecorderRoom room;                // its disk, as of the recorder's last flush
+  std::string recording;          // the file being recorded; "" when not recording
+  int64_t recorded_samples = 0;   // taken into it so far
+  RecorderRoom room;              // its disk, as of the recorder's last flush
   bool recorder_automatic = false;  // started by a contact: stops after a quiet time
   std::string record_folder;        // "" = the workspace
   float pretrigger_seconds = 5.0f;
@@ -248,8 +249,8 @@ struct LiveState {
   std::vector<OnlineDecision> decisions;
   std::optional<OnlineDecision> shown;  // the one written large over the skin
   // Requests (the live bar, Ctrl+R).
-  bool record_request = false;  // start recording, or stop when recording
-  bool clear_request = false;   // drop what the buffer holds
+  bool record_request = false;                  // start recording, or stop when recording
+  bool clear_request = false;                   // drop what the buffer holds
   std::optional<std::string> classify_request;  // a model file
 };
 
@@ -262,14 +263,14 @@ struct WorkbenchOptions {
   std::string settings_path;                // "" = the user's settings file
   std::string annotator;                    // "" = the settings' or $USER
   std::string only_view;                    // draw just this view over the whole window
-  std::string evaluation_path;  // --evaluation RESULT.json
-  std::string model_path;       // --model MODEL.json (a SOM's map)
-  std::string features_path;    // --features TABLE.csv (the scatter)
-  std::string connect;          // --connect URL (live mode)
-  std::string skin;             // --skin ID (for udp:// and serial://)
-  std::string record_path;      // --record FILE.h5: record from the start
-  double buffer_seconds = 600.0;  // --buffer
-  double pretrigger_seconds = 5.0;  // --pretrigger
+  std::string evaluation_path;              // --evaluation RESULT.json
+  std::string model_path;                   // --model MODEL.json (a SOM's map)
+  std::string features_path;                // --features TABLE.csv (the scatter)
+  std::string connect;                      // --connect URL (live mode)
+  std::string skin;                         // --skin ID (for udp:// and serial://)
+  std::string record_path;                  // --record FILE.h5: record from the start
+  double buffer_seconds = 600.0;            // --buffer
+  double pretrigger_seconds = 5.0;          // --pretrigger
 };
 
 // What the labels view last scrolled to, so it follows changes only.
@@ -283,8 +284,8 @@ struct WorkbenchState {
   // One colour per class in every view (class_colour, views.h); unknown is neutral grey.
   ClassColours class_colours{{kUnknownClass}};
   std::unique_ptr<Document> document;
-  std::string workspace;                     // absolute folder
-  std::vector<std::string> workspace_files;  // absolute paths of its recordings
+  std::string workspace;                       // absolute folder
+  std::vector<std::string> workspace_files;    // absolute paths of its recordings
   std::map<std::string, std::string> damaged;  // recording path -> why it is damaged
   PlaybackClock clock;
   SignalPlotState plot;
@@ -334,7 +335,7 @@ struct WorkbenchState {
   // Why the open recording cannot be read now (its disk went away): shown while it lasts.
   std::string unavailable;
   double longest_frame_seconds = 0.0;  // the UI's slowest frame so far (building it, not drawing)
-  UiTargets targets;   // last frame's
+  UiTargets targets;                   // last frame's
   int64_t frame = 0;
   // The jobs, newest last: when each started and when it was applied, by frame.
   struct JobRecord {
@@ -348,7 +349,7 @@ struct WorkbenchState {
   // Requests from views, carried out by the workbench after the frame.
   std::optional<std::string> open_request;
   std::optional<std::string> stream_request;
-  std::optional<std::string> export_request;  // view name to export as PNG
+  std::optional<std::string> export_request;     // view name to export as PNG
   std::unique_ptr<Job<std::string>> export_job;  // writing an exported view's PNG: its path
   // Writing the demo workspace (the welcome panel's button): the folder it made.
   std::unique_ptr<Job<std::string>> demo_job;

@@ -90,12 +90,11 @@ ShardedCommand parse_sharded_command(const std::string& text, const std::string&
 }
 
 std::string shards_script(const SlurmOptions& args, const ShardedCommand& command,
-                                  const JobFolder& folder, const std::string& chdir) {
+                          const JobFolder& folder, const std::string& chdir) {
   const std::string count = std::to_string(args.shards);
   std::string text = "#!/bin/bash\n";
   text += "# Shard ${SLURM_ARRAY_TASK_ID} of " + count +
-          " of this command, one array task each:\n#   " + shell_line(command.words) +
-          "\n";
+          " of this command, one array task each:\n#   " + shell_line(command.words) + "\n";
   text += "# Each task writes its part into " + folder.dir +
           "/parts; merge.sbatch combines them into\n#   " + command.result + "\n";
   text +=
@@ -122,7 +121,7 @@ std::string shards_script(const SlurmOptions& args, const ShardedCommand& comman
 }
 
 std::string merge_script(const SlurmOptions& args, const ShardedCommand& command,
-                                 const JobFolder& folder, const std::string& chdir) {
+                         const JobFolder& folder, const std::string& chdir) {
   std::string line = shell_quoted(command.words[0]) + " merge";
   for (int shard = 1; shard <= args.shards; ++shard)
     line += " \\\n  " + shell_quoted(folder.part(shard, args.shards));

@@ -1,4 +1,6 @@
 // Slurm's programs run and read: sbatch's job ids, squeue and sacct's states, jobs.json.
+#include "tactile/cluster/slurm.h"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -10,7 +12,6 @@
 #include <map>
 #include <sstream>
 
-#include "tactile/cluster/slurm.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/text.h"
@@ -57,16 +58,15 @@ SlurmView ask_slurm(const std::vector<std::string>& ids) {
       view.jobs[job] = {row[1], "", row[2] == "None" ? "" : row[2], "squeue"};
   }
   // Finished jobs' exit codes: squeue has none, so ask the accounting for every id.
-  ProgramOutput sacct =
-      run_captured({"sacct", "--noheader", "--parsable2", "--allocations",
-                             "--jobs=" + id_list, "--format=JobID,State,ExitCode"});
+  ProgramOutput sacct = run_captured({"sacct", "--noheader", "--parsable2", "--allocations",
+                                      "--jobs=" + id_list, "--format=JobID,State,ExitCode"});
   if (sacct.exit_code != 0 ||
       sacct.out.find("accounting storage is disabled") != std::string::npos) {
     view.accounting_note =
         "sacct: " + (sacct.exit_code < 0 ? std::string("not on PATH")
                                          : sacct.out.substr(0, sacct.out.find('\n')));
-    sacct = run_captured({"sacct", "--completion", "--noheader", "--parsable2",
-                                   "--jobs=" + id_list, "--format=JobID,State,ExitCode"});
+    sacct = run_captured({"sacct", "--completion", "--noheader", "--parsable2", "--jobs=" + id_list,
+                          "--format=JobID,State,ExitCode"});
     if (sacct.exit_code != 0) sacct.out.clear();
   }
   for (const auto& [job, row] : parse_table(sacct.out)) {

@@ -17,7 +17,7 @@ namespace {
 // Paper 002, Table 1 left (spec §3.11): LOO, all users, features 1-10; rows true, columns
 // predicted, order slap, pat, fondle, stroke, tickle, push.
 const std::array<const char*, 6> kFurPaperClasses = {"slap",   "pat",    "fondle",
-                                                  "stroke", "tickle", "push"};
+                                                     "stroke", "tickle", "push"};
 const int kPaperConfusion[6][6] = {{55, 0, 0, 3, 1, 0}, {1, 46, 2, 1, 3, 1}, {2, 7, 35, 9, 10, 7},
                                    {1, 1, 6, 65, 3, 5}, {1, 2, 2, 2, 60, 1}, {2, 0, 0, 1, 0, 64}};
 constexpr double kPaperAccuracy = 325.0 / 399.0;       // Table 1: 81.45 % (caption 81 %)

@@ -1,6 +1,7 @@
+#include <nlohmann/json.hpp>
+
 #include "kaboli_common.h"
 #include "tactile/experiments/kaboli.h"
-#include <nlohmann/json.hpp>
 
 namespace tactile::experiments {
 

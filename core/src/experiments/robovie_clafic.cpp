@@ -23,25 +23,44 @@ struct Condition {
   // The paper's reading of Figs 9-10 (spec §4.11): no exact bars are printed, so these are
   // its stated summaries, not numbers to compare digit by digit.
   std::string paper;
-  double paper_threshold;  // the paper's classes are at or above it (0.6 or 0.8); 0: none
-  double paper_feature_fraction;  // share of the feature space the banks use; < 0 not stated
+  double paper_threshold;          // the paper's classes are at or above it (0.6 or 0.8); 0: none
+  double paper_feature_fraction;   // share of the feature space the banks use; < 0 not stated
   std::vector<int> paper_classes;  // the classes (1-based) the paper names for this condition
 };
 
 const std::vector<Condition>& conditions() {
   static const std::vector<Condition> list = {
-      {"KNN k=3", "knn:k=3,metric=euclidean,standardize=false", false,
-       "> 60 % for classes 2, 6, 7, 8, 11, 15", 0.6, 1.0, {2, 6, 7, 8, 11, 15}},
+      {"KNN k=3",
+       "knn:k=3,metric=euclidean,standardize=false",
+       false,
+       "> 60 % for classes 2, 6, 7, 8, 11, 15",
+       0.6,
+       1.0,
+       {2, 6, 7, 8, 11, 15}},
       {"CLAFIC (1, 0)", "clafic:c1=1,c2=0,tau=0.95", true, "bars only (Fig 9)", 0.0, 1.0, {}},
       {"CLAFIC (1, 1)", "clafic:c1=1,c2=1,tau=0.95", true, "bars only (Fig 9)", 0.0, -1.0, {}},
       {"CLAFIC (1, 2)", "clafic:c1=1,c2=2,tau=0.95", true, "bars only (Fig 9)", 0.0, -1.0, {}},
-      {"CLAFIC (0.15, 0)", "clafic:c1=0.15,c2=0,tau=0.95", true,
-       "~80 % for classes 1, 2, 6, 7, 9, 11, 14, 15", 0.8, 1.0, {1, 2, 6, 7, 9, 11, 14, 15}},
-      {"CLAFIC (0.15, 1)", "clafic:c1=0.15,c2=1,tau=0.95", true,
-       "about as (0.15, 0) with ~15 % of the feature space", 0.8, 0.15,
+      {"CLAFIC (0.15, 0)",
+       "clafic:c1=0.15,c2=0,tau=0.95",
+       true,
+       "~80 % for classes 1, 2, 6, 7, 9, 11, 14, 15",
+       0.8,
+       1.0,
        {1, 2, 6, 7, 9, 11, 14, 15}},
-      {"CLAFIC (0.15, 2)", "clafic:c1=0.15,c2=2,tau=0.95", true,
-       ">= 60 % for classes 1, 8, 11, 15 with ~5 %", 0.6, 0.05, {1, 8, 11, 15}},
+      {"CLAFIC (0.15, 1)",
+       "clafic:c1=0.15,c2=1,tau=0.95",
+       true,
+       "about as (0.15, 0) with ~15 % of the feature space",
+       0.8,
+       0.15,
+       {1, 2, 6, 7, 9, 11, 14, 15}},
+      {"CLAFIC (0.15, 2)",
+       "clafic:c1=0.15,c2=2,tau=0.95",
+       true,
+       ">= 60 % for classes 1, 8, 11, 15 with ~5 %",
+       0.6,
+       0.05,
+       {1, 8, 11, 15}},
   };
   return list;
 }
@@ -93,10 +112,11 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
 
   ReportTable summary;
   summary.title = "Conditions: mean rates, sensor banks, ours vs the paper's reading";
-  summary.columns = {"condition",       "recognition %",   "false alarm %",
-                     "unknown %",       "classes >= 60 %", "classes >= 80 %",
-                     "paper's classes %",
-                     "features used %", "sensors in bank", "paper"};
+  summary.columns = {"condition",         "recognition %",
+                     "false alarm %",     "unknown %",
+                     "classes >= 60 %",   "classes >= 80 %",
+                     "paper's classes %", "features used %",
+                     "sensors in bank",   "paper"};
 
   nlohmann::json tables = nlohmann::json::array();
   double best_accuracy = 0.0;
@@ -137,7 +157,8 @@ ExperimentReport run_robovie_clafic(const ExperimentOptions& options) {
     // against its reading (spec §4.11).
     std::vector<double> named;
     for (const int k : condition.paper_classes)
-      if (k >= 1 && k <= class_count) named.push_back(rates.recognition[static_cast<size_t>(k - 1)]);
+      if (k >= 1 && k <= class_count)
+        named.push_back(rates.recognition[static_cast<size_t>(k - 1)]);
     const double unknown = static_cast<double>(confusion.col(class_count).sum()) /
                            static_cast<double>(confusion.sum());
 

@@ -129,9 +129,9 @@ std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query) {
     for (Label& label : store.list(truth))
       ground_truth[label.recording].push_back(std::move(label));
   }
-  const std::filesystem::path folder =
-      query.folder.empty() ? std::filesystem::absolute(query.database).parent_path()
-                           : std::filesystem::path(query.folder);
+  const std::filesystem::path folder = query.folder.empty()
+                                           ? std::filesystem::absolute(query.database).parent_path()
+                                           : std::filesystem::path(query.folder);
   std::vector<CorpusRecording> corpus;
   std::map<std::string, size_t> wanted;  // recording id -> index in corpus, npos: other layout
   for (const Label& label : labels) {
@@ -142,7 +142,8 @@ std::vector<CorpusRecording> corpus_from_store(const CorpusQuery& query) {
       if (!std::filesystem::is_regular_file(path, error))
         throw Error(path, "recording file missing (recording '" + label.recording +
                               "' has labels in " + query.database + ")");
-      const bool of_layout = query.layout.empty() || RecordingFile(path).layout_id() == query.layout;
+      const bool of_layout =
+          query.layout.empty() || RecordingFile(path).layout_id() == query.layout;
       known = wanted.emplace(label.recording, of_layout ? corpus.size() : std::string::npos).first;
       if (of_layout) {
         CorpusRecording recording;
@@ -167,8 +168,7 @@ CorpusDataset extract_corpus(const FeatureExtractor& extractor,
                              const CorpusOptions& options) {
   const auto total = static_cast<int64_t>(recordings.size());
   std::vector<RecordingRows> results(recordings.size());
-  int threads =
-      options.threads > 0 ? options.threads : thread_budget();
+  int threads = options.threads > 0 ? options.threads : thread_budget();
   threads = std::clamp<int>(threads, 1, std::max<int>(1, static_cast<int>(total)));
 
   std::atomic<int64_t> next{0};

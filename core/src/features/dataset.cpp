@@ -13,8 +13,8 @@
 
 #include "../io/csv_text.h"
 #include "dataset_files.h"
-#include "tactile/io/atomic_file.h"
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/text.h"
 
 namespace tactile {

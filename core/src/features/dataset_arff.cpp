@@ -8,9 +8,9 @@
 #include <algorithm>
 
 #include "dataset_files.h"
-#include "tactile/io/atomic_file.h"
 #include "tactile/error.h"
 #include "tactile/features/dataset.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/text.h"
 
 namespace tactile {

@@ -20,7 +20,6 @@ inline constexpr const char* kSegmentIdColumn = "segment_id";
 // feature value is NaN or infinite (naming its row and column).
 void check_dataset(const std::string& path, const Dataset& dataset);
 
-
 // Writes `text` to a temporary file beside `path`, then renames it over `path`; on any
 
 }  // namespace tactile::dataset_files

@@ -26,7 +26,6 @@ FeatureExtractor::Segments FeatureExtractor::extract_segments(
 }
 std::string FeatureExtractor::layout_note(const SkinLayout&) const { return {}; }
 
-
 FeatureExtractor::Segments extract_source_segments(const FeatureExtractor& extractor,
                                                    const SampleSource& source,
                                                    const SkinLayout& layout,

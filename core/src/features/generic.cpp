@@ -125,7 +125,8 @@ double quantile(std::vector<double> values, double fraction) {
 
 }  // namespace
 
-ChannelShape channel_shape(std::span<const double> values, double rate_hz, double rest, bool reversed) {
+ChannelShape channel_shape(std::span<const double> values, double rate_hz, double rest,
+                           bool reversed) {
   ChannelShape shape;
   const auto n = static_cast<int64_t>(values.size());
   if (n == 0) return shape;
@@ -155,7 +156,8 @@ ChannelShape channel_shape(std::span<const double> values, double rate_hz, doubl
       (frequency < rate_hz / 16.0 ? low : frequency < rate_hz / 8.0 ? mid : high) += energy;
     }
     const double total = low + mid + high;
-    if (total > 0.0) shape.band_low = low / total, shape.band_mid = mid / total, shape.band_high = high / total;
+    if (total > 0.0)
+      shape.band_low = low / total, shape.band_mid = mid / total, shape.band_high = high / total;
   }
   // Sign changes of the mean-removed signal; samples within rounding of the mean carry none.
   double scale = 0.0;
@@ -180,16 +182,20 @@ ChannelShape channel_shape(std::span<const double> values, double rate_hz, doubl
   }
   shape.peaks = static_cast<double>(peaks) / seconds;
   for (int64_t k = 1; k < n; ++k) {
-    const double step = (excursion[static_cast<size_t>(k)] - excursion[static_cast<size_t>(k - 1)]) * rate_hz;
-    if (k <= n / 2) shape.onset_slope = std::max(shape.onset_slope, step);
-    else shape.release_slope = std::min(shape.release_slope, step);
+    const double step =
+        (excursion[static_cast<size_t>(k)] - excursion[static_cast<size_t>(k - 1)]) * rate_hz;
+    if (k <= n / 2)
+      shape.onset_slope = std::max(shape.onset_slope, step);
+    else
+      shape.release_slope = std::min(shape.release_slope, step);
   }
   // Noise from the first differences: their RMS without the largest fifth (the touch's own
   // transitions), over sqrt 2 (a difference holds two samples' noise). Robust also for
   // quantised counts, where a median absolute deviation is often 0.
   std::vector<double> differences;
   for (int64_t k = 1; k < n; ++k)
-    differences.push_back(std::abs(values[static_cast<size_t>(k)] - values[static_cast<size_t>(k - 1)]));
+    differences.push_back(
+        std::abs(values[static_cast<size_t>(k)] - values[static_cast<size_t>(k - 1)]));
   std::sort(differences.begin(), differences.end());
   const size_t kept = differences.size() - differences.size() / 5;
   double squares = 0.0;
@@ -200,7 +206,8 @@ ChannelShape channel_shape(std::span<const double> values, double rate_hz, doubl
     if (value > 3.0 * noise && value > 0.0) ++active;
   shape.active_seconds = static_cast<double>(active) / rate_hz;
   for (int bin = 0; bin < kEnvelopeBins; ++bin) {
-    const int64_t from = n * bin / kEnvelopeBins, to = std::max(from + 1, n * (bin + 1) / kEnvelopeBins);
+    const int64_t from = n * bin / kEnvelopeBins,
+                  to = std::max(from + 1, n * (bin + 1) / kEnvelopeBins);
     double sum = 0.0;
     for (int64_t k = from; k < std::min(to, n); ++k) sum += excursion[static_cast<size_t>(k)];
     shape.envelope[bin] = sum / static_cast<double>(std::min(to, n) - from);
@@ -279,8 +286,9 @@ void add_channel_columns(const std::string& name, const std::string& what, const
                      "Kaboli eq. (2): population variance of " + what + ", " + unit + "^2"});
   columns.push_back({name + ".hjorth_mobility",
                      "Kaboli eq. (3): sqrt(var(diff x) / var(x)) of " + what + ", per sample"});
-  columns.push_back({name + ".hjorth_complexity",
-                     "Kaboli eq. (4): mobility(diff x) / mobility(x) of " + what + ", dimensionless"});
+  columns.push_back(
+      {name + ".hjorth_complexity",
+       "Kaboli eq. (4): mobility(diff x) / mobility(x) of " + what + ", dimensionless"});
   columns.push_back({name + ".peak", extreme + " value of " + what + ", " + unit});
   columns.push_back({name + ".mean", "mean of " + what + ", " + unit});
   columns.push_back({name + ".integral", "sum of " + what + " / sample rate, " + unit + " x s"});
@@ -290,15 +298,23 @@ void add_channel_columns(const std::string& name, const std::string& what, const
   columns.push_back({name + ".median", "median of " + what + ", " + unit});
   columns.push_back({name + ".q10", "10th percentile of " + what + ", " + unit});
   columns.push_back({name + ".q90", "90th percentile of " + what + ", " + unit});
-  columns.push_back({name + ".band_low", "share of the mean-removed energy of " + what + " below fs/16"});
-  columns.push_back({name + ".band_mid", "share of the mean-removed energy of " + what + " in [fs/16, fs/8)"});
-  columns.push_back({name + ".band_high", "share of the mean-removed energy of " + what + " from fs/8 up"});
+  columns.push_back(
+      {name + ".band_low", "share of the mean-removed energy of " + what + " below fs/16"});
+  columns.push_back(
+      {name + ".band_mid", "share of the mean-removed energy of " + what + " in [fs/16, fs/8)"});
+  columns.push_back(
+      {name + ".band_high", "share of the mean-removed energy of " + what + " from fs/8 up"});
   columns.push_back({name + ".zero_crossings", "crossings of the mean by " + what + ", per s"});
-  columns.push_back({name + ".peaks", "rises of " + excursion + " through half its largest, per s"});
-  columns.push_back({name + ".onset_slope", "steepest rise of " + excursion + " in the first half, " + unit + "/s"});
-  columns.push_back({name + ".release_slope", "steepest fall of " + excursion + " in the second half, " + unit + "/s"});
-  columns.push_back({name + ".active_time", "time " + excursion +
-                                                " exceeds 3 noise deviations (RMS of the differences without their largest fifth / sqrt 2), s"});
+  columns.push_back(
+      {name + ".peaks", "rises of " + excursion + " through half its largest, per s"});
+  columns.push_back({name + ".onset_slope",
+                     "steepest rise of " + excursion + " in the first half, " + unit + "/s"});
+  columns.push_back({name + ".release_slope",
+                     "steepest fall of " + excursion + " in the second half, " + unit + "/s"});
+  columns.push_back(
+      {name + ".active_time", "time " + excursion +
+                                  " exceeds 3 noise deviations (RMS of the differences without "
+                                  "their largest fifth / sqrt 2), s"});
   for (int bin = 0; bin < kEnvelopeBins; ++bin)
     columns.push_back({name + ".envelope_" + std::to_string(bin),
                        "mean " + excursion + " in part " + std::to_string(bin + 1) + " of " +
@@ -364,14 +380,16 @@ class GenericExtractor : public FeatureExtractor {
                                       true) != plan.value_reversed.end();
       add_channel_columns("busiest", "the busiest channel (largest Hjorth activity)",
                           units.size() == 1 ? *units.begin() : "units",
-                          reversed ? "smallest (reversed channels) or largest" : "largest", columns);
+                          reversed ? "smallest (reversed channels) or largest" : "largest",
+                          columns);
       columns.push_back({"busiest.activity_share",
                          "the busiest channel's Hjorth activity over the sum of every channel's"});
     }
     if (plan.value_channels.size() >= 2)
-      columns.push_back({"neighbours.correlation",
-                         "mean Pearson correlation of each channel with its nearest neighbour on the map "
-                         "(the next channel without one), over the segment"});
+      columns.push_back(
+          {"neighbours.correlation",
+           "mean Pearson correlation of each channel with its nearest neighbour on the map "
+           "(the next channel without one), over the segment"});
     if (plan.has_map) {
       const std::string unit = layout.map_unit.empty() ? "map units" : layout.map_unit;
       const std::string level = "taxels of " + map_modality(layout) + " past their rest level by " +
@@ -385,9 +403,11 @@ class GenericExtractor : public FeatureExtractor {
            "distance the value-weighted contact centroid moves, sample to sample, " + unit});
       columns.push_back({"centroid.displacement",
                          "distance from the first to the last contact centroid, " + unit});
-      columns.push_back({"contact.spread",
-                         "excursion-weighted distance of the contact taxels from the centroid, mean over "
-                         "the samples with contact, " + unit});
+      columns.push_back(
+          {"contact.spread",
+           "excursion-weighted distance of the contact taxels from the centroid, mean over "
+           "the samples with contact, " +
+               unit});
     }
     if (plan.whole_grid) {
       const std::vector<FeatureColumn> grid =
@@ -460,13 +480,14 @@ class GenericExtractor : public FeatureExtractor {
       const int channel = plan.value_channels[position];
       const Stream* rest_stream = input.recording.find_stream(kRestStream);
       const double rest = rest_stream ? rest_stream->samples(0, channel) : std::nan("");
-      const ChannelShape shape =
-          channel_shape(channel_values[position], stream.rate_hz, rest, plan.value_reversed[position]);
+      const ChannelShape shape = channel_shape(channel_values[position], stream.rate_hz, rest,
+                                               plan.value_reversed[position]);
       result.values.insert(result.values.end(),
-                           {shape.median, shape.q10, shape.q90, shape.band_low, shape.band_mid, shape.band_high,
-                            shape.zero_crossings, shape.peaks, shape.onset_slope, shape.release_slope,
-                            shape.active_seconds});
-      result.values.insert(result.values.end(), std::begin(shape.envelope), std::end(shape.envelope));
+                           {shape.median, shape.q10, shape.q90, shape.band_low, shape.band_mid,
+                            shape.band_high, shape.zero_crossings, shape.peaks, shape.onset_slope,
+                            shape.release_slope, shape.active_seconds});
+      result.values.insert(result.values.end(), std::begin(shape.envelope),
+                           std::end(shape.envelope));
     }
     if (channel_values.size() >= 2) {
       // The busiest channel's block again, then its share of all the channels' activity.
@@ -496,8 +517,9 @@ class GenericExtractor : public FeatureExtractor {
       std::string skip_reason;
       const ContactMotion motion = map_motion(input, stream, plan, first, count, skip_reason);
       if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
-      result.values.insert(result.values.end(), {motion.max_area, motion.mean_area,
-                                                 motion.path_length, motion.displacement, motion.spread});
+      result.values.insert(result.values.end(),
+                           {motion.max_area, motion.mean_area, motion.path_length,
+                            motion.displacement, motion.spread});
     }
     if (plan.whole_grid) {
       std::string skip_reason;
@@ -573,7 +595,8 @@ class GenericExtractor : public FeatureExtractor {
         for (size_t other = 0; other < plan.value_channels.size(); ++other) {
           const auto there = position_of.find(plan.value_channels[other]);
           if (other == position || there == position_of.end()) continue;
-          const double distance = std::hypot(there->second.x - here->second.x, there->second.y - here->second.y);
+          const double distance =
+              std::hypot(there->second.x - here->second.x, there->second.y - here->second.y);
           if (distance > 1e-12 && distance < nearest) nearest = distance, best = other;
         }
       }

@@ -513,9 +513,8 @@ class GridExtractor : public FeatureExtractor {
     const auto [first, last] = sample_range(stream, input.segment.t0, input.segment.t1);
     if (last <= first) return FeatureResult::skip("segment holds no samples");
     FeatureResult result;
-    result.values =
-        grid_segment(input.recording, stream, map, first, last - first, threshold_, skip_reason,
-                     peak_share_);
+    result.values = grid_segment(input.recording, stream, map, first, last - first, threshold_,
+                                 skip_reason, peak_share_);
     if (!skip_reason.empty()) return FeatureResult::skip(skip_reason);
     return result;
   }
@@ -562,7 +561,8 @@ std::unique_ptr<FeatureExtractor> make_grid_extractor(const Parameters& paramete
                 "threshold=" + parameters.text("threshold", "") + ": must be positive");
   const double share = parameters.number("share", kGridDefaultPeakShare);
   if (!(share >= 0.0 && share < 1.0))
-    throw Error(parameters.where(), "share=" + parameters.text("share", "") + ": must be in [0, 1)");
+    throw Error(parameters.where(),
+                "share=" + parameters.text("share", "") + ": must be in [0, 1)");
   return std::make_unique<GridExtractor>(parameters.text("modality", "display"), threshold, share,
                                          parameters.text("stream", ""), parameters.where());
 }

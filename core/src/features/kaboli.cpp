@@ -97,14 +97,16 @@ namespace {
 class KaboliExtractor : public FeatureExtractor {
  public:
   explicit KaboliExtractor(const Parameters& parameters) {
-    parameters.expect_only({"threshold_mm", "norm_mode", "ncorr_mode", "motion_hz", "motion_order"});
+    parameters.expect_only(
+        {"threshold_mm", "norm_mode", "ncorr_mode", "motion_hz", "motion_order"});
     contact_mm_ = positive_parameter(parameters, "threshold_mm", kDefaultContactDistanceMm);
     motion_hz_ = parameters.number("motion_hz", kDefaultMotionCutoffHz);
     if (!(motion_hz_ >= 0.0) || !std::isfinite(motion_hz_))
       throw Error("motion_hz", "must be 0 (keep the robot's motion) or a cut-off in Hz");
     const int64_t order = parameters.integer("motion_order", kDefaultMotionOrder);
     if (order < 2 || order > 8 || !dsp::is_butterworth_order(static_cast<int>(order)))
-      throw Error("motion_order", std::to_string(order) + ": the high-pass order must be 2, 4, 6 or 8");
+      throw Error("motion_order",
+                  std::to_string(order) + ": the high-pass order must be 2, 4, 6 or 8");
     motion_order_ = static_cast<int>(order);
     normalisation_ =
         parameter_choice(parameters, "norm_mode", {"BODY_PART", "CONTACT"}) == "CONTACT"

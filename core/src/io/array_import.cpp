@@ -26,9 +26,13 @@ std::vector<uint8_t> read_bytes(const std::string& path) {
   return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-uint32_t little32(const uint8_t* p) { return p[0] | p[1] << 8 | p[2] << 16 | static_cast<uint32_t>(p[3]) << 24; }
+uint32_t little32(const uint8_t* p) {
+  return p[0] | p[1] << 8 | p[2] << 16 | static_cast<uint32_t>(p[3]) << 24;
+}
 uint16_t little16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | p[1] << 8); }
-uint64_t little64(const uint8_t* p) { return little32(p) | static_cast<uint64_t>(little32(p + 4)) << 32; }
+uint64_t little64(const uint8_t* p) {
+  return little32(p) | static_cast<uint64_t>(little32(p + 4)) << 32;
+}
 
 // Product of a shape, refusing a negative extent or one beyond kMaxImportedElements.
 int64_t element_count(const std::vector<int64_t>& shape, const std::string& where) {
@@ -36,7 +40,8 @@ int64_t element_count(const std::vector<int64_t>& shape, const std::string& wher
   for (int64_t extent : shape) {
     if (extent < 0) throw Error(where, "negative extent in the shape");
     if (extent != 0 && count > kMaxImportedElements / extent)
-      throw Error(where, "declares more than " + std::to_string(kMaxImportedElements) + " elements");
+      throw Error(where,
+                  "declares more than " + std::to_string(kMaxImportedElements) + " elements");
     count *= extent;
   }
   return count;
@@ -58,7 +63,8 @@ struct NpyHeader {
   std::vector<int64_t> shape;
 };
 
-std::string quoted_value(const std::string& header, const std::string& key, const std::string& where) {
+std::string quoted_value(const std::string& header, const std::string& key,
+                         const std::string& where) {
   const size_t at = header.find("'" + key + "'");
   if (at == std::string::npos) throw Error(where, "header has no '" + key + "'");
   const size_t colon = header.find(':', at);
@@ -74,8 +80,10 @@ NpyHeader parse_npy_header(const std::string& header, const std::string& where) 
   NpyHeader parsed;
   const std::string descr = quoted_value(header, "descr", where + " header");
   if (descr.size() < 3 || std::string("<>|=").find(descr[0]) == std::string::npos)
-    throw Error(where + " header", "descr '" + descr + "' is not a simple type (structured arrays are not read)");
-  parsed.order = descr[0] == '=' ? (std::endian::native == std::endian::little ? '<' : '>') : descr[0];
+    throw Error(where + " header",
+                "descr '" + descr + "' is not a simple type (structured arrays are not read)");
+  parsed.order =
+      descr[0] == '=' ? (std::endian::native == std::endian::little ? '<' : '>') : descr[0];
   parsed.kind = descr[1];
   int64_t item = 0;
   for (size_t k = 2; k < descr.size(); ++k) {
@@ -85,17 +93,20 @@ NpyHeader parse_npy_header(const std::string& header, const std::string& where) 
   }
   const std::string kinds = "fiubUS";
   if (kinds.find(parsed.kind) == std::string::npos)
-    throw Error(where + " header", "descr '" + descr + "': only bool, integer, float and string arrays are read");
+    throw Error(where + " header",
+                "descr '" + descr + "': only bool, integer, float and string arrays are read");
   const bool sized = (parsed.kind == 'f' && (item == 4 || item == 8)) ||
-                     ((parsed.kind == 'i' || parsed.kind == 'u') && (item == 1 || item == 2 || item == 4 || item == 8)) ||
-                     (parsed.kind == 'b' && item == 1) || ((parsed.kind == 'U' || parsed.kind == 'S') && item >= 1);
-  if (!sized) throw Error(where + " header", "descr '" + descr + "' has a size this reader does not know");
+                     ((parsed.kind == 'i' || parsed.kind == 'u') &&
+                      (item == 1 || item == 2 || item == 4 || item == 8)) ||
+                     (parsed.kind == 'b' && item == 1) ||
+                     ((parsed.kind == 'U' || parsed.kind == 'S') && item >= 1);
+  if (!sized)
+    throw Error(where + " header", "descr '" + descr + "' has a size this reader does not know");
   parsed.item = parsed.kind == 'U' ? item * 4 : item;
   const size_t fortran = header.find("'fortran_order'");
   if (fortran == std::string::npos) throw Error(where + " header", "header has no 'fortran_order'");
   const size_t value = header.find_first_not_of(" :", fortran + 15);
-  if (value == std::string::npos)
-    throw Error(where + " header", "'fortran_order' has no value");
+  if (value == std::string::npos) throw Error(where + " header", "'fortran_order' has no value");
   if (header.compare(value, 4, "True") == 0)
     parsed.fortran = true;
   else if (header.compare(value, 5, "False") != 0)
@@ -113,10 +124,12 @@ NpyHeader parse_npy_header(const std::string& header, const std::string& where) 
     int64_t extent = 0;
     while (end < tuple.size() && std::isdigit(static_cast<unsigned char>(tuple[end]))) {
       if (extent > kMaxImportedElements)
-        throw Error(where + " header", "shape declares more than " + std::to_string(kMaxImportedElements) + " elements");
+        throw Error(where + " header", "shape declares more than " +
+                                           std::to_string(kMaxImportedElements) + " elements");
       extent = extent * 10 + (tuple[end++] - '0');
     }
-    if (end == at) throw Error(where + " header", "shape (" + tuple + ") is not a tuple of whole numbers");
+    if (end == at)
+      throw Error(where + " header", "shape (" + tuple + ") is not a tuple of whole numbers");
     parsed.shape.push_back(extent);
     at = end;
   }
@@ -134,7 +147,8 @@ T load(const uint8_t* bytes, bool swap) {
 }
 
 double number_at(const uint8_t* p, const NpyHeader& header) {
-  const bool swap = (header.order == '>') != (std::endian::native == std::endian::big) && header.order != '|';
+  const bool swap =
+      (header.order == '>') != (std::endian::native == std::endian::big) && header.order != '|';
   switch (header.kind) {
     case 'f':
       return header.item == 4 ? load<float>(p, swap) : load<double>(p, swap);
@@ -142,17 +156,25 @@ double number_at(const uint8_t* p, const NpyHeader& header) {
       return *p != 0 ? 1.0 : 0.0;
     case 'i':
       switch (header.item) {
-        case 1: return static_cast<int8_t>(*p);
-        case 2: return load<int16_t>(p, swap);
-        case 4: return load<int32_t>(p, swap);
-        default: return static_cast<double>(load<int64_t>(p, swap));
+        case 1:
+          return static_cast<int8_t>(*p);
+        case 2:
+          return load<int16_t>(p, swap);
+        case 4:
+          return load<int32_t>(p, swap);
+        default:
+          return static_cast<double>(load<int64_t>(p, swap));
       }
     default:  // 'u'
       switch (header.item) {
-        case 1: return *p;
-        case 2: return load<uint16_t>(p, swap);
-        case 4: return load<uint32_t>(p, swap);
-        default: return static_cast<double>(load<uint64_t>(p, swap));
+        case 1:
+          return *p;
+        case 2:
+          return load<uint16_t>(p, swap);
+        case 4:
+          return load<uint32_t>(p, swap);
+        default:
+          return static_cast<double>(load<uint64_t>(p, swap));
       }
   }
 }
@@ -166,7 +188,8 @@ std::string text_at(const uint8_t* p, const NpyHeader& header) {
   const bool big = header.order == '>';
   for (int64_t k = 0; k < header.item / 4; ++k) {
     const uint8_t* c = p + 4 * k;
-    const uint32_t code = big ? (static_cast<uint32_t>(c[0]) << 24 | c[1] << 16 | c[2] << 8 | c[3]) : little32(c);
+    const uint32_t code =
+        big ? (static_cast<uint32_t>(c[0]) << 24 | c[1] << 16 | c[2] << 8 | c[3]) : little32(c);
     if (code == 0) break;
     // UTF-8 of one code point.
     if (code < 0x80) {
@@ -214,14 +237,17 @@ void shape_of(const nlohmann::json& value, std::vector<int64_t>& shape) {
   }
 }
 
-void flatten(const nlohmann::json& value, const std::vector<int64_t>& shape, size_t depth, std::string path,
-             ImportedArray& out, const std::string& where) {
+void flatten(const nlohmann::json& value, const std::vector<int64_t>& shape, size_t depth,
+             std::string path, ImportedArray& out, const std::string& where) {
   if (depth == shape.size()) {
     if (out.text) {
-      if (!value.is_string()) throw Error(where + " " + path, "expected text like the first element");
+      if (!value.is_string())
+        throw Error(where + " " + path, "expected text like the first element");
       out.strings.push_back(value.get<std::string>());
     } else {
-      if (!value.is_number()) throw Error(where + " " + path, "expected a number like the first element, not " + std::string(value.type_name()));
+      if (!value.is_number())
+        throw Error(where + " " + path, "expected a number like the first element, not " +
+                                            std::string(value.type_name()));
       const double number = value.get<double>();
       if (!std::isfinite(number)) throw Error(where + " " + path, "not a finite number");
       out.values.push_back(number);
@@ -229,8 +255,9 @@ void flatten(const nlohmann::json& value, const std::vector<int64_t>& shape, siz
     return;
   }
   if (!value.is_array() || static_cast<int64_t>(value.size()) != shape[depth])
-    throw Error(where + " " + path, "expected an array of " + std::to_string(shape[depth]) +
-                                        " like the first at this depth (the frames must be regular)");
+    throw Error(where + " " + path,
+                "expected an array of " + std::to_string(shape[depth]) +
+                    " like the first at this depth (the frames must be regular)");
   for (size_t k = 0; k < value.size(); ++k)
     flatten(value[k], shape, depth + 1, path + "[" + std::to_string(k) + "]", out, where);
 }
@@ -248,14 +275,19 @@ ImportedArray parse_npy(std::span<const uint8_t> bytes, const std::string& where
   if (bytes.size() < 10 || std::memcmp(bytes.data(), kMagic, 6) != 0)
     throw Error(where + " byte 0", "not a .npy file (no \\x93NUMPY magic)");
   const int major = bytes[6];
-  if (major < 1 || major > 3) throw Error(where + " byte 6", "format version " + std::to_string(major) + " (1 to 3 are read)");
+  if (major < 1 || major > 3)
+    throw Error(where + " byte 6",
+                "format version " + std::to_string(major) + " (1 to 3 are read)");
   const size_t length_size = major == 1 ? 2 : 4;
-  if (bytes.size() < 8 + length_size) throw Error(where + " byte 8", "the file ends inside the header length");
+  if (bytes.size() < 8 + length_size)
+    throw Error(where + " byte 8", "the file ends inside the header length");
   const size_t header_length = major == 1 ? little16(bytes.data() + 8) : little32(bytes.data() + 8);
   const size_t data_start = 8 + length_size + header_length;
   if (data_start > bytes.size())
-    throw Error(where + " byte 8", "header of " + std::to_string(header_length) + " bytes runs past the end of the file");
-  const std::string header(reinterpret_cast<const char*>(bytes.data()) + 8 + length_size, header_length);
+    throw Error(where + " byte 8", "header of " + std::to_string(header_length) +
+                                       " bytes runs past the end of the file");
+  const std::string header(reinterpret_cast<const char*>(bytes.data()) + 8 + length_size,
+                           header_length);
   const NpyHeader parsed = parse_npy_header(header, where);
   ImportedArray array;
   array.shape = parsed.shape;
@@ -263,11 +295,12 @@ ImportedArray parse_npy(std::span<const uint8_t> bytes, const std::string& where
   const int64_t count = element_count(parsed.shape, where + " header");
   // The data must be exactly what the header declares: checked before anything is allocated.
   const uint64_t data_bytes = bytes.size() - data_start;
-  if (parsed.item > 0 && static_cast<uint64_t>(count) > data_bytes / static_cast<uint64_t>(parsed.item))
+  if (parsed.item > 0 &&
+      static_cast<uint64_t>(count) > data_bytes / static_cast<uint64_t>(parsed.item))
     throw Error(where + " byte " + std::to_string(data_start),
-                "shape " + shape_text(parsed.shape) + " of " + std::to_string(parsed.item) + "-byte elements needs " +
-                    std::to_string(count * parsed.item) + " bytes, the file holds " + std::to_string(data_bytes) +
-                    " (truncated?)");
+                "shape " + shape_text(parsed.shape) + " of " + std::to_string(parsed.item) +
+                    "-byte elements needs " + std::to_string(count * parsed.item) +
+                    " bytes, the file holds " + std::to_string(data_bytes) + " (truncated?)");
   if (static_cast<uint64_t>(count * parsed.item) != data_bytes)
     throw Error(where + " byte " + std::to_string(data_start + count * parsed.item),
                 std::to_string(data_bytes - count * parsed.item) + " bytes after the data");
@@ -307,7 +340,8 @@ std::vector<ZipEntry> zip_entries(const std::vector<uint8_t>& bytes, const std::
       end = at;
       break;
     }
-  if (end == std::string::npos) throw Error(where, "no zip directory at the end (not a .npz, or truncated)");
+  if (end == std::string::npos)
+    throw Error(where, "no zip directory at the end (not a .npz, or truncated)");
   const uint16_t count = little16(bytes.data() + end + 10);
   const uint64_t directory = little32(bytes.data() + end + 16);
   std::vector<ZipEntry> entries;
@@ -321,9 +355,11 @@ std::vector<ZipEntry> zip_entries(const std::vector<uint8_t>& bytes, const std::
     entry.method = little16(record + 10);
     entry.compressed = little32(record + 20);
     entry.size = little32(record + 24);
-    const uint16_t name_length = little16(record + 28), extra = little16(record + 30), comment = little16(record + 32);
+    const uint16_t name_length = little16(record + 28), extra = little16(record + 30),
+                   comment = little16(record + 32);
     entry.local = little32(record + 42);
-    if (at + 46 + name_length + extra + comment > bytes.size()) throw Error(place, "directory record runs past the end");
+    if (at + 46 + name_length + extra + comment > bytes.size())
+      throw Error(place, "directory record runs past the end");
     entry.name.assign(reinterpret_cast<const char*>(record + 46), name_length);
     // ZIP64: sizes and offset in the extra field (id 1), in this order, for those marked.
     for (size_t x = 0; x + 4 <= extra;) {
@@ -347,22 +383,28 @@ std::vector<ZipEntry> zip_entries(const std::vector<uint8_t>& bytes, const std::
   return entries;
 }
 
-std::vector<uint8_t> zip_content(const std::vector<uint8_t>& bytes, const ZipEntry& entry, const std::string& where) {
+std::vector<uint8_t> zip_content(const std::vector<uint8_t>& bytes, const ZipEntry& entry,
+                                 const std::string& where) {
   if (entry.local + 30 > bytes.size() || little32(bytes.data() + entry.local) != 0x04034b50)
     throw Error(where, "local header missing at byte " + std::to_string(entry.local));
   const uint64_t start = entry.local + 30 + little16(bytes.data() + entry.local + 26) +
                          little16(bytes.data() + entry.local + 28);
   if (start > bytes.size() || entry.compressed > bytes.size() - start)
-    throw Error(where, "its " + std::to_string(entry.compressed) + " bytes run past the end of the file (truncated?)");
+    throw Error(where, "its " + std::to_string(entry.compressed) +
+                           " bytes run past the end of the file (truncated?)");
   const uint8_t* data = bytes.data() + start;
   if (entry.method == 0) {
     if (entry.size != entry.compressed) throw Error(where, "stored entry whose sizes differ");
     return std::vector<uint8_t>(data, data + entry.compressed);
   }
-  if (entry.method != 8) throw Error(where, "compression method " + std::to_string(entry.method) + " (stored and deflate are read)");
+  if (entry.method != 8)
+    throw Error(where, "compression method " + std::to_string(entry.method) +
+                           " (stored and deflate are read)");
   // Deflate expands at most 1032 times: a larger declared size is a lie, refused before allocating.
-  if (entry.size > entry.compressed * 1032 + 1024 || entry.size > static_cast<uint64_t>(kMaxImportedElements) * 8)
-    throw Error(where, "declares " + std::to_string(entry.size) + " bytes from " + std::to_string(entry.compressed) +
+  if (entry.size > entry.compressed * 1032 + 1024 ||
+      entry.size > static_cast<uint64_t>(kMaxImportedElements) * 8)
+    throw Error(where, "declares " + std::to_string(entry.size) + " bytes from " +
+                           std::to_string(entry.compressed) +
                            " compressed, more than deflate can give");
   std::vector<uint8_t> out(entry.size);
   z_stream stream{};
@@ -375,8 +417,8 @@ std::vector<uint8_t> zip_content(const std::vector<uint8_t>& bytes, const ZipEnt
   const uint64_t produced = stream.total_out;
   inflateEnd(&stream);
   if (status != Z_STREAM_END || produced != entry.size)
-    throw Error(where, "deflated data damaged or truncated (inflated " + std::to_string(produced) + " of " +
-                           std::to_string(entry.size) + " bytes)");
+    throw Error(where, "deflated data damaged or truncated (inflated " + std::to_string(produced) +
+                           " of " + std::to_string(entry.size) + " bytes)");
   return out;
 }
 
@@ -388,7 +430,8 @@ std::string array_name(const std::string& entry) {
 
 std::vector<std::string> npz_names(const std::string& path) {
   std::vector<std::string> names;
-  for (const ZipEntry& entry : zip_entries(read_bytes(path), path)) names.push_back(array_name(entry.name));
+  for (const ZipEntry& entry : zip_entries(read_bytes(path), path))
+    names.push_back(array_name(entry.name));
   return names;
 }
 
@@ -414,7 +457,8 @@ ImportedArray read_json_array(const std::string& path, const std::string& key,
   try {
     document = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& error) {
-    throw Error(path + " byte " + std::to_string(error.byte), "not JSON: " + std::string(error.what()));
+    throw Error(path + " byte " + std::to_string(error.byte),
+                "not JSON: " + std::string(error.what()));
   } catch (const nlohmann::json::exception& error) {
     // A number too large for a double (1e400) is an out_of_range, not a parse_error.
     throw Error(path, "not readable JSON: " + std::string(error.what()));
@@ -473,12 +517,14 @@ ImportedArray read_hdf5_dataset(const std::string& path, const std::string& name
     hdf5::last_error();
     throw Error(path, "not an HDF5 file");
   }
-  hdf5::Object file = hdf5::checked(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, path, "cannot open");
+  hdf5::Object file = hdf5::checked(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+                                    path, "cannot open");
   const std::string where = path + ":" + name;
   if (!hdf5::has_link(file.id(), name)) throw Error(where, "no such dataset");
   hdf5::Object dataset = hdf5::open_dataset(file.id(), name, where);
   ImportedArray array;
-  for (hsize_t extent : hdf5::dataset_shape(dataset.id(), where)) array.shape.push_back(static_cast<int64_t>(extent));
+  for (hsize_t extent : hdf5::dataset_shape(dataset.id(), where))
+    array.shape.push_back(static_cast<int64_t>(extent));
   const int64_t count = element_count(array.shape, where);
   const H5T_class_t type = hdf5::dataset_class(dataset.id(), where);
   if (type == H5T_STRING) {
@@ -497,7 +543,8 @@ ImportedArray read_hdf5_dataset(const std::string& path, const std::string& name
   hdf5::check_declared_size(dataset.id(),
                             static_cast<double>(stored_bytes) * static_cast<double>(count), where);
   array.values.resize(static_cast<size_t>(count));
-  if (count > 0 && H5Dread(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, array.values.data()) < 0)
+  if (count > 0 && H5Dread(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                           array.values.data()) < 0)
     hdf5::fail(where, "cannot read");
   return array;
 }
@@ -525,8 +572,10 @@ std::vector<Label> labels_from_frame_classes(const std::vector<std::string>& cla
 }
 
 ImportedRecording recording_from_array(const ImportedArray& array, const SkinLayout& layout,
-                                       const ArrayRecordingOptions& options, const std::string& where) {
-  if (!(options.rate_hz > 0.0) || !std::isfinite(options.rate_hz)) throw Error("--rate", "a sample rate above 0 is needed");
+                                       const ArrayRecordingOptions& options,
+                                       const std::string& where) {
+  if (!(options.rate_hz > 0.0) || !std::isfinite(options.rate_hz))
+    throw Error("--rate", "a sample rate above 0 is needed");
   if (array.text) throw Error(where, "holds text, not samples");
   const int64_t channels = static_cast<int64_t>(layout.channels.size());
   const std::vector<int64_t>& shape = array.shape;
@@ -534,17 +583,20 @@ ImportedRecording recording_from_array(const ImportedArray& array, const SkinLay
   std::string expected;
   if (options.captures) {
     if (shape.size() != 3 || shape[1] != channels)
-      throw Error(where, "shape " + shape_text(shape) + ", expected [captures][" + std::to_string(channels) +
-                             " channels of " + layout.id + "][samples]");
+      throw Error(where, "shape " + shape_text(shape) + ", expected [captures][" +
+                             std::to_string(channels) + " channels of " + layout.id + "][samples]");
     samples = shape[0] * shape[2];
   } else if (shape.size() == 2 && shape[1] == channels) {
     samples = shape[0];
   } else if (shape.size() == 3 && shape[1] * shape[2] == channels) {
     samples = shape[0];
   } else {
-    throw Error(where, "shape " + shape_text(shape) + " does not fit " + layout.id + "'s " + std::to_string(channels) +
-                           " channels: expected [samples][" + std::to_string(channels) + "] or [frames][rows][columns] with rows x columns = " +
-                           std::to_string(channels) + " (or --captures for [captures][channels][samples])");
+    throw Error(
+        where,
+        "shape " + shape_text(shape) + " does not fit " + layout.id + "'s " +
+            std::to_string(channels) + " channels: expected [samples][" + std::to_string(channels) +
+            "] or [frames][rows][columns] with rows x columns = " + std::to_string(channels) +
+            " (or --captures for [captures][channels][samples])");
   }
   ImportedRecording imported;
   Stream stream;
@@ -583,16 +635,20 @@ ImportedRecording recording_from_array(const ImportedArray& array, const SkinLay
   if (!options.classes.empty()) {
     if (options.captures) {
       if (static_cast<int64_t>(options.classes.size()) != shape[0])
-        throw Error(where, std::to_string(options.classes.size()) + " classes for " + std::to_string(shape[0]) + " captures");
+        throw Error(where, std::to_string(options.classes.size()) + " classes for " +
+                               std::to_string(shape[0]) + " captures");
       for (int64_t capture = 0; capture < shape[0]; ++capture) {
-        std::vector<std::string> frames(static_cast<size_t>(shape[2]), options.classes[static_cast<size_t>(capture)]);
-        for (Label& label : labels_from_frame_classes(frames, static_cast<double>(capture * shape[2]) / options.rate_hz,
-                                                      options.rate_hz))
+        std::vector<std::string> frames(static_cast<size_t>(shape[2]),
+                                        options.classes[static_cast<size_t>(capture)]);
+        for (Label& label : labels_from_frame_classes(
+                 frames, static_cast<double>(capture * shape[2]) / options.rate_hz,
+                 options.rate_hz))
           imported.labels.push_back(std::move(label));
       }
     } else {
       if (static_cast<int64_t>(options.classes.size()) != samples)
-        throw Error(where, std::to_string(options.classes.size()) + " classes for " + std::to_string(samples) + " frames");
+        throw Error(where, std::to_string(options.classes.size()) + " classes for " +
+                               std::to_string(samples) + " frames");
       imported.labels = labels_from_frame_classes(options.classes, 0.0, options.rate_hz);
     }
   }

@@ -127,8 +127,8 @@ hsize_t agreeing_count(hid_t group, hid_t samples, hsize_t channels, hsize_t blo
 // summarising fewer samples than the file holds past its start (the flush before's), or, when
 // the overview had grown but its values had not reached the disk, none: then the block before
 // is the last one written whole, and is checked in turn.
-hsize_t summarised_count(hid_t group, hid_t samples, hsize_t channels, hsize_t block,
-                         hsize_t count, const std::string& where) {
+hsize_t summarised_count(hid_t group, hid_t samples, hsize_t channels, hsize_t block, hsize_t count,
+                         const std::string& where) {
   while (count > 0 && channels > 0) {
     const hsize_t first = (count - 1) / block * block;
     const hsize_t agreeing = agreeing_count(group, samples, channels, block, first, count, where);
@@ -169,8 +169,7 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
                                                          " in an earlier stream");
   overview_block = block;
   const bool variable_strings = format_version == 1;
-  info.channels =
-      hdf5::read_strings(group.id(), "channels", where + "/channels", variable_strings);
+  info.channels = hdf5::read_strings(group.id(), "channels", where + "/channels", variable_strings);
   hdf5::check_unique_names(info.channels, where + "/channels");
   info.units = hdf5::read_strings(group.id(), "units", where + "/units", variable_strings);
   if (info.units.size() != info.channels.size())
@@ -199,11 +198,12 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
     const hsize_t extent = samples_count;
     for (const char* overview : {"overview_min", "overview_max"}) {
       Object dataset = hdf5::open_dataset(group.id(), overview, where + "/" + overview);
-      const std::vector<hsize_t> covered = hdf5::dataset_shape(dataset.id(), where + "/" + overview);
+      const std::vector<hsize_t> covered =
+          hdf5::dataset_shape(dataset.id(), where + "/" + overview);
       if (covered.size() == 2) samples_count = std::min(samples_count, covered[1] * block_size);
     }
-    samples_count = summarised_count(group.id(), samples.id(), channels, block_size, samples_count,
-                                     where);
+    samples_count =
+        summarised_count(group.id(), samples.id(), channels, block_size, samples_count, where);
     if (growing && samples_count != extent) cut_off = true;
   }
   info.sample_count = static_cast<int64_t>(samples_count);
@@ -222,8 +222,9 @@ StreamInfo read_stream_info(hid_t streams, const std::string& name, const std::s
   const hsize_t blocks = (samples_count + block_size - 1) / block_size;
   for (const char* overview : {"overview_min", "overview_max"}) {
     const std::string place = where + "/" + overview;
-    Object dataset = cut_off || growing ? hdf5::open_dataset(group.id(), overview, place)
-                             : open_checked(group.id(), overview, {channels, blocks}, place);
+    Object dataset = cut_off || growing
+                         ? hdf5::open_dataset(group.id(), overview, place)
+                         : open_checked(group.id(), overview, {channels, blocks}, place);
     hdf5::check_declared_size(dataset.id(), 4.0 * channels * blocks, place);
   }
   return info;
@@ -269,22 +270,23 @@ RecordingFile::RecordingFile(const std::string& path)
     // A reader in this mode retries a metadata block whose checksum fails (100 times by
     // default, for a writer caught mid-write); damage must fail at once.
     H5Pset_metadata_read_attempts(access.id(), 1);
-    file_handle = Object(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, access.id()), H5Fclose);
-    if (!file_handle.valid()) throw Error(path, "cannot open HDF5 file (" + hdf5::last_error() + ")");
+    file_handle =
+        Object(H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, access.id()), H5Fclose);
+    if (!file_handle.valid())
+      throw Error(path, "cannot open HDF5 file (" + hdf5::last_error() + ")");
     cut_off_ = true;
   } else {
     // A file this process has open already is shared, and a second open never sees the
     // open-for-write flag: it is cut off if it was opened so before.
     unsigned intent = 0;
-    if (H5Fget_intent(file_handle.id(), &intent) >= 0 && (intent & H5F_ACC_SWMR_READ) != 0) cut_off_ = true;
+    if (H5Fget_intent(file_handle.id(), &intent) >= 0 && (intent & H5F_ACC_SWMR_READ) != 0)
+      cut_off_ = true;
   }
   file_->file = std::move(file_handle);
   load();
 }
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 RecordingFile RecordingFile::from_image(std::span<const uint8_t> image, const std::string& name) {
   hdf5::silence_errors();
@@ -302,8 +304,7 @@ RecordingFile RecordingFile::from_image(std::span<const uint8_t> image, const st
   static std::atomic<uint64_t> images{0};
   const std::string unique = name + "#image" + std::to_string(images++);
   Object file_handle(H5Fopen(unique.c_str(), H5F_ACC_RDONLY, access.id()), H5Fclose);
-  if (!file_handle.valid())
-    throw Error(name, "cannot open HDF5 file (" + hdf5::last_error() + ")");
+  if (!file_handle.valid()) throw Error(name, "cannot open HDF5 file (" + hdf5::last_error() + ")");
   // On disk HDF5 refuses a file shorter than its superblock's end of file address; from
   // memory it reads zeros past the end instead, so the check is made here.
   const std::optional<uint64_t> end = hdf5::superblock_end_of_file(image);
@@ -344,7 +345,8 @@ void RecordingFile::load() {
   Object streams = hdf5::open_group(file, "streams", path + ":/streams");
   int64_t block = 0;
   for (const std::string& name : stream_names(streams.id(), path + ":/streams"))
-    streams_.push_back(read_stream_info(streams.id(), name, path, format_version_, cut_off_, block));
+    streams_.push_back(
+        read_stream_info(streams.id(), name, path, format_version_, cut_off_, block));
   if (block > 0) overview_block_ = block;
 }
 
@@ -473,10 +475,11 @@ Recording RecordingFile::read_all(const std::function<void(double)>& step) const
       stream.samples = read(info.name, 0, info.sample_count);
     } else {
       int64_t total = 0;
-      for (const StreamInfo& each : streams_) total += each.sample_count * static_cast<int64_t>(each.channels.size());
+      for (const StreamInfo& each : streams_)
+        total += each.sample_count * static_cast<int64_t>(each.channels.size());
       stream.samples.resize(info.sample_count, static_cast<Eigen::Index>(info.channels.size()));
-      const int64_t block =
-          std::max<int64_t>(1, (int64_t{1} << 20) / std::max<int64_t>(1, static_cast<int64_t>(info.channels.size())));
+      const int64_t block = std::max<int64_t>(
+          1, (int64_t{1} << 20) / std::max<int64_t>(1, static_cast<int64_t>(info.channels.size())));
       for (int64_t first = 0; first < info.sample_count; first += block) {
         const int64_t rows = std::min(block, info.sample_count - first);
         stream.samples.middleRows(first, rows) = read(info.name, first, rows);

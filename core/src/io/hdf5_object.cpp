@@ -1,8 +1,8 @@
 #include "hdf5_object.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -28,7 +28,10 @@ std::string one_line(std::string message) {
   const size_t quoted = message.find("error message = '");
   if (quoted != std::string::npos) {
     const size_t begin = quoted + 17, end = message.find('\'', begin);
-    const std::string action = message.rfind("file read failed", 0) == 0 ? "cannot read the file: " : message.rfind("file write failed", 0) == 0 ? "cannot write the file: " : "";
+    const std::string action = message.rfind("file read failed", 0) == 0 ? "cannot read the file: "
+                               : message.rfind("file write failed", 0) == 0
+                                   ? "cannot write the file: "
+                                   : "";
     if (end != std::string::npos) return action + message.substr(begin, end - begin);
   }
   const size_t line = message.find('\n');
@@ -107,7 +110,8 @@ void keep_attributes_compact(hid_t properties, const std::string& where) {
 Object untimed_dataset_properties(const std::string& where) {
   Object properties =
       checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where, "cannot create property list");
-  if (H5Pset_obj_track_times(properties.id(), false) < 0) fail(where, "cannot turn off time stamps");
+  if (H5Pset_obj_track_times(properties.id(), false) < 0)
+    fail(where, "cannot turn off time stamps");
   keep_attributes_compact(properties.id(), where);
   return properties;
 }
@@ -137,7 +141,8 @@ Object create_group(hid_t location, const std::string& name, bool track_order,
                     const std::string& where) {
   Object properties = checked(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, where, "property list");
   // No modification times in object headers: the same recording writes the same bytes.
-  if (H5Pset_obj_track_times(properties.id(), false) < 0) fail(where, "cannot turn off time stamps");
+  if (H5Pset_obj_track_times(properties.id(), false) < 0)
+    fail(where, "cannot turn off time stamps");
   keep_attributes_compact(properties.id(), where);
   if (H5Pset_link_phase_change(properties.id(), kMaxCompact, 0) < 0)
     fail(where, "cannot keep links in the object header");
@@ -227,8 +232,8 @@ void write_int_attribute(hid_t location, const std::string& name, int64_t value,
   write_attribute(location, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value, where);
 }
 
-std::string read_string_attribute(hid_t location, const std::string& name,
-                                  const std::string& where, bool allow_variable) {
+std::string read_string_attribute(hid_t location, const std::string& name, const std::string& where,
+                                  bool allow_variable) {
   const std::string place = where + " attribute " + name;
   Object attribute = open_scalar_attribute(location, name, place);
   Object file_type = checked(H5Aget_type(attribute.id()), H5Tclose, place, "cannot read type");
@@ -319,9 +324,8 @@ void check_declared_size(hid_t dataset, double bytes, const std::string& where) 
     unsigned flags = 0;
     size_t values = 0;
     unsigned config = 0;
-    const H5Z_filter_t filter =
-        H5Pget_filter2(properties.id(), static_cast<unsigned>(index), &flags, &values, nullptr, 0,
-                       nullptr, &config);
+    const H5Z_filter_t filter = H5Pget_filter2(properties.id(), static_cast<unsigned>(index),
+                                               &flags, &values, nullptr, 0, nullptr, &config);
     if (filter == H5Z_FILTER_DEFLATE)
       expansion = 1032.0;  // deflate's largest compression ratio
     else if (filter != H5Z_FILTER_SHUFFLE && filter != H5Z_FILTER_FLETCHER32)
@@ -447,7 +451,6 @@ std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
   }
   return {};
 }
-
 
 bool pad_to_declared_end(const std::string& path) {
   std::vector<uint8_t> head(4096);

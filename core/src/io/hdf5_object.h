@@ -99,8 +99,8 @@ void write_double_attribute(hid_t location, const std::string& name, double valu
 void write_int_attribute(hid_t location, const std::string& name, int64_t value,
                          const std::string& where);
 // Missing or mistyped attributes throw tactile::Error naming `where` and the attribute.
-std::string read_string_attribute(hid_t location, const std::string& name,
-                                  const std::string& where, bool allow_variable);
+std::string read_string_attribute(hid_t location, const std::string& name, const std::string& where,
+                                  bool allow_variable);
 double read_double_attribute(hid_t location, const std::string& name, const std::string& where);
 int64_t read_int_attribute(hid_t location, const std::string& name, const std::string& where);
 std::vector<std::string> attribute_names(hid_t location, const std::string& where);
@@ -147,11 +147,12 @@ void add_chunked_storage(hid_t properties, int rank, const hsize_t* chunk, bool 
 Object create_recording_file(const std::string& path, const std::string& where);
 // A stream's group with its attributes, channel names and units (empty: none given), before
 // its samples.
-Object create_stream_group(hid_t streams, const std::string& name, double rate_hz, double start_time,
-                           const std::vector<std::string>& channels,
+Object create_stream_group(hid_t streams, const std::string& name, double rate_hz,
+                           double start_time, const std::vector<std::string>& channels,
                            const std::vector<std::string>& units, const std::string& where);
 // The root attributes and /metadata of a recording.
-void write_recording_attributes(hid_t file, const std::string& where, const std::string& recording_id,
-                                const std::string& layout_id, const Metadata& metadata);
+void write_recording_attributes(hid_t file, const std::string& where,
+                                const std::string& recording_id, const std::string& layout_id,
+                                const Metadata& metadata);
 
 }  // namespace tactile::hdf5

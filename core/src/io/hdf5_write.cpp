@@ -124,7 +124,8 @@ void write_stream(hid_t streams, const Stream& stream, const std::string& file_w
 }
 
 void write_contents(hid_t file, const std::string& path, const Recording& recording) {
-  hdf5::write_recording_attributes(file, path, recording.id, recording.layout_id, recording.metadata);
+  hdf5::write_recording_attributes(file, path, recording.id, recording.layout_id,
+                                   recording.metadata);
   Object streams = hdf5::create_group(file, "streams", true, path + ":/streams");
   for (const Stream& stream : recording.streams) write_stream(streams.id(), stream, path);
 }
@@ -146,21 +147,23 @@ Object create_recording_file(const std::string& path, const std::string& where) 
                  "cannot create file");
 }
 
-Object create_stream_group(hid_t streams, const std::string& name, double rate_hz, double start_time,
-                           const std::vector<std::string>& channels,
+Object create_stream_group(hid_t streams, const std::string& name, double rate_hz,
+                           double start_time, const std::vector<std::string>& channels,
                            const std::vector<std::string>& units, const std::string& where) {
   Object group = create_group(streams, name, false, where);
   write_double_attribute(group.id(), "rate_hz", rate_hz, where);
   write_double_attribute(group.id(), "start_time", start_time, where);
   write_int_attribute(group.id(), "overview_block", kOverviewBlock, where);
   write_strings(group.id(), "channels", channels, where + "/channels");
-  write_strings(group.id(), "units", units.empty() ? std::vector<std::string>(channels.size()) : units,
+  write_strings(group.id(), "units",
+                units.empty() ? std::vector<std::string>(channels.size()) : units,
                 where + "/units");
   return group;
 }
 
-void write_recording_attributes(hid_t file, const std::string& path, const std::string& recording_id,
-                                const std::string& layout_id, const Metadata& metadata) {
+void write_recording_attributes(hid_t file, const std::string& path,
+                                const std::string& recording_id, const std::string& layout_id,
+                                const Metadata& metadata) {
   const std::string root = path + ":/";
   write_string_attribute(file, "format", kFormatName, root);
   write_int_attribute(file, "format_version", kRecordingFormatVersion, root);

@@ -14,9 +14,9 @@ namespace tactile {
 
 namespace {
 
-constexpr const char* kHeader[] = {"id",        "recording", "t0",     "t1",
-                                   "region",    "class",     "annotator", "source",
-                                   "confidence", "note",     "created", "modified"};
+constexpr const char* kHeader[] = {"id",         "recording", "t0",        "t1",
+                                   "region",     "class",     "annotator", "source",
+                                   "confidence", "note",      "created",   "modified"};
 constexpr size_t kFields = std::size(kHeader);
 
 std::string read_all(const std::string& path) {
@@ -91,8 +91,9 @@ std::vector<Label> read_csv(const std::string& path) {
   const Record& header = records.front();
   if (header.fields.size() != kFields ||
       !std::equal(header.fields.begin(), header.fields.end(), std::begin(kHeader)))
-    throw Error(path + ":1", "expected the header id,recording,t0,t1,region,class,annotator,"
-                             "source,confidence,note,created,modified");
+    throw Error(path + ":1",
+                "expected the header id,recording,t0,t1,region,class,annotator,"
+                "source,confidence,note,created,modified");
   std::vector<Label> labels;
   for (size_t k = 1; k < records.size(); ++k) {
     const Record& record = records[k];

@@ -53,7 +53,8 @@ std::optional<StoreProblem> checksum_problem(const char* table, int64_t row,
       row_checksum::mismatches(table, row, fields, stored);
   if (fields_wrong.empty()) return std::nullopt;
   if (fields_wrong.size() == fields.size())
-    return row_problem(table, row, "", "no field matches the row's checksum (row id or checksum damaged)");
+    return row_problem(table, row, "",
+                       "no field matches the row's checksum (row id or checksum damaged)");
   std::string names;
   for (const std::string& name : fields_wrong) names += (names.empty() ? "" : ", ") + name;
   return row_problem(table, row, fields_wrong.front(),
@@ -109,7 +110,9 @@ bool is_iso_time(const std::string& text) {
     for (size_t index = rest + 1; index + 1 < text.size(); ++index)
       if (text[index] < '0' || text[index] > '9') return false;
   }
-  auto number = [&text](size_t first, size_t count) { return std::stoi(text.substr(first, count)); };
+  auto number = [&text](size_t first, size_t count) {
+    return std::stoi(text.substr(first, count));
+  };
   const int month = number(5, 2), day = number(8, 2), hour = number(11, 2), minute = number(14, 2),
             second = number(17, 2);
   return month >= 1 && month <= 12 && day >= 1 && day <= 31 && hour < 24 && minute < 60 &&
@@ -176,7 +179,8 @@ CheckedLabel read_label(const sqlite::Statement& statement, const KnownClasses& 
     row.problem = row_problem("labels", label.id, "class",
                               "'" + label.class_name + "' is in no vocabulary of the store");
   else if (!is_iso_time(label.created))
-    row.problem = row_problem("labels", label.id, "created", "'" + label.created + "' is not a time");
+    row.problem =
+        row_problem("labels", label.id, "created", "'" + label.created + "' is not a time");
   else if (!is_iso_time(label.modified))
     row.problem =
         row_problem("labels", label.id, "modified", "'" + label.modified + "' is not a time");
@@ -404,11 +408,11 @@ void compare_digests(const std::map<std::string, Digest>& found,
                      std::vector<StoreProblem>& problems) {
   auto compare = [&problems](const std::string& scope, const Digest& seen, const Digest& kept) {
     if (seen.rows == kept.rows && seen.sum == kept.sum) return;
-    problems.push_back(StoreProblem{
-        "digests", 0, scope,
-        std::to_string(seen.rows) + " rows read, " + std::to_string(kept.rows) +
-            " written" + (seen.rows == kept.rows ? " (the rows differ)" : "") +
-            ": rows lost, added or changed on disk"});
+    problems.push_back(StoreProblem{"digests", 0, scope,
+                                    std::to_string(seen.rows) + " rows read, " +
+                                        std::to_string(kept.rows) + " written" +
+                                        (seen.rows == kept.rows ? " (the rows differ)" : "") +
+                                        ": rows lost, added or changed on disk"});
   };
   for (const auto& [scope, seen] : found) {
     const auto kept = stored.find(scope);
@@ -484,9 +488,9 @@ void seal_journal_row(sqlite3* database, const std::string& path, const JournalE
 }
 
 CheckedJournal load_journal(sqlite3* database, const std::string& path, int64_t sequence) {
-  sqlite::Statement select(database, path,
-                           std::string("SELECT ") + kJournalColumns +
-                               " FROM journal WHERE sequence = ?");
+  sqlite::Statement select(
+      database, path,
+      std::string("SELECT ") + kJournalColumns + " FROM journal WHERE sequence = ?");
   select.bind(1, sequence);
   if (!select.step()) throw Error(path + " journal row " + std::to_string(sequence), "missing");
   return read_journal(select);
@@ -556,7 +560,8 @@ CheckedJournal read_journal(const sqlite::Statement& statement) {
   auto bad = [&row, &entry](const char* field, const std::string& what) {
     row.problem = row_problem("journal", entry.sequence, field, what);
   };
-  static const std::set<std::string> kActions = {"insert", "update", "delete", "reject", "undo", "redo"};
+  static const std::set<std::string> kActions = {"insert", "update", "delete",
+                                                 "reject", "undo",   "redo"};
   if (row.problem) return row;
   if (undone != 0 && undone != 1) return bad("undone", "neither 0 nor 1"), row;
   if (!is_iso_time(entry.time)) return bad("time", "'" + entry.time + "' is not a time"), row;
@@ -606,9 +611,12 @@ void clear_redo_chain(sqlite3* database, const std::string& path) {
 }
 
 std::vector<row_checksum::Field> rejection_fields(const Rejection& rejection) {
-  return {{"recording", rejection.recording}, {"method", rejection.method},
-          {"t0", rejection.t0},               {"t1", rejection.t1},
-          {"annotator", rejection.annotator}, {"time", rejection.time}};
+  return {{"recording", rejection.recording},
+          {"method", rejection.method},
+          {"t0", rejection.t0},
+          {"t1", rejection.t1},
+          {"annotator", rejection.annotator},
+          {"time", rejection.time}};
 }
 
 namespace {
@@ -627,8 +635,9 @@ sqlite::Statement& bind_rejection(sqlite::Statement& statement, const Rejection&
 void remember_rejection(sqlite3* database, const std::string& path, const Label& suggestion,
                         const std::string& annotator) {
   const std::string where = where_label(path, suggestion.id);
-  Rejection rejection{0, suggestion.recording, suggestion.annotator, suggestion.t0, suggestion.t1,
-                      annotator, now_utc()};
+  Rejection rejection{
+      0,        suggestion.recording, suggestion.annotator, suggestion.t0, suggestion.t1, annotator,
+      now_utc()};
   {
     sqlite::Statement insert(database, where,
                              "INSERT INTO rejections (recording, method, t0, t1, annotator, time, "
@@ -648,8 +657,8 @@ void forget_rejection(sqlite3* database, const std::string& path, const Label& s
   sqlite::Statement erase(database, where_label(path, suggestion.id),
                           "DELETE FROM rejections WHERE id = (SELECT MAX(id) FROM rejections WHERE "
                           "recording = ? AND method = ? AND t0 = ? AND t1 = ? AND annotator = ?)");
-  bind_rejection(erase, {0, suggestion.recording, suggestion.annotator, suggestion.t0, suggestion.t1,
-                         annotator, ""});
+  bind_rejection(erase, {0, suggestion.recording, suggestion.annotator, suggestion.t0,
+                         suggestion.t1, annotator, ""});
   erase.run();
 }
 

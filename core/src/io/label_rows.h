@@ -2,8 +2,8 @@
 // Shared by the LabelStore's source files: labels to and from rows and JSON,
 // validation, filters as SQL, and the journal rows every edit writes.
 
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>

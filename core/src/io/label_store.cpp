@@ -5,8 +5,8 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
-#include <map>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -362,8 +362,8 @@ int64_t LabelStore::add(const Label& label) {
   label_rows::validate(label, path_ + " new label");
   sqlite::Transaction transaction(database_, path_);
   note_others_commits();
-  const int64_t id = insert_new(database_, path_, label, label_rows::next_batch(database_, path_),
-                                  fixed_time_);
+  const int64_t id =
+      insert_new(database_, path_, label, label_rows::next_batch(database_, path_), fixed_time_);
   label_rows::clear_redo_chain(database_, path_);
   note_own_commit();
   transaction.commit();
@@ -381,7 +381,8 @@ std::vector<int64_t> LabelStore::add_many(const std::vector<Label>& labels) {
   sqlite::Transaction transaction(database_, path_);
   note_others_commits();
   const int64_t batch = label_rows::next_batch(database_, path_);
-  for (const Label& label : labels) ids.push_back(insert_new(database_, path_, label, batch, fixed_time_));
+  for (const Label& label : labels)
+    ids.push_back(insert_new(database_, path_, label, batch, fixed_time_));
   label_rows::clear_redo_chain(database_, path_);
   note_own_commit();
   transaction.commit();
@@ -421,7 +422,8 @@ int64_t LabelStore::remove_where(const LabelFilter& filter, const std::string& a
                                  clause.sql + " ORDER BY recording, t0, id");
     clause.bind(select);
     const label_rows::KnownClasses classes = label_rows::known_classes(database_, path_);
-    while (select.step()) doomed.push_back(label_rows::require(label_rows::read_label(select, classes), path_));
+    while (select.step())
+      doomed.push_back(label_rows::require(label_rows::read_label(select, classes), path_));
   }
   if (doomed.empty()) return 0;
   const int64_t batch = label_rows::next_batch(database_, path_);
@@ -522,9 +524,11 @@ std::vector<Label> LabelStore::list(const LabelFilter& filter) const {
 
 void LabelStore::note_problems(const std::vector<StoreProblem>& problems) const {
   for (const StoreProblem& problem : problems) {
-    const bool known = std::any_of(problems_.begin(), problems_.end(), [&](const StoreProblem& seen) {
-      return seen.table == problem.table && seen.row == problem.row && seen.field == problem.field;
-    });
+    const bool known =
+        std::any_of(problems_.begin(), problems_.end(), [&](const StoreProblem& seen) {
+          return seen.table == problem.table && seen.row == problem.row &&
+                 seen.field == problem.field;
+        });
     if (!known) problems_.push_back(problem);
   }
 }
@@ -555,11 +559,11 @@ std::vector<Rejection> LabelStore::rejections(const std::string& recording) cons
   while (select.step()) {
     Rejection rejection{select.integer(0), select.text(1), select.text(2), select.real(3),
                         select.real(4),    select.text(5), select.text(6)};
-    const auto wrong = row_checksum::mismatches("rejections", rejection.id,
-                                                label_rows::rejection_fields(rejection), select.text(7));
+    const auto wrong = row_checksum::mismatches(
+        "rejections", rejection.id, label_rows::rejection_fields(rejection), select.text(7));
     if (!wrong.empty()) {
-      problems.push_back({"rejections", rejection.id, wrong.front(),
-                          "value does not match its checksum"});
+      problems.push_back(
+          {"rejections", rejection.id, wrong.front(), "value does not match its checksum"});
       continue;
     }
     found.push_back(std::move(rejection));

@@ -76,9 +76,8 @@ void move_label(sqlite3* database, const std::string& path, const EditRow& row,
     if (target)
       label_rows::forget_rejection(database, path, *target, row.annotator);
     else
-      label_rows::remember_rejection(database, path,
-                                     *label_rows::state_from_json(expected_json, where),
-                                     row.annotator);
+      label_rows::remember_rejection(
+          database, path, *label_rows::state_from_json(expected_json, where), row.annotator);
   }
   label_rows::write_journal(database, path, batch, annotator.empty() ? row.annotator : annotator,
                             verb, row.label_id, label_rows::state_json(current),

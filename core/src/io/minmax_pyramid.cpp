@@ -68,7 +68,7 @@ MinMaxPyramid::MinMaxPyramid(int64_t sample_count, std::span<const float> overvi
     const auto block_where = [&] { return where + " overview block " + std::to_string(block); };
     if (std::isnan(low) != std::isnan(high)) {
       throw Error(block_where(), "NaN on one side only (min " + std::to_string(low) + ", max " +
-                                   std::to_string(high) + ")");
+                                     std::to_string(high) + ")");
     }
     const bool gap =
         std::isnan(low) || (std::isinf(low) && low > 0 && std::isinf(high) && high < 0);

@@ -33,10 +33,12 @@ Object growing_dataset(hid_t group, const char* name, hsize_t channels, hsize_t 
   // What no flush wrote reads as a gap, never as numbers: after a failed flush the extent may
   // already cover samples whose chunks never reached the disk (`tactile repair` cuts them).
   const float gap = std::numeric_limits<float>::quiet_NaN();
-  if (H5Pset_fill_value(properties.id(), H5T_NATIVE_FLOAT, &gap) < 0) fail(where, "cannot set the fill value");
+  if (H5Pset_fill_value(properties.id(), H5T_NATIVE_FLOAT, &gap) < 0)
+    fail(where, "cannot set the fill value");
   // Every channel's chunk being filled stays in the cache between flushes.
   Object access = checked(H5Pcreate(H5P_DATASET_ACCESS), H5Pclose, where, "property list");
-  if (H5Pset_chunk_cache(access.id(), 12421, cache_bytes, 1.0) < 0) fail(where, "cannot size the chunk cache");
+  if (H5Pset_chunk_cache(access.id(), 12421, cache_bytes, 1.0) < 0)
+    fail(where, "cannot size the chunk cache");
   return checked(H5Dcreate2(group, name, H5T_IEEE_F32LE, space.id(), H5P_DEFAULT, properties.id(),
                             access.id()),
                  H5Dclose, where, "cannot create dataset");
@@ -54,7 +56,8 @@ void append_columns(hid_t dataset, hsize_t channels, hsize_t first, hsize_t coun
   if (H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, start, nullptr, size, nullptr) < 0)
     fail(where, "cannot select");
   Object memory_space = checked(H5Screate_simple(2, size, nullptr), H5Sclose, where, "dataspace");
-  if (H5Dwrite(dataset, H5T_NATIVE_FLOAT, memory_space.id(), file_space.id(), H5P_DEFAULT, data) < 0)
+  if (H5Dwrite(dataset, H5T_NATIVE_FLOAT, memory_space.id(), file_space.id(), H5P_DEFAULT, data) <
+      0)
     fail(where, "cannot write");
 }
 
@@ -74,20 +77,24 @@ RecordingWriter::RecordingWriter(const std::string& path, const std::string& rec
     : path_(path), channels_(static_cast<int>(channels.size())), rate_(rate_hz) {
   hdf5::silence_errors();
   const std::string where = path + ":/streams/" + stream;
-  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw Error(where, "needs a positive sample rate");
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz))
+    throw Error(where, "needs a positive sample rate");
   if (!std::isfinite(start_time)) throw Error(where, "start_time is not finite");
   if (channels.empty()) throw Error(where, "has no channels");
   if (!units.empty() && units.size() != channels.size())
-    throw Error(where, std::to_string(units.size()) + " units for " + std::to_string(channels.size()) + " channels");
+    throw Error(where, std::to_string(units.size()) + " units for " +
+                           std::to_string(channels.size()) + " channels");
   if (!(options.flush_seconds > 0.0)) throw Error(path, "flush interval must be positive");
-  if (stream.empty() || stream.find('/') != std::string::npos) throw Error(where, "invalid stream name");
+  if (stream.empty() || stream.find('/') != std::string::npos)
+    throw Error(where, "invalid stream name");
   hdf5::check_unique_names(channels, where + "/channels");
   std::error_code error;
-  if (std::filesystem::exists(path, error)) throw Error(path, "exists already; a recording is never written over a file");
+  if (std::filesystem::exists(path, error))
+    throw Error(path, "exists already; a recording is never written over a file");
   // About a second per chunk (whole overview blocks), so a chunk is written once or twice.
-  chunk_ = std::clamp<int64_t>((std::llround(std::ceil(rate_hz)) + kOverviewBlock - 1) / kOverviewBlock *
-                                   kOverviewBlock,
-                               kOverviewBlock, 8192);
+  chunk_ = std::clamp<int64_t>(
+      (std::llround(std::ceil(rate_hz)) + kOverviewBlock - 1) / kOverviewBlock * kOverviewBlock,
+      kOverviewBlock, 8192);
   flush_every_ = std::max<int64_t>(1, std::llround(std::floor(options.flush_seconds * rate_hz)));
   handles_ = std::make_unique<Handles>();
   handles_->where = where;
@@ -96,15 +103,19 @@ RecordingWriter::RecordingWriter(const std::string& path, const std::string& rec
     const hid_t file = handles_->file.id();
     hdf5::write_recording_attributes(file, path, recording_id, layout_id, metadata);
     Object streams = hdf5::create_group(file, "streams", true, path + ":/streams");
-    Object group = hdf5::create_stream_group(streams.id(), stream, rate_hz, start_time, channels, units, where);
+    Object group = hdf5::create_stream_group(streams.id(), stream, rate_hz, start_time, channels,
+                                             units, where);
     const auto count = static_cast<hsize_t>(channels_);
-    const size_t cache = std::min<size_t>(size_t{64} << 20, count * static_cast<size_t>(chunk_) * 4 * 2 + (1 << 20));
-    handles_->samples = growing_dataset(group.id(), "samples", count, static_cast<hsize_t>(chunk_), true,
-                                        cache, where + "/samples");
-    handles_->overview_min = growing_dataset(group.id(), "overview_min", count, kOverviewChunk, false,
-                                             count * kOverviewChunk * 4 * 2, where + "/overview_min");
-    handles_->overview_max = growing_dataset(group.id(), "overview_max", count, kOverviewChunk, false,
-                                             count * kOverviewChunk * 4 * 2, where + "/overview_max");
+    const size_t cache =
+        std::min<size_t>(size_t{64} << 20, count * static_cast<size_t>(chunk_) * 4 * 2 + (1 << 20));
+    handles_->samples = growing_dataset(group.id(), "samples", count, static_cast<hsize_t>(chunk_),
+                                        true, cache, where + "/samples");
+    handles_->overview_min =
+        growing_dataset(group.id(), "overview_min", count, kOverviewChunk, false,
+                        count * kOverviewChunk * 4 * 2, where + "/overview_min");
+    handles_->overview_max =
+        growing_dataset(group.id(), "overview_max", count, kOverviewChunk, false,
+                        count * kOverviewChunk * 4 * 2, where + "/overview_max");
     // From here on the file on disk is whole after every flush, whatever happens to us.
     if (H5Fstart_swmr_write(file) < 0) fail(path, "cannot start single-writer mode");
   } catch (...) {
@@ -134,7 +145,8 @@ void RecordingWriter::append(const SampleMatrix& rows) {
     throw Error(handles_->where, std::to_string(rows.cols()) + " values per sample for " +
                                      std::to_string(channels_) + " channels");
   for (Eigen::Index row = 0; row < rows.rows(); ++row)
-    for (Eigen::Index column = 0; column < rows.cols(); ++column) pending_.push_back(rows(row, column));
+    for (Eigen::Index column = 0; column < rows.cols(); ++column)
+      pending_.push_back(rows(row, column));
   pending_count_ += rows.rows();
   appended_ += rows.rows();
   if (pending_count_ >= flush_every_) flush();
@@ -164,20 +176,24 @@ void RecordingWriter::flush() {
     const int64_t blocks = end_block - first_block;
     std::vector<float> minima(static_cast<size_t>(channels_ * blocks)), maxima(minima.size());
     for (int channel = 0; channel < channels_; ++channel) {
-      MinMax range{block_min_[static_cast<size_t>(channel)], block_max_[static_cast<size_t>(channel)]};
+      MinMax range{block_min_[static_cast<size_t>(channel)],
+                   block_max_[static_cast<size_t>(channel)]};
       for (int64_t sample = 0; sample < pending_count_; ++sample) {
         const int64_t index = written_ + sample;
         if (index % kOverviewBlock == 0) range = MinMax{};
         range.add(columns[static_cast<size_t>(channel * pending_count_ + sample)]);
-        const size_t slot = static_cast<size_t>(channel * blocks + index / kOverviewBlock - first_block);
+        const size_t slot =
+            static_cast<size_t>(channel * blocks + index / kOverviewBlock - first_block);
         // A block of nothing but gaps is NaN, as write_recording stores it.
         minima[slot] = range.empty() ? std::numeric_limits<float>::quiet_NaN() : range.min;
         maxima[slot] = range.empty() ? std::numeric_limits<float>::quiet_NaN() : range.max;
       }
       // Carried into the next flush unless the block is complete.
       const bool complete = (written_ + pending_count_) % kOverviewBlock == 0;
-      block_min_[static_cast<size_t>(channel)] = complete ? std::numeric_limits<float>::infinity() : range.min;
-      block_max_[static_cast<size_t>(channel)] = complete ? -std::numeric_limits<float>::infinity() : range.max;
+      block_min_[static_cast<size_t>(channel)] =
+          complete ? std::numeric_limits<float>::infinity() : range.min;
+      block_max_[static_cast<size_t>(channel)] =
+          complete ? -std::numeric_limits<float>::infinity() : range.max;
     }
     append_columns(handles_->overview_min.id(), channels, static_cast<hsize_t>(first_block),
                    static_cast<hsize_t>(blocks), minima.data(), where + "/overview_min");

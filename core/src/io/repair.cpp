@@ -54,12 +54,17 @@ class StreamReader {
       for (int64_t from = first; from < first + count;) {
         const int64_t end = std::min(first + count, (from / chunk_ + 1) * chunk_);
         try {
-          const std::vector<float> values = file_.read_channel(stream_.name, channel, from, end - from);
-          for (int64_t k = from; k < end; ++k) samples(k - first, channel) = values[static_cast<size_t>(k - from)];
+          const std::vector<float> values =
+              file_.read_channel(stream_.name, channel, from, end - from);
+          for (int64_t k = from; k < end; ++k)
+            samples(k - first, channel) = values[static_cast<size_t>(k - from)];
         } catch (const Error& error) {
-          samples.col(channel).segment(from - first, end - from).setConstant(std::numeric_limits<float>::quiet_NaN());
-          lost_.push_back("/streams/" + stream_.name + " channel " + stream_.channels[static_cast<size_t>(channel)] +
-                          ", " + span_text(stream_, from, end) + ": unreadable (" + error.message() +
+          samples.col(channel)
+              .segment(from - first, end - from)
+              .setConstant(std::numeric_limits<float>::quiet_NaN());
+          lost_.push_back("/streams/" + stream_.name + " channel " +
+                          stream_.channels[static_cast<size_t>(channel)] + ", " +
+                          span_text(stream_, from, end) + ": unreadable (" + error.message() +
                           "), now a gap");
         }
         from = end;
@@ -77,7 +82,8 @@ class StreamReader {
       const int64_t first = std::max<int64_t>(0, (end - 1) / step_ * step_);
       const SampleMatrix samples = quiet.read(first, end - first);
       for (int64_t row = samples.rows() - 1; row >= 0; --row)
-        if (samples.row(row).unaryExpr([](float v) { return std::isnan(v) ? 0.0f : 1.0f; }).sum() > 0)
+        if (samples.row(row).unaryExpr([](float v) { return std::isnan(v) ? 0.0f : 1.0f; }).sum() >
+            0)
           return first + row + 1;
       end = first;
     }
@@ -98,7 +104,8 @@ std::string beside(const std::string& path, const std::string& suffix) {
 }
 
 // The end of a stream that holds nothing, cut; named in `lost`.
-int64_t kept_count(const StreamInfo& stream, const StreamReader& reader, std::vector<std::string>& lost) {
+int64_t kept_count(const StreamInfo& stream, const StreamReader& reader,
+                   std::vector<std::string>& lost) {
   const int64_t end = reader.written_end();
   if (end < stream.sample_count)
     lost.push_back("/streams/" + stream.name + " " + span_text(stream, end, stream.sample_count) +
@@ -114,13 +121,15 @@ void copy_streaming(const RecordingFile& file, const std::string& target, Repair
   const int64_t count = kept_count(stream, reader, report.lost);
   RecordingWriterOptions options;
   options.flush_seconds = std::max(1.0, 65536.0 / stream.rate_hz);
-  RecordingWriter writer(target, file.recording_id(), file.layout_id(), file.metadata(), stream.name,
-                         stream.rate_hz, stream.start_time, stream.channels, stream.units, options);
+  RecordingWriter writer(target, file.recording_id(), file.layout_id(), file.metadata(),
+                         stream.name, stream.rate_hz, stream.start_time, stream.channels,
+                         stream.units, options);
   for (int64_t first = 0; first < count; first += reader.step())
     writer.append(reader.read(first, std::min(reader.step(), count - first)));
   writer.finish();
-  report.rebuilt.push_back("/streams/" + stream.name + ": the overview and the sample count, from " +
-                           std::to_string(count) + " samples (" +
+  report.rebuilt.push_back("/streams/" + stream.name +
+                           ": the overview and the sample count, from " + std::to_string(count) +
+                           " samples (" +
                            seconds_text(static_cast<double>(count) / stream.rate_hz) + ")");
 }
 
@@ -144,7 +153,8 @@ void copy_whole(const RecordingFile& file, const std::string& target, RepairRepo
       }
       int64_t good = 0;
       while (good < count && std::isfinite(stream.timestamps[static_cast<size_t>(good)]) &&
-             (good == 0 || stream.timestamps[static_cast<size_t>(good)] > stream.timestamps[static_cast<size_t>(good - 1)]))
+             (good == 0 || stream.timestamps[static_cast<size_t>(good)] >
+                               stream.timestamps[static_cast<size_t>(good - 1)]))
         ++good;
       if (good < count)
         report.lost.push_back("/streams/" + info.name + " " + span_text(info, good, count) +
@@ -157,8 +167,9 @@ void copy_whole(const RecordingFile& file, const std::string& target, RepairRepo
       const int64_t length = std::min(reader.step(), count - first);
       stream.samples.middleRows(first, length) = reader.read(first, length);
     }
-    report.rebuilt.push_back("/streams/" + info.name + ": the overview and the sample count, from " +
-                             std::to_string(count) + " samples");
+    report.rebuilt.push_back("/streams/" + info.name +
+                             ": the overview and the sample count, from " + std::to_string(count) +
+                             " samples");
     recording.streams.push_back(std::move(stream));
   }
   write_recording(target, recording);
@@ -175,7 +186,8 @@ RepairReport repair_recording(const std::string& path) {
       report.rebuilt.push_back("the file's end, which its writer could not write (read as zeros)");
     file = std::make_unique<RecordingFile>(path);
   } catch (const Error& error) {
-    throw Error(path, std::string("cannot be repaired: it does not open (") + error.message() + ")");
+    throw Error(path,
+                std::string("cannot be repaired: it does not open (") + error.message() + ")");
   }
   // A cut-off file verifies as far as it goes, but claims samples it never wrote.
   if (!file->cut_off() && verify_recording(path).empty()) return report;
@@ -204,7 +216,8 @@ RepairReport repair_recording(const std::string& path) {
 
 std::vector<std::string> repair_lines(const std::string& path, const RepairReport& report) {
   if (!report.repaired) return {path + ": whole, nothing to repair"};
-  std::vector<std::string> lines{path + ": repaired; the damaged original is kept as " + report.kept_original};
+  std::vector<std::string> lines{path + ": repaired; the damaged original is kept as " +
+                                 report.kept_original};
   for (const std::string& line : report.rebuilt) lines.push_back("  rebuilt: " + line);
   if (report.lost.empty()) lines.push_back("  lost: nothing");
   for (const std::string& line : report.lost) lines.push_back("  lost: " + line);

@@ -11,7 +11,8 @@ namespace {
 constexpr size_t kDigits = 8;
 
 uint32_t crc_bytes(uint32_t crc, const void* data, size_t size) {
-  return static_cast<uint32_t>(crc32(crc, static_cast<const Bytef*>(data), static_cast<uInt>(size)));
+  return static_cast<uint32_t>(
+      crc32(crc, static_cast<const Bytef*>(data), static_cast<uInt>(size)));
 }
 
 template <typename T>
@@ -56,8 +57,8 @@ std::vector<std::string> mismatches(const std::string& table, int64_t row,
   std::vector<std::string> names;
   const bool malformed = stored.size() != fields.size() * kDigits;
   for (size_t index = 0; index < fields.size(); ++index)
-    if (malformed || stored.compare(index * kDigits, kDigits,
-                                    hex(field_crc(table, row, fields[index]))) != 0)
+    if (malformed ||
+        stored.compare(index * kDigits, kDigits, hex(field_crc(table, row, fields[index]))) != 0)
       names.emplace_back(fields[index].name);
   return names;
 }

@@ -84,9 +84,9 @@ herr_t check_object(hid_t root, const char* name, const H5O_info_t* info, void* 
       const H5D_layout_t layout = H5Pget_layout(properties);
       bool fletcher = false;
       for (int filter = 0; filter < H5Pget_nfilters(properties); ++filter)
-        fletcher = fletcher || H5Pget_filter2(properties, static_cast<unsigned>(filter), nullptr,
-                                              nullptr, nullptr, 0, nullptr,
-                                              nullptr) == H5Z_FILTER_FLETCHER32;
+        fletcher =
+            fletcher || H5Pget_filter2(properties, static_cast<unsigned>(filter), nullptr, nullptr,
+                                       nullptr, 0, nullptr, nullptr) == H5Z_FILTER_FLETCHER32;
       if (layout == H5D_CONTIGUOUS)
         walk.add(place, "contiguous data, outside every checksum");
       else if (layout == H5D_CHUNKED && !fletcher)
@@ -168,10 +168,9 @@ void verify_stream(const RecordingFile& file, const StreamInfo& stream,
         const float high = values.maxCoeff<Eigen::PropagateNumbers>();
         if (!same_float(low, overview->first(index, channel)) ||
             !same_float(high, overview->second(index, channel))) {
-          add(place + "/overview_min",
-              "block " + std::to_string(index) + " of channel " +
-                  stream.channels[static_cast<size_t>(channel)] +
-                  " disagrees with the samples it summarises");
+          add(place + "/overview_min", "block " + std::to_string(index) + " of channel " +
+                                           stream.channels[static_cast<size_t>(channel)] +
+                                           " disagrees with the samples it summarises");
           return;  // one line per stream is enough to name it
         }
       }
@@ -182,8 +181,8 @@ void verify_stream(const RecordingFile& file, const StreamInfo& stream,
       const std::vector<double> times = file.read_timestamps(stream.name);
       for (size_t index = 0; index < times.size(); ++index)
         if (!std::isfinite(times[index]) || (index > 0 && !(times[index] > times[index - 1]))) {
-          add(place + "/timestamps", "time stamp " + std::to_string(index) +
-                                         " is not finite or not after the one before");
+          add(place + "/timestamps",
+              "time stamp " + std::to_string(index) + " is not finite or not after the one before");
           break;
         }
     } catch (const Error& error) {
@@ -222,7 +221,8 @@ FileKind file_kind(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   char head[16] = {};
   in.read(head, sizeof(head));
-  if (in.gcount() >= 8 && std::memcmp(head, "\x89HDF\r\n\x1a\n", 8) == 0) return FileKind::kRecording;
+  if (in.gcount() >= 8 && std::memcmp(head, "\x89HDF\r\n\x1a\n", 8) == 0)
+    return FileKind::kRecording;
   if (in.gcount() == 16 && std::memcmp(head, "SQLite format 3", 16) == 0)
     return FileKind::kLabelStore;
   if (has_extension(path, {".h5", ".hdf5"})) return FileKind::kRecording;

@@ -26,8 +26,8 @@ std::string progress_text(double fraction, double left) {
   if (seconds < 3600)
     return text + ", " + std::to_string(seconds / 60) + " min " + std::to_string(seconds % 60) +
            " s left";
-  return text + ", " + std::to_string(seconds / 3600) + " h " + std::to_string(seconds % 3600 / 60) +
-         " min left";
+  return text + ", " + std::to_string(seconds / 3600) + " h " +
+         std::to_string(seconds % 3600 / 60) + " min left";
 }
 
 int thread_budget() {

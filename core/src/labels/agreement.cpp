@@ -48,8 +48,9 @@ Agreement compute_agreement(const std::vector<Label>& a, const std::vector<Label
   const size_t n = result.classes.size();
   result.confusion.assign(n, std::vector<int64_t>(n, 0));
   auto class_index = [&](const std::string& name) {
-    return static_cast<size_t>(std::lower_bound(result.classes.begin(), result.classes.end(), name) -
-                               result.classes.begin());
+    return static_cast<size_t>(
+        std::lower_bound(result.classes.begin(), result.classes.end(), name) -
+        result.classes.begin());
   };
   // Time samples: a joint table of A's class x B's class, "none" included.
   std::map<std::pair<std::string, std::string>, int64_t> joint;
@@ -82,9 +83,8 @@ Agreement compute_agreement(const std::vector<Label>& a, const std::vector<Label
         const double iou = time_iou(a_labels[i], b_labels[j]);
         if (iou >= iou_threshold) pairs.emplace_back(iou, i, j);
       }
-    std::sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) {
-      return std::get<0>(x) > std::get<0>(y);
-    });
+    std::sort(pairs.begin(), pairs.end(),
+              [](const auto& x, const auto& y) { return std::get<0>(x) > std::get<0>(y); });
     std::vector<char> a_used(a_labels.size(), 0), b_used(b_labels.size(), 0);
     for (const auto& [iou, i, j] : pairs) {
       if (a_used[i] || b_used[j]) continue;
@@ -99,12 +99,12 @@ Agreement compute_agreement(const std::vector<Label>& a, const std::vector<Label
     }
     for (size_t i = 0; i < a_labels.size(); ++i)
       if (!a_used[i])
-        result.disagreements.push_back({recording, a_labels[i].t0, a_labels[i].t1,
-                                        a_labels[i].class_name, "", "missed"});
+        result.disagreements.push_back(
+            {recording, a_labels[i].t0, a_labels[i].t1, a_labels[i].class_name, "", "missed"});
     for (size_t j = 0; j < b_labels.size(); ++j)
       if (!b_used[j])
-        result.disagreements.push_back({recording, b_labels[j].t0, b_labels[j].t1, "",
-                                        b_labels[j].class_name, "extra"});
+        result.disagreements.push_back(
+            {recording, b_labels[j].t0, b_labels[j].t1, "", b_labels[j].class_name, "extra"});
     result.a_segments += static_cast<int64_t>(a_labels.size());
     result.b_segments += static_cast<int64_t>(b_labels.size());
   }
@@ -123,13 +123,16 @@ Agreement compute_agreement(const std::vector<Label>& a, const std::vector<Label
     for (const auto& [name, count] : a_marginal) {
       const auto other = b_marginal.find(name);
       if (other != b_marginal.end())
-        result.expected += (static_cast<double>(count) / total) * (static_cast<double>(other->second) / total);
+        result.expected +=
+            (static_cast<double>(count) / total) * (static_cast<double>(other->second) / total);
     }
-    result.kappa = result.expected < 1.0 ? (result.observed - result.expected) / (1.0 - result.expected)
-                                         : 1.0;
+    result.kappa =
+        result.expected < 1.0 ? (result.observed - result.expected) / (1.0 - result.expected) : 1.0;
   }
-  result.precision = result.b_segments > 0 ? static_cast<double>(result.matched) / result.b_segments : 0.0;
-  result.recall = result.a_segments > 0 ? static_cast<double>(result.matched) / result.a_segments : 0.0;
+  result.precision =
+      result.b_segments > 0 ? static_cast<double>(result.matched) / result.b_segments : 0.0;
+  result.recall =
+      result.a_segments > 0 ? static_cast<double>(result.matched) / result.a_segments : 0.0;
   result.f1 = result.precision + result.recall > 0
                   ? 2 * result.precision * result.recall / (result.precision + result.recall)
                   : 0.0;

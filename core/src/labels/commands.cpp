@@ -5,7 +5,8 @@
 
 namespace tactile {
 
-Label adopted_label(const Label& label, const std::string& class_name, const std::string& annotator) {
+Label adopted_label(const Label& label, const std::string& class_name,
+                    const std::string& annotator) {
   Label adopted = label;
   adopted.id = 0;
   adopted.class_name = class_name;
@@ -19,7 +20,8 @@ Label adopted_label(const Label& label, const std::string& class_name, const std
   return adopted;
 }
 
-LabelEdit adopt_edit(const Label& label, const std::string& class_name, const std::string& annotator) {
+LabelEdit adopt_edit(const Label& label, const std::string& class_name,
+                     const std::string& annotator) {
   LabelEdit edit;
   edit.add = {adopted_label(label, class_name, annotator)};
   return edit;
@@ -124,15 +126,17 @@ EditSummary summarize_edit(const std::vector<JournalEntry>& rows) {
 std::string describe_edit(const EditSummary& edit) {
   const int labels = edit.added + edit.removed + edit.changed;
   if (edit.rejected > 0 && edit.rejected == labels)
-    return "the rejection of " + std::to_string(labels) + (labels == 1 ? " suggestion" : " suggestions");
+    return "the rejection of " + std::to_string(labels) +
+           (labels == 1 ? " suggestion" : " suggestions");
   // A run stores suggestions (and drops the lane's earlier ones); a rejection is said above.
-  const bool segmenter = edit.lanes.size() == 1 && edit.lanes.front().starts_with("segmenter:") &&
-                         edit.changed == 0;
+  const bool segmenter =
+      edit.lanes.size() == 1 && edit.lanes.front().starts_with("segmenter:") && edit.changed == 0;
   std::string what;
-  for (const auto& [n, verb] : {std::pair{edit.added, "added"}, {edit.removed, "removed"},
-                                 {edit.changed, "changed"}})
+  for (const auto& [n, verb] :
+       {std::pair{edit.added, "added"}, {edit.removed, "removed"}, {edit.changed, "changed"}})
     if (n > 0) what += (what.empty() ? "" : " and ") + std::string(verb) + " " + std::to_string(n);
-  what += segmenter ? (labels == 1 ? " suggestion" : " suggestions") : (labels == 1 ? " label" : " labels");
+  what += segmenter ? (labels == 1 ? " suggestion" : " suggestions")
+                    : (labels == 1 ? " label" : " labels");
   if (segmenter) return edit.lanes.front().substr(10) + "'s segmenter run, which " + what;
   std::string lanes;
   for (const std::string& lane : edit.lanes) lanes += (lanes.empty() ? "" : ", ") + lane;

@@ -191,8 +191,8 @@ std::vector<ImportedRecording> read_import_input(const FileImportOptions& option
     const ImportedArray classes =
         !options.class_key.empty()
             ? array_in(options.file, "", options.key, "--class-key", options.class_key)
-            : array_in(options.file, json ? "" : options.class_array, json ? options.class_array : "",
-                       "--class-array");
+            : array_in(options.file, json ? "" : options.class_array,
+                       json ? options.class_array : "", "--class-array");
     if (classes.text) {
       array_options.classes = classes.strings;
     } else {

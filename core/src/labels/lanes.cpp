@@ -63,8 +63,8 @@ std::vector<size_t> LaneIndex::meeting(double t0, double t1) const {
   std::vector<size_t> found;
   // Labels starting before t1; among them those whose end is after t0. reach_ is
   // non-decreasing, so the first label that can reach t0 is found by binary search.
-  const size_t end = static_cast<size_t>(std::lower_bound(starts_.begin(), starts_.end(), t1) -
-                                         starts_.begin());
+  const size_t end =
+      static_cast<size_t>(std::lower_bound(starts_.begin(), starts_.end(), t1) - starts_.begin());
   const size_t begin = static_cast<size_t>(
       std::upper_bound(reach_.begin(), reach_.begin() + static_cast<std::ptrdiff_t>(end), t0) -
       reach_.begin());
@@ -74,8 +74,8 @@ std::vector<size_t> LaneIndex::meeting(double t0, double t1) const {
 }
 
 size_t LaneIndex::count_meeting(double t0, double t1, size_t limit) const {
-  const size_t end = static_cast<size_t>(std::lower_bound(starts_.begin(), starts_.end(), t1) -
-                                         starts_.begin());
+  const size_t end =
+      static_cast<size_t>(std::lower_bound(starts_.begin(), starts_.end(), t1) - starts_.begin());
   const size_t begin = static_cast<size_t>(
       std::upper_bound(reach_.begin(), reach_.begin() + static_cast<std::ptrdiff_t>(end), t0) -
       reach_.begin());

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -32,7 +32,8 @@ SavedModel fit_model(const Dataset& dataset, const std::string& specification, u
   labels.reserve(dataset.classes.size());
   for (const std::string& name : dataset.classes) labels.push_back(index.at(name));
   // auto on a stacked table searches its pipelines too.
-  model.classifier = ml::make_classifier(ml::searched_specification(specification, dataset.columns));
+  model.classifier =
+      ml::make_classifier(ml::searched_specification(specification, dataset.columns));
   model.classifier->fit(dataset.features, labels, static_cast<int>(model.classes.size()), seed);
   for (const FeatureColumn& column : dataset.columns) model.features.push_back(column.name);
   // The skin, when every row names the same one.
@@ -40,9 +41,9 @@ SavedModel fit_model(const Dataset& dataset, const std::string& specification, u
   model.pipeline = pipeline;
   // Every setting of the pipeline, defaults included, so that predicting with this model
   // extracts as its training data was extracted even after a default changes.
-  model.pipeline_params =
-      pipeline.empty() ? pipeline_params
-                       : effective_pipeline_parameters(pipeline, pipeline_params, "pipeline parameters");
+  model.pipeline_params = pipeline.empty() ? pipeline_params
+                                           : effective_pipeline_parameters(
+                                                 pipeline, pipeline_params, "pipeline parameters");
   // What every recording it learnt from had in common (a device's calibration, its signal
   // convention): given to a stream that carries no metadata (live packets).
   if (!dataset.metadata.empty()) {
@@ -55,10 +56,11 @@ SavedModel fit_model(const Dataset& dataset, const std::string& specification, u
           key == "recording" || key == "segment_id" || key == "layout" || key == "preprocessing" ||
           key == "preprocessed" || key.find('.') != std::string::npos)  // a pipeline's own notes
         continue;
-      const bool shared = std::all_of(dataset.metadata.begin(), dataset.metadata.end(), [&](const Metadata& row) {
-        const auto found = row.find(key);
-        return found != row.end() && found->second == value;
-      });
+      const bool shared =
+          std::all_of(dataset.metadata.begin(), dataset.metadata.end(), [&](const Metadata& row) {
+            const auto found = row.find(key);
+            return found != row.end() && found->second == value;
+          });
       if (shared) model.recording_metadata[key] = value;
     }
   }
@@ -172,8 +174,8 @@ std::unique_ptr<FeatureExtractor> model_extractor(const SavedModel& model, const
   if (model.pipeline.empty())
     throw Error(where, "the model does not say which feature pipeline made its features");
   if (!model.layout.empty() && model.layout != layout.id)
-    throw Error(where, "a recording of skin '" + layout.id + "', the model is for '" +
-                           model.layout + "'");
+    throw Error(where,
+                "a recording of skin '" + layout.id + "', the model is for '" + model.layout + "'");
   auto extractor = make_feature_extractor(
       model.pipeline, Parameters::parse(model.pipeline_params, "model pipeline_params"));
   columns = extractor->columns(layout);
@@ -220,8 +222,8 @@ Predictions classify_segments(const SavedModel& model, const std::string& record
     ml::Matrix x(static_cast<Eigen::Index>(count), static_cast<Eigen::Index>(columns.size()));
     for (size_t row = 0; row < count; ++row) {
       std::vector<double>& values = extracted.results[kept[from + row]].values;
-      x.row(static_cast<Eigen::Index>(row)) =
-          Eigen::Map<const Eigen::RowVectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+      x.row(static_cast<Eigen::Index>(row)) = Eigen::Map<const Eigen::RowVectorXd>(
+          values.data(), static_cast<Eigen::Index>(values.size()));
       std::vector<double>().swap(values);
     }
     const ml::Classifier::Decisions decisions = model.classifier->decide(x);
@@ -272,8 +274,8 @@ Predictions predict_segments(const SavedModel& model, const SampleSource& source
   const auto extractor = model_extractor(model, layout, id.empty() ? "predict" : id, columns);
   const auto segment_done = [&](size_t done, double read_share) {
     if (step)
-      step(read_share + (1.0 - read_share) * static_cast<double>(done) /
-                            static_cast<double>(segments.size()));
+      step(read_share +
+           (1.0 - read_share) * static_cast<double>(done) / static_cast<double>(segments.size()));
   };
   if (step) step(0.0);
   if (!extractor->reads_segment_only()) {
@@ -291,8 +293,8 @@ Predictions predict_segments(const SavedModel& model, const SampleSource& source
   Predictions predictions;
   for (size_t from = 0; from < segments.size(); from += kPredictBatch) {
     const std::vector<Label> batch(segments.begin() + static_cast<std::ptrdiff_t>(from),
-                                   segments.begin() + static_cast<std::ptrdiff_t>(
-                                                          std::min(segments.size(), from + kPredictBatch)));
+                                   segments.begin() + static_cast<std::ptrdiff_t>(std::min(
+                                                          segments.size(), from + kPredictBatch)));
     Predictions part = classify_segments(
         model, id, columns, batch,
         extract_source_segments(*extractor, source, layout, batch,
@@ -334,7 +336,8 @@ double prediction_margin(const Label& label) {
   return end != start && std::isfinite(margin) ? margin : label.confidence;
 }
 
-const Label* least_sure_prediction(std::span<const Label> predictions, std::span<const Label> decided) {
+const Label* least_sure_prediction(std::span<const Label> predictions,
+                                   std::span<const Label> decided) {
   const Label* best = nullptr;
   double best_margin = 0.0;
   for (const Label& label : predictions) {

@@ -20,15 +20,17 @@ std::string seconds(double t) {
 
 }  // namespace
 
-std::vector<LabelIssue> check_labels(const std::vector<Label>& labels, const QualityOptions& options) {
+std::vector<LabelIssue> check_labels(const std::vector<Label>& labels,
+                                     const QualityOptions& options) {
   std::vector<LabelIssue> issues;
   // Overlaps within one lane, one recording and one region.
   std::map<std::tuple<std::string, std::string, std::string>, std::vector<const Label*>> groups;
   for (const Label& label : labels)
     groups[{label.recording, lane_of(label).id(), label.region}].push_back(&label);
   for (auto& [key, members] : groups) {
-    std::sort(members.begin(), members.end(),
-              [](const Label* a, const Label* b) { return std::tie(a->t0, a->id) < std::tie(b->t0, b->id); });
+    std::sort(members.begin(), members.end(), [](const Label* a, const Label* b) {
+      return std::tie(a->t0, a->id) < std::tie(b->t0, b->id);
+    });
     const Label* reaching = nullptr;  // the earlier label that ends last
     for (const Label* label : members) {
       if (reaching && label->t0 < reaching->t1)
@@ -45,19 +47,22 @@ std::vector<LabelIssue> check_labels(const std::vector<Label>& labels, const Qua
   for (const Label& label : labels) {
     if (label.class_name == kUnknownClass) continue;
     all[label.class_name].push_back(label.t1 - label.t0);
-    if (label.source == LabelSource::kGroundTruth) truth[label.class_name].push_back(label.t1 - label.t0);
+    if (label.source == LabelSource::kGroundTruth)
+      truth[label.class_name].push_back(label.t1 - label.t0);
   }
   std::map<std::string, double> typical;
   for (const auto& [name, durations] : all) {
     const auto found = truth.find(name);
-    const std::vector<double>& basis = found != truth.end() && found->second.size() >= 3 ? found->second : durations;
+    const std::vector<double>& basis =
+        found != truth.end() && found->second.size() >= 3 ? found->second : durations;
     if (basis.size() >= 3) typical[name] = stats::median(basis);
   }
   for (const Label& label : labels) {
     const auto found = typical.find(label.class_name);
     if (found == typical.end()) continue;
     const double duration = label.t1 - label.t0;
-    if (duration < options.short_factor * found->second || duration > options.long_factor * found->second)
+    if (duration < options.short_factor * found->second ||
+        duration > options.long_factor * found->second)
       issues.push_back({"duration", label.recording, label.t0, label.t1, label.id,
                         "label " + std::to_string(label.id) + " (" + label.class_name + ") lasts " +
                             seconds(duration) + "; its class typically " + seconds(found->second)});

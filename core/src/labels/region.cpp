@@ -29,8 +29,7 @@ std::string region_of_taxels(const SkinLayout& layout, std::vector<int64_t> taxe
   for (const Group& group : layout.groups)
     if (sorted_unique(group.taxels) == taxels) return group.id;
   std::string region = kTaxelsPrefix;
-  for (size_t k = 0; k < taxels.size(); ++k)
-    region += (k ? "," : "") + std::to_string(taxels[k]);
+  for (size_t k = 0; k < taxels.size(); ++k) region += (k ? "," : "") + std::to_string(taxels[k]);
   return region;
 }
 

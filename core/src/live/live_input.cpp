@@ -70,12 +70,15 @@ double number_in(const std::string& text, const std::string& what, const std::st
 class UdpInput final : public DatagramInput {
  public:
   explicit UdpInput(const UdpEndpoint& local)
-      : socket_(UdpSocket::bind_to(local)), where_(local.url()), buffer_(PacketFramer::kMaxDatagram) {}
+      : socket_(UdpSocket::bind_to(local)),
+        where_(local.url()),
+        buffer_(PacketFramer::kMaxDatagram) {}
   bool next(std::vector<uint8_t>& out, double timeout_seconds) override {
     const std::optional<size_t> size = socket_.receive(buffer_, timeout_seconds);
     if (!size) return false;
     // A datagram longer than the buffer is cut; the decoder refuses it by its length.
-    out.assign(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(std::min(*size, buffer_.size())));
+    out.assign(buffer_.begin(),
+               buffer_.begin() + static_cast<std::ptrdiff_t>(std::min(*size, buffer_.size())));
     return true;
   }
   std::string describe() const override { return where_; }
@@ -96,7 +99,8 @@ speed_t baud_constant(int baud, const std::string& where) {
       {1500000, B1500000}, {2000000, B2000000}, {3000000, B3000000}, {4000000, B4000000}};
   const auto found = rates.find(baud);
   if (found == rates.end())
-    throw Error(where, "baud " + std::to_string(baud) + " is not a standard rate (9600 ... 4000000)");
+    throw Error(where,
+                "baud " + std::to_string(baud) + " is not a standard rate (9600 ... 4000000)");
   return found->second;
 }
 
@@ -239,9 +243,9 @@ class PacedInput : public DatagramInput {
       start_clock_ = Clock::now();
       start_device_time_ = device_time;
     }
-    const auto due = start_clock_ + std::chrono::duration_cast<Clock::duration>(
-                                        std::chrono::duration<double>(
-                                            (device_time - start_device_time_) / speed_));
+    const auto due =
+        start_clock_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                           (device_time - start_device_time_) / speed_));
     if (due > deadline) {
       std::this_thread::sleep_until(deadline);
       return false;
@@ -256,7 +260,8 @@ class PacedInput : public DatagramInput {
  protected:
   // Appends the next stretch of datagrams with their device times, or sets ended_.
   virtual void refill() = 0;
-  void add_stream(const PacketEncoder& encoder, const Stream& stream, int64_t first, int64_t count) {
+  void add_stream(const PacketEncoder& encoder, const Stream& stream, int64_t first,
+                  int64_t count) {
     const int64_t per_datagram = encoder.format().samples_per_datagram;
     for (int64_t start = first; start < first + count; start += per_datagram) {
       const int64_t rows = std::min(per_datagram, first + count - start);
@@ -333,7 +338,8 @@ class SimulatorInput final : public PacedInput {
 
  private:
   std::future<SimulatedTrial> simulate(int trial) {
-    return std::async(std::launch::async, [this, trial] { return generator_(layout_, options_, 0, trial); });
+    return std::async(std::launch::async,
+                      [this, trial] { return generator_(layout_, options_, 0, trial); });
   }
   std::string skin_;
   SkinLayout layout_;
@@ -350,7 +356,8 @@ class SimulatorInput final : public PacedInput {
 // A recording, read a second at a time and sent once at `speed` times its rate.
 class ReplayInput final : public PacedInput {
  public:
-  ReplayInput(const std::string& path, double speed, double seconds) : PacedInput(speed), file_(path) {
+  ReplayInput(const std::string& path, double speed, double seconds)
+      : PacedInput(speed), file_(path) {
     layout_ = load_layout(file_.layout_id());
     packet_format_info(file_.layout_id());
     const auto& streams = file_.streams();
@@ -361,7 +368,8 @@ class ReplayInput final : public PacedInput {
       throw Error(path + ":/streams/" + info_.name,
                   "is irregularly sampled; only a regular stream can be replayed as packets");
     if (seconds > 0.0)
-      info_.sample_count = std::min<int64_t>(info_.sample_count, std::llround(seconds * info_.rate_hz));
+      info_.sample_count =
+          std::min<int64_t>(info_.sample_count, std::llround(seconds * info_.rate_hz));
   }
   std::string skin() const override { return file_.layout_id(); }
   Metadata metadata() const override { return file_.metadata(); }
@@ -412,9 +420,10 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
   address.url = url;
   const size_t separator = url.find("://");
   if (separator == std::string::npos)
-    throw Error(option, "\"" + url +
-                            "\" is not a live source: udp://HOST:PORT, serial:///dev/DEVICE?baud=N, "
-                            "sim://SKIN or replay:///FILE.h5?speed=X");
+    throw Error(option,
+                "\"" + url +
+                    "\" is not a live source: udp://HOST:PORT, serial:///dev/DEVICE?baud=N, "
+                    "sim://SKIN or replay:///FILE.h5?speed=X");
   address.scheme = url.substr(0, separator);
   std::string rest = url.substr(separator + 3);
   std::string query;
@@ -438,7 +447,8 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
     if (values.count("baud")) {
       const double baud = number_in(values.at("baud"), "baud", option);
       if (baud != std::floor(baud) || baud < 1 || baud > 1e8)
-        throw Error(option, "baud \"" + values.at("baud") + "\" is not a whole number of bits per second");
+        throw Error(option,
+                    "baud \"" + values.at("baud") + "\" is not a whole number of bits per second");
       address.baud = static_cast<int>(baud);
       baud_constant(address.baud, option);
     }
@@ -455,7 +465,8 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
     }
     if (values.count("seed")) {
       const double seed = number_in(values.at("seed"), "seed", option);
-      if (seed < 0 || seed != std::floor(seed)) throw Error(option, "seed must be a whole number >= 0");
+      if (seed < 0 || seed != std::floor(seed))
+        throw Error(option, "seed must be a whole number >= 0");
       address.seed = static_cast<uint64_t>(seed);
     }
     if (values.count("rate")) {
@@ -472,11 +483,13 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
     }
   } else if (address.scheme == "replay") {
     const auto values = query_of(query, url, {"speed", "seconds"}, option);
-    if (rest.empty()) throw Error(option, "\"" + url + "\" lacks the recording (replay:///path/file.h5)");
+    if (rest.empty())
+      throw Error(option, "\"" + url + "\" lacks the recording (replay:///path/file.h5)");
     address.path = rest;
     if (values.count("seconds")) {
       address.seconds = number_in(values.at("seconds"), "seconds", option);
-      if (!(address.seconds > 0.0)) throw Error(option, "seconds " + values.at("seconds") + " is not above 0");
+      if (!(address.seconds > 0.0))
+        throw Error(option, "seconds " + values.at("seconds") + " is not above 0");
     }
     if (values.count("speed")) {
       address.speed = number_in(values.at("speed"), "speed", option);
@@ -491,7 +504,8 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
 }
 
 std::unique_ptr<DatagramInput> open_live_input(const LiveAddress& address) {
-  if (address.scheme == "udp") return std::make_unique<UdpInput>(UdpEndpoint{address.host, address.port});
+  if (address.scheme == "udp")
+    return std::make_unique<UdpInput>(UdpEndpoint{address.host, address.port});
   if (address.scheme == "serial") return std::make_unique<SerialInput>(address.path, address.baud);
   if (address.scheme == "sim")
     return std::make_unique<SimulatorInput>(address.skin, address.seed, address.speed,

@@ -35,8 +35,9 @@ LiveRecorder::LiveRecorder(const std::string& path, const LiveSampleSource& sour
   recording_id_ = std::filesystem::path(path).stem().string();
   const SourceInfo& info = source.info();
   const int64_t count = source.sample_count();
-  first_ = std::max(source.first_kept(),
-                    count - static_cast<int64_t>(std::llround(options.pretrigger_seconds * info.rate_hz)));
+  first_ = std::max(
+      source.first_kept(),
+      count - static_cast<int64_t>(std::llround(options.pretrigger_seconds * info.rate_hz)));
   first_ = std::max<int64_t>(first_, 0);
   next_ = first_;
   start_time_ = count > 0 ? source.time_of(first_) : source.start_time();
@@ -49,8 +50,9 @@ LiveRecorder::LiveRecorder(const std::string& path, const LiveSampleSource& sour
   writer_options.flush_seconds = options.flush_seconds;
   Metadata metadata = options.metadata;
   metadata["source"] = metadata.count("source") ? metadata["source"] : "live";
-  writer_ = std::make_unique<RecordingWriter>(path, recording_id_, info.layout_id, metadata, info.stream.empty() ? "skin" : info.stream,
-                                              info.rate_hz, start_time_, info.channels, info.units, writer_options);
+  writer_ = std::make_unique<RecordingWriter>(
+      path, recording_id_, info.layout_id, metadata, info.stream.empty() ? "skin" : info.stream,
+      info.rate_hz, start_time_, info.channels, info.units, writer_options);
   writer_rate_ = info.rate_hz;
   thread_ = std::thread([this] { run(); });
 }
@@ -156,7 +158,8 @@ void LiveRecorder::check_room() {
     return;
   }
   const double reserve = kReserveFlushes * bytes_per_flush_ + static_cast<double>(kClosingBytes);
-  room.minutes_left = std::max(0.0, (static_cast<double>(free) - reserve) / room.bytes_per_second / 60.0);
+  room.minutes_left =
+      std::max(0.0, (static_cast<double>(free) - reserve) / room.bytes_per_second / 60.0);
   room.low = room.minutes_left < warn_minutes_;
   if (static_cast<double>(free) < reserve) {
     std::string failure;
@@ -169,7 +172,8 @@ void LiveRecorder::check_room() {
     std::snprintf(seconds, sizeof(seconds), "%.1f",
                   static_cast<double>(writer_->samples_on_disk()) / writer_rate_);
     room.stopped = "stopped recording: " + byte_text(free) + " left on the disk of " + path_ +
-                   ", too little for more at " + byte_text(static_cast<int64_t>(room.bytes_per_second)) +
+                   ", too little for more at " +
+                   byte_text(static_cast<int64_t>(room.bytes_per_second)) +
                    "/s; the file is closed whole with " + seconds + " s";
     std::lock_guard lock(mutex_);
     room_ = room;
@@ -212,9 +216,11 @@ void LiveRecorder::run() {
 
 //---- Contact
 
-ContactDetector::ContactDetector(int channels, double rate_hz, const ContactDetectorOptions& options)
+ContactDetector::ContactDetector(int channels, double rate_hz,
+                                 const ContactDetectorOptions& options)
     : channels_(channels), rate_(rate_hz), options_(options) {
-  if (channels < 1 || !(rate_hz > 0.0)) throw Error("contact detector", "needs channels and a rate");
+  if (channels < 1 || !(rate_hz > 0.0))
+    throw Error("contact detector", "needs channels and a rate");
   learning_.resize(static_cast<size_t>(channels));
 }
 
@@ -224,7 +230,8 @@ ContactDetector::State ContactDetector::add(std::span<const float> values) {
     for (int channel = 0; channel < channels_; ++channel)
       if (std::isfinite(values[static_cast<size_t>(channel)]))
         learning_[static_cast<size_t>(channel)].push_back(values[static_cast<size_t>(channel)]);
-    if (++learnt_ < std::max<int64_t>(2, std::llround(options_.learn_seconds * rate_))) return state_;
+    if (++learnt_ < std::max<int64_t>(2, std::llround(options_.learn_seconds * rate_)))
+      return state_;
     rest_.resize(static_cast<size_t>(channels_));
     band_.resize(static_cast<size_t>(channels_));
     for (int channel = 0; channel < channels_; ++channel) {
@@ -246,8 +253,8 @@ ContactDetector::State ContactDetector::add(std::span<const float> values) {
   int beyond = 0;
   for (int channel = 0; channel < channels_; ++channel) {
     const float value = values[static_cast<size_t>(channel)];
-    if (std::isfinite(value) &&
-        std::fabs(value - rest_[static_cast<size_t>(channel)]) > band_[static_cast<size_t>(channel)])
+    if (std::isfinite(value) && std::fabs(value - rest_[static_cast<size_t>(channel)]) >
+                                    band_[static_cast<size_t>(channel)])
       ++beyond;
   }
   if (beyond >= options_.min_channels) {

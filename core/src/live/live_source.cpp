@@ -97,9 +97,8 @@ void LiveSampleSource::put(int64_t index, std::span<const float> values) {
 
 LiveSampleSource::Placed LiveSampleSource::add(double time, std::span<const float> values) {
   if (static_cast<int>(values.size()) != channels_)
-    throw Error("live stream " + info_.layout_id, std::to_string(values.size()) +
-                                                      " values for " + std::to_string(channels_) +
-                                                      " channels");
+    throw Error("live stream " + info_.layout_id, std::to_string(values.size()) + " values for " +
+                                                      std::to_string(channels_) + " channels");
   std::lock_guard lock(mutex_);
   Placed placed;
   if (!std::isfinite(time)) {
@@ -148,7 +147,8 @@ LiveSampleSource::Placed LiveSampleSource::add(double time, std::span<const floa
   gaps_ += placed.gap;
   if (placed.gap > 0) gap_ranges_.emplace_back(count_, index);
   // Only what the buffer still holds.
-  while (!gap_ranges_.empty() && gap_ranges_.front().second <= index + 1 - capacity_) gap_ranges_.erase(gap_ranges_.begin());
+  while (!gap_ranges_.empty() && gap_ranges_.front().second <= index + 1 - capacity_)
+    gap_ranges_.erase(gap_ranges_.begin());
   for (int64_t gap = std::max(count_, index - capacity_); gap < index; ++gap) {
     start_block(gap);
     for (int channel = 0; channel < channels_; ++channel) at(gap, channel) = kGap;

@@ -19,10 +19,12 @@ OnlineClassifier::OnlineClassifier(SavedModel model, SkinLayout layout, const So
   if (model_.pipeline.empty())
     throw Error("online model", "does not say which feature pipeline made its features");
   if (!model_.layout.empty() && model_.layout != layout_.id)
-    throw Error("online model", "is for skin '" + model_.layout + "', the stream is '" + layout_.id + "'");
+    throw Error("online model",
+                "is for skin '" + model_.layout + "', the stream is '" + layout_.id + "'");
   if (!(options_.hop_seconds > 0.0) || !(options_.window_seconds > 0.0) ||
       !(options_.lookback_seconds >= options_.window_seconds))
-    throw Error("online classification", "window and hop must be positive and the lookback at least the window");
+    throw Error("online classification",
+                "window and hop must be positive and the lookback at least the window");
   // A touch is over once a few samples after it are quiet, however fast the skin.
   options_.release_seconds = std::max(options_.release_seconds, 3.0 / rate_);
   const std::vector<std::string> methods = segmenter_methods();
@@ -95,7 +97,8 @@ void OnlineClassifier::update(const LiveSampleSource& source) {
   job.window.id = "live";
   job.window.layout_id = layout_.id;
   job.window.metadata = source.info().metadata;  // a device's calibration, when known
-  for (const auto& [key, value] : model_.recording_metadata) job.window.metadata.emplace(key, value);
+  for (const auto& [key, value] : model_.recording_metadata)
+    job.window.metadata.emplace(key, value);
   job.window.streams.push_back(std::move(stream));
   {
     std::lock_guard lock(mutex_);
@@ -104,7 +107,8 @@ void OnlineClassifier::update(const LiveSampleSource& source) {
   wake_.notify_one();
 }
 
-void OnlineClassifier::classify(const Job& job, double t0, double t1, const std::string& region, bool final) {
+void OnlineClassifier::classify(const Job& job, double t0, double t1, const std::string& region,
+                                bool final) {
   const auto started = std::chrono::steady_clock::now();
   OnlineDecision decision;
   decision.t0 = t0;
@@ -130,7 +134,8 @@ void OnlineClassifier::classify(const Job& job, double t0, double t1, const std:
     decision.class_name = kUnknownClass;
     failure = error.what();
   }
-  decision.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  decision.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::lock_guard lock(mutex_);
   if (!failure.empty()) error_ = failure;
   done_.push_back(std::move(decision));
@@ -151,7 +156,8 @@ void OnlineClassifier::decide(const Job& job) {
     }
     return;
   }
-  std::sort(touches.begin(), touches.end(), [](const Label& a, const Label& b) { return a.t0 < b.t0; });
+  std::sort(touches.begin(), touches.end(),
+            [](const Label& a, const Label& b) { return a.t0 < b.t0; });
   const double hop_start = std::max(last_now_, job.now - options_.hop_seconds);
   bool open = false, touched = false;
   for (const Label& touch : touches) {

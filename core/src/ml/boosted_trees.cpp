@@ -49,9 +49,7 @@ class XgboostMatrix {
   DMatrixHandle handle_ = nullptr;
 };
 
-int xgboost_threads(int threads) {
-  return threads > 0 ? threads : thread_budget();
-}
+int xgboost_threads(int threads) { return threads > 0 ? threads : thread_budget(); }
 
 // XGBoost's "gain" importance per column ("f<index>" names), normalised to sum 1.
 std::vector<double> xgboost_importances(BoosterHandle booster, Eigen::Index columns) {

@@ -221,7 +221,7 @@ void ClaficClassifier::fit(const Matrix& x, const std::vector<int>& y, int class
   if (dimension_overrides_.size() > 1 &&
       dimension_overrides_.size() != static_cast<size_t>(class_count))
     throw Error(kClaficWhere, "dimensions lists " + std::to_string(dimension_overrides_.size()) +
-                            " values for " + std::to_string(class_count) + " classes");
+                                  " values for " + std::to_string(class_count) + " classes");
   std::vector<std::vector<Eigen::Index>> rows(static_cast<size_t>(class_count));
   for (size_t row = 0; row < y.size(); ++row)
     rows[static_cast<size_t>(y[row])].push_back(static_cast<Eigen::Index>(row));

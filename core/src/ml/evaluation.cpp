@@ -393,21 +393,21 @@ nlohmann::json to_json(const EvaluationResult& result, bool with_rows) {
   nlohmann::json misclassified = nlohmann::json::array();
   for (const auto& [row, segment] : segment_of_row) misclassified.push_back(segment);
   nlohmann::json document = {{"classifier", result.classifier},
-          {"protocol", result.protocol},
-          {"seed", result.seed},
-          {"accuracy", result.accuracy},
-          {"classes", result.classes},
-          {"confusion", confusion},
-          {"unknown", unknown},
-          {"per_class", per_class},
-          {"misclassified", misclassified},
-          {"misclassified_predictions", details},
-          {"predictions", result.predictions},
-          {"folds", result.fold_models.size()},
-          {"fold_models", result.fold_models},
-          {"seconds", result.seconds},
-          {"fit_seconds", result.fit_seconds},
-          {"predict_seconds", result.predict_seconds}};
+                             {"protocol", result.protocol},
+                             {"seed", result.seed},
+                             {"accuracy", result.accuracy},
+                             {"classes", result.classes},
+                             {"confusion", confusion},
+                             {"unknown", unknown},
+                             {"per_class", per_class},
+                             {"misclassified", misclassified},
+                             {"misclassified_predictions", details},
+                             {"predictions", result.predictions},
+                             {"folds", result.fold_models.size()},
+                             {"fold_models", result.fold_models},
+                             {"seconds", result.seconds},
+                             {"fit_seconds", result.fit_seconds},
+                             {"predict_seconds", result.predict_seconds}};
   document["mean_recall"] = mean_recall(result);
   if (!result.importances.empty()) {
     nlohmann::json importances = nlohmann::json::array();
@@ -539,7 +539,8 @@ EvaluationResult evaluation_from_json(const nlohmann::json& document, const std:
   for (int k = 0; k < classes; ++k) index[result.classes[static_cast<size_t>(k)]] = k;
   const auto confusion = field<std::vector<std::vector<int64_t>>>(document, "confusion", where);
   std::vector<int64_t> unknown(static_cast<size_t>(classes), 0);
-  if (document.contains("unknown")) unknown = field<std::vector<int64_t>>(document, "unknown", where);
+  if (document.contains("unknown"))
+    unknown = field<std::vector<int64_t>>(document, "unknown", where);
   if (static_cast<int>(confusion.size()) != classes || static_cast<int>(unknown.size()) != classes)
     throw Error(where, "'confusion' has " + std::to_string(confusion.size()) + " rows for " +
                            std::to_string(classes) + " classes");

@@ -73,9 +73,8 @@ void TreeEnsemble::fit(const Matrix& x, const std::vector<int>& y, int class_cou
   trees_.clear();
   importances_.clear();
 
-  const int threads = std::clamp<int>(
-      threads_ > 0 ? threads_ : thread_budget(), 1,
-      static_cast<int>(std::min<int64_t>(tree_count_, 64)));
+  const int threads = std::clamp<int>(threads_ > 0 ? threads_ : thread_budget(), 1,
+                                      static_cast<int>(std::min<int64_t>(tree_count_, 64)));
   const SortedColumns sorted = sort_columns(x, threads);
   TreeGrowth growth;
   growth.max_splits = max_splits_ < 0 ? std::numeric_limits<int64_t>::max() : max_splits_;

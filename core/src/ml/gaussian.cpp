@@ -12,7 +12,6 @@ namespace tactile::ml {
 
 namespace {
 
-
 // Σ + ridge I is positive definite in exact arithmetic; rounding can still defeat Cholesky
 // when ridge is tiny against the largest variance, so the ridge grows tenfold at most this
 // many times before we give up.

@@ -176,10 +176,10 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
   if (base_.empty()) throw Error(kGridSearchWhere, "base= is required, e.g. grid:base=knn,k=1|3|5");
   if (base_ == "grid-search" || base_ == "grid")
     throw Error(kGridSearchWhere, "base=" + base_ + ": a grid search cannot search a grid search");
-  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
-      inner_.kind == Protocol::Kind::kSplit)
+  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut ||
+      inner_.kind == Protocol::Kind::kLeaveOneGroupOut || inner_.kind == Protocol::Kind::kSplit)
     throw Error(kGridSearchWhere, "inner=" + inner_.to_string() +
-                            ": the inner protocol must be kfold, loo or holdout");
+                                      ": the inner protocol must be kfold, loo or holdout");
   // The cartesian product, the last key varying fastest.
   std::vector<std::string> specifications = {""};
   for (const auto& [key, values] : axes_) {
@@ -188,7 +188,8 @@ GridSearchClassifier::GridSearchClassifier(std::string base,
       for (const std::string& value : alternatives(key, values))
         extended.push_back(prefix + (prefix.empty() ? "" : ",") + key + "=" + value);
     if (extended.size() > kMostCandidates)
-      throw Error(kGridSearchWhere, "more than " + std::to_string(kMostCandidates) + " combinations");
+      throw Error(kGridSearchWhere,
+                  "more than " + std::to_string(kMostCandidates) + " combinations");
     specifications = std::move(extended);
   }
   for (const std::string& parameters : specifications) {
@@ -205,14 +206,16 @@ GridSearchClassifier::GridSearchClassifier(std::vector<std::string> specificatio
       blocks_(std::move(blocks)),
       listed_(std::move(listed)),
       inner_(std::move(inner)) {
-  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut || inner_.kind == Protocol::Kind::kLeaveOneGroupOut ||
-      inner_.kind == Protocol::Kind::kSplit)
-    throw Error("classifier auto", "inner=" + inner_.to_string() + ": the inner protocol must be kfold, loo or holdout");
+  if (inner_.kind == Protocol::Kind::kLeaveOneSubjectOut ||
+      inner_.kind == Protocol::Kind::kLeaveOneGroupOut || inner_.kind == Protocol::Kind::kSplit)
+    throw Error("classifier auto", "inner=" + inner_.to_string() +
+                                       ": the inner protocol must be kfold, loo or holdout");
   if (specifications.empty()) throw Error("classifier auto", "no candidates");
   for (const std::string& specification : specifications) {
     const std::string name = specification.substr(0, specification.find(':'));
     if (name == "auto" || name == "grid" || name == "grid-search")
-      throw Error("classifier auto", "candidate '" + specification + "': searches are not candidates");
+      throw Error("classifier auto",
+                  "candidate '" + specification + "': searches are not candidates");
     make_classifier(specification);  // an unknown classifier or parameter fails here
   }
   // Without blocks every candidate sees every column; with blocks, each candidate once per
@@ -352,7 +355,7 @@ size_t GridSearchClassifier::halve_candidates(const Matrix& x, const std::vector
     const bool last = rung + 1 == sizes.size();
     const bool rung_grouped = grouped && distinct_count(inner.subjects) >= kFewestInnerGroups;
     const uint64_t rung_seed = last ? inner_seed : derive_seed(seed, 2 + rung);
-    const Protocol protocol = last           ? (rung_grouped ? grouped_folds(inner, rung_seed) : inner_)
+    const Protocol protocol = last ? (rung_grouped ? grouped_folds(inner, rung_seed) : inner_)
                               : rung_grouped ? grouped_holdout(inner, rung_seed)
                                              : Protocol::parse("holdout:0.3x1");
     for (size_t i : alive) {
@@ -435,7 +438,8 @@ std::unique_ptr<Classifier> make_grid_search_classifier(const Parameters& parame
     try {
       inner = Protocol::parse(parameters.text("inner", ""));
     } catch (const Error& error) {
-      throw Error(kGridSearchWhere, "inner=" + parameters.text("inner", "") + ": " + error.message());
+      throw Error(kGridSearchWhere,
+                  "inner=" + parameters.text("inner", "") + ": " + error.message());
     }
   }
   return std::make_unique<GridSearchClassifier>(parameters.text("base", ""), std::move(axes),
@@ -453,7 +457,8 @@ std::vector<std::string> auto_candidates() {
     // a classifier to pick by accuracy).
     if (entry.preset && entry.name != "em") candidates.push_back(entry.name);
   // The standard k-NN grid.
-  for (const char* k : {"3", "5", "10"}) candidates.push_back(std::string("knn:k=") + k + ",standardize=true");
+  for (const char* k : {"3", "5", "10"})
+    candidates.push_back(std::string("knn:k=") + k + ",standardize=true");
   return candidates;
 }
 
@@ -476,7 +481,8 @@ std::unique_ptr<Classifier> make_auto_classifier(const Parameters& parameters) {
     try {
       inner = Protocol::parse(parameters.text("inner", ""));
     } catch (const Error& error) {
-      throw Error("classifier auto", "inner=" + parameters.text("inner", "") + ": " + error.message());
+      throw Error("classifier auto",
+                  "inner=" + parameters.text("inner", "") + ": " + error.message());
     }
   }
   const std::string listed = parameters.text("candidates", "");

@@ -151,7 +151,8 @@ std::vector<std::vector<Neighbour>> KnnClassifier::neighbours(const Matrix& x) c
     const Eigen::Index block = std::min(kBlock, queries.rows() - first);
     // count x block: each query's products with every sample, contiguous per query, in
     // single precision (only to choose candidates).
-    const Eigen::MatrixXf block_queries = queries.middleRows(first, block).transpose().cast<float>();
+    const Eigen::MatrixXf block_queries =
+        queries.middleRows(first, block).transpose().cast<float>();
     Matrix values = (samples_float_ * block_queries).cast<double>();
     Vector point_norms(block);
     for (Eigen::Index i = 0; i < block; ++i) point_norms(i) = queries.row(first + i).norm();
@@ -180,7 +181,8 @@ std::vector<std::vector<Neighbour>> KnnClassifier::neighbours(const Matrix& x) c
       // Rounding of the single-precision product: each of its `features` terms can be off
       // by an ulp of |q||x| (2^-24 relative), the float inputs by as much again; the margin
       // is four times the sum, so every sample that can be among the k nearest stays.
-      const double scale = euclidean ? (point_norm + largest_norm) * (point_norm + largest_norm) : 1.0;
+      const double scale =
+          euclidean ? (point_norm + largest_norm) * (point_norm + largest_norm) : 1.0;
       const double bound = smallest.back() + margin * scale;
       candidates.clear();
       for (int64_t row = 0; row < count; ++row)

@@ -1,7 +1,7 @@
-#include <algorithm>
 #include "tactile/ml/pca.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 

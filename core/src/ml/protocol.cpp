@@ -30,7 +30,8 @@ double parse_fraction(const std::string& text, const std::string& protocol) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
       !(value > 0.0 && value < 1.0))
-    throw Error(kProtocolWhere, protocol + ": the test fraction '" + text + "' is not between 0 and 1");
+    throw Error(kProtocolWhere,
+                protocol + ": the test fraction '" + text + "' is not between 0 and 1");
   return value;
 }
 
@@ -112,7 +113,8 @@ Protocol Protocol::parse(const std::string& text) {
   }
   if (kind == "group") {
     if (argument.empty())
-      throw Error(kProtocolWhere, "'" + text + "': expected group:COLUMN, e.g. group:recording or group:session");
+      throw Error(kProtocolWhere,
+                  "'" + text + "': expected group:COLUMN, e.g. group:recording or group:session");
     protocol.kind = Kind::kLeaveOneGroupOut;
     protocol.group_column = argument;
     protocol.folds = 0;
@@ -127,7 +129,8 @@ Protocol Protocol::parse(const std::string& text) {
     protocol.kind = Kind::kKFold;
     const int64_t k = parse_whole(folds, text, "the fold count");
     const int64_t r = parse_whole(repetitions, text, "the repetition count");
-    if (k < 2 || k > 1'000'000) throw Error(kProtocolWhere, text + ": k-fold needs at least 2 folds");
+    if (k < 2 || k > 1'000'000)
+      throw Error(kProtocolWhere, text + ": k-fold needs at least 2 folds");
     if (r < 1 || r > 10'000) throw Error(kProtocolWhere, text + ": repetitions must be 1..10000");
     protocol.folds = static_cast<int>(k);
     protocol.repetitions = static_cast<int>(r);
@@ -150,18 +153,21 @@ Protocol Protocol::parse(const std::string& text) {
     if (!has_argument || slash == std::string::npos ||
         argument.find('/', slash + 1) != std::string::npos)
       throw Error(kProtocolWhere, "'" + text +
-                              "': expected split:TRAIN/TEST with one '/', e.g. "
-                              "split:side=back,condition=stationary/side=front");
+                                      "': expected split:TRAIN/TEST with one '/', e.g. "
+                                      "split:side=back,condition=stationary/side=front");
     protocol.kind = Kind::kSplit;
     protocol.train_query = argument.substr(0, slash);
     protocol.test_query = argument.substr(slash + 1);
     if (protocol.train_query.empty() || protocol.test_query.empty())
-      throw Error(kProtocolWhere, "'" + text + "': the train and the test query must both be given");
+      throw Error(kProtocolWhere,
+                  "'" + text + "': the train and the test query must both be given");
     protocol.folds = 1;
     return protocol;
   }
-  throw Error(kProtocolWhere, "unknown protocol '" + text +
-                          "' (known: kfold:K[xR], loo, loso, group:COLUMN, holdout:FxR, split:QUERY/QUERY)");
+  throw Error(
+      kProtocolWhere,
+      "unknown protocol '" + text +
+          "' (known: kfold:K[xR], loo, loso, group:COLUMN, holdout:FxR, split:QUERY/QUERY)");
 }
 
 std::string Protocol::to_string() const {
@@ -271,7 +277,7 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
   if (row_count == 0) throw Error(kProtocolWhere, "the dataset has no rows");
   if (static_cast<int64_t>(dataset.classes.size()) != row_count)
     throw Error(kProtocolWhere, "the dataset has " + std::to_string(dataset.classes.size()) +
-                            " classes for " + std::to_string(row_count) + " rows");
+                                    " classes for " + std::to_string(row_count) + " rows");
   const std::string name = protocol.to_string();
   std::mt19937_64 random(seed);
   std::vector<Fold> folds;
@@ -280,8 +286,8 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
       if (protocol.folds < 2 || protocol.repetitions < 1)
         throw Error(kProtocolWhere, name + ": needs at least 2 folds and 1 repetition");
       if (protocol.folds > row_count)
-        throw Error(kProtocolWhere, name + ": " + std::to_string(protocol.folds) + " folds but only " +
-                                std::to_string(row_count) + " rows");
+        throw Error(kProtocolWhere, name + ": " + std::to_string(protocol.folds) +
+                                        " folds but only " + std::to_string(row_count) + " rows");
       const auto per_class = rows_per_class(dataset);
       for (int repetition = 0; repetition < protocol.repetitions; ++repetition) {
         std::vector<std::vector<int64_t>> tests(static_cast<size_t>(protocol.folds));
@@ -313,7 +319,8 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
                         ? "loso needs at least 2 subjects; the dataset has only '" + order[0] + "'"
                         : name + " needs at least 2 groups; column '" + protocol.group_column +
                               "' has only '" + order[0] + "'");
-      for (const std::string& group : order) folds.push_back(fold_of_test(rows_of[group], row_count));
+      for (const std::string& group : order)
+        folds.push_back(fold_of_test(rows_of[group], row_count));
       break;
     }
     case Protocol::Kind::kHoldout: {
@@ -334,21 +341,23 @@ std::vector<Fold> make_folds(const Dataset& dataset, const Protocol& protocol, u
           test.insert(test.end(), members.begin(), members.begin() + count);
         }
         if (test.empty())
-          throw Error(kProtocolWhere, name + ": leaves no test row (classes too small for this fraction)");
+          throw Error(kProtocolWhere,
+                      name + ": leaves no test row (classes too small for this fraction)");
         folds.push_back(fold_of_test(std::move(test), row_count));
       }
       break;
     }
     case Protocol::Kind::kSplit: {
-      const std::vector<int64_t> train = rows_matching(dataset, protocol.train_query, kProtocolWhere);
+      const std::vector<int64_t> train =
+          rows_matching(dataset, protocol.train_query, kProtocolWhere);
       const std::vector<int64_t> test = rows_matching(dataset, protocol.test_query, kProtocolWhere);
       std::vector<int64_t> both;
       std::set_intersection(train.begin(), train.end(), test.begin(), test.end(),
                             std::back_inserter(both));
       if (!both.empty())
         throw Error(kProtocolWhere, name + ": row " + std::to_string(both.front()) + " and " +
-                                std::to_string(both.size() - 1) +
-                                " more match both the train and the test query");
+                                        std::to_string(both.size() - 1) +
+                                        " more match both the train and the test query");
       folds.push_back({train, test});
       break;
     }

@@ -346,8 +346,9 @@ void SupportVectorMachine::fit(const Matrix& x, const std::vector<int>& y, int c
       // gamma = 1/s²; the linear kernel is the degree-1 polynomial without offset.
       svm_parameter parameter{};
       parameter.svm_type = C_SVC;
-      parameter.kernel_type =
-          precomputed ? PRECOMPUTED : kernel_ == SvmKernel::kGaussian ? RBF : POLY;
+      parameter.kernel_type = precomputed                       ? PRECOMPUTED
+                              : kernel_ == SvmKernel::kGaussian ? RBF
+                                                                : POLY;
       parameter.degree = degree_;
       parameter.gamma = 1.0 / (learner.scale * learner.scale);
       parameter.coef0 = kernel_ == SvmKernel::kPolynomial ? 1.0 : 0.0;
@@ -614,8 +615,8 @@ void SupportVectorMachine::load(const nlohmann::json& model) {
         throw Error(where, "learner class out of range");
       if (!std::isfinite(learner.scale) || learner.scale <= 0.0 || !std::isfinite(learner.rho))
         throw Error(where, "learner scale or rho is not a positive finite number");
-      learner.coefficients =
-          Eigen::Map<const Vector>(coefficients.data(), static_cast<Eigen::Index>(coefficients.size()));
+      learner.coefficients = Eigen::Map<const Vector>(
+          coefficients.data(), static_cast<Eigen::Index>(coefficients.size()));
       if (!learner.coefficients.allFinite()) throw Error(where, "non-finite coefficient");
       if (saved.contains("support_vectors")) {
         // A model saved before the pairs shared their support vectors: each pair's own.

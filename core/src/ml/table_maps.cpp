@@ -41,7 +41,8 @@ TableSom som_of(const Dataset& table, const std::function<void(double)>& step) {
                                       fit.classes.begin()));
   fit.som = std::make_unique<SomClassifier>(Parameters::parse("epochs=200", "som"));
   if (step)
-    fit.som->set_epoch_observer([&step](int epoch, int epochs) { step(static_cast<double>(epoch) / epochs); });
+    fit.som->set_epoch_observer(
+        [&step](int epoch, int epochs) { step(static_cast<double>(epoch) / epochs); });
   fit.som->fit(table.features, labels, static_cast<int>(fit.classes.size()), 1);
   fit.som->set_epoch_observer(nullptr);
   fit.winners = som_winners(*fit.som, table.features);

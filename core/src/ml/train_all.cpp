@@ -69,16 +69,18 @@ std::vector<TrainAllStep> train_all_plan(int64_t rows, int64_t columns, int clas
 }
 
 void sort_best_first(std::vector<PresetOutcome>& outcomes) {
-  std::stable_sort(outcomes.begin(), outcomes.end(), [](const PresetOutcome& a, const PresetOutcome& b) {
-    return accuracy_or_below(a) > accuracy_or_below(b);
-  });
+  std::stable_sort(outcomes.begin(), outcomes.end(),
+                   [](const PresetOutcome& a, const PresetOutcome& b) {
+                     return accuracy_or_below(a) > accuracy_or_below(b);
+                   });
 }
 
 int best_outcome(const std::vector<PresetOutcome>& outcomes) {
   int best = -1;
   for (size_t k = 0; k < outcomes.size(); ++k)
     if (outcomes[k].result &&
-        (best < 0 || accuracy_or_below(outcomes[k]) > accuracy_or_below(outcomes[static_cast<size_t>(best)])))
+        (best < 0 ||
+         accuracy_or_below(outcomes[k]) > accuracy_or_below(outcomes[static_cast<size_t>(best)])))
       best = static_cast<int>(k);
   return best;
 }
@@ -116,7 +118,8 @@ TrainAllResult train_all_from_json(const nlohmann::json& document, const std::st
   if (!evaluations.is_array()) throw Error(where, "'evaluations' is not a list");
   for (size_t k = 0; k < evaluations.size(); ++k) {
     PresetOutcome outcome;
-    outcome.result = evaluation_from_json(evaluations[k], where + ": evaluations[" + std::to_string(k) + "]");
+    outcome.result =
+        evaluation_from_json(evaluations[k], where + ": evaluations[" + std::to_string(k) + "]");
     outcome.classifier = outcome.result->classifier;
     result.outcomes.push_back(std::move(outcome));
   }

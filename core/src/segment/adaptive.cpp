@@ -30,9 +30,8 @@ struct AdaptiveOptions {
 
 AdaptiveOptions adaptive_options(const Parameters& parameters) {
   parameters.expect_only({"margin", "taxels", "alone", "share", "footprint", "join_seconds",
-                          "quiet_seconds",
-                          "baseline_seconds", "opening_seconds", "envelope_seconds",
-                          "stuck_seconds", "max_seconds", "min_seconds"});
+                          "quiet_seconds", "baseline_seconds", "opening_seconds",
+                          "envelope_seconds", "stuck_seconds", "max_seconds", "min_seconds"});
   AdaptiveOptions options;
   options.margin = parameters.number("margin", options.margin);
   options.taxels = parameters.integer("taxels", options.taxels);
@@ -166,9 +165,9 @@ std::vector<float> adaptive_baseline(const float* column, int64_t samples, int64
 // few MB where every frame of every channel took the recording's size again (207 MB for 30
 // minutes of Robovie's 274 films).
 struct SparseExcursion {
-  bool counts = false;          // false: the channel is never on (unusable, stuck or dead)
-  std::vector<int64_t> first;   // each run's first frame
-  std::vector<size_t> begin;    // where each run's values start in `values`, then the end
+  bool counts = false;         // false: the channel is never on (unusable, stuck or dead)
+  std::vector<int64_t> first;  // each run's first frame
+  std::vector<size_t> begin;   // where each run's values start in `values`, then the end
   std::vector<float> values;
 
   // f(frame, value) for every kept value in frames [from, to].
@@ -189,12 +188,12 @@ struct AdaptiveScan {
   std::string recording;
   double rate = 0.0;
   int64_t samples = 0;
-  std::vector<double> times;                // of each frame
-  std::vector<SparseExcursion> moved;       // each channel's excursion past its noise band
-  std::vector<float> sigmas;                // each channel's noise sigma
-  std::vector<std::string> kinds;           // each channel's kind (modality|unit)
-  std::map<std::string, float> amplitude;   // each kind's touch amplitude
-  float noise_bands = 6.0f;                 // margin x 3
+  std::vector<double> times;               // of each frame
+  std::vector<SparseExcursion> moved;      // each channel's excursion past its noise band
+  std::vector<float> sigmas;               // each channel's noise sigma
+  std::vector<std::string> kinds;          // each channel's kind (modality|unit)
+  std::map<std::string, float> amplitude;  // each kind's touch amplitude
+  float noise_bands = 6.0f;                // margin x 3
   std::vector<std::vector<int>> group_channels;
   std::vector<std::string> group_ids;
 };
@@ -211,7 +210,7 @@ struct ScanInput {
   std::vector<std::string> channels;
   std::function<double(int64_t)> time_of;
   std::function<void(int, std::vector<float>&)> column;  // channel c's every sample into out
-  std::function<void(double)> step;                     // the share read so far (may throw)
+  std::function<void(double)> step;                      // the share read so far (may throw)
 };
 
 ScanInput scan_input(const Recording& recording) {
@@ -270,11 +269,13 @@ double mask_stuck_runs(std::vector<float>& column, int64_t stuck) {
     }
     t = end;
   }
-  const double share = outside > 1 ? static_cast<double>(changes) / static_cast<double>(outside) : 0.0;
+  const double share =
+      outside > 1 ? static_cast<double>(changes) / static_cast<double>(outside) : 0.0;
   const bool noisy = share >= 0.5;
   for (const auto& [from, to] : long_runs)
     if (noisy || std::isnan(column[static_cast<size_t>(from)]))
-      std::fill(column.begin() + from, column.begin() + to, std::numeric_limits<float>::quiet_NaN());
+      std::fill(column.begin() + from, column.begin() + to,
+                std::numeric_limits<float>::quiet_NaN());
   return share;
 }
 
@@ -418,8 +419,8 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const ScanInput& input, const SkinLa
       moved = std::move(closed);
     }
     copy = moved;
-    const auto index = static_cast<size_t>(
-        std::max<int64_t>(0, samples - std::max<int64_t>(1, peak_frames)));
+    const auto index =
+        static_cast<size_t>(std::max<int64_t>(0, samples - std::max<int64_t>(1, peak_frames)));
     peaks[static_cast<size_t>(c)] = stats::nth_smallest(copy, index);
     // Kept where past the noise band: every band decide() gives is at least that.
     SparseExcursion& sparse = score[static_cast<size_t>(c)];
@@ -428,7 +429,8 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const ScanInput& input, const SkinLa
     for (int64_t t = 0; t < samples; ++t) {
       if (!(moved[static_cast<size_t>(t)] > floor)) continue;
       if (sparse.first.empty() ||
-          sparse.first.back() + static_cast<int64_t>(sparse.values.size() - sparse.begin.back()) != t) {
+          sparse.first.back() + static_cast<int64_t>(sparse.values.size() - sparse.begin.back()) !=
+              t) {
         sparse.first.push_back(t);
         sparse.begin.push_back(sparse.values.size());
       }
@@ -489,7 +491,8 @@ std::shared_ptr<AdaptiveScan> adaptive_scan(const ScanInput& input, const SkinLa
       if (const Taxel* taxel = layout.find_taxel(taxel_id))
         for (int channel : taxel->channels)
           if (channel >= 0 && channel < static_cast<int>(layout.channels.size())) {
-            const auto found = channel_of_name.find(layout.channels[static_cast<size_t>(channel)].name);
+            const auto found =
+                channel_of_name.find(layout.channels[static_cast<size_t>(channel)].name);
             if (found != channel_of_name.end()) group_channels[g].push_back(found->second);
           }
   return scan;
@@ -516,9 +519,9 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   for (int c = 0; c < channels; ++c) {
     if (!moved[static_cast<size_t>(c)].counts) continue;
     const auto found = amplitude.find(kinds[static_cast<size_t>(c)]);
-    const float band =
-        std::max(noise_bands * sigmas[static_cast<size_t>(c)],
-                 static_cast<float>(options.share) * (found == amplitude.end() ? 0.0f : found->second));
+    const float band = std::max(
+        noise_bands * sigmas[static_cast<size_t>(c)],
+        static_cast<float>(options.share) * (found == amplitude.end() ? 0.0f : found->second));
     if (!(band > 0)) continue;  // a channel of a kind no touch moved: never on
     bands[static_cast<size_t>(c)] = band;
     ++usable;
@@ -533,7 +536,8 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
   // A contact is a run of touch frames, its edges moved out while half as many channels stay
   // on (one, on a skin whose touches need two).
   const float alone = static_cast<float>(options.alone);
-  std::vector<int64_t> on_count(static_cast<size_t>(samples), 0), strong(static_cast<size_t>(samples), 0);
+  std::vector<int64_t> on_count(static_cast<size_t>(samples), 0),
+      strong(static_cast<size_t>(samples), 0);
   for (int c = 0; c < channels; ++c) {
     const float band = bands[static_cast<size_t>(c)];
     if (!(band > 0)) continue;
@@ -548,14 +552,14 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
     for (int64_t count : on_count)
       if (count > 0) counts.push_back(static_cast<float>(count));
     if (!counts.empty()) {
-      const float footprint = stats::nth_smallest(
-          counts, (counts.size() - 1) / 2);
+      const float footprint = stats::nth_smallest(counts, (counts.size() - 1) / 2);
       needed = std::max<int64_t>(
           needed, static_cast<int64_t>(std::ceil(options.footprint * footprint - 1e-9)));
     }
   }
   const int64_t stands_for = std::min<int64_t>(options.taxels, needed);
-  std::vector<uint8_t> touching(static_cast<size_t>(samples), 0), any_on(static_cast<size_t>(samples), 0);
+  std::vector<uint8_t> touching(static_cast<size_t>(samples), 0),
+      any_on(static_cast<size_t>(samples), 0);
   for (int64_t t = 0; t < samples; ++t) {
     const auto at = static_cast<size_t>(t);
     touching[at] = on_count[at] + strong[at] * (stands_for - 1) >= needed;
@@ -585,7 +589,8 @@ std::vector<Label> adaptive_decide(const AdaptiveScan& scan, const AdaptiveOptio
     join = std::llround(options.join_seconds * rate);
   } else if (!contacts.empty()) {
     std::vector<float> lengths;
-    for (const auto& [first, last] : contacts) lengths.push_back(static_cast<float>(last - first + 1));
+    for (const auto& [first, last] : contacts)
+      lengths.push_back(static_cast<float>(last - first + 1));
     join = std::max<int64_t>(1, std::min(static_cast<int64_t>(0.25 * stats::median(lengths)),
                                          static_cast<int64_t>(0.5 * rate)));
   }
@@ -647,8 +652,7 @@ std::vector<Label> segment_adaptive(const SampleSource& source, const SkinLayout
 
 AdaptiveSegmenter::AdaptiveSegmenter(const Recording& recording, const SkinLayout& layout,
                                      const Parameters& slow)
-    : scan_(adaptive_scan(scan_input(recording), layout, adaptive_options(slow))),
-      slow_(slow) {
+    : scan_(adaptive_scan(scan_input(recording), layout, adaptive_options(slow))), slow_(slow) {
   for (const std::string& key : adaptive_fast_parameters())
     if (slow.has(key))
       throw Error("parameter " + key, "is chosen per run, not when the recording is scanned");
@@ -665,8 +669,8 @@ std::vector<Label> AdaptiveSegmenter::segments(const Parameters& fast) const {
 }
 
 const std::vector<std::string>& adaptive_fast_parameters() {
-  static const std::vector<std::string> keys = {"taxels", "alone", "share", "footprint", "join_seconds",
-                                                "quiet_seconds", "max_seconds"};
+  static const std::vector<std::string> keys = {
+      "taxels", "alone", "share", "footprint", "join_seconds", "quiet_seconds", "max_seconds"};
   return keys;
 }
 

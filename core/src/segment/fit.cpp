@@ -88,8 +88,7 @@ SegmenterFit fit_segmenter(const std::vector<FitRecording>& recordings,
     if (item.recording == nullptr || item.layout == nullptr)
       throw Error("fit", "a recording or its layout is missing");
     if (item.touches.empty()) continue;
-    if (item.recording->streams.empty())
-      throw Error(item.recording->id, "no stream to segment");
+    if (item.recording->streams.empty()) throw Error(item.recording->id, "no stream to segment");
     const Stream& stream = item.recording->streams.front();
     const double start = stream.sample_count() > 0 ? stream.time_of(0) : 0.0;
     const double end = stream.sample_count() > 0
@@ -104,8 +103,7 @@ SegmenterFit fit_segmenter(const std::vector<FitRecording>& recordings,
     fit.touches += static_cast<int64_t>(item.touches.size());
   }
   if (fit.touches < 3)
-    throw Error("fit", "needs at least three labelled touches, has " +
-                           std::to_string(fit.touches) +
+    throw Error("fit", "needs at least three labelled touches, has " + std::to_string(fit.touches) +
                            ": label three or more touches in the lane, then fit again");
 
   // The units: a recording each, or with one labelled recording, three blocks of its touches.
@@ -123,8 +121,9 @@ SegmenterFit fit_segmenter(const std::vector<FitRecording>& recordings,
     const size_t blocks = 3;
     for (size_t b = 0; b < blocks; ++b) {
       const size_t from = b * touches.size() / blocks, to = (b + 1) * touches.size() / blocks;
-      units.push_back(fit_unit(labelled.front(), {touches.begin() + static_cast<std::ptrdiff_t>(from),
-                                                  touches.begin() + static_cast<std::ptrdiff_t>(to)}));
+      units.push_back(
+          fit_unit(labelled.front(), {touches.begin() + static_cast<std::ptrdiff_t>(from),
+                                      touches.begin() + static_cast<std::ptrdiff_t>(to)}));
     }
     fit.folds = "by time blocks (" + std::to_string(blocks) + " folds)";
   }
@@ -144,13 +143,12 @@ SegmenterFit fit_segmenter(const std::vector<FitRecording>& recordings,
         if (units[u].recording == labelled[l])
           scores[k][u] = fit_unit_score(units[u], item.recording->streams.front(), segments);
       if (progress)
-        progress((static_cast<double>(l) + static_cast<double>(k + 1) /
-                                               static_cast<double>(candidates.size())) /
+        progress((static_cast<double>(l) +
+                  static_cast<double>(k + 1) / static_cast<double>(candidates.size())) /
                  static_cast<double>(labelled.size()));
     }
   }
-  for (size_t u = 0; u < units.size(); ++u)
-    fit.held_out += scores[fit_choose(scores, u)][u];
+  for (size_t u = 0; u < units.size(); ++u) fit.held_out += scores[fit_choose(scores, u)][u];
   const size_t chosen = fit_choose(scores, units.size());
   fit.params = candidates[chosen];
   for (size_t u = 0; u < units.size(); ++u) fit.fitted += scores[chosen][u];
@@ -182,8 +180,8 @@ std::string touch_score_text(const TouchScore& score) {
 
 std::string fit_report(const SegmenterFit& fit) {
   std::ostringstream out;
-  out << "fitted " << fit.method << " to " << fit.touches << " labelled touches ("
-      << fit.candidates << " parameter sets tried): " << fit.params << "\n"
+  out << "fitted " << fit.method << " to " << fit.touches << " labelled touches (" << fit.candidates
+      << " parameter sets tried): " << fit.params << "\n"
       << "  held out, " << fit.folds << ": " << touch_score_text(fit.held_out) << "\n"
       << "  on the touches it was fitted to: " << touch_score_text(fit.fitted) << "\n";
   return out.str();

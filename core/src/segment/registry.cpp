@@ -37,8 +37,7 @@ const std::vector<MethodEntry>& method_table() {
       // {"name", segment_name},  (include "tactile/segment/name.h")
       {"proximity", segment_proximity},   {"threshold", segment_threshold},
       {"frame-edge", segment_frame_edge}, {"scenario", segment_scenario},
-      {"excitation", segment_excitation},
-      {"adaptive", segment_adaptive, segment_adaptive},
+      {"excitation", segment_excitation}, {"adaptive", segment_adaptive, segment_adaptive},
   };
   return table;
 }

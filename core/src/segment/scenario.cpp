@@ -40,8 +40,8 @@ std::vector<StageCommand> read_commands(const Recording& recording, const Stream
     const double time = commands.time_of(k);
     if (!std::isfinite(value) || value != std::floor(value) || value < 0 ||
         value >= static_cast<double>(classes))
-      throw Error(where, "stage " + significant_text(value, 9) + " is not a stage of layout " + layout.id +
-                             " (0.." + std::to_string(classes - 1) + ")");
+      throw Error(where, "stage " + significant_text(value, 9) + " is not a stage of layout " +
+                             layout.id + " (0.." + std::to_string(classes - 1) + ")");
     if (!std::isfinite(time)) throw Error(where, "time stamp is not finite");
     if (!stages.empty() && time < stages.back().time)
       throw Error(where, "time stamp goes back (" + significant_text(time, 9) + " s after " +

@@ -67,7 +67,8 @@ RestScale rest_scale(const SampleSource& source, const std::vector<int>& columns
     scale.noise_band[k] = band;
     for (const MinMax& bucket : buckets) {
       if (bucket.empty()) continue;
-      const float beyond = std::max(std::abs(bucket.max - rest), std::abs(bucket.min - rest)) - band;
+      const float beyond =
+          std::max(std::abs(bucket.max - rest), std::abs(bucket.min - rest)) - band;
       if (beyond > 0.0f) excess.push_back(beyond);
     }
   }
@@ -131,7 +132,8 @@ std::vector<float> change_from_rest(const std::vector<float>& values, const Rest
 }
 
 std::vector<double> activity_edges(const SampleSource& source, const std::vector<int>& channels,
-                                   const RestScale& scale, double t, double tolerance, int columns) {
+                                   const RestScale& scale, double t, double tolerance,
+                                   int columns) {
   std::vector<uint8_t> active(static_cast<size_t>(columns), 0);
   for (size_t k = 0; k < channels.size(); ++k) {
     if (channels[k] < 0 || std::isnan(scale.rest[k])) continue;
@@ -165,7 +167,8 @@ double peak_change_time(const SampleSource& source, const std::vector<int>& chan
   for (int64_t row = 0; row < samples.rows(); ++row) {
     double change = 0.0;
     for (size_t k = 0; k < present.size(); ++k)
-      if (std::isfinite(rest[k])) change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - rest[k]);
+      if (std::isfinite(rest[k]))
+        change += std::abs(samples(row, static_cast<Eigen::Index>(k)) - rest[k]);
     if (change > best_change) best_change = change, best = start + row;
   }
   return source.time_of(best);

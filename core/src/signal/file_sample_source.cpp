@@ -333,7 +333,8 @@ void FileSampleSource::copy_samples(int channel, int64_t first, std::span<float>
     }
     const int64_t offset = index - chunk * chunk_samples_;
     const int64_t n = std::min(total - done, static_cast<int64_t>(samples->size()) - offset);
-    std::memcpy(out.data() + done, samples->data() + offset, static_cast<size_t>(n) * sizeof(float));
+    std::memcpy(out.data() + done, samples->data() + offset,
+                static_cast<size_t>(n) * sizeof(float));
     done += n;
   }
 }
@@ -377,8 +378,8 @@ std::vector<float> FileSampleSource::values_at(int64_t index) const {
     for (int channel = 0; channel < channels; ++channel) {
       const float* column = block.col(channel).data();
       values[static_cast<size_t>(channel)] = column[offset];
-      cache.insert(Cache::key(channel, chunk),
-                   std::vector<float>(column, column + chunk_count), cache_limit_);
+      cache.insert(Cache::key(channel, chunk), std::vector<float>(column, column + chunk_count),
+                   cache_limit_);
     }
     return values;
   }
@@ -398,9 +399,9 @@ SampleMatrix FileSampleSource::read(std::span<const int> channels, int64_t first
   for (size_t k = 0; k < channels.size(); ++k) {
     if (channels[k] < 0 || channels[k] >= channel_count())
       throw Error(path_, "no channel " + std::to_string(channels[k]));
-    copy_samples(channels[k], first,
-                 std::span<float>(out.col(static_cast<Eigen::Index>(k)).data(),
-                                  static_cast<size_t>(count)));
+    copy_samples(
+        channels[k], first,
+        std::span<float>(out.col(static_cast<Eigen::Index>(k)).data(), static_cast<size_t>(count)));
   }
   return out;
 }

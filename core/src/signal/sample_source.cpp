@@ -81,8 +81,9 @@ std::vector<MinMax> SampleSource::minmax_over_time(int channel, double t0, doubl
     const int64_t edge = first_index_at_or_after(t0 + column * column_time);
     exact[static_cast<size_t>(column)] = edge;
     // The end of the data stays where it is: the overview covers its partial block.
-    edges[static_cast<size_t>(column)] =
-        snap && edge > 0 && edge < count ? std::min(count, (edge + block / 2) / block * block) : edge;
+    edges[static_cast<size_t>(column)] = snap && edge > 0 && edge < count
+                                             ? std::min(count, (edge + block / 2) / block * block)
+                                             : edge;
   }
   minmax(channel, edges, out);
   // A column narrower than a block whose two edges snapped to one boundary shows the block
@@ -93,7 +94,8 @@ std::vector<MinMax> SampleSource::minmax_over_time(int channel, double t0, doubl
         exact[at] >= count)
       continue;
     const int64_t middle = std::clamp<int64_t>((exact[at] + exact[at + 1]) / 2, 0, count - 1);
-    const int64_t around[2] = {middle / block * block, std::min(count, (middle / block + 1) * block)};
+    const int64_t around[2] = {middle / block * block,
+                               std::min(count, (middle / block + 1) * block)};
     minmax(channel, around, std::span<MinMax>(&out[at], 1));
   }
   return out;
@@ -161,9 +163,9 @@ std::vector<float> MemorySampleSource::values_at(int64_t index) const {
 SampleMatrix MemorySampleSource::read(std::span<const int> channels, int64_t first,
                                       int64_t count) const {
   if (first < 0 || count < 0 || first + count > sample_count())
-    throw Error("stream " + info_.stream,
-                "samples [" + std::to_string(first) + ", " + std::to_string(first + count) +
-                    ") outside [0, " + std::to_string(sample_count()) + ")");
+    throw Error("stream " + info_.stream, "samples [" + std::to_string(first) + ", " +
+                                              std::to_string(first + count) + ") outside [0, " +
+                                              std::to_string(sample_count()) + ")");
   SampleMatrix out(count, static_cast<Eigen::Index>(channels.size()));
   for (size_t k = 0; k < channels.size(); ++k) {
     if (channels[k] < 0 || channels[k] >= channel_count())
@@ -215,14 +217,16 @@ Recording read_all(const SampleSource& source, const std::function<void(double)>
   const int64_t count = source.sample_count();
   const std::vector<int> channels = every_channel(source);
   stream.samples.resize(count, static_cast<Eigen::Index>(channels.size()));
-  const int64_t block = std::max<int64_t>(1, (int64_t{1} << 20) / std::max<int64_t>(1, channels.size()));
+  const int64_t block =
+      std::max<int64_t>(1, (int64_t{1} << 20) / std::max<int64_t>(1, channels.size()));
   for (int64_t first = 0; first < count; first += block) {
     const int64_t rows = std::min(block, count - first);
     stream.samples.middleRows(first, rows) = source.read(channels, first, rows);
     if (step) step(static_cast<double>(first + rows) / static_cast<double>(count));
   }
   if (const std::vector<double>* times = source.timestamps())
-    stream.timestamps.assign(times->begin(), times->begin() + std::min<int64_t>(count, times->size()));
+    stream.timestamps.assign(times->begin(),
+                             times->begin() + std::min<int64_t>(count, times->size()));
   return recording;
 }
 
@@ -231,7 +235,8 @@ Recording read_window(const SampleSource& source, int64_t first, int64_t count) 
   Stream& stream = recording.streams.front();
   if (count > 0) stream.samples = source.read(every_channel(source), first, count);
   if (const std::vector<double>* times = source.timestamps())
-    stream.timestamps.assign(times->begin() + first, times->begin() + first + std::max<int64_t>(0, count));
+    stream.timestamps.assign(times->begin() + first,
+                             times->begin() + first + std::max<int64_t>(0, count));
   return recording;
 }
 

@@ -140,8 +140,8 @@ double jitter(Random& random, double spread) {
 }
 
 FluxGesture plan_gesture(const ClassIntent& intent, const std::vector<Zone>& zones,
-                     const FluxGeometry& geometry, const Subject& subject, Random& random,
-                     const std::string& where, const std::string& class_name) {
+                         const FluxGeometry& geometry, const Subject& subject, Random& random,
+                         const std::string& where, const std::string& class_name) {
   const int zone_count = static_cast<int>(zones.size());
   if (intent.from_zone > zone_count || intent.to_zone > zone_count)
     throw Error(where, "class \"" + class_name + "\" names a zone the layout lacks");
@@ -362,8 +362,8 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
   std::vector<FluxGesture> gestures;
   double clock = random.uniform(2.0, 4.0);  // lead-in at rest: V0 is taken at start-up
   for (int class_index : order) {
-    FluxGesture gesture = plan_gesture(intents[class_index], zones, geometry, subject, random, where,
-                                   layout.classes[class_index]);
+    FluxGesture gesture = plan_gesture(intents[class_index], zones, geometry, subject, random,
+                                       where, layout.classes[class_index]);
     gesture.class_index = class_index;
     gesture.onset = clock;
     clock = gesture.end() + random.uniform(kRestMin, kRestMax);

@@ -141,9 +141,7 @@ double pad_coverage(const Point2& pad, double sensing_radius, const Footprint& f
   return std::min(share, area_bound);
 }
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 Footprint footprint_at(const Touch& touch, double t) {
   const double span = touch.contact_end - touch.contact_start;

@@ -27,8 +27,8 @@ double ring_distance(double a, double b) {
   return std::min(d, kRingTaxels - d);
 }
 
-SimulatedTrial simulate_ring_trial(const SkinLayout& layout, const SimulationOptions& options, int subject,
-                                   int trial) {
+SimulatedTrial simulate_ring_trial(const SkinLayout& layout, const SimulationOptions& options,
+                                   int subject, int trial) {
   std::mt19937_64 random = derive_engine(options.seed, "ring", subject, trial);
   std::uniform_real_distribution<double> place(0.0, kRingTaxels);
   std::normal_distribution<double> noise(0.0, 1.5);
@@ -42,7 +42,9 @@ SimulatedTrial simulate_ring_trial(const SkinLayout& layout, const SimulationOpt
   Recording& recording = result.recording;
   recording.id = simulated_recording_id(kRingSkin, subject, trial);
   recording.layout_id = layout.id;
-  recording.metadata = {{"skin", kRingSkin}, {"subject", std::to_string(subject + 1)}, {"trial", std::to_string(trial + 1)}};
+  recording.metadata = {{"skin", kRingSkin},
+                        {"subject", std::to_string(subject + 1)},
+                        {"trial", std::to_string(trial + 1)}};
   Stream stream;
   stream.name = "skin";
   stream.rate_hz = kRingRate;
@@ -52,7 +54,8 @@ SimulatedTrial simulate_ring_trial(const SkinLayout& layout, const SimulationOpt
   }
   stream.samples.resize(samples, kRingTaxels);
   for (Eigen::Index row = 0; row < samples; ++row)
-    for (int taxel = 0; taxel < kRingTaxels; ++taxel) stream.samples(row, taxel) = static_cast<float>(100.0 + noise(random));
+    for (int taxel = 0; taxel < kRingTaxels; ++taxel)
+      stream.samples(row, taxel) = static_cast<float>(100.0 + noise(random));
 
   double t = gap;
   for (int touch = 0; touch < touches; ++touch) {
@@ -65,7 +68,8 @@ SimulatedTrial simulate_ring_trial(const SkinLayout& layout, const SimulationOpt
       const double progress = static_cast<double>(row - first) / static_cast<double>(last - first);
       const double centre = swipe ? start + progress * kRingTaxels : start;
       for (int taxel = 0; taxel < kRingTaxels; ++taxel)
-        stream.samples(row, taxel) += static_cast<float>(400.0 * ring_bump(ring_distance(taxel, centre)));
+        stream.samples(row, taxel) +=
+            static_cast<float>(400.0 * ring_bump(ring_distance(taxel, centre)));
     }
     Label label;
     label.recording = recording.id;
@@ -107,7 +111,8 @@ class RingMotion final : public FeatureExtractor {
     for (Eigen::Index row = 0; row < rise.rows(); ++row) {
       Eigen::Index strongest = 0;
       if (rise.row(row).maxCoeff(&strongest) < 0.5 * peak) continue;
-      if (previous >= 0) travel += ring_distance(static_cast<double>(strongest), static_cast<double>(previous));
+      if (previous >= 0)
+        travel += ring_distance(static_cast<double>(strongest), static_cast<double>(previous));
       previous = strongest;
     }
     const double width = static_cast<double>((rise.row(peak_row).array() > 0.5 * peak).count());
@@ -122,18 +127,23 @@ std::string ring_layout_json() {
   for (int k = 0; k < kRingTaxels; ++k) {
     const double angle = 2.0 * std::numbers::pi * k / kRingTaxels;
     const std::string name = "p" + std::to_string(k);
-    channels += std::string(k ? "," : "") + R"({"name": ")" + name + R"(", "unit": "counts", "modality": "pressure"})";
+    channels += std::string(k ? "," : "") + R"({"name": ")" + name +
+                R"(", "unit": "counts", "modality": "pressure"})";
     taxels += std::string(k ? "," : "") + R"({"id": )" + std::to_string(k) + R"(, "x": )" +
-              shortest_text(kRingRadius * std::cos(angle)) + R"(, "y": )" + shortest_text(kRingRadius * std::sin(angle)) +
-              R"(, "w": 16, "h": 16, "area": 201, "shape": "circle", "channels": {"pressure": ")" + name + R"("}})";
+              shortest_text(kRingRadius * std::cos(angle)) + R"(, "y": )" +
+              shortest_text(kRingRadius * std::sin(angle)) +
+              R"(, "w": 16, "h": 16, "area": 201, "shape": "circle", "channels": {"pressure": ")" +
+              name + R"("}})";
   }
   return R"({"id": "ring", "name": "Ring of 12 pressure taxels", "sample_rate_hz": 50,
   "modalities": ["pressure"], "display": {"modality": "pressure", "min": 100, "max": 400},
-  "channels": [)" + channels + R"(], "taxels": [)" + taxels + R"(], "classes": ["press", "swipe"]})";
+  "channels": [)" +
+         channels + R"(], "taxels": [)" + taxels + R"(], "classes": ["press", "swipe"]})";
 }
 
 void register_ring_skin() {
-  register_feature_pipeline("ring_motion", [](const Parameters&) { return std::make_unique<RingMotion>(); });
+  register_feature_pipeline("ring_motion",
+                            [](const Parameters&) { return std::make_unique<RingMotion>(); });
   SkinRecord ring;
   ring.id = kRingSkin;
   ring.name = "a ring of 12 pressure taxels (a test's own skin)";

@@ -35,7 +35,8 @@ int lit_taxel_pixels(const Png& png) {
   for (int y = 0; y < png.height; ++y)
     for (int x = 0; x < png.width; ++x) {
       const unsigned char* p = png.at(x, y);
-      count += p[1] >= 140 && p[2] >= 30 && p[2] <= 170 && (p[0] < 130 || (p[0] > 180 && p[2] < 80));
+      count +=
+          p[1] >= 140 && p[2] >= 30 && p[2] <= 170 && (p[0] < 130 || (p[0] > 180 && p[2] < 80));
     }
   return count;
 }
@@ -55,7 +56,8 @@ TEST(SixthSkin, IsSimulatedSegmentedDescribedClassifiedAndDrawnFromItsOwnFolder)
   SimulationOptions options;
   options.subjects = 3;
   options.repetitions = 6;
-  const SimulationSummary simulated = write_simulation(folder.path().string(), test::kRingSkin, options);
+  const SimulationSummary simulated =
+      write_simulation(folder.path().string(), test::kRingSkin, options);
   ASSERT_EQ(simulated.files.size(), 3u);
   EXPECT_EQ(simulated.labels, 3 * 12);
 
@@ -72,8 +74,9 @@ TEST(SixthSkin, IsSimulatedSegmentedDescribedClassifiedAndDrawnFromItsOwnFolder)
     truth_filter.source = LabelSource::kGroundTruth;
     const std::vector<Label> truth = store.list(truth_filter);
     for (const Label& touch : truth) {
-      const bool found = std::any_of(segments.begin(), segments.end(),
-                                     [&](const Label& segment) { return shared_fraction(segment, touch) > 0.5; });
+      const bool found = std::any_of(segments.begin(), segments.end(), [&](const Label& segment) {
+        return shared_fraction(segment, touch) > 0.5;
+      });
       EXPECT_TRUE(found) << recording.id << " " << touch.class_name << " at " << touch.t0 << " s";
     }
     store.apply(segmenter_run(store, recording.id, method, std::move(segments)).edit, "test");

@@ -58,7 +58,6 @@ struct JobFolder {
 nlohmann::json read_jobs(const JobFolder& folder);
 void write_jobs(const JobFolder& folder, const nlohmann::json& jobs);
 
-
 //---- The commands that shard and their sbatch files ------------------------------------------
 
 // Each command that shards, by name, with the option that names its result.

@@ -14,8 +14,8 @@
 namespace tactile {
 
 struct Dataset {
-  std::vector<FeatureColumn> columns;  // feature columns
-  Eigen::MatrixXd features;            // rows = segments, columns = features
+  std::vector<FeatureColumn> columns;   // feature columns
+  Eigen::MatrixXd features;             // rows = segments, columns = features
   std::vector<std::string> classes;     // per row
   std::vector<std::string> subjects;    // per row ("" when unknown)
   std::vector<std::string> recordings;  // per row
@@ -35,7 +35,8 @@ struct Dataset {
 void write_dataset_csv(const std::string& path, const Dataset& dataset);
 // ARFF for Weka: numeric attributes, then class as a nominal attribute (and subject,
 // recording as strings are left out so that Weka's classifiers run on the file as is).
-void write_dataset_arff(const std::string& path, const Dataset& dataset, const std::string& relation);
+void write_dataset_arff(const std::string& path, const Dataset& dataset,
+                        const std::string& relation);
 // Reads a dataset CSV: the one write_dataset_csv writes, or any CSV with a `class`
 // column whose other numeric columns are features. Throws tactile::Error naming file,
 // line and column.

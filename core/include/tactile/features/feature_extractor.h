@@ -11,8 +11,8 @@
 #include "tactile/io/label.h"
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
-#include "tactile/signal/sample_source.h"
 #include "tactile/parameters.h"
+#include "tactile/signal/sample_source.h"
 
 namespace tactile {
 
@@ -70,12 +70,10 @@ class FeatureExtractor {
 // reads nothing else (reads_segment_only), the same results as extract_segments on the whole
 // recording; else the whole stream read once (`read_step(share)` while reading) and
 // extract_segments on it. `each(done)` as extract_segments's.
-FeatureExtractor::Segments extract_source_segments(const FeatureExtractor& extractor,
-                                                   const SampleSource& source,
-                                                   const SkinLayout& layout,
-                                                   const std::vector<Label>& segments,
-                                                   const std::function<void(size_t)>& each = {},
-                                                   const std::function<void(double)>& read_step = {});
+FeatureExtractor::Segments extract_source_segments(
+    const FeatureExtractor& extractor, const SampleSource& source, const SkinLayout& layout,
+    const std::vector<Label>& segments, const std::function<void(size_t)>& each = {},
+    const std::function<void(double)>& read_step = {});
 
 // The stream a pipeline reads: the one named `name`, else the recording's first. Throws
 // tactile::Error naming the recording when it has none.

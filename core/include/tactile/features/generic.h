@@ -73,7 +73,8 @@ struct ChannelShape {
 // `rest`: the channel's rest level (NaN: the segment's own quietest decile); the excursion
 // is |x - rest| (toward touch for reversed modalities: rest - x, floored at 0). The noise
 // deviation is the RMS of |diff x| without its largest fifth, over sqrt 2.
-ChannelShape channel_shape(std::span<const double> values, double rate_hz, double rest, bool reversed);
+ChannelShape channel_shape(std::span<const double> values, double rate_hz, double rest,
+                           bool reversed);
 // Pearson correlation of two equally long series; 0 when either is constant.
 double correlation(std::span<const double> a, std::span<const double> b);
 // The rest level of a channel over a recording: its 10th percentile (90th when reversed),

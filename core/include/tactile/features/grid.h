@@ -10,10 +10,10 @@
 // is also past this share of the segment's largest excursion (default 0: every taxel past the
 // noise; 0.5, the route for people's touches on a grid (docs/FEATURES.md): the region where the
 // touch presses at least half as hard as its hardest point, as a full width at half maximum
-// measures a peak); stream = the stream to read (default: the first). preprocess() finds each taxel's rest level (median over the recording) and noise
-// (1.4826 x its median absolute deviation, floored at half the median of the taxels' noises,
-// so a stuck or quantised taxel does not count every count as contact). Small values mean
-// touch when the layout's display_min > display_max.
+// measures a peak); stream = the stream to read (default: the first). preprocess() finds each
+// taxel's rest level (median over the recording) and noise (1.4826 x its median absolute deviation,
+// floored at half the median of the taxels' noises, so a stuck or quantised taxel does not count
+// every count as contact). Small values mean touch when the layout's display_min > display_max.
 //
 // The generic pipeline uses the same per-frame code for layouts of many taxels
 // (kGridTaxelsForGeneric, generic.h).

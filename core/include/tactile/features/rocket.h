@@ -21,8 +21,8 @@
 //
 // Parameters: those of raw (modality, stream, baseline, scale; samples default 64, at
 // least 9; series default auto: on more than 64 taxels the kernels read raw_summary's
-// layout-driven series, not the channels), features = total count (default 10000; rounded down to a multiple of 84, at
-// least 84), seed (default 1). Deterministic by seed.
+// layout-driven series, not the channels), features = total count (default 10000; rounded down to a
+// multiple of 84, at least 84), seed (default 1). Deterministic by seed.
 
 #include <Eigen/Core>
 #include <array>

@@ -65,7 +65,8 @@ struct ArrayRecordingOptions {
 // shape does not fit the layout's channels, a value is not finite, or the classes do not
 // match the frames.
 ImportedRecording recording_from_array(const ImportedArray& array, const SkinLayout& layout,
-                                       const ArrayRecordingOptions& options, const std::string& where);
+                                       const ArrayRecordingOptions& options,
+                                       const std::string& where);
 
 // Consecutive equal classes (one per sample from `start`, at `rate_hz`) as ground-truth
 // labels of region "all", annotator "import"; "" and "none" make none.

@@ -101,7 +101,7 @@ class RecordingFile {
 
  private:
   RecordingFile() = default;
-  void load();      // reads the structure of the open file_ (format, metadata, streams)
+  void load();    // reads the structure of the open file_ (format, metadata, streams)
   struct Handle;  // the open HDF5 file
   std::string path_;
   std::unique_ptr<Handle> file_;

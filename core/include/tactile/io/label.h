@@ -22,8 +22,8 @@ inline constexpr const char* kUnknownClass = "unknown";
 struct Label {
   int64_t id = 0;  // assigned by the LabelStore; 0 before insertion
   std::string recording;
-  double t0 = 0.0;  // seconds, inclusive
-  double t1 = 0.0;  // seconds, exclusive
+  double t0 = 0.0;             // seconds, inclusive
+  double t1 = 0.0;             // seconds, exclusive
   std::string region = "all";  // a layout group id, or "all"
   std::string class_name;
   std::string annotator;

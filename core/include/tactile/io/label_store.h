@@ -126,7 +126,7 @@ Label label_from_json(const nlohmann::json& object, const std::string& where);
 class LabelStore {
  public:
   enum class OpenMode {
-    kCreate,   // create the database file when it is missing
+    kCreate,    // create the database file when it is missing
     kExisting,  // a missing file is an error (command-line readers must not create one)
     kReadOnly   // existing, and never written: no schema upgrade, no journal mode change
                 // (tactile verify); edits throw

@@ -27,9 +27,9 @@ class RecordingWriter {
   // with the recording's attributes and an empty stream of `channels` (units alike, or
   // empty). Throws tactile::Error naming the file.
   RecordingWriter(const std::string& path, const std::string& recording_id,
-                  const std::string& layout_id, const Metadata& metadata,
-                  const std::string& stream, double rate_hz, double start_time,
-                  const std::vector<std::string>& channels, const std::vector<std::string>& units,
+                  const std::string& layout_id, const Metadata& metadata, const std::string& stream,
+                  double rate_hz, double start_time, const std::vector<std::string>& channels,
+                  const std::vector<std::string>& units,
                   const RecordingWriterOptions& options = {});
   ~RecordingWriter();  // finish(), errors swallowed (call finish() to see them)
   RecordingWriter(const RecordingWriter&) = delete;
@@ -44,7 +44,7 @@ class RecordingWriter {
   void finish();
 
   const std::string& path() const { return path_; }
-  int64_t samples() const { return appended_; }       // appended so far
+  int64_t samples() const { return appended_; }         // appended so far
   int64_t samples_on_disk() const { return written_; }  // as of the last flush
   int64_t chunk_samples() const { return chunk_; }
   // The file's size as of the last flush (what the recording has taken of its disk so far).

@@ -10,10 +10,10 @@
 namespace tactile {
 
 struct RepairReport {
-  bool repaired = false;              // false: the file verified whole, nothing was done
-  std::vector<std::string> rebuilt;   // one line per thing rebuilt from the samples
-  std::vector<std::string> lost;      // one line per stretch that could not be kept
-  std::string kept_original;          // where the damaged original now is ("" if untouched)
+  bool repaired = false;             // false: the file verified whole, nothing was done
+  std::vector<std::string> rebuilt;  // one line per thing rebuilt from the samples
+  std::vector<std::string> lost;     // one line per stretch that could not be kept
+  std::string kept_original;         // where the damaged original now is ("" if untouched)
 };
 
 // Verifies `path`; when it has problems, reads every sample that can be read (a chunk that

@@ -25,8 +25,10 @@ namespace tactile {
 // A suggestion (a segmenter's label) accepted, or a prediction confirmed or corrected: a label
 // of `annotator`'s own lane with its bounds and region, class `class_name`, confidence 1. A
 // prediction's copy notes what the model said ("confirmed model: tap", "corrected model: tap").
-Label adopted_label(const Label& label, const std::string& class_name, const std::string& annotator);
-LabelEdit adopt_edit(const Label& label, const std::string& class_name, const std::string& annotator);
+Label adopted_label(const Label& label, const std::string& class_name,
+                    const std::string& annotator);
+LabelEdit adopt_edit(const Label& label, const std::string& class_name,
+                     const std::string& annotator);
 
 // One label added, removed, or rejected (a suggestion: removed and its span remembered). A
 // removal or rejection, like a change below, names the label as its editor last read it (id and

@@ -32,13 +32,13 @@ struct FileImportOptions {
   std::optional<int64_t> samples_per_capture;           // --samples-per-capture
   std::optional<std::string> labels_file;               // --labels-file
   std::optional<std::vector<std::string>> class_names;  // --class-names
-  std::string dataset;  // --dataset: a .npz array, an HDF5 dataset, a .mat variable ("s.field")
-  std::string key;                                      // --key: the JSON key of the frames
-  std::string value_key;  // --value-key: JSON frames given as objects, the member of each frame
-  std::string class_key;  // --class-key: ... and the member of its class
-  std::string class_array;   // --class-array: classes per frame or capture in the same file
-  bool captures = false;     // --captures: [N][C][S]
-  std::string class_column;  // --class-column (long CSV)
+  std::string dataset;      // --dataset: a .npz array, an HDF5 dataset, a .mat variable ("s.field")
+  std::string key;          // --key: the JSON key of the frames
+  std::string value_key;    // --value-key: JSON frames given as objects, the member of each frame
+  std::string class_key;    // --class-key: ... and the member of its class
+  std::string class_array;  // --class-array: classes per frame or capture in the same file
+  bool captures = false;    // --captures: [N][C][S]
+  std::string class_column;                // --class-column (long CSV)
   std::vector<std::string> group_columns;  // --group-columns (long CSV): out is a folder
   std::string out;                         // --out: the .h5 file, or the folder with group_columns
   std::string labels;        // --labels: the label store; "" = the ground truth is not stored

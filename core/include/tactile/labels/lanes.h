@@ -57,8 +57,8 @@ class LaneIndex {
  private:
   std::vector<Label> labels_;
   std::vector<double> starts_;
-  std::vector<double> reach_;         // reach_[k] = max end of labels_[0..k]
-  std::vector<size_t> reach_label_;   // which label reaches that far
+  std::vector<double> reach_;        // reach_[k] = max end of labels_[0..k]
+  std::vector<size_t> reach_label_;  // which label reaches that far
 };
 
 // A run of pixel columns [first, last) drawn for one label (in a dense lane, the

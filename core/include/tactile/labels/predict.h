@@ -6,8 +6,8 @@
 
 #include <functional>
 #include <memory>
-#include <span>
 #include <nlohmann/json_fwd.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,8 +59,8 @@ SavedModel model_from_json(const nlohmann::json& document, const std::string& wh
 inline constexpr const char* kModelAnnotator = "model";
 
 struct Predictions {
-  std::vector<Label> labels;             // source kModel, one per predicted segment
-  std::vector<SkippedSegment> skipped;   // segments the pipeline gave no row for
+  std::vector<Label> labels;            // source kModel, one per predicted segment
+  std::vector<SkippedSegment> skipped;  // segments the pipeline gave no row for
 };
 // Predicts the segments of one recording with the model's pipeline. Each label keeps the
 // segment's bounds and region, class = the answer ("unknown" when the model answers so),
@@ -95,6 +95,7 @@ double prediction_margin(const Label& label);
 
 // The prediction an operator should look at next: the one with the smallest margin that no
 // label of `decided` (the operator's own lane) overlaps yet. Null when every one is decided.
-const Label* least_sure_prediction(std::span<const Label> predictions, std::span<const Label> decided);
+const Label* least_sure_prediction(std::span<const Label> predictions,
+                                   std::span<const Label> decided);
 
 }  // namespace tactile

@@ -29,6 +29,7 @@ struct QualityOptions {
   std::set<std::string> vocabulary;
 };
 
-std::vector<LabelIssue> check_labels(const std::vector<Label>& labels, const QualityOptions& options);
+std::vector<LabelIssue> check_labels(const std::vector<Label>& labels,
+                                     const QualityOptions& options);
 
 }  // namespace tactile

@@ -52,7 +52,7 @@ struct TrainingRequest {
   std::string protocol = "kfold:5";
   uint64_t seed = 1;
   int threads = 0;
-  std::string save_model;  // when set and one classifier: fit on all rows, save here
+  std::string save_model;                 // when set and one classifier: fit on all rows, save here
   std::shared_ptr<TrainingSoFar> so_far;  // when set: filled as the run goes
 };
 
@@ -63,7 +63,7 @@ struct TrainingOutcome {
   // That model as fitted, so that predicting with it reads no file (a linear SVM of Robovie's
   // 37,401 columns is 112 MB of text, and its parse held 64 MB beside the model's 31).
   std::shared_ptr<const SavedModel> model;
-  std::string pipeline;                    // as used
+  std::string pipeline;  // as used
 };
 
 // The training run: reads the labelled segments, extracts the feature table, evaluates,

@@ -25,9 +25,9 @@ struct Taxel {
   int64_t id = 0;
   std::string name;
   std::string body_part;
-  Point2 position;            // centre on the unwrapped map, in map units (mm)
-  Point2 size;                // width and height on the map (mm); for hexagons, the flat-to-flat box
-  double area = 0.0;          // physical sensing area (mm^2)
+  Point2 position;    // centre on the unwrapped map, in map units (mm)
+  Point2 size;        // width and height on the map (mm); for hexagons, the flat-to-flat box
+  double area = 0.0;  // physical sensing area (mm^2)
   TaxelShape shape = TaxelShape::kRectangle;
   std::vector<Point2> outline;  // explicit outline on the map; empty -> derived from shape and size
   // Channel indices into SkinLayout::channels, one per modality of the layout (in
@@ -36,9 +36,9 @@ struct Taxel {
 };
 
 struct Group {
-  std::string id;    // unique within the layout, e.g. "front", "module-07", "left-arm"
-  std::string kind;  // e.g. "side", "module", "sheet", "body-part", "layer"
-  std::string name;  // human-readable
+  std::string id;               // unique within the layout, e.g. "front", "module-07", "left-arm"
+  std::string kind;             // e.g. "side", "module", "sheet", "body-part", "layer"
+  std::string name;             // human-readable
   std::vector<int64_t> taxels;  // taxel ids
 };
 
@@ -53,14 +53,14 @@ struct SkinLayout {
   std::string name;  // human-readable
   std::string description;
   std::string map_unit = "mm";
-  double sample_rate_hz = 0.0;  // the device's native rate; 0 when unknown
+  double sample_rate_hz = 0.0;          // the device's native rate; 0 when unknown
   std::vector<std::string> modalities;  // per-taxel channel slots, e.g. {"ax","ay",...}
   std::string display_modality;         // modality a skin view colours by default
   // Value range a skin view maps to [0, 1] by default; min > max is allowed and
   // reverses the scale (proximity: 200 mm dark, 0 mm bright).
   double display_min = 0.0;
   double display_max = 1.0;
-  std::vector<Channel> channels;        // every channel, in recording column order
+  std::vector<Channel> channels;  // every channel, in recording column order
   std::vector<Taxel> taxels;
   std::vector<Group> groups;
   std::vector<std::string> disjoint_kinds;  // group kinds whose groups may not share taxels

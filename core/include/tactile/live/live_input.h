@@ -22,17 +22,17 @@ namespace tactile {
 //   replay:///path/file.h5?speed=1&seconds=60   a recording (its first 60 s), 0.25-4 times
 //                                               its speed, once
 struct LiveAddress {
-  std::string scheme;  // "udp", "serial", "sim", "replay"
-  std::string host;    // udp
-  uint16_t port = 0;   // udp
-  std::string path;    // serial device, replay file
-  int baud = 921600;   // serial
-  std::string skin;    // sim
-  uint64_t seed = 1;   // sim
-  double speed = 1.0;  // sim (rate factor) and replay
+  std::string scheme;    // "udp", "serial", "sim", "replay"
+  std::string host;      // udp
+  uint16_t port = 0;     // udp
+  std::string path;      // serial device, replay file
+  int baud = 921600;     // serial
+  std::string skin;      // sim
+  uint64_t seed = 1;     // sim
+  double speed = 1.0;    // sim (rate factor) and replay
   double seconds = 0.0;  // replay: only this much of the recording (0: all)
   int trials = 0;        // sim: trials before the input ends (0: endless)
-  std::string url;     // as given
+  std::string url;       // as given
 };
 
 // Throws tactile::Error at `option` (e.g. "--connect") naming what is wrong.

@@ -21,23 +21,23 @@
 namespace tactile {
 
 struct LiveCounters {
-  int64_t datagrams = 0;   // everything that arrived
-  int64_t samples = 0;     // handed to the ring
-  int64_t lost = 0;        // datagrams skipped in the sequence and still missing
-  int64_t duplicated = 0;  // dropped
-  int64_t reordered = 0;   // arrived after a later one
-  int64_t broken = 0;      // refused by the decoder or the framing
-  int64_t overflow = 0;    // samples the ring had no room for (the UI fell behind)
-  int64_t restarts = 0;    // the sender's count started over
-  int64_t saturated = 0;   // datagrams flagged as clamped by the device
-  int64_t unplugs = 0;     // the device went away (a serial port unplugged)
-  int64_t replugs = 0;     // ... and came back
-  int64_t stalls = 0;      // silences longer than LiveTimeline's stall time
+  int64_t datagrams = 0;     // everything that arrived
+  int64_t samples = 0;       // handed to the ring
+  int64_t lost = 0;          // datagrams skipped in the sequence and still missing
+  int64_t duplicated = 0;    // dropped
+  int64_t reordered = 0;     // arrived after a later one
+  int64_t broken = 0;        // refused by the decoder or the framing
+  int64_t overflow = 0;      // samples the ring had no room for (the UI fell behind)
+  int64_t restarts = 0;      // the sender's count started over
+  int64_t saturated = 0;     // datagrams flagged as clamped by the device
+  int64_t unplugs = 0;       // the device went away (a serial port unplugged)
+  int64_t replugs = 0;       // ... and came back
+  int64_t stalls = 0;        // silences longer than LiveTimeline's stall time
   int64_t clock_jumps = 0;   // the sender's time stamps jumped (placed by sequence instead)
   int64_t late_dropped = 0;  // late datagrams whose place was no longer free
   bool stalled = false;      // silent for longer than the stall time now
   std::string gone;          // while the device is away: what the input waits for; else ""
-  std::string last_error;  // of the last broken datagram, "where: what"
+  std::string last_error;    // of the last broken datagram, "where: what"
 };
 
 class LiveReceiver {
@@ -54,7 +54,7 @@ class LiveReceiver {
   SampleRing& ring() { return *ring_; }
   LiveCounters counters() const;
   bool ended() const { return ended_.load(); }  // the input ended (a replay) or failed
-  std::string failure() const;                   // why the input failed ("" when it did not)
+  std::string failure() const;                  // why the input failed ("" when it did not)
   std::string describe() const { return description_; }
   void stop();
 

@@ -49,7 +49,8 @@ class LiveRecorder {
  public:
   // Creates `path` (never over an existing file) and starts at the pre-trigger's first sample
   // still in `source`. Throws tactile::Error naming the file.
-  LiveRecorder(const std::string& path, const LiveSampleSource& source, const LiveRecorderOptions& options);
+  LiveRecorder(const std::string& path, const LiveSampleSource& source,
+               const LiveRecorderOptions& options);
   ~LiveRecorder();  // finish(), errors swallowed
   LiveRecorder(const LiveRecorder&) = delete;
   LiveRecorder& operator=(const LiveRecorder&) = delete;
@@ -104,10 +105,10 @@ class LiveRecorder {
 };
 
 struct ContactDetectorOptions {
-  double noise_sigmas = 6.0;     // a channel beyond rest +- this many noise deviations is touched
-  double learn_seconds = 2.0;    // the rest level and noise of each channel, from the first samples
-  double quiet_seconds = 3.0;    // no contact for this long ends the touch
-  int min_channels = 1;          // channels that must be beyond their band at once
+  double noise_sigmas = 6.0;   // a channel beyond rest +- this many noise deviations is touched
+  double learn_seconds = 2.0;  // the rest level and noise of each channel, from the first samples
+  double quiet_seconds = 3.0;  // no contact for this long ends the touch
+  int min_channels = 1;        // channels that must be beyond their band at once
 };
 
 // Contact from the noise band of each channel, learnt from the first seconds of a stream

@@ -46,8 +46,8 @@ class LiveSampleSource final : public SampleSource {
   void clear();
 
   int64_t capacity() const { return capacity_; }
-  int64_t first_kept() const;       // index of the oldest sample still held
-  int64_t gap_samples() const;      // samples left as gaps so far
+  int64_t first_kept() const;   // index of the oldest sample still held
+  int64_t gap_samples() const;  // samples left as gaps so far
   // The stretches still held that are gaps, as sample index ranges [first, end), oldest
   // first (a late sample that filled its place is taken out of its stretch).
   std::vector<std::pair<int64_t, int64_t>> gaps() const;

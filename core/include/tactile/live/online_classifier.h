@@ -56,7 +56,8 @@ void add_online_decision(std::vector<Label>& lane, const OnlineDecision& decisio
 class OnlineClassifier {
  public:
   // Throws tactile::Error when the model has no pipeline or is of another skin.
-  OnlineClassifier(SavedModel model, SkinLayout layout, const SourceInfo& stream, OnlineOptions options);
+  OnlineClassifier(SavedModel model, SkinLayout layout, const SourceInfo& stream,
+                   OnlineOptions options);
   ~OnlineClassifier();
   OnlineClassifier(const OnlineClassifier&) = delete;
   OnlineClassifier& operator=(const OnlineClassifier&) = delete;

@@ -18,7 +18,14 @@
 namespace tactile::ml {
 
 struct Protocol {
-  enum class Kind { kKFold, kLeaveOneOut, kLeaveOneSubjectOut, kLeaveOneGroupOut, kHoldout, kSplit };
+  enum class Kind {
+    kKFold,
+    kLeaveOneOut,
+    kLeaveOneSubjectOut,
+    kLeaveOneGroupOut,
+    kHoldout,
+    kSplit
+  };
   Kind kind = Kind::kKFold;
   int folds = 10;               // k-fold
   int repetitions = 1;          // k-fold and hold-out

@@ -33,7 +33,7 @@ struct AutoBlock {
 std::vector<AutoBlock> parse_auto_blocks(const std::string& text);
 
 struct GridCandidate {
-  std::string specification;  // "knn:k=3,metric=cosine"
+  std::string specification;    // "knn:k=3,metric=cosine"
   double inner_accuracy = 0.0;  // on `rows` rows; -1 when it could not learn from them
   int64_t rows = 0;             // training rows of the last inner cross-validation it ran
 };
@@ -74,7 +74,7 @@ class GridSearchClassifier : public Classifier {
   size_t listed_count_ = 0;  // candidates from the parameters (auto may add more at fit time)
   std::string blocks_;       // auto: as given
   std::vector<AutoBlock> candidate_blocks_;  // auto: per listed candidate (first < 0: every column)
-  std::string listed_;  // auto: the candidates as given
+  std::string listed_;                       // auto: the candidates as given
   std::string base_;
   std::vector<std::pair<std::string, std::string>> axes_;  // key -> "v1|v2|..."
   Protocol inner_;

@@ -20,11 +20,11 @@ namespace tactile {
 struct SomatosensoryMap {
   std::string layout;
   std::string modality;
-  std::vector<int64_t> taxels;     // taxel ids, layout order, those with a channel
-  std::vector<Point2> positions;   // per taxel, scaled into the body map's bounding box
+  std::vector<int64_t> taxels;             // taxel ids, layout order, those with a channel
+  std::vector<Point2> positions;           // per taxel, scaled into the body map's bounding box
   double negative_eigenvalue_ratio = 0.0;  // how far d is from Euclidean (ml::MdsResult)
-  int64_t samples = 0;             // samples the correlations were computed over
-  std::string source;              // what it was computed over (file names)
+  int64_t samples = 0;                     // samples the correlations were computed over
+  std::string source;                      // what it was computed over (file names)
 };
 
 // Pools the sums of Pearson correlation over several sources (a corpus of one skin).
@@ -61,7 +61,8 @@ SomatosensoryMap somatosensory_from_json(const nlohmann::json& document, const s
 
 // The cache beside a recording: RECORDING.h5 -> RECORDING.somatosensory-MODALITY.json,
 // valid while the recording's size and modification time are those stored in it.
-std::string somatosensory_cache_path(const std::string& recording_path, const std::string& modality);
+std::string somatosensory_cache_path(const std::string& recording_path,
+                                     const std::string& modality);
 std::optional<SomatosensoryMap> read_somatosensory_cache(const std::string& recording_path,
                                                          const std::string& modality);
 // Best effort: a folder that cannot be written leaves no cache (returns false).

@@ -81,7 +81,7 @@ struct PairwiseSvm {
   // shares (a training row serves in up to k - 1 pairs). A linear learner has one: w, with
   // coefficient 1.
   std::vector<Eigen::Index> support;
-  PlattSigmoid sigmoid;    // P(positive | f); fitted only with probability=true
+  PlattSigmoid sigmoid;  // P(positive | f); fitted only with probability=true
 };
 
 // MATLAB's 'auto' kernel scale for one binary learner: up to 100 points drawn per class
@@ -144,8 +144,8 @@ class SupportVectorMachine : public Classifier {
   int only_class_ = -1;  // the single class seen in training, else -1
   Standardizer standardizer_;
   std::vector<PairwiseSvm> learners_;
-  Matrix support_vectors_;  // rows that learners_' `support` indexes
-  bool probabilities_ = false;  // every learner has its sigmoid
+  Matrix support_vectors_;             // rows that learners_' `support` indexes
+  bool probabilities_ = false;         // every learner has its sigmoid
   std::vector<double> class_weights_;  // per class: C's factor in training (1 unless balanced)
 };
 

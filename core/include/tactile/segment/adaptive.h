@@ -15,9 +15,9 @@
 //   through each end of the recording; opening_seconds=0 and two-way channels: the running
 //   quantile of the block medians over baseline_seconds (20), away from the touches;
 // - excursion: the residual, one-sided when the direction is known, closed over
-//   envelope_seconds (0.03); noise sigma = 1.4826 x the MAD of the frame-to-frame differences over sqrt 2 (0 for a noiseless
-//   sensor); a noisy channel with a tenth of the median noisy channel's sigma, changing every
-//   frame, is stuck under a drifting offset and never counts;
+//   envelope_seconds (0.03); noise sigma = 1.4826 x the MAD of the frame-to-frame differences over
+//   sqrt 2 (0 for a noiseless sensor); a noisy channel with a tenth of the median noisy channel's
+//   sigma, changing every frame, is stuck under a drifting offset and never counts;
 // - band: margin (2) x 3 sigma, or `share` (0.2) of the touch amplitude of the channel's kind,
 //   whichever is higher. A kind is the layout's modality and unit (one scale); its amplitude
 //   is the 95th percentile of its channels' peaks (the highest excursion a channel holds for

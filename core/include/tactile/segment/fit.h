@@ -33,12 +33,12 @@ struct FitRecording {
 
 struct SegmenterFit {
   std::string method = "adaptive";
-  std::string params;         // chosen on every labelled touch, "key=value,..."
-  TouchScore fitted;          // of those parameters on every labelled stretch
-  TouchScore held_out;        // each fold's choice on its held-out touches, summed
-  std::string folds;          // "by recording (3 folds)" or "by time blocks (3 folds)"
+  std::string params;   // chosen on every labelled touch, "key=value,..."
+  TouchScore fitted;    // of those parameters on every labelled stretch
+  TouchScore held_out;  // each fold's choice on its held-out touches, summed
+  std::string folds;    // "by recording (3 folds)" or "by time blocks (3 folds)"
   int64_t touches = 0;
-  int64_t candidates = 0;     // parameter sets tried
+  int64_t candidates = 0;  // parameter sets tried
 };
 
 // The parameter sets tried, adaptive's defaults first: share x footprint x taxels x

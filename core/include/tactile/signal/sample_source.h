@@ -136,8 +136,8 @@ class MemorySampleSource final : public SampleSource {
 //---- A recording file, read on demand
 
 struct FileSourceOptions {
-  std::string stream;                          // "" = the first stream
-  int64_t cache_bytes = int64_t{32} << 20;    // raw-sample chunk cache limit
+  std::string stream;                       // "" = the first stream
+  int64_t cache_bytes = int64_t{32} << 20;  // raw-sample chunk cache limit
   // A chunk that fails its checksum reads as NaN (a gap, never numbers) and is
   // listed by damage(), instead of throwing: a viewer keeps showing the rest of a
   // damaged file and names the damage.

@@ -29,10 +29,11 @@ double minimum_jerk(double progress);
 std::vector<int> shuffled_classes(int count, int repetitions, Random& random);
 
 // A stream whose channels and units are the layout's, with `samples` rows of zeros.
-Stream make_stream(const SkinLayout& layout, const std::string& name, double rate_hz, int64_t samples);
+Stream make_stream(const SkinLayout& layout, const std::string& name, double rate_hz,
+                   int64_t samples);
 
 // Standard metadata of a simulated recording.
-Metadata simulated_metadata(const std::string& skin, int subject, int trial, const std::string& side,
-                            const std::string& condition);
+Metadata simulated_metadata(const std::string& skin, int subject, int trial,
+                            const std::string& side, const std::string& condition);
 
 }  // namespace tactile::sim

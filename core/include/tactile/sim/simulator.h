@@ -38,8 +38,8 @@ struct SimulatedTrial {
 // A generator for one skin. `subject` and `trial` are 0-based. The same (options.seed,
 // subject, trial) gives byte-identical output; a subject's habits depend only on
 // (options.seed, subject), so they persist across trials.
-using TrialGenerator = std::function<SimulatedTrial(const SkinLayout& layout, const SimulationOptions& options,
-                                                    int subject, int trial)>;
+using TrialGenerator = std::function<SimulatedTrial(
+    const SkinLayout& layout, const SimulationOptions& options, int subject, int trial)>;
 
 // The generators of the papers' five skins, each in its skin's own file; the skin records
 // (skins/skin.h) hold them, and a skin's generator is read from its record.
@@ -57,7 +57,8 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
 // A reproducible random engine for one purpose, derived from the seed and a path of
 // names and numbers (e.g. {"nao", "subject", 3}), so that adding a draw in one place
 // never shifts the draws of another.
-std::mt19937_64 derive_engine(uint64_t seed, const std::string& purpose, int64_t a = 0, int64_t b = 0);
+std::mt19937_64 derive_engine(uint64_t seed, const std::string& purpose, int64_t a = 0,
+                              int64_t b = 0);
 
 // "<skin>-s01-t01": the recording id the generators use.
 std::string simulated_recording_id(const std::string& skin, int subject, int trial);

@@ -44,7 +44,6 @@ struct SubjectHabits {
   bool strokes_with_fingertips = false;  // else the flat hand
   bool pushes_with_fingers = false;      // else the palm
   bool tickles_by_brushing = false;      // else scratching in place
-
 };
 
 // Where on the map a hand may be placed: the head's rows get wider further down.

@@ -48,8 +48,7 @@ void sit_and_stand(TorsoPath& path, double rate_hz, Random& random) {
     const double travel = random.uniform(0.03, 0.06), hold = random.uniform(0.5, 1.5);
     const int64_t first = static_cast<int64_t>(std::ceil(t * rate_hz));
     for (int64_t s = std::max<int64_t>(0, first); s < samples; ++s) {
-      const double p =
-          std::clamp((static_cast<double>(s) / rate_hz - t) / duration, 0.0, 1.0);
+      const double p = std::clamp((static_cast<double>(s) / rate_hz - t) / duration, 0.0, 1.0);
       path.down[s] = -(height + (target - height) * minimum_jerk(p));
       if (p < 1.0) {
         // The torso leans forward and the hips move forward while rising or sitting, starting

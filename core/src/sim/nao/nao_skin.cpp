@@ -23,9 +23,9 @@ constexpr double kPlateScale = 0.92;  // sensing plate / cell outline
 // Plate tilt on its silicone bed per N*mm of off-centre load: 1 N at a force sensor (6.7 mm out)
 // tilts it by about 1.7 degrees.
 constexpr double kTiltPerMoment = 0.0045;
-constexpr double kNormalMass = 0.5;          // kg of torso shell a cell's normal load moves
-constexpr double kShearMass = 0.6;           // kg, the same for loads along the surface
-constexpr double kUpperBodyMass = 2.5;       // kg, NAO's upper body swaying on its joints
+constexpr double kNormalMass = 0.5;     // kg of torso shell a cell's normal load moves
+constexpr double kShearMass = 0.6;      // kg, the same for loads along the surface
+constexpr double kUpperBodyMass = 2.5;  // kg, NAO's upper body swaying on its joints
 // Damping ratio of that sway: NAO's joints turn through high-ratio gearboxes under position
 // control, which give way to a push without ringing on (estimate; docs/SIMULATION.md).
 constexpr double kSwayDamping = 0.9;

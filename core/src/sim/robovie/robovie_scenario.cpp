@@ -232,24 +232,31 @@ const std::vector<ScriptedMove>& stage_moves(int stage) {
       {},  // "What's your name?"
       {},  // "Where are you from?"
       // "Let's play!": both arms up and down twice.
-      {{kR, S::kBump, 0.2, 1.0, 0.7, 0}, {kL, S::kBump, 0.2, 1.0, 0.7, 0},
-       {kR, S::kBump, 1.3, 1.0, 0.7, 0}, {kL, S::kBump, 1.3, 1.0, 0.7, 0}},
+      {{kR, S::kBump, 0.2, 1.0, 0.7, 0},
+       {kL, S::kBump, 0.2, 1.0, 0.7, 0},
+       {kR, S::kBump, 1.3, 1.0, 0.7, 0},
+       {kL, S::kBump, 1.3, 1.0, 0.7, 0}},
       // "Do you think I'm cute?": sways its head and body.
       {{kH, S::kOscillation, 0.2, 2.5, 0.15, 0.8}, {kW, S::kBump, 0.2, 2.5, 0.15, 0}},
       // "I wish you'd pat me on the head.": bows the head and holds it there.
       {{kH, S::kRamp, 0.3, 1.0, 0.35, 0}, {kH, S::kRamp, 5.0, 1.0, -0.35, 0}},
       // "Whee!": both arms high, the waist swaying.
-      {{kR, S::kBump, 0.1, 2.2, 1.2, 0}, {kL, S::kBump, 0.1, 2.2, 1.2, 0},
+      {{kR, S::kBump, 0.1, 2.2, 1.2, 0},
+       {kL, S::kBump, 0.1, 2.2, 1.2, 0},
        {kW, S::kOscillation, 0.3, 2.0, 0.12, 1.0}},
       {},  // "I want to play more.": talking
       // "Tickle me.": lifts both arms to open its sides, lowers them later.
-      {{kR, S::kRamp, 0.2, 1.0, 0.8, 0}, {kL, S::kRamp, 0.2, 1.0, 0.8, 0},
-       {kR, S::kRamp, 4.0, 1.0, -0.8, 0}, {kL, S::kRamp, 4.0, 1.0, -0.8, 0}},
+      {{kR, S::kRamp, 0.2, 1.0, 0.8, 0},
+       {kL, S::kRamp, 0.2, 1.0, 0.8, 0},
+       {kR, S::kRamp, 4.0, 1.0, -0.8, 0},
+       {kL, S::kRamp, 4.0, 1.0, -0.8, 0}},
       {},  // "That tickles!": talking
       {},  // "Thanks"
       // "Give me a hug.": opens its arms, closes them around the person later.
-      {{kR, S::kRamp, 0.2, 1.2, 0.9, 0}, {kL, S::kRamp, 0.2, 1.2, 0.9, 0},
-       {kR, S::kRamp, 5.0, 1.2, -0.9, 0}, {kL, S::kRamp, 5.0, 1.2, -0.9, 0}},
+      {{kR, S::kRamp, 0.2, 1.2, 0.9, 0},
+       {kL, S::kRamp, 0.2, 1.2, 0.9, 0},
+       {kR, S::kRamp, 5.0, 1.2, -0.9, 0},
+       {kL, S::kRamp, 5.0, 1.2, -0.9, 0}},
       // "Bye-bye!": raises the right hand and waves longer.
       {{kR, S::kBump, 0.2, 3.5, 1.0, 0}, {kR, S::kOscillation, 0.9, 2.2, 0.3, 1.5}},
   };
@@ -265,11 +272,13 @@ void add_talking_gesture(Session& session, double command, Random& random) {
   const double which = random.uniform();
   // One arm (right more often), both arms, or a nod of the head.
   if (which >= 0.8) {
-    session.moves.push_back({Joint::kHead, JointMove::Shape::kBump, onset, duration, 0.4 * amplitude});
+    session.moves.push_back(
+        {Joint::kHead, JointMove::Shape::kBump, onset, duration, 0.4 * amplitude});
     return;
   }
   if (which < 0.35 || which >= 0.6)
-    session.moves.push_back({Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
+    session.moves.push_back(
+        {Joint::kRightArm, JointMove::Shape::kBump, onset, duration, amplitude});
   if (which >= 0.35)
     session.moves.push_back({Joint::kLeftArm, JointMove::Shape::kBump, onset, duration, amplitude});
 }
@@ -290,8 +299,8 @@ void add_robot_gestures(Session& session, Random& random) {
     // stage, so that a hold given back returns exactly to where it started).
     const double command = session.commands[stage] + random.uniform(0.0, 0.2);
     const double reach = random.uniform(0.9, 1.1);
-    const double next = stage + 1 < session.commands.size() ? session.commands[stage + 1]
-                                                            : session.end;
+    const double next =
+        stage + 1 < session.commands.size() ? session.commands[stage + 1] : session.end;
     const std::vector<ScriptedMove>& program = stage_moves(static_cast<int>(stage));
     if (program.empty()) {
       add_talking_gesture(session, command, random);
@@ -303,8 +312,8 @@ void add_robot_gestures(Session& session, Random& random) {
       if (move.shape == JointMove::Shape::kRamp && move.amplitude < 0.0)
         onset = std::min(onset, std::max(command, next - move.duration - 0.2));
       session.moves.push_back({move.joint, move.shape, onset,
-                               move.duration * random.uniform(0.9, 1.1),
-                               move.amplitude * reach, move.frequency_hz});
+                               move.duration * random.uniform(0.9, 1.1), move.amplitude * reach,
+                               move.frequency_hz});
     }
   }
   // Talking on, it keeps moving its arms now and then.

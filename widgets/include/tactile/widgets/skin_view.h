@@ -57,7 +57,7 @@ struct SkinViewStyle {
   // The values are changes from each taxel's rest level, not readings: the legend's scale
   // reads "rest" at the bottom and "+max" at the top.
   bool values_are_change = false;
-  SkinViewZoom* zoom = nullptr;     // interactive zoom and pan when given
+  SkinViewZoom* zoom = nullptr;                   // interactive zoom and pan when given
   std::span<const int64_t> selected_taxels = {};  // outlined (taxel ids)
   // Per taxel (layout order), the distance to its nearest neighbour (nearest_taxel_distances):
   // a taxel smaller than its spacing is drawn larger, up to a pixel short of touching its
@@ -84,9 +84,9 @@ struct SkinViewLabel {
 };
 
 struct SkinViewResult {
-  int64_t hovered_taxel = -1;  // taxel id under the mouse, -1 for none
-  int64_t clicked_taxel = -1;  // taxel id clicked this frame, -1 for none
-  MapTransform transform;      // where the map was drawn this frame
+  int64_t hovered_taxel = -1;           // taxel id under the mouse, -1 for none
+  int64_t clicked_taxel = -1;           // taxel id clicked this frame, -1 for none
+  MapTransform transform;               // where the map was drawn this frame
   std::vector<SkinViewBox> taxels;      // per taxel (layout order): its drawn box
   std::vector<int64_t> touched_taxels;  // drawn enlarged as touched this frame (ids)
   std::vector<SkinViewLabel> names;     // group and taxel names on the map
