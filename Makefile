@@ -4,10 +4,13 @@ JOBS ?= $(shell nproc)
 # Batched translation units (cmake/TactileBuild.cmake): a whole build in about half the time.
 # BATCH=OFF compiles one unit per file, quicker to rebuild after editing one file.
 BATCH ?= ON
+# WERROR=ON: a warning in core/, widgets/ or app/ fails the build (CI sets it; the folder's
+# CMake cache keeps it).
+WERROR ?=
 
 SANITIZE_DIR ?= build-asan
 
-.PHONY: run test test-busy test-slurm build deps clean sanitize fuzz
+.PHONY: run test test-busy test-slurm build deps clean sanitize fuzz format format-check
 
 run: build
 	./scripts/run-workbench.sh $(BUILD_DIR)
@@ -29,7 +32,7 @@ test-slurm: build
 # another generator is configured afresh.
 configure = if [ -f $(1)/CMakeCache.txt ] && ! grep -qx 'CMAKE_GENERATOR:INTERNAL=Ninja' $(1)/CMakeCache.txt; \
 	  then rm -rf $(1)/CMakeCache.txt $(1)/CMakeFiles; fi; \
-	  cmake -S . -B $(1) -G Ninja -DTACTILE_BATCH=$(BATCH)
+	  cmake -S . -B $(1) -G Ninja -DTACTILE_BATCH=$(BATCH) $(if $(WERROR),-DTACTILE_WERROR=$(WERROR))
 
 build: deps
 	$(call configure,$(BUILD_DIR)) -DCMAKE_BUILD_TYPE=Release
@@ -56,6 +59,14 @@ sanitize: deps
 # Every fuzz target for a few seconds (scripts/fuzz.sh --seconds N for longer).
 fuzz: deps
 	./scripts/fuzz.sh
+
+# clang-format over the tree (.clang-format); CI runs format-check, which fails on any file it
+# would change.
+format: deps
+	./scripts/format.sh
+
+format-check: deps
+	./scripts/format.sh --check
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  ninja-build mold lld ccache  # the build's generator, linker and compiler cache (README, "Tests and CI")
+  ninja-build mold lld ccache  # the build's generator, linker and compiler cache (docs/TESTING.md)
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libhdf5-dev libsqlite3-dev zlib1g-dev libsvm-dev
   libtinyxml2-dev  # ELAN .eaf label files (docs/INTEROP.md)
@@ -16,6 +16,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
   python3-h5py  # a test reads our recordings with h5py, as users do
+  clang-format  # scripts/format.sh --check: CI fails on code clang-format would change
   clang libclang-rt-dev  # scripts/fuzz.sh: libFuzzer and the sanitizers' runtime for clang
   slurm-wlm munge  # scripts/slurm-local.sh and `ctest -L slurm`: a one-node Slurm (docs/CLUSTER.md)
 )

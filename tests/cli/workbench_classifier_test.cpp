@@ -384,8 +384,8 @@ TEST_F(WorkbenchClassifiers, PredictionsRankByMarginAndAreConfirmedAndCorrectedB
                 "state @confirmed.json\nkey 1\nwait 2\nstate @corrected.json\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto lane = [](const nlohmann::json& at, const std::string& id) {
-    for (const nlohmann::json& lane : at["lanes"])
-      if (lane["id"] == id) return lane["labels"].get<int>();
+    for (const nlohmann::json& shown : at["lanes"])
+      if (shown["id"] == id) return shown["labels"].get<int>();
     return 0;
   };
   EXPECT_EQ(lane(state("predicted.json"), "model:model"),

@@ -87,8 +87,9 @@ TEST(TouchSegmenter, CleanPulsesOnAFourByFourGridAreFound) {
   const double period = 2.0 * M_PI * 7.0;
   for (size_t k = 0; k < labels.size(); ++k) {
     EXPECT_NEAR(labels[k].t0 * 50.0, period * static_cast<double>(k), 8.0) << k;
-    if (k + 1 < labels.size())
+    if (k + 1 < labels.size()) {
       EXPECT_NEAR(labels[k].t1 * 50.0, period * static_cast<double>(k) + period / 2.0, 8.0) << k;
+    }
   }
 }
 

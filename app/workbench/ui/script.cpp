@@ -185,10 +185,10 @@ void ScriptPlayer::drag(bool taxels, const ScriptStep& step) {
     if (taxels) {
       // A rectangle that holds both centres: corners 3 pixels beyond them (ImGui
       // floors mouse positions to whole pixels).
-      auto outward = [](float& a, float& b) {
-        const float sign = b >= a ? 1.0f : -1.0f;
-        a -= 3.0f * sign;
-        b += 3.0f * sign;
+      auto outward = [](float& low, float& high) {
+        const float sign = high >= low ? 1.0f : -1.0f;
+        low -= 3.0f * sign;
+        high += 3.0f * sign;
       };
       outward(ends->first.x, ends->second.x);
       outward(ends->first.y, ends->second.y);

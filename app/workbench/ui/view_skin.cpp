@@ -287,27 +287,27 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   }
   if (!state.live.model_path.empty() && state.live.shown) {
     // Live: the newest decision, large, in its class's colour.
-    const OnlineDecision& shown = *state.live.shown;
+    const OnlineDecision& decision = *state.live.shown;
     char text[160];
-    std::snprintf(text, sizeof text, "%s%s  %.0f%%", shown.class_name.c_str(),
-                  shown.final ? "" : "...", 100.0 * shown.score);
+    std::snprintf(text, sizeof text, "%s%s  %.0f%%", decision.class_name.c_str(),
+                  decision.final ? "" : "...", 100.0 * decision.score);
     ImDrawList& draw = *ImGui::GetWindowDrawList();
     ImFont* font = ImGui::GetFont();
-    float size = std::min(48.0f, std::max(16.0f, available.y / 10.0f));
-    ImVec2 extent = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
+    float text_size = std::min(48.0f, std::max(16.0f, available.y / 10.0f));
+    ImVec2 extent = font->CalcTextSizeA(text_size, FLT_MAX, 0.0f, text);
     if (extent.x > available.x - 24.0f) {  // smaller rather than cut off
-      size *= (available.x - 24.0f) / extent.x;
-      extent = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
+      text_size *= (available.x - 24.0f) / extent.x;
+      extent = font->CalcTextSizeA(text_size, FLT_MAX, 0.0f, text);
     }
     const ImVec2 at(origin.x + (available.x - extent.x) * 0.5f,
                     origin.y + available.y - extent.y - 10.0f);
-    const uint32_t colour = shown.class_name == kNoTouchClass
+    const uint32_t colour = decision.class_name == kNoTouchClass
                                 ? IM_COL32(90, 90, 90, 230)
-                                : class_colour(state, shown.class_name, 230);
+                                : class_colour(state, decision.class_name, 230);
     // (an unfinished touch is marked "...": its final answer comes when it ends)
     draw.AddRectFilled(ImVec2(at.x - 10, at.y - 4),
                        ImVec2(at.x + extent.x + 10, at.y + extent.y + 4), colour, 6.0f);
-    draw.AddText(font, size, at, IM_COL32(255, 255, 255, 255), text);
+    draw.AddText(font, text_size, at, IM_COL32(255, 255, 255, 255), text);
   }
   state.targets.skin_map = to_rect(origin, ImVec2(origin.x + available.x, origin.y + available.y));
   for (size_t index = 0; index < drawn->taxels.size(); ++index) {

@@ -208,8 +208,10 @@ std::vector<MinMax> MinMaxPyramid::query(int64_t first, int64_t last, int column
   std::vector<int64_t> edges(static_cast<size_t>(columns) + 1);
   const int64_t span = std::max<int64_t>(last - first, 0);
   for (int column = 0; column <= columns; ++column) {
-    // Exact integer split; a 128-bit product cannot overflow for any sample count.
-    edges[column] = first + static_cast<int64_t>(static_cast<__int128>(span) * column / columns);
+    // Exact integer split, span * column / columns rounded down, without overflow for any
+    // sample count: span = whole * columns + rest, and rest * column < columns * columns.
+    const int64_t whole = span / columns, rest = span % columns;
+    edges[column] = first + whole * column + rest * column / columns;
   }
   std::vector<MinMax> out(static_cast<size_t>(columns));
   query_edges(edges, out);

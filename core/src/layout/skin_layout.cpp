@@ -19,30 +19,30 @@ namespace tactile {
 
 //---- Lookups ----------------------------------------------------------------------------------
 
-int SkinLayout::channel_index(const std::string& name) const {
+int SkinLayout::channel_index(const std::string& channel) const {
   for (size_t index = 0; index < channels.size(); ++index) {
-    if (channels[index].name == name) return static_cast<int>(index);
+    if (channels[index].name == channel) return static_cast<int>(index);
   }
   return -1;
 }
 
-int SkinLayout::modality_index(const std::string& name) const {
+int SkinLayout::modality_index(const std::string& modality) const {
   for (size_t index = 0; index < modalities.size(); ++index) {
-    if (modalities[index] == name) return static_cast<int>(index);
+    if (modalities[index] == modality) return static_cast<int>(index);
   }
   return -1;
 }
 
-const Taxel* SkinLayout::find_taxel(int64_t id) const {
+const Taxel* SkinLayout::find_taxel(int64_t taxel_id) const {
   for (const Taxel& taxel : taxels) {
-    if (taxel.id == id) return &taxel;
+    if (taxel.id == taxel_id) return &taxel;
   }
   return nullptr;
 }
 
-const Group* SkinLayout::find_group(const std::string& id) const {
+const Group* SkinLayout::find_group(const std::string& group_id) const {
   for (const Group& group : groups) {
-    if (group.id == id) return &group;
+    if (group.id == group_id) return &group;
   }
   return nullptr;
 }

@@ -57,10 +57,10 @@ PlattSigmoid fit_platt_sigmoid(const std::vector<double>& decisions,
     double h11 = kHessianRidge, h22 = kHessianRidge, h21 = 0.0, g1 = 0.0, g2 = 0.0;
     for (Eigen::Index row = 0; row < count; ++row) {
       // p and q = 1 - p each from the exponential of a non-positive number.
-      const double value = f(row) * sigmoid.a + sigmoid.b;
-      const double shrink = std::exp(-std::abs(value));
-      const double p = (value >= 0.0 ? shrink : 1.0) / (1.0 + shrink);
-      const double q = (value >= 0.0 ? 1.0 : shrink) / (1.0 + shrink);
+      const double decision = f(row) * sigmoid.a + sigmoid.b;
+      const double shrink = std::exp(-std::abs(decision));
+      const double p = (decision >= 0.0 ? shrink : 1.0) / (1.0 + shrink);
+      const double q = (decision >= 0.0 ? 1.0 : shrink) / (1.0 + shrink);
       const double curvature = p * q;
       h11 += f(row) * f(row) * curvature;
       h22 += curvature;

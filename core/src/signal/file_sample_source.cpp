@@ -240,9 +240,9 @@ bool FileSampleSource::read_file(int channel_first, int channels, int64_t first,
         [path = path_, stream = info_.stream](std::optional<RecordingFile>& file) {
           file.reset();
           file.emplace(path);
-          SampleMatrix count(1, 1);
-          count(0, 0) = static_cast<float>(file->stream(stream).sample_count);
-          return count;
+          SampleMatrix samples(1, 1);
+          samples(0, 0) = static_cast<float>(file->stream(stream).sample_count);
+          return samples;
         },
         read_budget_, found, failure);
     if (outcome != Reader::Outcome::kDone) return false;

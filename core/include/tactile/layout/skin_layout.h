@@ -69,10 +69,10 @@ struct SkinLayout {
   // torso, limbs) that a skin view draws under the taxels; empty when the layout has none.
   std::vector<std::vector<Point2>> body_outline;
 
-  int channel_index(const std::string& name) const;   // -1 when absent
-  int modality_index(const std::string& name) const;  // -1 when absent
-  const Taxel* find_taxel(int64_t id) const;
-  const Group* find_group(const std::string& id) const;
+  int channel_index(const std::string& channel) const;    // -1 when absent
+  int modality_index(const std::string& modality) const;  // -1 when absent
+  const Taxel* find_taxel(int64_t taxel_id) const;
+  const Group* find_group(const std::string& group_id) const;
   // Groups of the given kind that contain the taxel ("" kind: all groups).
   std::vector<const Group*> groups_of(int64_t taxel_id, const std::string& kind = {}) const;
   // Map bounding box over all taxel outlines: {min, max} (the body outline left out).
