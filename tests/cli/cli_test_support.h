@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tactile/live/udp.h"
+#include "temp_folder.h"
 #include "test_paths.h"
 
 namespace tactile::test {
@@ -21,29 +22,6 @@ inline std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
-
-// A fresh folder under the system's temp directory, removed with everything in it.
-class TempFolder {
- public:
-  explicit TempFolder(const std::string& prefix = "tactile-test") {
-    std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
-    if (!mkdtemp(pattern.data()))
-      throw std::runtime_error("cannot create a temp folder " + pattern);
-    path_ = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-
-  const std::filesystem::path& path() const { return path_; }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  std::filesystem::path path_;
-};
 
 // A workbench script (docs/SCRIPTING.md) written into `folder` as `name`, or by default as
 // script-N.txt (the first N not taken), each `@` of `text` replaced by the folder's path and a

@@ -248,7 +248,7 @@ TEST_F(FeaturesCommand, SegmentRefusesUnknownMethodsAndMissingFiles) {
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("--method: unknown segmenter 'guesswork'"), std::string::npos) << run.err;
   const std::vector<std::string> methods = segmenter_methods();
-  if (methods.empty()) return;
+  ASSERT_FALSE(methods.empty()) << "no segmenter is registered";
   run = tactile("segment " + quoted("absent.h5") + " --labels " + quoted("labels.db") +
                 " --method " + methods.front());
   EXPECT_EQ(run.exit_code, 1);
@@ -277,8 +277,8 @@ TEST_F(FeaturesCommand, SegmentWithoutAMethodRunsEachSkinsOwn) {
 // as rising pressure with a calibration peak of 1.
 TEST_F(FeaturesCommand, SegmentThenFeaturesOnAFolder) {
   const std::vector<std::string> methods = segmenter_methods();
-  if (std::find(methods.begin(), methods.end(), "threshold") == methods.end())
-    GTEST_SKIP() << "the threshold segmenter is not registered in this build";
+  ASSERT_NE(std::find(methods.begin(), methods.end(), "threshold"), methods.end())
+      << "the threshold segmenter is not registered";
   const std::string segment = "segment " + quoted("") + " --labels " + quoted("labels.db") +
                               " --method threshold --params signal=rising,calibration_peak=1";
   CommandResult run = tactile(segment);

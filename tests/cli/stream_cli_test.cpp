@@ -91,11 +91,10 @@ TEST_P(StreamCli, OneSecondOnLoopbackArrivesCompleteAtTheDeviceRate) {
   EXPECT_EQ(reported(heard, "lost"), 0) << heard;
   EXPECT_EQ(reported(heard, "broken"), 0) << heard;
   EXPECT_EQ(reported(heard, "reordered"), 0) << heard;
-  // Paced, not bursted: the last datagram leaves about 1 s after the first. Loose bounds, as
-  // the machine may be busy.
+  // Paced, not bursted: the last datagram leaves no sooner than about 1 s after the first.
+  // Only the lower bounds of time: a busy machine can make a run slower, never faster, so
+  // these cannot fail from load (how fast a run is belongs to bench/live_bench).
   EXPECT_GT(reported(sent, "seconds"), 0.8) << sent;
-  EXPECT_LT(reported(sent, "seconds"), 2.0) << sent;
-  EXPECT_GT(reported(heard, "rate"), 0.5 * datagrams_per_second) << heard;
   EXPECT_LT(reported(heard, "rate"), 1.25 * datagrams_per_second) << heard;
 
   // What arrived was recorded: one second of samples at the device's rate.
@@ -112,7 +111,7 @@ INSTANTIATE_TEST_SUITE_P(Skins, StreamCli,
                          ::testing::Values(std::make_pair(std::string("nao"), 250),
                                            std::make_pair(std::string("fur"), 15),
                                            std::make_pair(std::string("flux"), 100)),
-                         [](const auto& info) { return info.param.first; });
+                         [](const auto& param_info) { return param_info.param.first; });
 
 // A sender stopped and started again a second later counts from 0 with its clock from 0: the
 // listener reports one restart and one stall, nothing lost, duplicated or reordered, and the

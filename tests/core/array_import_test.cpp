@@ -20,6 +20,8 @@
 namespace tactile {
 namespace {
 
+using testing::refusal_of;
+
 const std::string kData = tactile::test::test_data_dir() + "/import/";
 
 std::vector<uint8_t> file_bytes(const std::string& path) {
@@ -45,15 +47,6 @@ std::vector<uint8_t> npy(const std::string& header_dict, const std::vector<uint8
   bytes.insert(bytes.end(), header.begin(), header.end());
   bytes.insert(bytes.end(), data.begin(), data.end());
   return bytes;
-}
-
-std::string refusal(const std::function<void()>& read) {
-  try {
-    read();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
 }
 
 TEST(ArrayImport, EveryFormatGivesTheSameFrames) {
@@ -118,19 +111,19 @@ TEST(ArrayImport, ShapesThatDoNotFitAreRefusedWithTheLayout) {
   ArrayRecordingOptions options;
   options.rate_hz = 10;
   const ImportedArray frames = read_npy(kData + "frames.npy");
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               recording_from_array(frames, load_layout("grid:4x5"), options, "f");
             }).find("does not fit grid:4x5"),
             std::string::npos);
   options.classes = {"a", "b"};
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               recording_from_array(frames, load_layout("grid:4x4"), options, "f");
             }).find("2 classes for 50 frames"),
             std::string::npos);
   ImportedArray nan = frames;
   nan.values[3 * 16 + 2 * 4 + 1] = NAN;
   options.classes.clear();
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               recording_from_array(nan, load_layout("grid:4x4"), options, "f");
             }).find("f index [3][2][1]"),
             std::string::npos);
@@ -147,7 +140,7 @@ TEST(ArrayImport, EveryTruncationOfANpyOrNpzIsRefused) {
             .write(reinterpret_cast<const char*>(whole.data()),
                    static_cast<std::streamsize>(length));
       }
-      const std::string why = refusal([&] {
+      const std::string why = refusal_of([&] {
         if (name.ends_with(".npy"))
           read_npy(path);
         else
@@ -166,42 +159,42 @@ TEST(ArrayImport, ADamagedDeflateStreamIsRefused) {
   std::ofstream(path, std::ios::binary)
       .write(reinterpret_cast<const char*>(bytes.data()),
              static_cast<std::streamsize>(bytes.size()));
-  EXPECT_FALSE(refusal([&] { read_npz(path, "pressure"); }).empty());
+  EXPECT_FALSE(refusal_of([&] { read_npz(path, "pressure"); }).empty());
 }
 
 TEST(ArrayImport, HeadersThatLieAreRefusedBeforeAnyAllocation) {
   const std::vector<uint8_t> eight(8, 0);
   // 2^40 elements declared over 8 bytes of data: refused by the shape, not by running out of
   // memory.
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1099511627776,), }",
                             eight),
                         "x.npy");
             }).find("more than"),
             std::string::npos);
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               parse_npy(
                   npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1000, 1000), }", eight),
                   "x.npy");
             }).find("truncated"),
             std::string::npos);
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               parse_npy(
                   npy("{'descr': [('a', '<f8')], 'fortran_order': False, 'shape': (1,), }", eight),
                   "x.npy");
             }).find("descr"),
             std::string::npos);
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               parse_npy(npy("{'descr': '<c16', 'fortran_order': False, 'shape': (1,), }", eight),
                         "x.npy");
             }).find("only bool, integer, float and string"),
             std::string::npos);
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               parse_npy(npy("{'descr': '<f8', 'fortran_order': maybe, 'shape': (1,), }", eight),
                         "x.npy");
             }).find("fortran_order"),
             std::string::npos);
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               parse_npy(npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }", eight),
                         "x.npy");
             }).find("truncated"),
@@ -212,10 +205,12 @@ TEST(ArrayImport, HeadersThatLieAreRefusedBeforeAnyAllocation) {
   std::vector<uint8_t> ends_at_key = {
       0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0, static_cast<uint8_t>(cut.size()), 0};
   ends_at_key.insert(ends_at_key.end(), cut.begin(), cut.end());
-  EXPECT_NE(refusal([&] { parse_npy(ends_at_key, "x.npy"); }).find("'fortran_order' has no value"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal_of([&] { parse_npy(ends_at_key, "x.npy"); }).find("'fortran_order' has no value"),
+      std::string::npos);
   std::vector<uint8_t> not_npy = {'P', 'K', 3, 4, 0, 0, 0, 0, 0, 0, 0};
-  EXPECT_NE(refusal([&] { parse_npy(not_npy, "x.npy"); }).find("x.npy byte 0"), std::string::npos);
+  EXPECT_NE(refusal_of([&] { parse_npy(not_npy, "x.npy"); }).find("x.npy byte 0"),
+            std::string::npos);
   // A small valid one reads.
   std::vector<uint8_t> two(16);
   const double values[2] = {1.5, -2.0};
@@ -233,17 +228,17 @@ TEST(ArrayImport, JsonThatIsNotRegularFramesIsRefusedWithItsIndex) {
     std::ofstream(path) << text;
     return path;
   };
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3]]"), ""); }).find("[1]"),
+  EXPECT_NE(refusal_of([&] { read_json_array(write("[[1,2],[3]]"), ""); }).find("[1]"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,\"x\"]]"), ""); }).find("[1][1]"),
+  EXPECT_NE(refusal_of([&] { read_json_array(write("[[1,2],[3,\"x\"]]"), ""); }).find("[1][1]"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { read_json_array(write("{\"a\": [1]}"), "b"); }).find("no key 'b'"),
+  EXPECT_NE(refusal_of([&] { read_json_array(write("{\"a\": [1]}"), "b"); }).find("no key 'b'"),
             std::string::npos);
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,4]"), ""); }).find("not JSON"),
+  EXPECT_NE(refusal_of([&] { read_json_array(write("[[1,2],[3,4]"), ""); }).find("not JSON"),
             std::string::npos);
   // Found by the fuzzer (tests/fuzz/regressions/arrays): a number too large for a double
   // escaped as nlohmann's out_of_range instead of naming the file.
-  EXPECT_NE(refusal([&] { read_json_array(write("[[1,2],[3,2e342]]"), ""); }).find("f.json"),
+  EXPECT_NE(refusal_of([&] { read_json_array(write("[[1,2],[3,2e342]]"), ""); }).find("f.json"),
             std::string::npos);
   EXPECT_EQ(read_json_array(write("{\"a\": {\"b\": [[1,2],[3,4]]}}"), "a.b").shape,
             (std::vector<int64_t>{2, 2}));
@@ -278,12 +273,12 @@ TEST(ArrayImport, ASmallFloat32DatasetOfAnotherProgramIsRead) {
 }
 
 TEST(ArrayImport, HdfDatasetsNameWhatIsMissing) {
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               read_hdf5_dataset(kData + "foreign.h5", "/sensors/force");
             }).find("no such dataset"),
             std::string::npos);
   EXPECT_NE(
-      refusal([&] { read_hdf5_dataset(kData + "frames.npy", "/x"); }).find("not an HDF5 file"),
+      refusal_of([&] { read_hdf5_dataset(kData + "frames.npy", "/x"); }).find("not an HDF5 file"),
       std::string::npos);
 }
 
@@ -303,7 +298,7 @@ TEST(CsvTable, AClassColumnAndGroupColumnsMakeRecordingsWithLabels) {
   EXPECT_NEAR(groups[2].labels[0].t0, 0.05, 1e-12);
   EXPECT_NEAR(groups[2].labels[0].t1, 0.12, 1e-12);
   options.class_column = "gest";
-  EXPECT_NE(refusal([&] {
+  EXPECT_NE(refusal_of([&] {
               import_csv_table(kData + "table.csv", load_layout("strip:4"), options);
             }).find("no column 'gest'"),
             std::string::npos);

@@ -15,6 +15,7 @@ namespace tactile {
 namespace {
 
 using testing::bit_equal;
+using testing::refusal_of;
 using testing::TemporaryDirectory;
 using testing::write_text;
 
@@ -28,17 +29,6 @@ SkinLayout strip_layout(int channels, std::vector<std::string> classes = {}) {
     layout.channels.push_back({numbered("s", index), "N", "force"});
   layout.classes = std::move(classes);
   return layout;
-}
-
-// The what() of the tactile::Error that `action` throws, or a note that it did not.
-template <typename Action>
-std::string error_of(Action action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no error)";
 }
 
 //---- long
@@ -103,7 +93,7 @@ TEST(CsvLong, RateOptionReplacesAMissingTimeColumn) {
   EXPECT_EQ(stream.sample_count(), 3);
   EXPECT_EQ(stream.samples(2, 0), 5.0f);
 
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":1: no time column and no rate given");
 }
 
@@ -111,7 +101,7 @@ TEST(CsvLong, ColumnCountMismatchWithTheLayoutIsAnError) {
   TemporaryDirectory directory;
   const std::string path = directory.file("four.csv");
   write_text(path, "time,a,b,c\n0,1,2,3\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(4), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(4), {}); }),
             path + ":1: 4 columns, but layout 'strip:4' has 4 channels (plus the time column)");
 }
 
@@ -119,10 +109,10 @@ TEST(CsvLong, RaggedRowNamesItsLineAndFirstMissingColumn) {
   TemporaryDirectory directory;
   const std::string path = directory.file("ragged.csv");
   write_text(path, "t,a,b,c\n0,1,2,3\n0.1,4,5\n0.2,7,8,9\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(3), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(3), {}); }),
             path + ":3 column 4: row has 3 cells, header has 4");
   write_text(path, "t,a,b,c\n0,1,2,3\n0.1,4,5,6\n0.2,7,8,9,10\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(3), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(3), {}); }),
             path + ":4 column 5: row has 5 cells, header has 4");
 }
 
@@ -130,10 +120,10 @@ TEST(CsvLong, NonNumericCellNamesLineAndColumn) {
   TemporaryDirectory directory;
   const std::string path = directory.file("text.csv");
   write_text(path, "t,a,b\n0,1,2\n0.1,3,4\n0.2,5,abc\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":4 column 3: not a number: 'abc'");
   write_text(path, "t,a,b\n0,1,\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":2 column 3: empty cell");
 }
 
@@ -141,13 +131,13 @@ TEST(CsvLong, NanAndInfiniteCellsAreRefused) {
   TemporaryDirectory directory;
   const std::string path = directory.file("nan.csv");
   write_text(path, "t,a,b\n0,1,2\n0.1,NaN,4\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":3 column 2: NaN and infinite values are not accepted: 'NaN'");
   write_text(path, "t,a,b\n0,1,2\n0.1,3,-inf\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":3 column 3: NaN and infinite values are not accepted: '-inf'");
   write_text(path, "t,a,b\n0,1,2\n0.1,3,1e39\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":3 column 3: value '1e39' is out of range");
 }
 
@@ -155,11 +145,11 @@ TEST(CsvLong, EmptyAndHeaderOnlyFilesAreErrors) {
   TemporaryDirectory directory;
   const std::string path = directory.file("empty.csv");
   write_text(path, "");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }), path + ": empty file");
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }), path + ": empty file");
   write_text(path, "\n  \r\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }), path + ": empty file");
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }), path + ": empty file");
   write_text(path, "t,a,b\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ": a header but no data rows");
 }
 
@@ -167,7 +157,7 @@ TEST(CsvLong, MissingHeaderIsAnErrorRatherThanALostRow) {
   TemporaryDirectory directory;
   const std::string path = directory.file("headless.csv");
   write_text(path, "0,1,2\n0.1,3,4\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(2), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(2), {}); }),
             path + ":1: expected a header row, found numbers");
 }
 
@@ -175,7 +165,7 @@ TEST(CsvLong, NonIncreasingTimeNamesItsLine) {
   TemporaryDirectory directory;
   const std::string path = directory.file("time.csv");
   write_text(path, "t,a\n0,1\n0.1,2\n0.1,3\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(1), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(1), {}); }),
             path + ":4 column 1: time 0.1 does not increase on the previous row");
 }
 
@@ -183,7 +173,7 @@ TEST(CsvLong, BlankLineInsideTheDataIsAnError) {
   TemporaryDirectory directory;
   const std::string path = directory.file("gap.csv");
   write_text(path, "t,a\n0,1\n\n0.2,3\n");
-  EXPECT_EQ(error_of([&] { import_csv_long(path, strip_layout(1), {}); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_long(path, strip_layout(1), {}); }),
             path + ":3: blank line inside the data");
 }
 
@@ -220,11 +210,11 @@ TEST(CsvTable, GroupsSplitRowsAndNameTheirErrorsPrecisely) {
   EXPECT_EQ(groups[1].labels[0].class_name, "poke");
 
   write_text(path, "subject,t,a,gesture\ns1,0,1,pat\ns2,0,2,\ns1,0,3,pat\n");
-  EXPECT_EQ(error_of([&] { import_csv_table(path, strip_layout(1), options); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_table(path, strip_layout(1), options); }),
             path + ":4 column 2: time 0 does not increase on the group's previous row");
   write_text(path, "subject,t,a,b,gesture\ns1,0,1,2,pat\n");
   EXPECT_EQ(
-      error_of([&] { import_csv_table(path, strip_layout(1), options); }),
+      refusal_of([&] { import_csv_table(path, strip_layout(1), options); }),
       path + ":1: 3 sample columns, but layout 'strip:1' has 1 channels (plus the time column)");
 }
 
@@ -295,41 +285,41 @@ TEST_F(CsvWide, LayoutClassesAreTheDefaultVocabulary) {
 
 TEST_F(CsvWide, RowLengthNotAMultipleOfTheCaptureIsAnError) {
   write_text(captures, "1,2,3,4,5\n");
-  EXPECT_EQ(error_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n")); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n")); }),
             captures + ":1: row has 5 values, not a multiple of samples_per_capture 3");
 }
 
 TEST_F(CsvWide, ChannelCountMismatchIsAnError) {
   write_text(captures, "1,2,3,4,5,6,7,8,9\n");
-  EXPECT_EQ(error_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n")); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n")); }),
             captures + ":1: row has 3 channels of 3 samples, layout 'strip:2' has 2");
 }
 
 TEST_F(CsvWide, RaggedRowNamesItsLine) {
   write_text(captures, "1,2,3,4,5,6\n1,2,3,4,5,6\n1,2,3,4,5\n");
-  EXPECT_EQ(error_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n1\n2\n")); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n1\n2\n")); }),
             captures + ":3 column 6: row has 5 cells, earlier rows have 6");
 }
 
 TEST_F(CsvWide, HeaderRowInTheCapturesIsNotANumber) {
   write_text(captures, "c0,c1,c2,c3,c4,c5\n1,2,3,4,5,6\n");
-  EXPECT_EQ(error_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n0\n")); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_wide(captures, strip_layout(2), options("0\n0\n")); }),
             captures + ":1 column 1: not a number: 'c0'");
 }
 
 TEST_F(CsvWide, UnknownClassNamesItsLine) {
   write_text(captures, "1,2,3\n4,5,6\n7,8,9\n");
   EXPECT_EQ(
-      error_of([&] { import_csv_wide(captures, strip_layout(1), options("pat\npoke\nhug\n")); }),
+      refusal_of([&] { import_csv_wide(captures, strip_layout(1), options("pat\npoke\nhug\n")); }),
       labels + ":3 column 1: unknown class 'hug' (classes: poke, pat, slap; or a 0-based index)");
   EXPECT_EQ(
-      error_of([&] { import_csv_wide(captures, strip_layout(1), options("pat\n3\npoke\n")); }),
+      refusal_of([&] { import_csv_wide(captures, strip_layout(1), options("pat\n3\npoke\n")); }),
       labels + ":2 column 1: unknown class '3' (classes: poke, pat, slap; or a 0-based index)");
 }
 
 TEST_F(CsvWide, LabelCountMustEqualCaptureCount) {
   write_text(captures, "1,2,3\n4,5,6\n7,8,9\n");
-  EXPECT_EQ(error_of([&] { import_csv_wide(captures, strip_layout(1), options("pat\npoke\n")); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_wide(captures, strip_layout(1), options("pat\npoke\n")); }),
             labels + ": 2 labels for 3 captures in " + captures);
 }
 
@@ -337,11 +327,11 @@ TEST_F(CsvWide, OptionsAreChecked) {
   write_text(captures, "1,2,3\n");
   CsvWideOptions wide = options("pat\n");
   wide.samples_per_capture = 0;
-  EXPECT_EQ(error_of([&] { import_csv_wide(captures, strip_layout(1), wide); }),
+  EXPECT_EQ(refusal_of([&] { import_csv_wide(captures, strip_layout(1), wide); }),
             "samples_per_capture: must be a positive number of samples");
   wide = options("pat\n");
   wide.rate_hz = 0.0;
-  EXPECT_NE(error_of([&] { import_csv_wide(captures, strip_layout(1), wide); }).find("rate_hz: "),
+  EXPECT_NE(refusal_of([&] { import_csv_wide(captures, strip_layout(1), wide); }).find("rate_hz: "),
             std::string::npos);
 }
 
@@ -401,7 +391,7 @@ TEST(CsvExport, IrregularStreamKeepsItsTimestampsThroughCsv) {
   const Stream back = import_csv_long(path, strip_layout(1), {}).streams[0];
   EXPECT_EQ(back.timestamps, stream.timestamps);
   EXPECT_TRUE(bit_equal(back.samples, stream.samples));
-  EXPECT_EQ(error_of([&] { export_csv_long(path, recording, "pressure"); }),
+  EXPECT_EQ(refusal_of([&] { export_csv_long(path, recording, "pressure"); }),
             "recording : no stream 'pressure' (streams: skin, events)");
 }
 

@@ -9,34 +9,21 @@
 #include <string>
 
 #include "tactile/experiments/experiment.h"
+#include "temp_folder.h"
 
 namespace tactile::test {
 
-class ExperimentFolder {
- public:
-  ExperimentFolder() {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "tactile-experiment-test-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create " + pattern);
-    path_ = pattern;
-  }
-  ~ExperimentFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  ExperimentFolder(const ExperimentFolder&) = delete;
-  ExperimentFolder& operator=(const ExperimentFolder&) = delete;
-  std::string path() const { return path_.string(); }
-
- private:
-  std::filesystem::path path_;
+// An experiment's work folder: the shared temporary folder (tests/support/temp_folder.h).
+struct ExperimentFolder : TempFolder {
+  ExperimentFolder() : TempFolder("tactile-experiment-test") {}
+  std::string work_dir() const { return path().string(); }
 };
 
 // Runs `name` with quick=true and seed 1 in a temp folder; counts progress calls.
 inline experiments::ExperimentReport run_quick(const std::string& name, int* progress_calls) {
   ExperimentFolder folder;
   experiments::ExperimentOptions options;
-  options.work_dir = folder.path();
+  options.work_dir = folder.work_dir();
   options.quick = true;
   options.seed = 1;
   options.progress = [progress_calls](const std::string& stage, int done, int total) {

@@ -105,31 +105,31 @@ TEST(ExperimentRepeats, SeedsFollowTheFirstAndRepeatsBelowOneAreRefused) {
 TEST(ExperimentRepeats, RunsAreTheExperimentWithEachSeedInItsOwnFolder) {
   ExperimentFolder folder;
   experiments::ExperimentOptions options;
-  options.work_dir = folder.path();
+  options.work_dir = folder.work_dir();
   const experiments::RepeatsJob job{"tsa-classifiers", 3, 2, true};
   const std::vector<RepeatRun> runs = experiments::run_repeats(job, options, {}, false);
   ASSERT_EQ(runs.size(), 2u);
   EXPECT_EQ(runs[0].seed, 3u);
   EXPECT_EQ(runs[1].seed, 4u);
-  EXPECT_TRUE(std::filesystem::exists(folder.path() + "/seed-3/tsa/labels.db"));
-  EXPECT_TRUE(std::filesystem::exists(folder.path() + "/seed-4/tsa/labels.db"));
+  EXPECT_TRUE(std::filesystem::exists(folder.work_dir() + "/seed-3/tsa/labels.db"));
+  EXPECT_TRUE(std::filesystem::exists(folder.work_dir() + "/seed-4/tsa/labels.db"));
   EXPECT_NE(runs[0].report.json, runs[1].report.json);  // the seeds simulate different skins
 
   ExperimentFolder alone_folder;
   experiments::ExperimentOptions alone = options;
-  alone.work_dir = alone_folder.path();
+  alone.work_dir = alone_folder.work_dir();
   alone.seed = 4;
   alone.quick = true;
   EXPECT_EQ(experiments::run_experiment("tsa-classifiers", alone).json, runs[1].report.json);
 
   ExperimentFolder shard_folder;
-  options.work_dir = shard_folder.path();
+  options.work_dir = shard_folder.work_dir();
   const std::vector<RepeatRun> second =
       experiments::run_repeats(job, options, Shard::parse("2/2"), true);
   ASSERT_EQ(second.size(), 1u);
   EXPECT_EQ(second[0].seed, 4u);
   EXPECT_EQ(second[0].report.json, runs[1].report.json);
-  EXPECT_FALSE(std::filesystem::exists(shard_folder.path() + "/seed-4"));
+  EXPECT_FALSE(std::filesystem::exists(shard_folder.work_dir() + "/seed-4"));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #pragma once
-// A fresh temporary directory per test, removed afterwards, and small file helpers.
+// The io tests' files: the shared temporary folder and refusal (tests/support), small file
+// helpers.
 
 #include <unistd.h>
 
@@ -13,46 +14,13 @@
 
 #include "tactile/error.h"
 #include "tactile/io/recording.h"
+#include "temp_folder.h"
 
 namespace tactile::testing {
 
-// The message of the tactile::Error `call` throws ("" when it throws none).
-inline std::string refusal_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
-
-class TemporaryDirectory {
- public:
-  TemporaryDirectory() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::temp_directory_path() /
-            ("tactile-io-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TemporaryDirectory() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  const std::filesystem::path& path() const { return path_; }
-  // Names of the entries in the directory, to see that nothing was left behind.
-  int entry_count() const {
-    return static_cast<int>(std::distance(std::filesystem::directory_iterator(path_),
-                                          std::filesystem::directory_iterator()));
-  }
-
- private:
-  std::filesystem::path path_;
-};
+using test::refusal_of;
+// The io tests' name for the shared temporary folder (tests/support/temp_folder.h).
+using TemporaryDirectory = test::TempFolder;
 
 // Same shape and the same bits in every sample (NaNs included).
 inline bool bit_equal(const SampleMatrix& left, const SampleMatrix& right) {

@@ -13,6 +13,7 @@
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
 #include "tactile/labels/label_files.h"
+#include "temp_folder.h"
 #include "test_paths.h"
 
 namespace tactile {
@@ -69,15 +70,6 @@ void expect_same_labels(const std::vector<Label>& expected, const std::vector<La
   }
 }
 
-std::string interop_error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "(no error)";
-}
-
 //---- ELAN
 
 TEST_F(LabelStoreTest, ElanSessionOfTwoAnnotatorsIsReadValueByValue) {
@@ -124,7 +116,7 @@ TEST_F(LabelStoreTest, ElanTiersChosenByNameAreMappedToLanes) {
   EXPECT_EQ(labels[2].annotator, "ben-model");
   EXPECT_EQ(labels[3].note, "very short, maybe a tap");
   options.tiers = {{"Touch (Carl)", ""}};
-  EXPECT_EQ(interop_error_of(
+  EXPECT_EQ(test::refusal_of(
                 [&] { parse_eaf(read_text(kInteropData + "session.eaf"), "s.eaf", options); }),
             "s.eaf: no tier named 'Touch (Carl)' (--tier)");
 }
@@ -145,13 +137,13 @@ TEST_F(LabelStoreTest, InteropSourcesListTiersAndAnnotatorsWithTheirLanesAndCoun
   EXPECT_EQ(text(label_studio_sources(read_text(kInteropData + "label_studio.json"), "ls.json")),
             "s07,s08: [1 -> manual:label-studio:1 2] [2 -> ground-truth 1]"
             " [svm-2024-04 -> model:svm-2024-04 1] [2 -> manual:label-studio:2 1]");
-  EXPECT_EQ(interop_error_of([] { eaf_sources("<a/>", "x.eaf"); }),
+  EXPECT_EQ(test::refusal_of([] { eaf_sources("<a/>", "x.eaf"); }),
             "x.eaf: expected an ELAN document (ANNOTATION_DOCUMENT)");
 }
 
 TEST_F(LabelStoreTest, ElanUnalignedAnnotationIsRefusedNamingTierAndId) {
   EXPECT_EQ(
-      interop_error_of([&] { parse_eaf(read_text(kInteropData + "unaligned.eaf"), "u.eaf"); }),
+      test::refusal_of([&] { parse_eaf(read_text(kInteropData + "unaligned.eaf"), "u.eaf"); }),
       "u.eaf tier 'Touch (Ben)' annotation 'a4': unaligned: time slot 'ts9' has no time "
       "value (align it in ELAN first)");
 }
@@ -207,35 +199,35 @@ TEST_F(LabelStoreTest, ElanRefusesALabelShorterThanAMillisecondAndTwoRecordings)
   std::vector<Label> labels = every_lane();
   labels[1].t1 = labels[1].t0 + 0.0002;
   labels[1].id = 7;
-  EXPECT_EQ(interop_error_of([&] { labels_eaf(labels); }),
+  EXPECT_EQ(test::refusal_of([&] { labels_eaf(labels); }),
             "ELAN export label 7: spans less than a millisecond (0.512-0.5122 s): ELAN counts "
             "whole milliseconds");
   labels = every_lane();
   labels[2].recording = "nao/s02";
-  EXPECT_NE(interop_error_of([&] { labels_eaf(labels); }).find("one .eaf holds one recording"),
+  EXPECT_NE(test::refusal_of([&] { labels_eaf(labels); }).find("one .eaf holds one recording"),
             std::string::npos);
 }
 
 TEST_F(LabelStoreTest, ElanMalformedDocumentsAreRefusedByPlace) {
-  EXPECT_NE(interop_error_of([] {
+  EXPECT_NE(test::refusal_of([] {
               parse_eaf("<ANNOTATION_DOCUMENT><TIER>", "x.eaf");
             }).find("x.eaf:1: not XML"),
             std::string::npos);
-  EXPECT_EQ(interop_error_of([] { parse_eaf("<DOC/>", "x.eaf"); }),
+  EXPECT_EQ(test::refusal_of([] { parse_eaf("<DOC/>", "x.eaf"); }),
             "x.eaf: expected an ELAN document (ANNOTATION_DOCUMENT)");
   const std::string head =
       "<ANNOTATION_DOCUMENT><HEADER><PROPERTY NAME=\"tactile:recording\">r</PROPERTY></HEADER>"
       "<TIME_ORDER><TIME_SLOT TIME_SLOT_ID=\"ts1\" TIME_VALUE=\"500\"/>"
       "<TIME_SLOT TIME_SLOT_ID=\"ts2\" TIME_VALUE=\"100\"/></TIME_ORDER><TIER TIER_ID=\"ana\">"
       "<ANNOTATION><ALIGNABLE_ANNOTATION ANNOTATION_ID=\"a9\" TIME_SLOT_REF1=\"ts1\" ";
-  EXPECT_EQ(interop_error_of([&] {
+  EXPECT_EQ(test::refusal_of([&] {
               parse_eaf(head +
                             "TIME_SLOT_REF2=\"ts2\"><ANNOTATION_VALUE>pat</ANNOTATION_VALUE>"
                             "</ALIGNABLE_ANNOTATION></ANNOTATION></TIER></ANNOTATION_DOCUMENT>",
                         "x.eaf");
             }),
             "x.eaf tier 'ana' annotation 'a9': ends at 0.1 s, not after its start 0.5 s");
-  EXPECT_EQ(interop_error_of([&] {
+  EXPECT_EQ(test::refusal_of([&] {
               parse_eaf(head +
                             "TIME_SLOT_REF2=\"ts7\"><ANNOTATION_VALUE>pat</ANNOTATION_VALUE>"
                             "</ALIGNABLE_ANNOTATION></ANNOTATION></TIER></ANNOTATION_DOCUMENT>",
@@ -244,7 +236,7 @@ TEST_F(LabelStoreTest, ElanMalformedDocumentsAreRefusedByPlace) {
             "x.eaf tier 'ana' annotation 'a9': time slot 'ts7' is not in the TIME_ORDER");
   InteropImport named;
   named.recording = "r";
-  EXPECT_EQ(interop_error_of([&] {
+  EXPECT_EQ(test::refusal_of([&] {
               parse_eaf(
                   "<ANNOTATION_DOCUMENT><TIME_ORDER><TIME_SLOT TIME_SLOT_ID=\"ts1\" "
                   "TIME_VALUE=\"-4\"/></TIME_ORDER></ANNOTATION_DOCUMENT>",
@@ -308,28 +300,28 @@ TEST_F(LabelStoreTest, LabelStudioExportOfEveryLaneReadsBackExactly) {
 TEST_F(LabelStoreTest, LabelStudioMalformedResultsAreRefusedNamingTaskAndId) {
   const std::string task = R"([{"id": 5, "data": {"csv": "r.csv"}, "annotations": [{"id": 9,
       "completed_by": 1, "result": [{"id": "abc", "type": "timeserieslabels", "value": )";
-  EXPECT_EQ(interop_error_of([&] {
+  EXPECT_EQ(test::refusal_of([&] {
               parse_label_studio(task + R"({"start": 1, "end": 1, "instant": true,
                   "timeserieslabels": ["pat"]}}]}]}])",
                                  "ls.json");
             }),
             "ls.json task 5 annotation 9 result 'abc': an instant, not a span: a label needs a "
             "start and an end");
-  EXPECT_EQ(interop_error_of([&] {
+  EXPECT_EQ(test::refusal_of([&] {
               parse_label_studio(task + R"({"start": "2024-05-01 10:00:00", "end": 2,
                   "timeserieslabels": ["pat"]}}]}]}])",
                                  "ls.json");
             }),
             "ls.json task 5 annotation 9 result 'abc': 'start' is not a number (a time column "
             "of dates? give times in seconds)");
-  EXPECT_EQ(interop_error_of([&] {
+  EXPECT_EQ(test::refusal_of([&] {
               parse_label_studio(task + R"({"start": 1, "end": 2,
                   "timeserieslabels": ["pat", "poke"]}}]}]}])",
                                  "ls.json");
             }),
             "ls.json task 5 annotation 9 result 'abc': 'timeserieslabels' must hold exactly one "
             "label name");
-  EXPECT_EQ(interop_error_of([] { parse_label_studio(R"([{"id": 3, "data": {}}])", "ls.json"); }),
+  EXPECT_EQ(test::refusal_of([] { parse_label_studio(R"([{"id": 3, "data": {}}])", "ls.json"); }),
             "ls.json task 3: its data names no file: give --recording");
   EXPECT_FALSE(is_label_studio_json(R"({"labels": []})"));
 }

@@ -10,19 +10,14 @@
 #include <string>
 
 #include "tactile/io/label.h"
+#include "temp_folder.h"
 
 namespace tactile {
 
 // A fresh directory per test, removed afterwards.
 class LabelStoreTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (std::filesystem::temp_directory_path() / "label_store_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    directory_ = pattern;
-    path_ = (directory_ / "labels.db").string();
-  }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
+  void SetUp() override { path_ = (directory_ / "labels.db").string(); }
 
   static Label make_label(const std::string& recording, double t0, double t1,
                           const std::string& class_name, const std::string& annotator = "ana") {
@@ -42,7 +37,8 @@ class LabelStoreTest : public ::testing::Test {
     return text.str();
   }
 
-  std::filesystem::path directory_;
+  test::TempFolder folder_{"label_store"};
+  std::filesystem::path directory_ = folder_.path();
   std::string path_;
 };
 

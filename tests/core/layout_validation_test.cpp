@@ -12,6 +12,7 @@
 
 #include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
+#include "temp_folder.h"
 #include "test_paths.h"
 
 namespace tactile {
@@ -275,19 +276,13 @@ TEST(LayoutValidation, ValidateLayoutChecksLayoutsBuiltInCode) {
 
 class LayoutFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("tactile_layout_test_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(directory_ / "layouts");
-  }
-  void TearDown() override {
-    ::unsetenv("TACTILE_ASSETS");
-    std::filesystem::remove_all(directory_);
-  }
+  void SetUp() override { std::filesystem::create_directories(directory_ / "layouts"); }
+  void TearDown() override { ::unsetenv("TACTILE_ASSETS"); }
   void write(const std::string& name, const std::string& text) {
     std::ofstream(directory_ / "layouts" / name) << text;
   }
-  std::filesystem::path directory_;
+  test::TempFolder folder_{"tactile-layout-test"};
+  std::filesystem::path directory_ = folder_.path();
 };
 
 TEST_F(LayoutFiles, AssetDirectoryComesFromTheEnvironmentWhenSet) {
