@@ -116,29 +116,18 @@ def write(rows, args):
              f"each side, one run on this machine ({os.cpu_count()} cores, "
              f"{platform.machine()}). Both sides fit on every core. Time = fit + predict "
              "summed over the folds; ratio = ours / reference (below 1: ours is faster).", ""]
-    datasets = []
-    for row in rows:
-        if row["dataset"] not in datasets:
-            datasets.append(row["dataset"])
-    for dataset in datasets:
-        subset = [r for r in rows if r["dataset"] == dataset]
-        first = subset[0]
-        lines += [f"## {dataset}: {first['rows']} rows, {first['features']} features, "
-                  f"{first['classes']} classes", "",
-                  "| classifier | reference | ours % | reference % | diff (pts) | ours s | "
-                  "reference s | time ours/reference |",
-                  "|---|---|---:|---:|---:|---:|---:|---:|"]
-        for r in subset:
-            difference = 100.0 * (r["ours"] - r["sklearn"])
-            ratio = r["ours_seconds"] / r["sklearn_seconds"] if r["sklearn_seconds"] > 0 else 0.0
-            lines.append(f"| {r['classifier']} | {r['reference']} | {100 * r['ours']:.2f} | "
-                         f"{100 * r['sklearn']:.2f} | {difference:+.2f} | "
-                         f"{r['ours_seconds']:.2f} | {r['sklearn_seconds']:.2f} | {ratio:.2f} |")
-        lines.append("")
-    temporary = args.out + ".tmp"
-    with open(temporary, "w") as handle:
-        handle.write("\n".join(lines))
-    os.replace(temporary, args.out)
+
+    def line(r):
+        difference = 100.0 * (r["ours"] - r["sklearn"])
+        ratio = r["ours_seconds"] / r["sklearn_seconds"] if r["sklearn_seconds"] > 0 else 0.0
+        return (f"| {r['classifier']} | {r['reference']} | {100 * r['ours']:.2f} | "
+                f"{100 * r['sklearn']:.2f} | {difference:+.2f} | "
+                f"{r['ours_seconds']:.2f} | {r['sklearn_seconds']:.2f} | {ratio:.2f} |")
+
+    reference.write_dataset_tables(
+        args.out, lines, rows,
+        ["| classifier | reference | ours % | reference % | diff (pts) | ours s | reference s | "
+         "time ours/reference |", "|---|---|---:|---:|---:|---:|---:|---:|"], line)
 
 
 if __name__ == "__main__":

@@ -339,6 +339,26 @@ def write_table(rows, args, out):
              "the folds (`seconds` of `tactile evaluate --json`, one thread) / scikit-learn's "
              "(same measure, same run, same machine). Weka: per-fold JVM runs, so its time "
              "includes start-up and is not compared.", ""]
+
+    def line(r):
+        difference = 100.0 * (r["ours"] - r["sklearn"])
+        flag = " **" if abs(difference) > 1.0 else ""
+        weka = f"{100 * r['weka']:.2f}" if "weka" in r else "-"
+        ratio = r["ours_seconds"] / r["sklearn_seconds"] if r["sklearn_seconds"] > 0 else 0
+        name = r["classifier"] + (f" (mean of {r['seeds']} seeds)" if r["seeds"] > 1 else "")
+        return (f"| {name} | {r['reference']} | {100 * r['ours']:.2f} | "
+                f"{100 * r['sklearn']:.2f} | {difference:+.2f}{flag} | {weka} | "
+                f"{ratio:.2f} ({r['ours_seconds']:.3f} s / {r['sklearn_seconds']:.3f} s) |")
+
+    write_dataset_tables(out, lines, rows,
+                         ["| classifier | reference | ours % | sklearn % | diff (pts) | Weka % | "
+                          "time ours/sklearn |", "|---|---|---:|---:|---:|---:|---:|"], line)
+
+
+def write_dataset_tables(out, lines, rows, header, line):
+    """The page `lines` begin, then per dataset (in the order rows first name it) a section with
+    its size and a table: the `header` lines, then `line(row)` for each of its rows. Written
+    to a temporary file beside `out`, then renamed over it."""
     datasets = []
     for row in rows:
         if row["dataset"] not in datasets:
@@ -347,21 +367,8 @@ def write_table(rows, args, out):
         subset = [r for r in rows if r["dataset"] == dataset]
         first = subset[0]
         lines += [f"## {dataset}: {first['rows']} rows, {first['features']} features, "
-                  f"{first['classes']} classes", "",
-                  "| classifier | reference | ours % | sklearn % | diff (pts) | Weka % | "
-                  "time ours/sklearn |",
-                  "|---|---|---:|---:|---:|---:|---:|"]
-        for r in subset:
-            difference = 100.0 * (r["ours"] - r["sklearn"])
-            flag = " **" if abs(difference) > 1.0 else ""
-            weka = f"{100 * r['weka']:.2f}" if "weka" in r else "-"
-            ratio = r["ours_seconds"] / r["sklearn_seconds"] if r["sklearn_seconds"] > 0 else 0
-            name = r["classifier"] + (f" (mean of {r['seeds']} seeds)" if r["seeds"] > 1 else "")
-            lines.append(f"| {name} | {r['reference']} | {100 * r['ours']:.2f} | "
-                         f"{100 * r['sklearn']:.2f} | {difference:+.2f}{flag} | {weka} | "
-                         f"{ratio:.2f} ({r['ours_seconds']:.3f} s / "
-                         f"{r['sklearn_seconds']:.3f} s) |")
-        lines.append("")
+                  f"{first['classes']} classes", ""] + header
+        lines += [line(r) for r in subset] + [""]
     temporary = out + ".tmp"
     with open(temporary, "w") as handle:
         handle.write("\n".join(lines))

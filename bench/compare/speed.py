@@ -98,35 +98,25 @@ def write(rows, args):
              "", "Tables: `bench/compare/shapes.py` (5000 x 16 and 20000 x 30: overlapping Gaussian "
              "classes in features of mixed units; 1000 x 1200: raw touch waveforms, 1200 samples "
              "a row).", ""]
-    datasets = []
-    for row in rows:
-        if row["dataset"] not in datasets:
-            datasets.append(row["dataset"])
-    for dataset in datasets:
-        subset = [r for r in rows if r["dataset"] == dataset]
-        first = subset[0]
-        lines += [f"## {dataset}: {first['rows']} rows, {first['features']} features, "
-                  f"{first['classes']} classes", "",
-                  "| classifier | ours % | sklearn % | diff (pts) | ours s (1 thread) | sklearn s | "
-                  "speed-up | ours s (all cores) | speed-up | goal |",
-                  "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
-        for r in subset:
-            difference = 100.0 * (r["ours"] - r["sklearn"])
-            one = r["sklearn_seconds"] / r["ours_seconds"] if r["ours_seconds"] > 0 else 0.0
-            every = (r["sklearn_seconds"] / r["ours_all_cores_seconds"]
-                     if r["ours_all_cores_seconds"] > 0 else 0.0)
-            accurate = abs(difference) <= 1.0
-            goal = ("met" if accurate and one >= 2.0 else
-                    "met on all cores" if accurate and every >= 2.0 else
-                    "not met" + ("" if accurate else " (accuracy)"))
-            lines.append(f"| {r['classifier']} | {100 * r['ours']:.2f} | {100 * r['sklearn']:.2f} | "
-                         f"{difference:+.2f} | {r['ours_seconds']:.3f} | {r['sklearn_seconds']:.3f} | "
-                         f"{one:.2f}x | {r['ours_all_cores_seconds']:.3f} | {every:.2f}x | {goal} |")
-        lines.append("")
-    temporary = args.out + ".tmp"
-    with open(temporary, "w") as handle:
-        handle.write("\n".join(lines))
-    os.replace(temporary, args.out)
+
+    def line(r):
+        difference = 100.0 * (r["ours"] - r["sklearn"])
+        one = r["sklearn_seconds"] / r["ours_seconds"] if r["ours_seconds"] > 0 else 0.0
+        every = (r["sklearn_seconds"] / r["ours_all_cores_seconds"]
+                 if r["ours_all_cores_seconds"] > 0 else 0.0)
+        accurate = abs(difference) <= 1.0
+        goal = ("met" if accurate and one >= 2.0 else
+                "met on all cores" if accurate and every >= 2.0 else
+                "not met" + ("" if accurate else " (accuracy)"))
+        return (f"| {r['classifier']} | {100 * r['ours']:.2f} | {100 * r['sklearn']:.2f} | "
+                f"{difference:+.2f} | {r['ours_seconds']:.3f} | {r['sklearn_seconds']:.3f} | "
+                f"{one:.2f}x | {r['ours_all_cores_seconds']:.3f} | {every:.2f}x | {goal} |")
+
+    reference.write_dataset_tables(
+        args.out, lines, rows,
+        ["| classifier | ours % | sklearn % | diff (pts) | ours s (1 thread) | sklearn s | "
+         "speed-up | ours s (all cores) | speed-up | goal |",
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"], line)
 
 
 if __name__ == "__main__":

@@ -383,16 +383,9 @@ SimulatedTrial simulate_flux_trial(const SkinLayout& layout, const SimulationOpt
   result.recording.metadata["temperature_c"] = temperature_text;
 
   for (const FluxGesture& gesture : gestures) {
-    Label label;
-    label.recording = result.recording.id;
-    label.t0 = gesture.onset;
-    label.t1 = gesture.end();
-    label.region = gesture.region;
-    label.class_name = layout.classes[gesture.class_index];
-    label.annotator = "simulator";
-    label.source = LabelSource::kGroundTruth;
-    label.confidence = 1.0;
-    result.labels.push_back(label);
+    result.labels.push_back(
+        sim::ground_truth_label(result.recording.id, gesture.onset, gesture.end(),
+                                layout.classes[gesture.class_index], gesture.region));
   }
   return result;
 }

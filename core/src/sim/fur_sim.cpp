@@ -194,16 +194,9 @@ SimulatedTrial simulate_fur_trial(const SkinLayout& layout, const SimulationOpti
   recording.streams.push_back(std::move(stream));
 
   for (size_t k = 0; k < planned.size(); ++k) {
-    Label label;
-    label.recording = recording.id;
-    label.t0 = planned[k].start;
-    label.t1 = planned[k].end;
-    label.region = touched_region(layout, sensor, impulse[k]);
-    label.class_name = layout.classes[planned[k].class_index];
-    label.annotator = "simulator";
-    label.source = LabelSource::kGroundTruth;
-    label.confidence = 1.0;
-    result.labels.push_back(label);
+    result.labels.push_back(sim::ground_truth_label(recording.id, planned[k].start, planned[k].end,
+                                                    layout.classes[planned[k].class_index],
+                                                    touched_region(layout, sensor, impulse[k])));
   }
   return result;
 }

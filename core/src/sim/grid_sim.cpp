@@ -417,16 +417,9 @@ SimulatedTrial simulate_grid_trial(const SkinLayout& layout, const SimulationOpt
   recording.streams.push_back(std::move(stream));
 
   for (const GridTouch& touch : touches) {
-    Label label;
-    label.recording = recording.id;
-    label.t0 = touch.t0;
-    label.t1 = touch.t1;
-    label.class_name = grid_gesture_classes()[static_cast<size_t>(touch.gesture)];
-    label.region = "all";
-    label.annotator = "simulator";
-    label.source = LabelSource::kGroundTruth;
-    label.confidence = 1.0;
-    result.labels.push_back(label);
+    result.labels.push_back(
+        sim::ground_truth_label(recording.id, touch.t0, touch.t1,
+                                grid_gesture_classes()[static_cast<size_t>(touch.gesture)], "all"));
   }
   return result;
 }

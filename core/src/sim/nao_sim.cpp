@@ -7,6 +7,7 @@
 
 #include "nao/nao_model.h"
 #include "tactile/error.h"
+#include "tactile/sim/sim_util.h"
 #include "tactile/sim/simulator.h"
 
 namespace tactile {
@@ -168,16 +169,9 @@ SimulatedTrial simulate_nao_trial(const SkinLayout& layout, const SimulationOpti
                         recording.streams.back().samples);
 
   for (const Gesture& gesture : gestures) {
-    Label label;
-    label.recording = recording.id;
-    label.t0 = gesture.contact_start;
-    label.t1 = gesture.contact_end;
-    label.region = sides[gesture.side].id;
-    label.class_name = layout.classes[gesture.class_index];
-    label.annotator = "simulator";
-    label.source = LabelSource::kGroundTruth;
-    label.confidence = 1.0;
-    result.labels.push_back(std::move(label));
+    result.labels.push_back(
+        sim::ground_truth_label(recording.id, gesture.contact_start, gesture.contact_end,
+                                layout.classes[gesture.class_index], sides[gesture.side].id));
   }
   std::stable_sort(result.labels.begin(), result.labels.end(),
                    [](const Label& a, const Label& b) { return a.t0 < b.t0; });

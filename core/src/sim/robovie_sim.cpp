@@ -8,6 +8,7 @@
 
 #include "robovie/robovie_scenario.h"
 #include "tactile/error.h"
+#include "tactile/sim/sim_util.h"
 #include "tactile/sim/simulator.h"
 
 namespace tactile {
@@ -68,17 +69,12 @@ SimulatedTrial simulate_robovie_trial(const SkinLayout& layout, const Simulation
   // One label per stage, from its command to the next (Sec. IV-C: auto-labelled).
   const int stages = static_cast<int>(session.commands.size());
   for (int stage = 0; stage < stages; ++stage) {
-    Label label;
-    label.recording = recording.id;
-    label.t0 = session.commands[stage];
-    label.t1 =
+    const double t0 = session.commands[stage];
+    const double t1 =
         stage + 1 < stages ? session.commands[stage + 1] : static_cast<double>(samples) / rate;
-    label.class_name = layout.classes[stage];
-    label.region = touched_part(films, skin.samples, rate, label.t0, label.t1);
-    label.annotator = "simulator";
-    label.source = LabelSource::kGroundTruth;
-    label.confidence = 1.0;
-    result.labels.push_back(label);
+    result.labels.push_back(
+        sim::ground_truth_label(recording.id, t0, t1, layout.classes[stage],
+                                touched_part(films, skin.samples, rate, t0, t1)));
   }
 
   const Robot robot = make_robot(films, options.seed);

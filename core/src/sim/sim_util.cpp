@@ -89,6 +89,20 @@ Stream make_stream(const SkinLayout& layout, const std::string& name, double rat
   return stream;
 }
 
+Label ground_truth_label(const std::string& recording, double t0, double t1,
+                         const std::string& class_name, const std::string& region) {
+  Label label;
+  label.recording = recording;
+  label.t0 = t0;
+  label.t1 = t1;
+  label.class_name = class_name;
+  label.region = region;
+  label.annotator = "simulator";
+  label.source = LabelSource::kGroundTruth;
+  label.confidence = 1.0;
+  return label;
+}
+
 Metadata simulated_metadata(const std::string& skin, int subject, int trial,
                             const std::string& side, const std::string& condition) {
   char subject_id[16];

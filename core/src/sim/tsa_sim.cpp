@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "tactile/error.h"
+#include "tactile/sim/sim_util.h"
 
 namespace tactile {
 
@@ -352,15 +353,9 @@ SimulatedTrial simulate_tsa_trial(const SkinLayout& layout, const SimulationOpti
                    recording.streams.front().samples);
 
   for (const Touch& touch : touches) {
-    Label label;
-    label.recording = recording.id;
-    label.t0 = touch.contact_start;
-    label.t1 = touch.contact_end;
-    label.region = sheets[touch.sheet].location;
-    label.class_name = layout.classes[touch.class_index];
-    label.annotator = "simulator";
-    label.source = LabelSource::kGroundTruth;
-    label.confidence = 1.0;
+    Label label =
+        sim::ground_truth_label(recording.id, touch.contact_start, touch.contact_end,
+                                layout.classes[touch.class_index], sheets[touch.sheet].location);
     label.note = std::string("hand=") + hand_name(touch.hand) +
                  " direction=" + direction_name(touch.direction) +
                  " sheet=" + sheets[touch.sheet].id;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tactile/io/label.h"
 #include "tactile/io/recording.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/random.h"
@@ -31,6 +32,11 @@ std::vector<int> shuffled_classes(int count, int repetitions, Random& random);
 // A stream whose channels and units are the layout's, with `samples` rows of zeros.
 Stream make_stream(const SkinLayout& layout, const std::string& name, double rate_hz,
                    int64_t samples);
+
+// A simulator's ground truth for one touch: its span, class and region, annotator "simulator",
+// source kGroundTruth, confidence 1.
+Label ground_truth_label(const std::string& recording, double t0, double t1,
+                         const std::string& class_name, const std::string& region);
 
 // Standard metadata of a simulated recording.
 Metadata simulated_metadata(const std::string& skin, int subject, int trial,
