@@ -74,7 +74,7 @@ RecordingWriter::RecordingWriter(const std::string& path, const std::string& rec
                                  const std::vector<std::string>& channels,
                                  const std::vector<std::string>& units,
                                  const RecordingWriterOptions& options)
-    : path_(path), channels_(static_cast<int>(channels.size())), rate_(rate_hz) {
+    : path_(path), channels_(static_cast<int>(channels.size())) {
   hdf5::silence_errors();
   const std::string where = path + ":/streams/" + stream;
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz))

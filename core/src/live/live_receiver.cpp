@@ -48,10 +48,9 @@ std::string LiveReceiver::failure() const {
 }
 
 void LiveReceiver::run() {
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point began = Clock::now();
+  const std::chrono::steady_clock::time_point began = std::chrono::steady_clock::now();
   const auto seconds_now = [&] {
-    return std::chrono::duration<double>(Clock::now() - began).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   };
   const PacketFormatInfo format = packet_format_info(layout_.id);
   LiveTimeline timeline(

@@ -55,7 +55,6 @@ class RecordingWriter {
   struct Handles;
   std::string path_;
   int channels_;
-  double rate_;
   int64_t chunk_;
   int64_t flush_every_;
   std::unique_ptr<Handles> handles_;
