@@ -1,14 +1,16 @@
-// `tactile import FILE --layout ID --out FILE.h5|FOLDER [--labels DB]`: a recording from
-// what other programs publish (docs/IMPORT.md): long or wide CSV (a class column, grouping
-// columns), NumPy .npy / .npz, JSON arrays of frames, a dataset of any HDF5 file, a MATLAB .mat
-// variable, EDF+/BDF+, an XDF stream.
-// The import itself is core's (tactile/labels/import_files.h), shared with the workbench.
+// `tactile import FILE --layout ID --out FILE.h5|FOLDER [--labels DB]`: a recording from what
+// other programs publish (docs/IMPORT.md). The formats and their flags are the importers'
+// (tactile/formats/importer.h): every flag an importer declares is added here, with the help
+// it gives and the formats that take it; the import itself is core's
+// (tactile/formats/import.h), shared with the workbench.
+#include <algorithm>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <vector>
 
 #include "commands.h"
-#include "tactile/labels/import_files.h"
+#include "tactile/formats/import.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
 
@@ -16,23 +18,27 @@ namespace tactile::cli {
 
 namespace {
 
-// The parsed flags; which of the wide-only ones were given is read off their options.
+// The parsed flags: the fixed ones in `options`, each format flag's value by its kind: text,
+// a list's items (given comma-separated or repeated), a switch's state.
 struct ImportArguments {
   FileImportOptions options;
-  int64_t samples_per_capture = 0;
-  std::string labels_file;
-  std::vector<std::string> class_names;
-  const CLI::Option* samples_per_capture_option = nullptr;
-  const CLI::Option* labels_file_option = nullptr;
-  const CLI::Option* class_names_option = nullptr;
+  std::map<std::string, std::string> texts;
+  std::map<std::string, std::vector<std::string>> lists;
+  std::map<std::string, bool> switches;
+  std::map<std::string, const CLI::Option*> parsed;
 };
 
 void run_import(ImportArguments& arguments) {
   FileImportOptions& options = arguments.options;
-  if (arguments.samples_per_capture_option->count() > 0)
-    options.samples_per_capture = arguments.samples_per_capture;
-  if (arguments.labels_file_option->count() > 0) options.labels_file = arguments.labels_file;
-  if (arguments.class_names_option->count() > 0) options.class_names = arguments.class_names;
+  for (const auto& [flag, option] : arguments.parsed) {
+    if (option->count() == 0) continue;
+    if (arguments.switches.count(flag))
+      options.values.set_switch(flag, arguments.switches[flag]);
+    else if (arguments.lists.count(flag))
+      options.values.set(flag, joined(arguments.lists[flag], ","));
+    else
+      options.values.set(flag, arguments.texts[flag]);
+  }
   const FileImportReport report = import_file(
       options, {}, [](const ImportedFile& file) { std::cout << imported_file_line(file) << "\n"; });
   if (report.labels == 0) return;
@@ -46,106 +52,86 @@ void run_import(ImportArguments& arguments) {
   std::cout << "stored " << report.stored << " " << kind << " in " << options.labels << "\n";
 }
 
+// "Sampling rate in Hz [CSV, NumPy, ...]": the formats that take an option, each help once
+// with the formats that give it.
+std::string help_of(const SharedImportOption& shared) {
+  std::vector<std::string> helps;
+  std::vector<std::vector<std::string>> formats;
+  for (size_t k = 0; k < shared.helps.size(); ++k) {
+    const auto found = std::find(helps.begin(), helps.end(), shared.helps[k]);
+    if (found == helps.end()) {
+      helps.push_back(shared.helps[k]);
+      formats.push_back({shared.formats[k]});
+    } else {
+      formats[static_cast<size_t>(found - helps.begin())].push_back(shared.formats[k]);
+    }
+  }
+  std::string text;
+  for (size_t k = 0; k < helps.size(); ++k)
+    text += (k > 0 ? "; " : "") + helps[k] + " [" + joined(formats[k]) + "]";
+  return text;
+}
+
+const char* type_name(ImportOption::Kind kind) {
+  switch (kind) {
+    case ImportOption::Kind::kNumber:
+      return "NUMBER";
+    case ImportOption::Kind::kCount:
+      return "COUNT";
+    case ImportOption::Kind::kList:
+      return "A,B,...";
+    case ImportOption::Kind::kFile:
+      return "FILE";
+    default:
+      return "TEXT";
+  }
+}
+
 }  // namespace
 
 void register_import(CLI::App& app) {
   auto arguments = std::make_shared<ImportArguments>();
   FileImportOptions* options = &arguments->options;
-  CLI::App* command = app.add_subcommand("import",
-                                         "Convert other programs' data (CSV, NumPy .npy/.npz, JSON "
-                                         "frames, HDF5 datasets, MATLAB .mat, EDF+/BDF+, XDF) "
-                                         "to recordings");
-  command
-      ->add_option("FILE", options->file,
-                   "CSV (long: header + one row per sample; or --wide), .npy, .npz, .json, .h5, "
-                   ".mat (v5, v7.3), .edf, .bdf or .xdf")
-      ->required();
+  CLI::App* command = app.add_subcommand(
+      "import", "Convert other programs' data to recordings: " + import_formats_text());
+  command->add_option("FILE", options->file, "The file: " + import_formats_text())->required();
   command
       ->add_option("--layout", options->layout,
                    "Layout id: " + joined(known_layout_ids()) + ", grid:RxC, strip:N")
       ->required();
   command
-      ->add_option("--rate", options->rate_hz,
-                   "Sampling rate in Hz (default for long CSV: from the time column)")
-      ->check(CLI::PositiveNumber);
-  command->add_option(
-      "--rate-variable", options->rate_variable,
-      ".mat: the scalar variable holding the rate in Hz (e.g. fs or s.rate; not with --rate)");
-  command->add_flag("--wide", options->wide,
-                    "One capture per row, channel-major, with a labels file");
-  arguments->samples_per_capture_option =
-      command
-          ->add_option("--samples-per-capture", arguments->samples_per_capture,
-                       "Samples of each channel in one capture (--wide)")
-          ->check(CLI::PositiveNumber);
-  arguments->labels_file_option =
-      command->add_option("--labels-file", arguments->labels_file,
-                          "One class per capture, by name or 0-based index (--wide)");
-  arguments->class_names_option =
-      command
-          ->add_option("--class-names", arguments->class_names,
-                       "Class names, comma-separated (--wide; default: the layout's)")
-          ->delimiter(',');
-  command->add_option("--dataset", options->dataset,
-                      "The array to read: a .npz array's name, an HDF5 file's dataset path, a .mat "
-                      "variable (s.field for a "
-                      "struct's field; default: the file's one array)");
-  command->add_option("--key", options->key,
-                      "The JSON key holding the frames (a.b for nested; default: the top level)");
-  command->add_option(
-      "--value-key", options->value_key,
-      "JSON frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
-      "frame (e.g. data)");
-  command->add_option(
-      "--class-key", options->class_key,
-      "JSON frames given as objects: the member holding each frame's class (e.g. label)");
-  command->add_flag("--captures", options->captures,
-                    "The array is [captures][channels][samples]: captures laid end to end");
-  command->add_option(
-      "--class-array", options->class_array,
-      "Classes per frame (or per capture) in the same file: a .npz array, an HDF5 dataset, a JSON "
-      "key, a .mat variable (cell array of names, char matrix, numeric vector); names, or indices "
-      "into the layout's classes; none/empty: no touch");
-  command->add_option("--class-column", options->class_column,
-                      "Long CSV: the column of class names per row (none/empty: no touch)");
-  command
-      ->add_option(
-          "--group-columns", options->group_columns,
-          "Long CSV: columns whose values split the table into recordings (e.g. subject,capture); "
-          "--out is then a folder")
-      ->delimiter(',');
-  command
       ->add_option("--out", options->out,
-                   "Output recording file (.h5), or a folder with --group-columns")
+                   "Output recording file (.h5), or a folder when the import makes one recording "
+                   "per group")
       ->required();
   command->add_option("--labels", options->labels,
-                      "Label database (SQLite) for the ground-truth labels (--wide, "
-                      "--class-column, --class-array)");
+                      "Label database (SQLite) for the file's labels (its ground truth)");
   command->add_option("--recording-id", options->recording_id,
                       "Recording id (default: the output file's stem)");
-  command
-      ->add_option(
-          "--signals", options->signals,
-          "EDF/BDF: the signals by label, comma-separated, in channel order (default: every "
-          "signal but the annotations)")
-      ->delimiter(',');
-  command
-      ->add_option(
-          "--annotation-seconds", options->annotation_seconds,
-          "EDF/BDF: the length of annotations of zero or unknown duration (default: refused)")
-      ->check(CLI::PositiveNumber);
   command->add_option(
       "--annotator", options->annotator,
       "Store the file's labels as this annotator's (replacing theirs of the recording) "
       "instead of the ground truth");
-  command->add_option(
-      "--stream", options->stream,
-      "XDF: the data stream, NAME or type:TYPE (default: the only numeric stream with a "
-      "nominal rate)");
-  command->add_option(
-      "--markers", options->markers,
-      "XDF: the markers stream whose markers become ground-truth labels, NAME or type:TYPE "
-      "(default: the only markers stream)");
+  // The formats' own flags, each once; which format takes which is checked at the import.
+  for (const SharedImportOption& shared : all_import_options()) {
+    const std::string& flag = shared.option.flag;
+    switch (shared.option.kind) {
+      case ImportOption::Kind::kSwitch:
+        arguments->switches[flag] = false;
+        arguments->parsed[flag] =
+            command->add_flag(flag, arguments->switches[flag], help_of(shared));
+        break;
+      case ImportOption::Kind::kList:
+        arguments->parsed[flag] = command->add_option(flag, arguments->lists[flag], help_of(shared))
+                                      ->delimiter(',')
+                                      ->type_name(type_name(shared.option.kind));
+        break;
+      default:
+        arguments->parsed[flag] =
+            command->add_option(flag, arguments->texts[flag], help_of(shared));
+        break;
+    }
+  }
   command->callback([arguments] { run_import(*arguments); });
 }
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -19,6 +20,7 @@
 #include "tactile/error.h"
 #include "tactile/io/label_store.h"
 #include "tactile/labels/label_files.h"
+#include "tactile/labels/label_format.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/labels/quality.h"
 #include "tactile/skins/skin.h"
@@ -29,7 +31,8 @@ namespace tactile::cli {
 namespace {
 
 struct LabelsOptions {
-  std::string database, csv, json, eaf, label_studio, recording, source, skin, file;
+  std::string database, recording, source, skin, file;
+  std::map<std::string, std::string> outputs;  // `export`: the file of each label format's flag
   std::vector<std::string> tiers, annotators;
   std::string a, b, recordings;
   double iou = 0.5;
@@ -97,31 +100,31 @@ void report_damage(const std::string& database, const std::vector<std::string>& 
 void report_damage(const LabelStore& store) { report_damage(store.path(), damage_lines(store)); }
 
 void run_export(const LabelsOptions& options) {
-  const int outputs = !options.csv.empty() + !options.json.empty() + !options.eaf.empty() +
-                      !options.label_studio.empty();
-  if (outputs != 1)
-    throw Error("--csv/--json/--eaf/--label-studio",
-                "give exactly one of --csv OUT, --json OUT, --eaf OUT or --label-studio OUT");
-  const LabelFilter filter = filter_from(options);
-  if (!options.eaf.empty() || !options.label_studio.empty()) {
-    std::vector<std::string> vocabulary;
-    if (!options.skin.empty()) {
-      const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
-      vocabulary = store.classes(options.skin);
-      if (vocabulary.empty())
-        throw Error("--skin",
-                    "no class vocabulary for skin '" + options.skin + "' in " + options.database);
-    }
-    const bool elan = !options.eaf.empty();
-    const LabelExport written = export_interop(
-        options.database, elan ? options.eaf : options.label_studio,
-        elan ? InteropFormat::kElan : InteropFormat::kLabelStudio, filter, vocabulary);
-    report_damage(options.database, written.damaged);
-    return;
+  // One of the label formats' flags (labels/label_format.h), with its file.
+  std::vector<std::string> flags;
+  const LabelFormat* chosen = nullptr;
+  std::string out;
+  int given = 0;
+  for (const LabelFormat* format : label_formats()) {
+    flags.push_back(format->flag());
+    const std::string& file = options.outputs.at(format->flag());
+    if (file.empty()) continue;
+    ++given;
+    chosen = format;
+    out = file;
   }
-  const bool json = options.csv.empty();
+  if (given != 1)
+    throw Error(joined(flags, "/"), "give exactly one of " + joined(flags) + " with its file");
+  std::vector<std::string> vocabulary;
+  if (!options.skin.empty()) {
+    const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
+    vocabulary = store.classes(options.skin);
+    if (vocabulary.empty())
+      throw Error("--skin",
+                  "no class vocabulary for skin '" + options.skin + "' in " + options.database);
+  }
   const LabelExport written =
-      export_labels(options.database, json ? options.json : options.csv, json, filter);
+      export_label_file(options.database, out, chosen->name(), filter_from(options), vocabulary);
   report_damage(options.database, written.damaged);
 }
 
@@ -224,14 +227,13 @@ void register_labels(CLI::App& app) {
   auto options = std::make_shared<LabelsOptions>();
 
   CLI::App* export_command =
-      labels->add_subcommand("export", "Write labels to a CSV (RFC 4180) or JSON file");
+      labels->add_subcommand("export", "Write labels to a file of one label format");
   export_command->add_option("db", options->database, "Label database (SQLite)")->required();
-  export_command->add_option("--csv", options->csv, "Write CSV to this file");
-  export_command->add_option("--json", options->json, "Write JSON to this file");
-  export_command->add_option("--eaf", options->eaf,
-                             "Write an ELAN .eaf (one recording: a tier per lane)");
-  export_command->add_option("--label-studio", options->label_studio,
-                             "Write Label Studio's JSON (a task per recording)");
+  for (const LabelFormat* format : label_formats()) {
+    options->outputs[format->flag()];
+    export_command->add_option(format->flag(), options->outputs[format->flag()],
+                               "Write " + format->description() + " to this file");
+  }
   export_command->add_option("--skin", options->skin,
                              "ELAN: this skin's class vocabulary as the controlled vocabulary");
   export_command->add_option("--recording", options->recording, "Only this recording's labels");

@@ -11,6 +11,9 @@
 
 namespace tactile::cli {
 
+// The command line: parses, runs the command, prints a refusal; the exit code (run.cpp).
+int run(int argc, char** argv);
+
 void register_info(CLI::App& app);
 void register_import(CLI::App& app);
 void register_export(CLI::App& app);

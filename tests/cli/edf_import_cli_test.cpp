@@ -91,7 +91,7 @@ TEST_F(EdfImportCli, BadFlagsAndBadFilesAreRefusedClearlyAndWriteNothing) {
        "annotation 3 at 2 s \"Pat\": has no duration"},
       {edf + four + " --rate 100", "--rate: an EDF or BDF file states its own rate"},
       {edf + four + " --annotation-seconds 0", "--annotation-seconds"},
-      {edf + four + " --dataset x", "are not for EDF or BDF files"},
+      {edf + four + " --dataset x", "--dataset: is not for EDF or BDF files"},
       {folder.file("cut.edf") + four, "byte 236: 3 data records of"},
       {folder.file("missing.edf") + four, "missing.edf"},
   };

@@ -90,7 +90,8 @@ TEST_F(ImportMat, BadFlagsAndDamagedFilesAreRefusedAndWriteNothing) {
       {v6 + "--rate 10 --dataset waves", "waves 1x2 complex double is not read"},
       {v6 + "--dataset samples --rate-variable names", "is not one positive number"},
       {v6 + "--dataset samples --rate 10 --class-array counts", "3 classes for 6 frames"},
-      {kInterop + "session.eaf --layout grid:2x2 --rate-variable rate", "is for .mat files"},
+      {tactile::test::test_data_dir() + "/io/long_strip3.csv --layout strip:3 --rate-variable rate",
+       "--rate-variable: is not an option of CSV files"},
       {cut + " --layout grid:2x2 --rate 10 --dataset samples",
        cut + ": byte 384: a data element declares 56 bytes, 8 are left"},
   };

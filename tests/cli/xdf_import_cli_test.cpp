@@ -78,9 +78,9 @@ TEST_F(XdfImportCli, BadFlagsAndDamagedFilesAreRefusedWithThePlaceAndWriteNothin
        "--stream: " + kSession +
            " has no 'Wrist' among its numeric streams; its streams:\n  \"TactileGlove\""},
       {kSession + " --layout strip:8 --markers type:Events", "--markers: "},
-      {kSession + " --layout strip:8 --dataset x", "are not for XDF files"},
+      {kSession + " --layout strip:8 --dataset x", "--dataset: is not for XDF files"},
       {tactile::test::test_data_dir() + "/import/frames.npy --layout grid:4x4 --rate 10 --stream x",
-       "--stream/--markers: are for XDF files"},
+       "--stream: is not an option of NumPy files"},
       {cut + " --layout strip:8", "cut.xdf chunk 15 at byte "},
   };
   test::expect_imports_refused(cases, out, folder);

@@ -10,8 +10,8 @@
 #include "edf_test_files.h"
 #include "io_test_files.h"
 #include "tactile/error.h"
+#include "tactile/formats/import.h"
 #include "tactile/io/label_store.h"
-#include "tactile/labels/import_files.h"
 
 namespace tactile {
 namespace {
@@ -246,8 +246,8 @@ TEST_F(EdfImport, AnnotatorImportReplacesThatAnnotatorsLabelsAndLeavesTheGroundT
   FileImportOptions options;
   options.file = edf_path;
   options.layout = "strip:4";
-  options.signals = {"Fz", "Cz", "Pz", "Oz"};
-  options.annotation_seconds = 0.5;
+  options.values.set("--signals", "Fz,Cz,Pz,Oz");
+  options.values.set("--annotation-seconds", "0.5");
   options.out = folder.file("session.h5");
   options.labels = folder.file("labels.db");
   import_file(options);  // the ground truth
@@ -277,8 +277,8 @@ TEST_F(EdfImport, TheSharedImportReadsEdfAndRefusesOptionsOfOtherFormats) {
   FileImportOptions options;
   options.file = edf_path;
   options.layout = "strip:4";
-  options.signals = {"Fz", "Cz", "Pz", "Oz"};
-  options.annotation_seconds = 0.5;
+  options.values.set("--signals", "Fz,Cz,Pz,Oz");
+  options.values.set("--annotation-seconds", "0.5");
   const ImportPreview preview = preview_import(options, 3);
   ASSERT_EQ(preview.refusal, "");
   EXPECT_EQ(preview.format, ".edf recording");
@@ -288,19 +288,20 @@ TEST_F(EdfImport, TheSharedImportReadsEdfAndRefusesOptionsOfOtherFormats) {
   ASSERT_EQ(preview.frames.size(), 3u);
   EXPECT_NEAR(preview.frames[2][1], edf_test_value(testing::edf_test_plus_file().signals[1], 1, 2),
               1e-4);
-  EXPECT_EQ(import_format_of("a.BDF"), ".bdf");
-  options.rate_hz = 100.0;
+  EXPECT_EQ(importer_for("a.BDF")->name(), "EDF+/BDF+");
+  options.values.set("--rate", "100.0");
   EXPECT_NE(preview_import(options).refusal.find("--rate: an EDF or BDF file states its own rate"),
             std::string::npos);
-  options.rate_hz.reset();
-  options.class_array = "y";
-  EXPECT_NE(preview_import(options).refusal.find("are not for EDF or BDF files"),
+  options.values.erase("--rate");
+  options.values.set("--class-array", "y");
+  EXPECT_NE(preview_import(options).refusal.find("--class-array: is not for EDF or BDF files"),
             std::string::npos);
-  options.class_array.clear();
+  options.values.erase("--class-array");
   options.file = folder.file("x.csv");
-  EXPECT_NE(preview_import(options).refusal.find(
-                "--signals/--annotation-seconds: are for EDF and BDF files"),
-            std::string::npos);
+  EXPECT_NE(
+      preview_import(options).refusal.find("--annotation-seconds: is not an option of CSV files"),
+      std::string::npos)
+      << preview_import(options).refusal;
 }
 
 }  // namespace

@@ -1,12 +1,11 @@
 // The import that `tactile import` and the workbench share (labels/import_files.h): what it
 // writes and reports, where it stops when asked to, and a preview that reads the same and
 // writes nothing.
-#include "tactile/labels/import_files.h"
-
 #include <gtest/gtest.h>
 
 #include "io_test_files.h"
 #include "tactile/error.h"
+#include "tactile/formats/import.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/label_store.h"
 #include "test_paths.h"
@@ -20,9 +19,9 @@ FileImportOptions npz_options(const std::string& out) {
   FileImportOptions options;
   options.file = kFixtures + "frames.npz";
   options.layout = "grid:4x4";
-  options.rate_hz = 100.0;
-  options.dataset = "pressure";
-  options.class_array = "gesture";
+  options.values.set("--rate", "100.0");
+  options.values.set("--dataset", "pressure");
+  options.values.set("--class-array", "gesture");
   options.out = out;
   return options;
 }
@@ -31,8 +30,8 @@ FileImportOptions table_options(const std::string& out) {
   FileImportOptions options;
   options.file = kFixtures + "table.csv";
   options.layout = "strip:4";
-  options.class_column = "gesture";
-  options.group_columns = {"subject", "capture"};
+  options.values.set("--class-column", "gesture");
+  options.values.set("--group-columns", "subject,capture");
   options.out = out;
   return options;
 }
@@ -66,11 +65,14 @@ TEST(ImportFiles, APreviewShowsTheFirstFramesAndTheClassesAndWritesNothing) {
 TEST(ImportFiles, ARefusalNamesTheOptionAsTheCommandLineDoes) {
   testing::TemporaryDirectory folder;
   FileImportOptions options = npz_options(folder.file("frames.h5"));
-  options.rate_hz.reset();
+  options.values.erase("--rate");
   EXPECT_EQ(preview_import(options).refusal, "--rate: is needed for an array (it carries no time)");
   options = npz_options(folder.file("frames.h5"));
-  options.samples_per_capture = 3;
-  EXPECT_EQ(preview_import(options).refusal, "--samples-per-capture: only with --wide");
+  options.values.set("--samples-per-capture", "3");
+  // Another format's option, named with the options this one takes.
+  EXPECT_EQ(preview_import(options).refusal,
+            "--samples-per-capture: is not an option of NumPy files (theirs: --dataset, --rate, "
+            "--class-array, --captures)");
   options = npz_options(folder.file("frames.h5"));
   options.layout.clear();
   EXPECT_NE(preview_import(options).refusal.find("--layout"), std::string::npos);

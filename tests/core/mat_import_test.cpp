@@ -15,7 +15,7 @@
 
 #include "io_test_files.h"
 #include "tactile/error.h"
-#include "tactile/labels/import_files.h"
+#include "tactile/formats/import.h"
 #include "test_paths.h"
 
 namespace tactile {
@@ -298,9 +298,9 @@ FileImportOptions mat_options(const std::string& file) {
 TEST(MatImport, TheImportReadsSamplesRateAndClassesByName) {
   testing::TemporaryDirectory directory;
   FileImportOptions options = mat_options(kV7);
-  options.dataset = "samples";
-  options.rate_variable = "rate";
-  options.class_array = "classes";
+  options.values.set("--dataset", "samples");
+  options.values.set("--rate-variable", "rate");
+  options.values.set("--class-array", "classes");
   const ImportPreview preview = preview_import(options, 6);
   ASSERT_EQ(preview.refusal, "");
   EXPECT_EQ(preview.format, ".mat array");
@@ -311,9 +311,9 @@ TEST(MatImport, TheImportReadsSamplesRateAndClassesByName) {
             (std::vector<std::string>{"Punch", "Punch", "", "Stroke", "Stroke", ""}));
   EXPECT_EQ(preview.labels, 2u);
   // The 3-D field, as frames of the 2 x 2 grid, with the struct's own rate.
-  options.dataset = "s.pressure";
-  options.rate_variable = "s.rate";
-  options.class_array = "";
+  options.values.set("--dataset", "s.pressure");
+  options.values.set("--rate-variable", "s.rate");
+  options.values.erase("--class-array");
   const ImportPreview grid = preview_import(options, 2);
   ASSERT_EQ(grid.refusal, "");
   EXPECT_EQ(grid.rate_hz, 50);
@@ -322,14 +322,14 @@ TEST(MatImport, TheImportReadsSamplesRateAndClassesByName) {
 
 TEST(MatImport, TheOneArrayOfAFileIsReadWithoutItsName) {
   FileImportOptions options = mat_options(kInterop + "one_array.mat");
-  options.rate_variable = "fs";
+  options.values.set("--rate-variable", "fs");
   const ImportPreview preview = preview_import(options, 1);
   ASSERT_EQ(preview.refusal, "");
   EXPECT_EQ(preview.rate_hz, 100);
   EXPECT_EQ(preview.frames[0], (std::vector<double>{101, 102, 103, 104}));
   // Two candidates: refused listing every variable with its size and class.
   options = mat_options(kV6);
-  options.rate_hz = 10;
+  options.values.set("--rate", "10");
   const std::string refusal = preview_import(options).refusal;
   EXPECT_NE(refusal.find("--dataset"), std::string::npos) << refusal;
   EXPECT_NE(refusal.find("s.pressure 6x2x2 single"), std::string::npos) << refusal;
@@ -337,26 +337,27 @@ TEST(MatImport, TheOneArrayOfAFileIsReadWithoutItsName) {
 
 TEST(MatImport, TheRateVariableIsOneNumberAndNotWithRate) {
   FileImportOptions options = mat_options(kV6);
-  options.dataset = "samples";
-  options.rate_variable = "rate";
-  options.rate_hz = 100;
+  options.values.set("--dataset", "samples");
+  options.values.set("--rate-variable", "rate");
+  options.values.set("--rate", "100");
   EXPECT_NE(preview_import(options).refusal.find("--rate-variable: or --rate, not both"),
             std::string::npos);
-  options.rate_hz.reset();
-  options.rate_variable = "counts";
+  options.values.erase("--rate");
+  options.values.set("--rate-variable", "counts");
   EXPECT_NE(preview_import(options).refusal.find("is not one positive number"), std::string::npos);
-  options = mat_options(tactile::test::test_data_dir() + "/interop/session.eaf");
-  options.rate_variable = "rate";
-  EXPECT_NE(preview_import(options).refusal.find("--rate-variable: is for .mat files"),
-            std::string::npos);
+  options = mat_options(tactile::test::test_data_dir() + "/io/long_strip3.csv");
+  options.values.set("--rate-variable", "rate");
+  EXPECT_NE(preview_import(options).refusal.find("--rate-variable: is not an option of CSV files"),
+            std::string::npos)
+      << preview_import(options).refusal;
 }
 
 TEST(MatImport, ClassIndicesNameTheLayoutsClasses) {
   FileImportOptions options = mat_options(kV6);
   options.layout = "grid:2x2";
-  options.dataset = "samples";
-  options.rate_variable = "rate";
-  options.class_array = "class_index";
+  options.values.set("--dataset", "samples");
+  options.values.set("--rate-variable", "rate");
+  options.values.set("--class-array", "class_index");
   const ImportPreview preview = preview_import(options, 6);
   ASSERT_EQ(preview.refusal, "");
   // grid:RxC has no vocabulary of its own: indices stay numbers.

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <utility>
 
@@ -12,6 +13,7 @@
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/labels/label_files.h"
+#include "tactile/labels/label_format.h"
 #include "tactile/skins/skin.h"
 #include "views.h"
 
@@ -94,39 +96,41 @@ void draw_labels_export_dialog(WorkbenchState& state) {
   ImGui::TextDisabled("as tactile labels export: %s", state.document->labels_path.empty()
                                                           ? "(no label store beside the recording)"
                                                           : state.document->labels_path.c_str());
-  using Format = LabelsExportDialog::Format;
-  // An ELAN document holds one recording's tiers.
-  const bool elan = dialog.format == Format::kElan;
-  if (elan) dialog.every_recording = false;
+  const std::vector<const LabelFormat*> formats = label_formats();
+  const LabelFormat* chosen = label_format_named(dialog.format);
+  if (!chosen) chosen = formats.front();
+  // A format that holds one recording's labels (an ELAN document's tiers).
+  const bool one_recording = chosen->one_recording();
+  if (one_recording) dialog.every_recording = false;
   if (radio_item(state, "radio:export-labels/this recording",
                  ("this recording (" + state.document->recording_id() + ")").c_str(),
                  !dialog.every_recording))
     dialog.every_recording = false;
   ImGui::SameLine();
-  ImGui::BeginDisabled(elan);
+  ImGui::BeginDisabled(one_recording);
   if (radio_item(state, "radio:export-labels/every recording", "every recording of the store",
                  dialog.every_recording))
     dialog.every_recording = true;
   ImGui::EndDisabled();
   source_choice(state, "export-labels", dialog.source, true);
-  struct FormatChoice {
-    Format format;
-    const char* item;  // after "radio:export-labels/"
-    const char* text;
-    const char* extension;
-  };
-  static constexpr FormatChoice kFormats[] = {
-      {Format::kCsv, "CSV", "CSV (RFC 4180)", ".csv"},
-      {Format::kJson, "JSON", "JSON", ".json"},
-      {Format::kElan, "ELAN", "ELAN .eaf (one tier per lane)", ".eaf"},
-      {Format::kLabelStudio, "Label Studio", "Label Studio JSON", ".json"}};
-  const char* extension = ".csv";
-  for (const FormatChoice& choice : kFormats) {
-    if (choice.format != Format::kCsv) ImGui::SameLine();
-    if (radio_item(state, std::string("radio:export-labels/") + choice.item, choice.text,
-                   dialog.format == choice.format))
-      dialog.format = choice.format;
-    if (dialog.format == choice.format) extension = choice.extension;
+  for (const LabelFormat* format : formats) {
+    if (format != formats.front()) ImGui::SameLine();
+    if (radio_item(state, "radio:export-labels/" + format->name(), format->description().c_str(),
+                   format == chosen))
+      dialog.format = format->name();
+  }
+  // The file's name: a format that shares its extension with one before it says which it is
+  // ("-label-studio.json").
+  const std::string extension = chosen->extension();
+  std::string suffix;
+  for (const LabelFormat* format : formats) {
+    if (format == chosen) break;
+    if (format->extension() == extension) {
+      for (char c : chosen->name())
+        suffix += c == ' ' ? '-' : static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      suffix = "-" + suffix;
+      break;
+    }
   }
   ImGui::Separator();
   AnyJob* running = running_file_job(state, "export labels");
@@ -134,7 +138,7 @@ void draw_labels_export_dialog(WorkbenchState& state) {
   if (ImGui::Button("Export...")) {
     std::string stem =
         dialog.every_recording ? std::string("labels") : state.document->recording_id() + "-labels";
-    if (dialog.format == Format::kLabelStudio) stem += "-label-studio";
+    stem += suffix;
     state.file_browser.open(
         save_request(state, "export labels", "Export labels to", stem + extension, {extension}));
   }

@@ -130,18 +130,12 @@ void start_labels_export(WorkbenchState& state, const std::string& out) {
     fail(state, failure.what());
     return;
   }
-  using Format = LabelsExportDialog::Format;
-  const Format format = dialog.format;
+  const std::string format = dialog.format;
   const std::vector<std::string> vocabulary = state.document->classes;
   start_file_job(
       state, "export labels", [database, out, format, filter, vocabulary](JobProgress& progress) {
         progress.report(0.0, "writing " + out);
-        const LabelExport written =
-            format == Format::kElan
-                ? export_interop(database, out, InteropFormat::kElan, filter, vocabulary)
-            : format == Format::kLabelStudio
-                ? export_interop(database, out, InteropFormat::kLabelStudio, filter)
-                : export_labels(database, out, format == Format::kJson, filter);
+        const LabelExport written = export_label_file(database, out, format, filter, vocabulary);
         FileOutcome outcome;
         outcome.notice = "wrote " + out + ": " + std::to_string(written.labels) + " labels";
         if (!written.damaged.empty())

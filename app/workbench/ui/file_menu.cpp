@@ -10,6 +10,8 @@
 #include "files.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
+#include "tactile/labels/label_format.h"
+#include "tactile/text.h"
 #include "views.h"
 
 namespace tactile {
@@ -96,9 +98,17 @@ void draw_file_export_items(WorkbenchState& state) {
 }
 
 void draw_labels_file_items(WorkbenchState& state) {
-  if (ImGui::MenuItem("Import labels..."))
-    browse(state, BrowseMode::kOpenFile, "import labels",
-           "Import labels (ours, ELAN .eaf, Label Studio JSON)", {".csv", ".json", ".eaf"});
+  if (ImGui::MenuItem("Import labels...")) {
+    // Every label format's files (labels/label_format.h).
+    std::vector<std::string> names, extensions;
+    for (const LabelFormat* format : label_formats()) {
+      names.push_back(format->name());
+      if (std::find(extensions.begin(), extensions.end(), format->extension()) == extensions.end())
+        extensions.push_back(format->extension());
+    }
+    browse(state, BrowseMode::kOpenFile, "import labels", "Import labels (" + joined(names) + ")",
+           extensions);
+  }
   remember_item(state, "menu:Labels/Import labels...");
   if (ImGui::MenuItem("Agreement report...")) {
     AgreementDialog& dialog = state.files.agreement;
@@ -139,8 +149,9 @@ void take_browser_choice(WorkbenchState& state, const BrowseChoice& choice) {
   } else if (purpose == "import out") {
     set_field(import.out, choice.path);
     import.focus = true;
-  } else if (purpose == "import labels file") {
-    set_field(import.labels_file, choice.path);
+  } else if (purpose.starts_with("import option ")) {
+    // A file option of the format (Browse... beside it): "import option --labels-file".
+    set_field(import.fields[purpose.substr(14)], choice.path);
     import.focus = true;
   } else if (purpose == "import labels db") {
     set_field(import.labels, choice.path);
@@ -150,10 +161,9 @@ void take_browser_choice(WorkbenchState& state, const BrowseChoice& choice) {
   } else if (purpose == "export features") {
     start_features_export(state, choice.path);
   } else if (purpose == "import labels") {
-    if (fs::path(choice.path).extension() == ".csv")
-      start_labels_import(state, choice.path);
-    else
-      open_labels_import_dialog(state, choice.path);
+    // A file with sources to choose (ELAN tiers, Label Studio annotators) opens the dialog;
+    // one of our own formats is imported at once (open_labels_import_dialog).
+    open_labels_import_dialog(state, choice.path);
   } else if (purpose == "verify") {
     start_verify(state, {choice.path});
   } else if (purpose == "upgrade") {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "file_browser.h"
-#include "tactile/labels/import_files.h"
+#include "tactile/formats/import.h"
 #include "tactile/labels/label_interop.h"
 #include "workbench_state.h"
 
@@ -58,7 +58,7 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
 void draw_labels_export_dialog(WorkbenchState& state);
 // Labels > Import labels... of an .eaf or a .json: what the file holds is read on a worker;
 // an ELAN or Label Studio file shows its tiers or annotators to choose and map to lanes, our
-// own JSON is imported at once.
+// own CSV or JSON is imported at once.
 void open_labels_import_dialog(WorkbenchState& state, const std::string& file);
 void draw_labels_import_dialog(WorkbenchState& state);
 void draw_features_export_dialog(WorkbenchState& state);

@@ -1,7 +1,7 @@
 #pragma once
 // The file commands of the window as plain data (files.h draws and runs them): the dialogs'
 // fields, the jobs that read and write the files, the report shown. Every command is core's
-// (labels/import_files.h, labels/label_files.h, features/feature_table.h, io/verify.h), as the
+// (formats/import.h, labels/label_files.h, features/feature_table.h, io/verify.h), as the
 // command line calls it; the window only gathers its options and shows what it did.
 
 #include <array>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "tactile/formats/import.h"
 #include "tactile/jobs/job.h"
-#include "tactile/labels/import_files.h"
 #include "tactile/labels/label_interop.h"
 
 namespace tactile {
@@ -33,13 +33,12 @@ struct FileOutcome {
 struct ImportDialog {
   bool open = false;
   bool focus = false;  // take the keyboard on the next frame
-  std::array<char, 1024> file{}, out{}, labels{}, labels_file{};
-  std::array<char, 128> layout{}, rate{}, samples_per_capture{}, dataset{}, rate_variable{}, key{},
-      value_key{}, class_key{}, class_array{}, class_column{}, group_columns{}, recording_id{},
-      annotation_seconds{}, annotator{}, stream{}, markers{};
-  std::array<char, 512> signals{};  // EDF/BDF: --signals
-  std::array<char, 512> class_names{};
-  bool wide = false, captures = false;
+  std::array<char, 1024> file{}, out{}, labels{};
+  std::array<char, 128> layout{}, recording_id{}, annotator{};
+  // The format's own fields, by flag (formats/importer.h), made for the importer of the file
+  // chosen; kept when the file changes, so that a flag two formats share keeps its value.
+  std::map<std::string, std::array<char, 1024>> fields;
+  std::map<std::string, bool> switches;
   // The preview of what the fields read, made on a worker; a change of the fields starts the
   // next once the running one has ended.
   std::unique_ptr<Job<ImportPreview>> preview_job;
@@ -54,9 +53,9 @@ struct LabelsExportDialog {
   bool open = false, focus = false;
   bool every_recording = false;  // the whole store, not only the open recording's labels
   std::string source;  // "" = every source, else manual / segmenter / model / ground-truth
-  // CSV, JSON ({"labels": [...]}), ELAN .eaf (this recording) or Label Studio JSON
-  // (docs/INTEROP.md)
-  enum class Format { kCsv, kJson, kElan, kLabelStudio } format = Format::kCsv;
+  // The label format by name (labels/label_format.h): CSV, JSON ({"labels": [...]}), ELAN
+  // .eaf (this recording), Label Studio JSON (docs/INTEROP.md), or one a program added.
+  std::string format = "CSV";
 };
 
 // Labels > Import labels... of an ELAN .eaf or a Label Studio JSON: its tiers or annotators,

@@ -1,17 +1,17 @@
 // File > Import...: the options of `tactile import` (docs/IMPORT.md) for the format of the file
 // chosen, each field named by its flag so that a refusal ("--rate: is needed for an array")
 // points at it, and a preview of what the options read: the shape, the channels, the first
-// frames and the classes, read on a worker after each change.
+// frames and the classes, read on a worker after each change. The format's fields are made
+// from its importer's options (formats/importer.h): no format is named here.
 #include <imgui.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <utility>
 
 #include "files.h"
 #include "jobs.h"
+#include "tactile/error.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
 #include "views.h"
@@ -24,22 +24,6 @@ namespace {
 
 constexpr float kImportLabelWidth = 190.0f;
 constexpr int kImportPreviewChannels = 16;  // columns of the preview table at most
-
-std::vector<std::string> comma_list(const char* text) {
-  std::vector<std::string> items;
-  std::string item;
-  for (const char* c = text;; ++c) {
-    if (*c == ',' || *c == '\0') {
-      const std::string value = trimmed_field(item.c_str());
-      if (!value.empty()) items.push_back(value);
-      item.clear();
-      if (*c == '\0') break;
-    } else {
-      item += *c;
-    }
-  }
-  return items;
-}
 
 // A field of the dialog: its flag on the left, the text field (item "input:import/FLAG").
 template <size_t Size>
@@ -61,22 +45,59 @@ bool import_browse(WorkbenchState& state, const char* flag) {
   return pressed;
 }
 
+BrowseRequest import_browse_request(const WorkbenchState& state, BrowseMode mode,
+                                    const std::string& purpose, const std::string& title) {
+  BrowseRequest request;
+  request.mode = mode;
+  request.purpose = purpose;
+  request.title = title;
+  const std::string file = state.files.import.file.data();
+  request.directory = !state.workspace.empty()
+                          ? state.workspace
+                          : (file.empty() ? "." : fs::path(file).parent_path().string());
+  return request;
+}
+
 // The fields that decide what the preview reads, as one text: a change starts a new preview.
 std::string preview_fields(const FileImportOptions& options) {
   std::string text = options.file + '\n' + options.layout + '\n';
-  text += (options.rate_hz ? shortest_text(*options.rate_hz) : "-") + '\n';
-  text += std::to_string(options.wide) + std::to_string(options.captures) + '\n';
-  text += (options.samples_per_capture ? std::to_string(*options.samples_per_capture) : "-") + '\n';
-  text += options.labels_file.value_or("-") + '\n';
-  text += (options.class_names ? joined(*options.class_names, ",") : "-") + '\n';
-  text += options.dataset + '\n' + options.key + '\n' + options.class_array + '\n';
-  text += options.rate_variable + '\n';
-  text += options.value_key + '\n' + options.class_key + '\n';
-  text += options.class_column + '\n' + joined(options.group_columns, ",") + '\n';
-  text += joined(options.signals, ",") + '\n';
-  text += options.annotation_seconds ? shortest_text(*options.annotation_seconds) : "-";
-  text += '\n' + options.stream + '\n' + options.markers;
+  for (const auto& [flag, value] : options.values.all()) text += flag + '=' + value + '\n';
   return text;
+}
+
+// Whether an option of the format is shown and taken with the switches as they are.
+bool option_applies(const ImportDialog& dialog, const ImportOption& option) {
+  const auto on = [&dialog](const std::string& flag) {
+    const auto found = dialog.switches.find(flag);
+    return found != dialog.switches.end() && found->second;
+  };
+  return (option.only_with.empty() || on(option.only_with)) &&
+         (option.never_with.empty() || !on(option.never_with));
+}
+
+// The fields of the format's options, as its importer declares them.
+void draw_format_fields(WorkbenchState& state, const RecordingImporter& importer) {
+  ImportDialog& dialog = state.files.import;
+  for (const ImportOption& option : importer.options()) {
+    if (!option_applies(dialog, option)) continue;
+    const std::string& flag = option.flag;
+    const std::string hint = option.hint.empty() ? option.help : option.hint;
+    if (option.kind == ImportOption::Kind::kSwitch) {
+      ImGui::SetCursorPosX(kImportLabelWidth);
+      ImGui::Checkbox((flag + ": " + hint).c_str(), &dialog.switches[flag]);
+      remember_item(state, "checkbox:import/" + flag, option.help);
+      continue;
+    }
+    const bool wide =
+        option.kind == ImportOption::Kind::kList || option.kind == ImportOption::Kind::kFile;
+    import_field(state, flag.c_str(), dialog.fields[flag], hint.c_str(),
+                 option.kind == ImportOption::Kind::kFile ? -90.0f : (wide ? 440.0f : 320.0f));
+    if (option.kind == ImportOption::Kind::kFile && import_browse(state, flag.c_str())) {
+      BrowseRequest request = import_browse_request(state, BrowseMode::kOpenFile,
+                                                    "import option " + flag, "Import: " + flag);
+      state.file_browser.open(std::move(request));
+    }
+  }
 }
 
 std::string shape_text(const std::vector<int64_t>& shape) {
@@ -153,19 +174,6 @@ void draw_import_preview(const ImportDialog& dialog, bool current) {
   draw_preview_table(preview);
 }
 
-BrowseRequest import_browse_request(const WorkbenchState& state, BrowseMode mode,
-                                    const std::string& purpose, const std::string& title) {
-  BrowseRequest request;
-  request.mode = mode;
-  request.purpose = purpose;
-  request.title = title;
-  const std::string file = state.files.import.file.data();
-  request.directory = !state.workspace.empty()
-                          ? state.workspace
-                          : (file.empty() ? "." : fs::path(file).parent_path().string());
-  return request;
-}
-
 }  // namespace
 
 std::string trimmed_field(const char* text) {
@@ -188,68 +196,29 @@ bool import_options_of(const WorkbenchState& state, FileImportOptions& options,
   options = FileImportOptions{};
   options.file = trimmed_field(dialog.file.data());
   options.layout = trimmed_field(dialog.layout.data());
-  const std::string format = import_format_of(options.file);
-  auto positive = [&refusal](const std::string& text, const char* flag, double& value) {
-    char* end = nullptr;
-    value = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value <= 0.0) {
-      refusal = std::string(flag) + ": '" + text + "' is not a positive number";
+  if (const RecordingImporter* importer = importer_for(options.file)) {
+    for (const ImportOption& option : importer->options()) {
+      if (!option_applies(dialog, option)) continue;
+      if (option.kind == ImportOption::Kind::kSwitch) {
+        const auto found = dialog.switches.find(option.flag);
+        options.values.set_switch(option.flag, found != dialog.switches.end() && found->second);
+        continue;
+      }
+      const auto found = dialog.fields.find(option.flag);
+      const std::string text =
+          found == dialog.fields.end() ? "" : trimmed_field(found->second.data());
+      if (!text.empty()) options.values.set(option.flag, text);
+    }
+    try {
+      check_import_values(*importer, options.values);
+    } catch (const Error& error) {
+      refusal = error.what();
       return false;
     }
-    return true;
-  };
-  const std::string rate = format == ".xdf" ? "" : trimmed_field(dialog.rate.data());
-  double value = 0.0;
-  // An EDF or BDF file states its rate: the field is hidden for one, and not read.
-  if (!rate.empty() && format != ".edf" && format != ".bdf") {
-    if (!positive(rate, "--rate", value)) return false;
-    options.rate_hz = value;
-  }
-  if (format == "CSV") {
-    options.wide = dialog.wide;
-    if (options.wide) {
-      const std::string samples = trimmed_field(dialog.samples_per_capture.data());
-      if (!samples.empty()) {
-        if (!positive(samples, "--samples-per-capture", value)) return false;
-        if (value != std::floor(value)) {
-          refusal = "--samples-per-capture: '" + samples + "' is not a whole number";
-          return false;
-        }
-        options.samples_per_capture = static_cast<int64_t>(value);
-      }
-      const std::string labels_file = trimmed_field(dialog.labels_file.data());
-      if (!labels_file.empty()) options.labels_file = labels_file;
-      const std::vector<std::string> names = comma_list(dialog.class_names.data());
-      if (!names.empty()) options.class_names = names;
-    } else {
-      options.class_column = trimmed_field(dialog.class_column.data());
-      options.group_columns = comma_list(dialog.group_columns.data());
-    }
-  } else if (format == ".edf" || format == ".bdf") {
-    options.signals = comma_list(dialog.signals.data());
-    const std::string seconds = trimmed_field(dialog.annotation_seconds.data());
-    if (!seconds.empty()) {
-      if (!positive(seconds, "--annotation-seconds", value)) return false;
-      options.annotation_seconds = value;
-    }
-  } else if (format == ".xdf") {
-    options.stream = trimmed_field(dialog.stream.data());
-    options.markers = trimmed_field(dialog.markers.data());
-  } else if (!format.empty()) {
-    if (format == ".npz" || format == ".h5" || format == ".mat")
-      options.dataset = trimmed_field(dialog.dataset.data());
-    if (format == ".mat") options.rate_variable = trimmed_field(dialog.rate_variable.data());
-    if (format == ".json") {
-      options.key = trimmed_field(dialog.key.data());
-      options.value_key = trimmed_field(dialog.value_key.data());
-      options.class_key = trimmed_field(dialog.class_key.data());
-    }
-    options.class_array = trimmed_field(dialog.class_array.data());
-    options.captures = dialog.captures;
   }
   // The window's defaults: the recording in the workspace, its labels in labels.db beside it
   // (where the workbench looks for them).
-  const bool grouped = !options.group_columns.empty();
+  const bool grouped = import_writes_folder(options);
   options.out = trimmed_field(dialog.out.data());
   if (options.out.empty() && !options.file.empty()) {
     const fs::path folder = !state.workspace.empty() ? fs::path(state.workspace)
@@ -287,85 +256,21 @@ void draw_import_dialog(WorkbenchState& state) {
   }
   dialog_keys(state, open);
   const std::string file = trimmed_field(dialog.file.data());
-  const std::string format = import_format_of(file);
-  import_field(state, "FILE", dialog.file,
-               "a CSV, .npy, .npz, .json, .h5, .mat, .edf, .bdf or .xdf file", -90.0f);
+  const RecordingImporter* importer = importer_for(file);
+  import_field(state, "FILE", dialog.file, ("a file: " + import_formats_text()).c_str(), -90.0f);
   if (import_browse(state, "FILE")) {
     BrowseRequest request = import_browse_request(state, BrowseMode::kOpenFile, "import file",
                                                   "Import: the file to read");
-    request.extensions = {".csv",  ".txt", ".npy", ".npz", ".json", ".h5",
-                          ".hdf5", ".hdf", ".mat", ".edf", ".bdf",  ".xdf"};
+    request.extensions = import_extensions();
     state.file_browser.open(std::move(request));
   }
   const std::string layouts = joined(known_layout_ids()) + ", grid:RxC, strip:N";
   import_field(state, "--layout", dialog.layout, layouts.c_str(), 440.0f);
-  const bool edf = format == ".edf" || format == ".bdf";
-  // An EDF or BDF file states its rate; an XDF stream has its own nominal rate.
-  if (!edf && format != ".xdf")
-    import_field(state, "--rate", dialog.rate,
-                 format == "CSV" && !dialog.wide ? "Hz (default: from the time column)" : "Hz",
-                 320.0f);
-  if (format == "CSV") {
-    ImGui::SetCursorPosX(kImportLabelWidth);
-    ImGui::Checkbox("--wide: one capture per row, with a labels file", &dialog.wide);
-    remember_item(
-        state, "checkbox:import/--wide",
-        "One capture per row, channel-major, with a labels file of one class per capture");
-    if (dialog.wide) {
-      import_field(state, "--samples-per-capture", dialog.samples_per_capture, "N", 200.0f);
-      import_field(state, "--labels-file", dialog.labels_file, "one class per capture", -90.0f);
-      if (import_browse(state, "--labels-file")) {
-        BrowseRequest request = import_browse_request(
-            state, BrowseMode::kOpenFile, "import labels file", "Import: the labels file");
-        request.extensions = {".csv", ".txt"};
-        state.file_browser.open(std::move(request));
-      }
-      import_field(state, "--class-names", dialog.class_names, "a,b,c (default: the layout's)",
-                   440.0f);
-    } else {
-      import_field(state, "--class-column", dialog.class_column, "the column of class names",
-                   320.0f);
-      import_field(state, "--group-columns", dialog.group_columns,
-                   "e.g. subject,capture: one recording per group", 320.0f);
-    }
-  } else if (edf) {
-    import_field(state, "--signals", dialog.signals,
-                 "labels in channel order, e.g. Fz,Cz (default: every signal)", 440.0f);
-    import_field(state, "--annotation-seconds", dialog.annotation_seconds,
-                 "length of annotations without one (default: refused)", 320.0f);
-  } else if (format == ".xdf") {
-    import_field(state, "--stream", dialog.stream,
-                 "NAME or type:TYPE (default: the only numeric stream with a rate)", 440.0f);
-    import_field(state, "--markers", dialog.markers,
-                 "NAME or type:TYPE (default: the only markers stream)", 440.0f);
-  } else if (!format.empty()) {
-    if (format == ".npz" || format == ".h5" || format == ".mat")
-      import_field(state, "--dataset", dialog.dataset,
-                   format == ".h5"    ? "the dataset, e.g. /data/pressure"
-                   : format == ".mat" ? "the variable, s.field (default: the only array)"
-                                      : "the array (default: the only one)",
-                   320.0f);
-    if (format == ".mat")
-      import_field(state, "--rate-variable", dialog.rate_variable,
-                   "the variable holding the rate in Hz (not with --rate)", 320.0f);
-    if (format == ".json") {
-      import_field(state, "--key", dialog.key, "a.b (default: the top level)", 320.0f);
-      import_field(state, "--value-key", dialog.value_key,
-                   "frames as objects: the member of each frame, e.g. data", 320.0f);
-      import_field(state, "--class-key", dialog.class_key,
-                   "frames as objects: the member of each class, e.g. label", 320.0f);
-    }
-    import_field(state, "--class-array", dialog.class_array,
-                 format == ".json" ? "the key of the classes" : "the array of the classes", 320.0f);
-    ImGui::SetCursorPosX(kImportLabelWidth);
-    ImGui::Checkbox("--captures: [captures][channels][samples]", &dialog.captures);
-    remember_item(state, "checkbox:import/--captures",
-                  "The array is [captures][channels][samples]: captures laid end to end");
-  }
+  if (importer) draw_format_fields(state, *importer);
   FileImportOptions options;
   std::string refusal;
   const bool parsed = import_options_of(state, options, refusal);
-  const bool grouped = !options.group_columns.empty();
+  const bool grouped = parsed && import_writes_folder(options);
   import_field(
       state, "--out", dialog.out,
       ("default: " + (options.out.empty() ? std::string("in the workspace") : options.out)).c_str(),
@@ -401,9 +306,7 @@ void draw_import_dialog(WorkbenchState& state) {
   // A preview runs for the fields as they are once the one before has ended.
   const std::string fields = parsed ? preview_fields(options) : std::string();
   if (file.empty()) {
-    ImGui::TextDisabled(
-        "Choose a file: long or wide CSV, NumPy .npy / .npz, JSON frames, another program's "
-        ".h5, MATLAB .mat, EDF+/BDF+, an XDF recording (docs/IMPORT.md).");
+    ImGui::TextWrapped("Choose a file: %s (docs/IMPORT.md).", import_formats_text().c_str());
   } else if (!parsed) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "refused: %s", refusal.c_str());
   } else {

@@ -6,6 +6,7 @@
 #include "label_rows.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
+#include "tactile/io/label_import.h"
 #include "tactile/io/label_store.h"
 #include "tactile/text.h"
 
@@ -27,8 +28,7 @@ std::string csv_field(const std::string& text) {
 
 }  // namespace
 
-void LabelStore::export_csv(const std::string& path, const LabelFilter& filter) const {
-  const std::vector<Label> labels = list(filter);
+std::string labels_csv(const std::vector<Label>& labels) {
   std::string text =
       "id,recording,t0,t1,region,class,annotator,source,confidence,note,created,modified\r\n";
   for (const Label& label : labels) {
@@ -41,7 +41,11 @@ void LabelStore::export_csv(const std::string& path, const LabelFilter& filter) 
       line += "," + field;
     text += line + "\r\n";
   }
-  write_file_atomically(path, text, "label export");
+  return text;
+}
+
+void LabelStore::export_csv(const std::string& path, const LabelFilter& filter) const {
+  write_file_atomically(path, labels_csv(list(filter)), "label export");
 }
 
 std::string labels_json(const std::vector<Label>& labels) {

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "tactile/error.h"
+#include "tactile/labels/label_format.h"
 #include "tactile/labels/label_interop.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/text.h"
@@ -468,5 +469,46 @@ std::vector<Label> parse_eaf(const std::string& text, const std::string& where,
   }
   return labels;
 }
+
+//---- The format's row (labels/label_format.h)
+
+namespace {
+
+class ElanFormat : public LabelFormat {
+ public:
+  std::string name() const override { return "ELAN"; }
+  std::string flag() const override { return "--eaf"; }
+  std::string description() const override { return "ELAN .eaf (one tier per lane)"; }
+  std::string extension() const override { return ".eaf"; }
+  bool one_recording() const override { return true; }
+  bool reads(const std::string& extension,
+             const std::function<const std::string&()>&) const override {
+    return extension == ".eaf";
+  }
+  std::vector<Label> read(const std::string& path, const InteropImport& options) const override {
+    return parse_eaf(read_interop_text(path), path, options);
+  }
+  InteropSources sources(const std::string& path) const override {
+    return eaf_sources(read_interop_text(path), path);
+  }
+  // One recording: refused naming --recording and the recordings when the labels hold several.
+  std::string write(const std::vector<Label>& labels,
+                    const std::vector<std::string>& vocabulary) const override {
+    std::vector<std::string> recordings;
+    for (const Label& label : labels)
+      if (std::find(recordings.begin(), recordings.end(), label.recording) == recordings.end())
+        recordings.push_back(label.recording);
+    if (recordings.size() > 1)
+      throw Error("--recording", "one .eaf holds one recording; the labels hold " +
+                                     std::to_string(recordings.size()) + " (" + recordings[0] +
+                                     ", " + recordings[1] + (recordings.size() > 2 ? ", ..." : "") +
+                                     ")");
+    return labels_eaf(labels, vocabulary);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<LabelFormat> elan_label_format() { return std::make_unique<ElanFormat>(); }
 
 }  // namespace tactile

@@ -10,8 +10,9 @@
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_import.h"
+#include "tactile/labels/label_format.h"
 #include "tactile/labels/lanes.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -66,81 +67,32 @@ std::vector<std::string> damage_lines(const LabelStore& store) {
   return lines;
 }
 
-LabelExport export_labels(const std::string& database, const std::string& out, bool json,
-                          const LabelFilter& filter) {
-  const LabelStore store(database, LabelStore::OpenMode::kExisting);
-  if (json)
-    store.export_json(out, filter);
-  else
-    store.export_csv(out, filter);
-  LabelExport written;
-  written.labels = store.list(filter).size();
-  written.damaged = damage_lines(store);
-  return written;
-}
-
-LabelExport export_interop(const std::string& database, const std::string& out,
-                           InteropFormat format, const LabelFilter& filter,
-                           const std::vector<std::string>& vocabulary) {
+LabelExport export_label_file(const std::string& database, const std::string& out,
+                              const std::string& format, const LabelFilter& filter,
+                              const std::vector<std::string>& vocabulary) {
+  const LabelFormat* chosen = label_format_named(format);
+  if (!chosen) {
+    std::vector<std::string> names;
+    for (const LabelFormat* known : label_formats()) names.push_back(known->name());
+    throw Error("format", in_quotes(format) + " is not a label format (" + joined(names) + ")");
+  }
   const LabelStore store(database, LabelStore::OpenMode::kExisting);
   const std::vector<Label> labels = store.list(filter);
-  if (format == InteropFormat::kElan) {
-    std::vector<std::string> recordings;
-    for (const Label& label : labels)
-      if (recordings.empty() || recordings.back() != label.recording)
-        recordings.push_back(label.recording);
-    if (recordings.size() > 1)
-      throw Error("--recording", "one .eaf holds one recording; " + database + " has " +
-                                     std::to_string(recordings.size()) + " (" + recordings.front() +
-                                     ", " + recordings[1] + (recordings.size() > 2 ? ", ..." : "") +
-                                     ")");
-    write_file_atomically(out, labels_eaf(labels, vocabulary), "ELAN export");
-  } else {
-    write_file_atomically(out, labels_label_studio(labels), "Label Studio export");
-  }
+  write_file_atomically(out, chosen->write(labels, vocabulary), chosen->name() + " export");
   LabelExport written;
   written.labels = labels.size();
   written.damaged = damage_lines(store);
   return written;
 }
 
-namespace {
-
-// ELAN by the extension, Label Studio by the shape of a .json (text read once); else "".
-std::string interop_format_of(const std::string& file, std::string& text) {
-  std::string extension = std::filesystem::path(file).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".eaf") {
-    text = read_interop_text(file);
-    return "ELAN";
-  }
-  if (extension != ".json") return "";
-  text = read_interop_text(file);
-  return is_label_studio_json(text) ? "Label Studio" : "";
-}
-
-}  // namespace
-
 InteropSources interop_sources(const std::string& file) {
-  std::string text;
-  const std::string format = interop_format_of(file, text);
-  if (format == "ELAN") return eaf_sources(text, file);
-  if (format == "Label Studio") return label_studio_sources(text, file);
-  return {};
+  return label_format_of(file).sources(file);
 }
 
 size_t import_label_file(const std::string& database, const std::string& file,
                          const InteropImport& options) {
   // All or nothing: the file is read and checked whole, then added in one transaction.
-  std::string text;
-  const std::string format = interop_format_of(file, text);
-  std::vector<Label> labels;
-  if (format == "ELAN")
-    labels = parse_eaf(text, file, options);
-  else if (format == "Label Studio")
-    labels = parse_label_studio(text, file, options);
-  else
-    labels = read_label_file(file);
+  const std::vector<Label> labels = label_format_of(file).read(file, options);
   LabelStore store(database);
   store.add_many(labels);
   return labels.size();

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
+#include "tactile/labels/label_format.h"
 #include "tactile/labels/label_interop.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/text.h"
@@ -360,5 +361,35 @@ std::vector<Label> parse_label_studio(const std::string& text, const std::string
   }
   return labels;
 }
+
+//---- The format's row (labels/label_format.h)
+
+namespace {
+
+class LabelStudioFormat : public LabelFormat {
+ public:
+  std::string name() const override { return "Label Studio"; }
+  std::string flag() const override { return "--label-studio"; }
+  std::string description() const override { return "Label Studio JSON"; }
+  std::string extension() const override { return ".json"; }
+  bool reads(const std::string& extension,
+             const std::function<const std::string&()>& text) const override {
+    return extension == ".json" && is_label_studio_json(text());
+  }
+  std::vector<Label> read(const std::string& path, const InteropImport& options) const override {
+    return parse_label_studio(read_interop_text(path), path, options);
+  }
+  InteropSources sources(const std::string& path) const override {
+    return label_studio_sources(read_interop_text(path), path);
+  }
+  std::string write(const std::vector<Label>& labels,
+                    const std::vector<std::string>&) const override {
+    return labels_label_studio(labels);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<LabelFormat> label_studio_format() { return std::make_unique<LabelStudioFormat>(); }
 
 }  // namespace tactile

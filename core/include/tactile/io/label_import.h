@@ -16,4 +16,7 @@ namespace tactile {
 // the first bad one. Ids, created and modified are read but the store assigns its own.
 std::vector<Label> read_label_file(const std::string& path);
 
+// The CSV that `labels export --csv` writes for these labels (LabelStore::export_csv).
+std::string labels_csv(const std::vector<Label>& labels);
+
 }  // namespace tactile

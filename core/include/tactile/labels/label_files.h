@@ -29,25 +29,18 @@ struct LabelExport {
   std::vector<std::string> damaged;  // damaged rows left out (damage_lines)
 };
 
-// The labels the filter matches, written as RFC 4180 CSV or as JSON ({"labels": [...]}), in
-// one rename. The database must exist (a mistyped path leaves no new database behind). A
-// damaged row is left out and named in `damaged`: the caller decides whether that fails.
-LabelExport export_labels(const std::string& database, const std::string& out, bool json,
-                          const LabelFilter& filter = {});
+// The labels the filter matches in a label format (labels/label_format.h, by its name: "CSV",
+// "JSON", "ELAN", "Label Studio"), written in one rename. `vocabulary` is ELAN's controlled
+// vocabulary (the skin's classes). The database must exist (a mistyped path leaves no new
+// database behind). A damaged row is left out and named in `damaged`: the caller decides
+// whether that fails.
+LabelExport export_label_file(const std::string& database, const std::string& out,
+                              const std::string& format, const LabelFilter& filter = {},
+                              const std::vector<std::string>& vocabulary = {});
 
-// The formats of other tools (label_interop.h, docs/INTEROP.md).
-enum class InteropFormat { kElan, kLabelStudio };
-// The labels the filter matches as an ELAN .eaf (one recording: refused naming the recordings
-// when the filter matches several) or a Label Studio JSON, in one rename. `vocabulary` is the
-// ELAN controlled vocabulary (a skin's classes).
-LabelExport export_interop(const std::string& database, const std::string& out,
-                           InteropFormat format, const LabelFilter& filter = {},
-                           const std::vector<std::string>& vocabulary = {});
-
-// The labels of a CSV or JSON file as export_labels writes them, checked whole and added in
-// one transaction (created when missing). Returns how many.
-// FILE.eaf (ELAN) and a Label Studio JSON export (a list of tasks) are read as
-// label_interop.h says, with `options` (recording, tier and annotator mappings).
+// The labels of a file of any label format (label_format_of), checked whole and added in one
+// transaction (the store is created when missing), with `options` (recording, tier and
+// annotator mappings) for the formats that take them. Returns how many.
 size_t import_label_file(const std::string& database, const std::string& file,
                          const InteropImport& options = {});
 // The tiers (ELAN) or annotators and models (Label Studio) of a file import_label_file reads

@@ -6,12 +6,8 @@
 // command (ground_truth_import: importing again replaces it). A preview reads the same way
 // and writes nothing.
 //
-//   long CSV   header, time column, one column per channel; class_column, group_columns
-//   wide CSV   wide: one capture per row, with a labels file
-//   .npy .npz .json .h5 .mat   an array (dataset / key), classes from class_array, captures; JSON
-//              frames given as objects through value_key (and class_key for their classes)
-//   .edf .bdf  EDF+/BDF+ signals chosen by label, annotations as labels (io/edf_import.h)
-//   .xdf       a numeric stream (stream) resampled to its nominal rate, a markers stream's labels
+// Each format is an importer (formats/importer.h, one file each in core/src/formats/): this
+// driver checks the options against the one that reads the file, lets it read, and writes.
 
 #include <cstdint>
 #include <functional>
@@ -19,41 +15,26 @@
 #include <string>
 #include <vector>
 
+#include "tactile/formats/importer.h"
+
 namespace tactile {
 
-// The options of `tactile import`, by the names of its flags.
+// What `tactile import` is given: the file, the layout and where to write, and the options of
+// the file's format by their flags (formats/importer.h).
 struct FileImportOptions {
-  std::string file;               // FILE: .csv/.txt, .npy, .npz, .json, .h5/.hdf5/.hdf, .mat
-  std::string layout;             // --layout: a layout id, grid:RxC or strip:N
-  std::optional<double> rate_hz;  // --rate (long CSV: from its time column when unset)
-  std::string rate_variable;      // --rate-variable: .mat: the scalar variable holding the rate
-  bool wide = false;              // --wide
-  // Wide CSV only; set when given, and refused without `wide`.
-  std::optional<int64_t> samples_per_capture;           // --samples-per-capture
-  std::optional<std::string> labels_file;               // --labels-file
-  std::optional<std::vector<std::string>> class_names;  // --class-names
-  std::string dataset;      // --dataset: a .npz array, an HDF5 dataset, a .mat variable ("s.field")
-  std::string key;          // --key: the JSON key of the frames
-  std::string value_key;    // --value-key: JSON frames given as objects, the member of each frame
-  std::string class_key;    // --class-key: ... and the member of its class
-  std::string class_array;  // --class-array: classes per frame or capture in the same file
-  bool captures = false;    // --captures: [N][C][S]
-  std::string class_column;                // --class-column (long CSV)
-  std::vector<std::string> group_columns;  // --group-columns (long CSV): out is a folder
-  std::string out;                         // --out: the .h5 file, or the folder with group_columns
+  std::string file;          // FILE: any format an importer reads (importer_for)
+  std::string layout;        // --layout: a layout id, grid:RxC or strip:N
+  ImportValues values;       // the format's options: --rate, --dataset, --signals, ...
+  std::string out;           // --out: the .h5 file, or the folder when the format writes several
   std::string labels;        // --labels: the label store; "" = the ground truth is not stored
   std::string recording_id;  // --recording-id: "" = the output file's stem
-  // EDF+ / BDF+ only: the signals by label, in channel order (empty: every ordinary signal), and
-  // the length of annotations of zero or unknown duration (unset: they are refused).
-  std::vector<std::string> signals;          // --signals
-  std::optional<double> annotation_seconds;  // --annotation-seconds
   // Any format: the file's labels stored as this annotator's (replacing their labels of the
   // recording on a second import) instead of the ground truth; "" = the ground truth.
   std::string annotator;  // --annotator
-  // XDF only (refused for other files): NAME or type:TYPE; "" = the only candidate.
-  std::string stream;   // --stream: the data stream
-  std::string markers;  // --markers: the markers stream whose markers become labels
 };
+
+// True when the import writes a folder of recordings (a CSV split by --group-columns).
+bool import_writes_folder(const FileImportOptions& options);
 
 // One recording written.
 struct ImportedFile {
@@ -108,9 +89,5 @@ struct ImportPreview {
 // options (out, labels, recording_id) are not looked at. A refusal is returned, not thrown.
 ImportPreview preview_import(const FileImportOptions& options, int frames = 10,
                              const std::function<void(double)>& step = {});
-
-// The format an import reads a file as, by its extension: "CSV", ".npy", ".npz", ".json",
-// ".h5", ".mat", ".edf", ".bdf", ".xdf"; "" for one it does not read.
-std::string import_format_of(const std::string& path);
 
 }  // namespace tactile

@@ -1,0 +1,52 @@
+// HDF5: one dataset of a file any program wrote (io/array_import.h).
+#include <optional>
+
+#include "array_files.h"
+#include "builtin.h"
+#include "tactile/error.h"
+
+namespace tactile::formats {
+
+namespace {
+
+class Hdf5Importer : public RecordingImporter {
+ public:
+  std::string name() const override { return "HDF5"; }
+  std::vector<std::string> extensions() const override { return {".h5", ".hdf5", ".hdf"}; }
+  bool recognises(const std::string& bytes) const override {
+    return bytes.rfind(std::string("\x89HDF\r\n\x1a\n", 8), 0) == 0;
+  }
+  std::vector<ImportOption> options() const override {
+    std::vector<ImportOption> list = {{"--dataset", ImportOption::Kind::kText,
+                                       "The dataset to read (required, e.g. /data/pressure)",
+                                       "the dataset, e.g. /data/pressure", "", ""}};
+    for (ImportOption& option : array_options("an HDF5 dataset", "the dataset of the classes"))
+      list.push_back(std::move(option));
+    return list;
+  }
+  std::string refusal_of(const std::string& flag) const override {
+    if (flag == "--class-column")
+      return class_column_refusal("--class-array (an array or dataset of the same file)");
+    return {};
+  }
+
+  ImportRead read(const std::string& path, const SkinLayout& layout,
+                  const ImportValues& values) const override {
+    const double rate_hz = required_rate(values);
+    const std::string dataset = values.text("--dataset");
+    if (dataset.empty())
+      throw Error("--dataset", "names the dataset of " + path + " to read (e.g. /data/pressure)");
+    const ImportedArray array = read_hdf5_dataset(path, dataset);
+    std::optional<ImportedArray> classes;
+    if (!values.text("--class-array").empty())
+      classes = read_hdf5_dataset(path, values.text("--class-array"));
+    return array_recording(path, layout, rate_hz, values.on("--captures"), array, classes,
+                           path + ":" + dataset, ".h5 array");
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RecordingImporter> hdf5_importer() { return std::make_unique<Hdf5Importer>(); }
+
+}  // namespace tactile::formats
