@@ -96,8 +96,9 @@ TEST(Importers, GiveTheCommandLineEachFlagOnceWithTheFormatsThatTakeIt) {
   std::vector<std::string> sorted = flags;
   std::sort(sorted.begin(), sorted.end());
   EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
-  const auto rate = std::find_if(shared.begin(), shared.end(),
-                                 [](const SharedImportOption& o) { return o.option.flag == "--rate"; });
+  const auto rate = std::find_if(shared.begin(), shared.end(), [](const SharedImportOption& o) {
+    return o.option.flag == "--rate";
+  });
   ASSERT_NE(rate, shared.end());
   EXPECT_EQ(rate->formats, (std::vector<std::string>{"CSV", "NumPy", "JSON", "HDF5", "MATLAB"}));
   for (const char* flag : {"--signals", "--stream", "--wide", "--captures", "--rate-variable"})

@@ -46,8 +46,8 @@ TEST(LabelFormats, ReadBackWhatTheyWriteAndTellTheTwoJsonShapesApart) {
   const test::TempFolder folder("tactile-label-formats");
   for (const LabelFormat* format : label_formats()) {
     SCOPED_TRACE(format->name());
-    const std::string path = folder.file("labels-" + std::to_string(format->flag().size()) +
-                                         format->extension());
+    const std::string path =
+        folder.file("labels-" + std::to_string(format->flag().size()) + format->extension());
     std::ofstream(path, std::ios::binary) << format->write(two_labels(), {"tap", "stroke"});
     // The file is recognised as this format, and its labels come back.
     EXPECT_EQ(&label_format_of(path), format);
@@ -60,12 +60,14 @@ TEST(LabelFormats, ReadBackWhatTheyWriteAndTellTheTwoJsonShapesApart) {
   // One recording per ELAN document.
   std::vector<Label> labels = two_labels();
   labels[1].recording = "r2";
-  EXPECT_NE(test::refusal_of([&] { label_format_named("ELAN")->write(labels, {}); })
-                .find("--recording: one .eaf holds one recording"),
+  EXPECT_NE(test::refusal_of([&] {
+              label_format_named("ELAN")->write(labels, {});
+            }).find("--recording: one .eaf holds one recording"),
             std::string::npos);
   std::ofstream(folder.file("notes.txt")) << "x";
-  EXPECT_NE(test::refusal_of([&] { label_format_of(folder.file("notes.txt")); })
-                .find("not a label file import reads: CSV (.csv), JSON (.json), ELAN (.eaf)"),
+  EXPECT_NE(test::refusal_of([&] {
+              label_format_of(folder.file("notes.txt"));
+            }).find("not a label file import reads: CSV (.csv), JSON (.json), ELAN (.eaf)"),
             std::string::npos);
 }
 

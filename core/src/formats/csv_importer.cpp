@@ -14,7 +14,8 @@ class CsvImporter : public RecordingImporter {
   std::vector<ImportOption> options() const override {
     using Kind = ImportOption::Kind;
     return {
-        {"--rate", Kind::kNumber, "Sampling rate in Hz (long CSV: from the time column when left out)",
+        {"--rate", Kind::kNumber,
+         "Sampling rate in Hz (long CSV: from the time column when left out)",
          "Hz (default for long CSV: from the time column)", "", ""},
         {"--wide", Kind::kSwitch, "One capture per row, channel-major, with a labels file",
          "one capture per row, with a labels file", "", ""},

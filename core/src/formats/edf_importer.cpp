@@ -12,7 +12,10 @@ class EdfImporter : public RecordingImporter {
   std::string name() const override { return "EDF+/BDF+"; }
   std::vector<std::string> extensions() const override { return {".edf", ".bdf"}; }
   bool recognises(const std::string& bytes) const override {
-    return bytes.rfind("0       ", 0) == 0 || bytes.rfind("\xff" "BIOSEMI", 0) == 0;
+    return bytes.rfind("0       ", 0) == 0 || bytes.rfind(
+                                                  "\xff"
+                                                  "BIOSEMI",
+                                                  0) == 0;
   }
   std::vector<ImportOption> options() const override {
     return {
@@ -37,7 +40,8 @@ class EdfImporter : public RecordingImporter {
     options.annotation_seconds = values.number("--annotation-seconds");
     ImportRead read;
     read.recordings.push_back(import_edf(path, layout, options));
-    read.described = (lower_extension(path) == ".bdf" ? ".bdf" : ".edf") + std::string(" recording");
+    read.described =
+        (lower_extension(path) == ".bdf" ? ".bdf" : ".edf") + std::string(" recording");
     return read;
   }
 };

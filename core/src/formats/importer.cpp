@@ -52,12 +52,18 @@ std::string first_bytes_of(const std::string& path) {
 
 const char* kind_text(ImportOption::Kind kind) {
   switch (kind) {
-    case ImportOption::Kind::kNumber: return "a positive number";
-    case ImportOption::Kind::kCount: return "a positive whole number";
-    case ImportOption::Kind::kList: return "comma-separated names";
-    case ImportOption::Kind::kFile: return "a file";
-    case ImportOption::Kind::kSwitch: return "a switch";
-    case ImportOption::Kind::kText: break;
+    case ImportOption::Kind::kNumber:
+      return "a positive number";
+    case ImportOption::Kind::kCount:
+      return "a positive whole number";
+    case ImportOption::Kind::kList:
+      return "comma-separated names";
+    case ImportOption::Kind::kFile:
+      return "a file";
+    case ImportOption::Kind::kSwitch:
+      return "a switch";
+    case ImportOption::Kind::kText:
+      break;
   }
   return "text";
 }
@@ -195,13 +201,18 @@ void check_import_values(const RecordingImporter& importer, const ImportValues& 
                             (flags.empty() ? std::string("none") : joined(flags)) + ")");
     }
     switch (option->kind) {
-      case ImportOption::Kind::kNumber: values.number(flag); break;
-      case ImportOption::Kind::kCount: values.count(flag); break;
+      case ImportOption::Kind::kNumber:
+        values.number(flag);
+        break;
+      case ImportOption::Kind::kCount:
+        values.count(flag);
+        break;
       case ImportOption::Kind::kSwitch:
         if (text != "1" && text != "0")
           throw Error(flag, "is a switch: it takes no value (" + in_quotes(text) + ")");
         break;
-      default: break;
+      default:
+        break;
     }
     if (!option->only_with.empty() && !values.on(option->only_with))
       throw Error(flag, "only with " + option->only_with);

@@ -56,7 +56,8 @@ class MatImporter : public RecordingImporter {
     }
     if (!rate_hz) rate_hz = required_rate(values);
     const std::string dataset = values.text("--dataset");
-    const ImportedArray array = read_mat_variable(path, dataset.empty() ? only_array(path) : dataset);
+    const ImportedArray array =
+        read_mat_variable(path, dataset.empty() ? only_array(path) : dataset);
     std::optional<ImportedArray> classes;
     if (!values.text("--class-array").empty())
       classes = read_mat_variable(path, values.text("--class-array"));

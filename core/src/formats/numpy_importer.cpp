@@ -18,16 +18,16 @@ class NumpyImporter : public RecordingImporter {
     return bytes.rfind("\x93NUMPY", 0) == 0;
   }
   std::vector<ImportOption> options() const override {
-    std::vector<ImportOption> list = {
-        {"--dataset", ImportOption::Kind::kText,
-         "The .npz array to read (default: the archive's one array)",
-         "the array (default: the only one)", "", ""}};
+    std::vector<ImportOption> list = {{"--dataset", ImportOption::Kind::kText,
+                                       "The .npz array to read (default: the archive's one array)",
+                                       "the array (default: the only one)", "", ""}};
     for (ImportOption& option : array_options("a .npz array", "the array of the classes"))
       list.push_back(std::move(option));
     return list;
   }
   std::string refusal_of(const std::string& flag) const override {
-    if (flag == "--class-column") return class_column_refusal("--class-array (an array of the same file)");
+    if (flag == "--class-column")
+      return class_column_refusal("--class-array (an array of the same file)");
     return {};
   }
 

@@ -33,8 +33,8 @@ class XdfImporter : public RecordingImporter {
   ImportRead read(const std::string& path, const SkinLayout& layout,
                   const ImportValues& values) const override {
     ImportRead read;
-    read.recordings.push_back(
-        import_xdf(path, layout, XdfImportOptions{values.text("--stream"), values.text("--markers")}));
+    read.recordings.push_back(import_xdf(
+        path, layout, XdfImportOptions{values.text("--stream"), values.text("--markers")}));
     read.described =
         "XDF stream " + in_quotes(read.recordings.front().recording.metadata.at("xdf_stream"));
     return read;

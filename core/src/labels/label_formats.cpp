@@ -73,9 +73,7 @@ Registry& registry() {
 
 }  // namespace
 
-InteropSources LabelFormat::sources(const std::string&) const {
-  return {};
-}
+InteropSources LabelFormat::sources(const std::string&) const { return {}; }
 
 void register_label_format(std::unique_ptr<LabelFormat> format) {
   if (!format || format->name().empty()) throw Error("label format", "needs a name");

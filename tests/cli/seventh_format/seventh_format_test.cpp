@@ -59,7 +59,8 @@ TEST_F(SeventhFormat, IsFoundByExtensionAndByItsFirstBytesAndPreviewedWithItsOpt
 }
 
 TEST_F(SeventhFormat, ItsFlagsAreInTheCommandLinesHelpAndImport) {
-  const test::CommandResult help = test::run_program("tactile-seventh-format", "import --help", folder);
+  const test::CommandResult help =
+      test::run_program("tactile-seventh-format", "import --help", folder);
   ASSERT_EQ(help.exit_code, 0) << help.err;
   EXPECT_NE(help.out.find("Toy text (.toy)"), std::string::npos) << help.out;
   EXPECT_NE(help.out.find("--gain"), std::string::npos) << help.out;
@@ -81,11 +82,11 @@ TEST_F(SeventhFormat, ItsFlagsAreInTheCommandLinesHelpAndImport) {
   // --no-classes: no ground truth, so no store either.
   EXPECT_FALSE(std::filesystem::exists(folder.file("labels.db")));
 
-  const test::CommandResult refused = test::run_program(
-      "tactile-seventh-format",
-      "import " + folder.file("session.toy") + " --layout strip:3 --gain -1 --out " +
-          folder.file("refused.h5"),
-      folder);
+  const test::CommandResult refused =
+      test::run_program("tactile-seventh-format",
+                        "import " + folder.file("session.toy") +
+                            " --layout strip:3 --gain -1 --out " + folder.file("refused.h5"),
+                        folder);
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_EQ(refused.err, "tactile: --gain: \"-1\" is not a positive number\n");
   EXPECT_FALSE(std::filesystem::exists(folder.file("refused.h5")));
@@ -102,11 +103,11 @@ TEST_F(SeventhFormat, TheImportDialogShowsItsFieldsAndPreviewsWhatTheyRead) {
           "screenshot @dialog.png\nclick item checkbox:import/--no-classes\nwait jobs\n"
           "state @no-classes.json\nclick item button:import/Import\nwait jobs\nwait 2\n"
           "state @imported.json\n");
-  const test::CommandResult run = test::run_program(
-      "tactile-workbench-headless-seventh-format",
-      folder.file("ws") + " --size 1300x860 --settings " + folder.file("settings.json") +
-          " --script " + script,
-      folder);
+  const test::CommandResult run =
+      test::run_program("tactile-workbench-headless-seventh-format",
+                        folder.file("ws") + " --size 1300x860 --settings " +
+                            folder.file("settings.json") + " --script " + script,
+                        folder);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto state = [&](const std::string& name) {
     std::ifstream in(folder.file(name));

@@ -49,9 +49,8 @@ class ToyImporter : public RecordingImporter {
       for (size_t channel = 0; channel < layout.channels.size(); ++channel) {
         double value = 0.0;
         if (!(fields >> value))
-          throw Error(path + ":" + std::to_string(number), "a frame needs " +
-                                                               std::to_string(layout.channels.size()) +
-                                                               " numbers");
+          throw Error(path + ":" + std::to_string(number),
+                      "a frame needs " + std::to_string(layout.channels.size()) + " numbers");
         array.values.push_back(gain * value);
       }
       fields >> class_name;

@@ -68,8 +68,8 @@ class ImportValues {
 // What an importer read, for the import to write and the preview to show.
 struct ImportRead {
   std::vector<ImportedRecording> recordings;
-  std::string described;        // "long CSV", ".npz array", "XDF stream 'pressure'"
-  std::vector<int64_t> shape;   // the array's shape as stored (array files); empty otherwise
+  std::string described;       // "long CSV", ".npz array", "XDF stream 'pressure'"
+  std::vector<int64_t> shape;  // the array's shape as stored (array files); empty otherwise
 };
 
 class RecordingImporter {
