@@ -14,6 +14,7 @@
 
 #include "analysis.h"
 #include "bench_support.h"
+#include "jobs.h"
 #include "tactile/skins/workspace.h"
 #include "workbench.h"
 
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "training_bench: %s\n", state.error.c_str());
     return 1;
   }
-  while (state.analysis.job) training.push_back(draw());
+  while (tactile::find_job(state, "training")) training.push_back(draw());
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const size_t presets = state.analysis.results.size();
   // The same run with no window drawing: what the training costs on its own.

@@ -196,6 +196,13 @@ TEST_F(WorkbenchClassifiers, TrainAllShowsEachResultAsItArrivesAndCancelKeepsThe
                        "wait results 3\nstate @partial.json\nclick item button:Cancel\n"
                        "wait jobs\nwait 2\nstate @cancelled.json\n");
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  // The window's one list of jobs holds the run, which the model view shows.
+  const nlohmann::json pending = state("partial.json")["pending_jobs"];
+  ASSERT_EQ(pending.size(), 1u) << pending;
+  EXPECT_EQ(pending[0]["kind"], "training");
+  EXPECT_EQ(pending[0]["name"], "training");
+  EXPECT_EQ(pending[0]["status"], "running");
+  EXPECT_EQ(pending[0]["shown_in"], "model");
   const nlohmann::json partial = state("partial.json")["analysis"];
   EXPECT_EQ(partial["training"], "running");
   ASSERT_GE(partial["results"].size(), 3u);
@@ -206,6 +213,7 @@ TEST_F(WorkbenchClassifiers, TrainAllShowsEachResultAsItArrivesAndCancelKeepsThe
   EXPECT_EQ(partial["results"][0]["classifier"], "gaussian-nb");
 
   const nlohmann::json cancelled = state("cancelled.json");
+  EXPECT_TRUE(cancelled["pending_jobs"].empty()) << cancelled["pending_jobs"];
   const nlohmann::json analysis = cancelled["analysis"];
   EXPECT_EQ(analysis["training"], "idle");
   EXPECT_GE(analysis["results"].size(), partial["results"].size());

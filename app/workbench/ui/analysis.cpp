@@ -41,7 +41,7 @@ void reset_views(WorkbenchState& state) {
   analysis.som_for = nullptr;
   analysis.som_neuron = -1;
   analysis.scatter_for = nullptr;
-  retire_job(state, std::move(analysis.scatter_job));  // it was for the table before
+  drop_job(state, "scatter");  // it was for the table before
   analysis.som_held = analysis.scatter_held = false;
 }
 
@@ -55,7 +55,7 @@ void set_dataset(WorkbenchState& state, std::shared_ptr<const Dataset> dataset) 
   analysis.som.reset();
   analysis.som_quality.reset();
   analysis.som_spread_for = nullptr;
-  retire_job(state, std::move(analysis.som_job));
+  drop_job(state, "som");
   reset_views(state);
 }
 
@@ -63,9 +63,86 @@ void set_dataset(WorkbenchState& state, std::shared_ptr<const Dataset> dataset) 
 
 //---- Training -------------------------------------------------------------------------------
 
+namespace {
+
+// The table the results are about, once: the same table again keeps the views' maps.
+void show_table(WorkbenchState& state, std::shared_ptr<const Dataset> table,
+                const std::string& pipeline) {
+  AnalysisState& analysis = state.analysis;
+  if (!table || analysis.dataset == table) return;
+  analysis.results_from = analysis.last_request.layout + ", " + pipeline + " features, " +
+                          std::to_string(table->rows()) + " segments";
+  set_dataset(state, std::move(table));
+}
+
+// The running job's results that arrived since the last frame; the first becomes current,
+// without leaving the model tab, which shows the run's progress and Cancel.
+void show_results_so_far(WorkbenchState& state) {
+  AnalysisState& analysis = state.analysis;
+  if (!analysis.so_far || analysis.so_far->count() == analysis.so_far_shown) return;
+  show_table(state, analysis.so_far->table(), analysis.so_far->pipeline());
+  const bool first = analysis.so_far_shown == 0;
+  analysis.results = analysis.so_far->outcomes();
+  analysis.so_far_shown = analysis.results.size();
+  if (!first) return;
+  const std::string tab = analysis.tab_request;
+  choose_result(state, ml::best_outcome(analysis.results));
+  analysis.tab_request = tab;
+}
+
+// The training run's end (jobs.h): its results, the table, the model and its evaluation file;
+// after a cancel, the results that finished before it.
+void apply_training(WorkbenchState& state, Job<TrainingOutcome>& job) {
+  AnalysisState& analysis = state.analysis;
+  show_results_so_far(state);
+  const JobStatus status = job.status();
+  if (status == JobStatus::kFailed) {
+    state.error = "training failed: " + job.error();
+    analysis.so_far.reset();
+    return;
+  }
+  std::optional<TrainingOutcome> outcome = job_result(state, job);
+  const std::shared_ptr<TrainingSoFar> so_far = std::move(analysis.so_far);
+  if (status == JobStatus::kCancelled) {
+    // What finished before Cancel stays: each result is whole.
+    const size_t kept = so_far ? so_far->count() : 0;
+    state.notice = kept == 0 ? "training cancelled"
+                             : "training cancelled: kept the " + std::to_string(kept) +
+                                   " finished result" + (kept == 1 ? "" : "s");
+    if (kept > 0) choose_result(state, ml::best_outcome(analysis.results));
+  }
+  if (!outcome) return;
+  const TrainingRequest& request = analysis.last_request;
+  analysis.results = std::move(outcome->results);
+  if (!outcome->model_path.empty()) {
+    analysis.model_path = outcome->model_path;
+    analysis.model_classifier = request.classifier;
+    analysis.model = outcome->model;
+  }
+  // Every result is a file: the evaluation beside the model.
+  if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
+    try {
+      fs::path path(outcome->model_path);
+      path.replace_extension(".evaluation.json");
+      write_json_file(path.string(), ml::to_json(*analysis.results[0].result, true), "evaluation");
+    } catch (const Error& error) {
+      state.error = error.what();
+    }
+  }
+  show_table(state, outcome->dataset, outcome->pipeline);
+  const int best = ml::best_outcome(analysis.results);
+  choose_result(state, best);
+  state.notice = best < 0
+                     ? "no classifier fitted the data"
+                     : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
+}
+
+}  // namespace
+
 bool start_training(WorkbenchState& state, const std::string& classifier) {
   AnalysisState& analysis = state.analysis;
-  if (analysis.job) return fail(state, "a training run is going on: wait or cancel it");
+  if (find_job(state, "training"))
+    return fail(state, "a training run is going on: wait or cancel it");
   if (!state.document) return fail(state, "open a recording of the skin to train for");
   if (classifier != "all") {
     try {
@@ -112,89 +189,11 @@ bool start_training(WorkbenchState& state, const std::string& classifier) {
   analysis.so_far = request.so_far;
   analysis.so_far_shown = 0;
   analysis.last_request = request;
-  analysis.job = start_training_job(request);
-  log_job_start(state, "training");
+  adopt_job<TrainingOutcome>(state, "training", start_training_job(request), apply_training,
+                             JobExtras{show_results_so_far, true});
   state.error.clear();
   state.notice = "training " + classifier + " on " + request.layout + " recordings";
   return true;
-}
-
-namespace {
-
-// The table the results are about, once: the same table again keeps the views' maps.
-void show_table(WorkbenchState& state, std::shared_ptr<const Dataset> table,
-                const std::string& pipeline) {
-  AnalysisState& analysis = state.analysis;
-  if (!table || analysis.dataset == table) return;
-  analysis.results_from = analysis.last_request.layout + ", " + pipeline + " features, " +
-                          std::to_string(table->rows()) + " segments";
-  set_dataset(state, std::move(table));
-}
-
-// The running job's results that arrived since the last frame; the first becomes current,
-// without leaving the model tab, which shows the run's progress and Cancel.
-void show_results_so_far(WorkbenchState& state) {
-  AnalysisState& analysis = state.analysis;
-  if (!analysis.so_far || analysis.so_far->count() == analysis.so_far_shown) return;
-  show_table(state, analysis.so_far->table(), analysis.so_far->pipeline());
-  const bool first = analysis.so_far_shown == 0;
-  analysis.results = analysis.so_far->outcomes();
-  analysis.so_far_shown = analysis.results.size();
-  if (!first) return;
-  const std::string tab = analysis.tab_request;
-  choose_result(state, ml::best_outcome(analysis.results));
-  analysis.tab_request = tab;
-}
-
-}  // namespace
-
-void poll_training(WorkbenchState& state) {
-  AnalysisState& analysis = state.analysis;
-  if (!analysis.job) return;
-  show_results_so_far(state);
-  if (analysis.job->status() == JobStatus::kRunning) return;
-  const JobStatus status = analysis.job->status();
-  if (status == JobStatus::kFailed) {
-    state.error = "training failed: " + analysis.job->error();
-    log_job_end(state, "training", to_string(status));
-    analysis.job.reset();
-    analysis.so_far.reset();
-    return;
-  }
-  std::optional<TrainingOutcome> outcome = finished_job(state, analysis.job);
-  const std::shared_ptr<TrainingSoFar> so_far = std::move(analysis.so_far);
-  if (status == JobStatus::kCancelled) {
-    // What finished before Cancel stays: each result is whole.
-    const size_t kept = so_far ? so_far->count() : 0;
-    state.notice = kept == 0 ? "training cancelled"
-                             : "training cancelled: kept the " + std::to_string(kept) +
-                                   " finished result" + (kept == 1 ? "" : "s");
-    if (kept > 0) choose_result(state, ml::best_outcome(analysis.results));
-  }
-  if (!outcome) return;
-  const TrainingRequest& request = analysis.last_request;
-  analysis.results = std::move(outcome->results);
-  if (!outcome->model_path.empty()) {
-    analysis.model_path = outcome->model_path;
-    analysis.model_classifier = request.classifier;
-    analysis.model = outcome->model;
-  }
-  // Every result is a file: the evaluation beside the model.
-  if (!outcome->model_path.empty() && !analysis.results.empty() && analysis.results[0].result) {
-    try {
-      fs::path path(outcome->model_path);
-      path.replace_extension(".evaluation.json");
-      write_json_file(path.string(), ml::to_json(*analysis.results[0].result, true), "evaluation");
-    } catch (const Error& error) {
-      state.error = error.what();
-    }
-  }
-  show_table(state, outcome->dataset, outcome->pipeline);
-  const int best = ml::best_outcome(analysis.results);
-  choose_result(state, best);
-  state.notice = best < 0
-                     ? "no classifier fitted the data"
-                     : "trained: best " + analysis.results[static_cast<size_t>(best)].classifier;
 }
 
 const ml::EvaluationResult* current_evaluation(const WorkbenchState& state) {
@@ -256,6 +255,24 @@ bool can_predict(const WorkbenchState& state) {
           analysis.last_request.layout == state.document->layout.id);
 }
 
+namespace {
+
+// The prediction's end: the model it fitted kept, the recording's lanes read again.
+void apply_finished_prediction(WorkbenchState& state, Job<AnalysisState::PredictionsMade>& job) {
+  std::optional<AnalysisState::PredictionsMade> made = job_result(state, job);
+  if (!made) return;
+  state.analysis.model_path = made->model_path;
+  state.analysis.model_classifier = made->classifier;
+  state.analysis.model = made->fitted;
+  if (!state.document || state.document->path != made->document) return;
+  state.document->reload_labels();
+  state.error.clear();
+  state.notice =
+      std::to_string(made->predicted) + " predictions by " + made->model + " (U: the least sure)";
+}
+
+}  // namespace
+
 bool predict_open_recording(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!state.document) return fail(state, "open a recording to predict");
@@ -279,7 +296,7 @@ bool predict_open_recording(WorkbenchState& state) {
     // On a worker, from reading the model to storing the answers (2.6-3.3 s for 40 minutes of
     // a 64-taxel strip when it ran in one frame). A second Predict replaces a run still going.
     start_job<AnalysisState::PredictionsMade>(
-        state, analysis.predict_job, "predict",
+        state, "predict", "predict",
         [open = source_for_job(document), layout = document.layout, path = document.path,
          model_path, table, fitted, classifier, request = analysis.last_request,
          segments = std::move(segments), database, recording = document.recording_id(),
@@ -313,7 +330,8 @@ bool predict_open_recording(WorkbenchState& state) {
                                                 model_path,
                                                 classifier,
                                                 model};
-        });
+        },
+        apply_finished_prediction);
   } catch (const std::exception& error) {
     return fail(state, std::string("predict: ") + error.what());
   }
@@ -321,24 +339,6 @@ bool predict_open_recording(WorkbenchState& state) {
   state.notice = "predicting " + std::to_string(count) + " segments...";
   return true;
 }
-
-namespace {
-
-void apply_finished_prediction(WorkbenchState& state) {
-  std::optional<AnalysisState::PredictionsMade> made =
-      finished_job(state, state.analysis.predict_job);
-  if (!made) return;
-  state.analysis.model_path = made->model_path;
-  state.analysis.model_classifier = made->classifier;
-  state.analysis.model = made->fitted;
-  if (!state.document || state.document->path != made->document) return;
-  state.document->reload_labels();
-  state.error.clear();
-  state.notice =
-      std::to_string(made->predicted) + " predictions by " + made->model + " (U: the least sure)";
-}
-
-}  // namespace
 
 //---- Files ----------------------------------------------------------------------------------
 
@@ -513,36 +513,41 @@ std::vector<RowOutcome> row_outcomes(const WorkbenchState& state) {
 
 //---- Derived views --------------------------------------------------------------------------
 
-void poll_jobs(WorkbenchState& state) {
-  drop_ended_jobs(state);
-  apply_finished_segmenter(state);
-  apply_finished_fit(state);
-  apply_finished_prediction(state);
-  if (std::optional<std::string> written = finished_job(state, state.export_job))
-    state.notice = "wrote " + *written;
+namespace {
+
+// The ends of the derived views' jobs, applied on the window's thread (jobs.h).
+void apply_som_fit(WorkbenchState& state, Job<AnalysisState::SomFit>& job) {
   AnalysisState& analysis = state.analysis;
-  if (std::optional<AnalysisState::MapMade> made = finished_job(state, analysis.map_job))
-    if (made->key == analysis.map_for) {
-      analysis.map = std::move(made->map);
-      analysis.map_layout.reset();
-    }
-  if (analysis.som_job && analysis.som_job->status() == JobStatus::kCancelled)
-    analysis.som_held = true;
-  if (std::optional<AnalysisState::SomFit> fit = finished_job(state, analysis.som_job)) {
-    analysis.som = std::move(fit->som);
-    analysis.som_spread_for = nullptr;
-    analysis.som_classes = std::move(fit->classes);
-    analysis.som_winners = std::move(fit->winners);
-    analysis.som_quality = fit->quality;
-    analysis.som_for = analysis.dataset ? &*analysis.dataset : nullptr;
-  }
-  if (analysis.scatter_job && analysis.scatter_job->status() == JobStatus::kCancelled)
-    analysis.scatter_held = true;
-  if (std::optional<AnalysisState::ScatterFit> fit = finished_job(state, analysis.scatter_job)) {
-    analysis.scatter = std::move(fit->scatter);
-    analysis.scatter_explained = fit->explained;
+  if (job.status() == JobStatus::kCancelled) analysis.som_held = true;
+  std::optional<AnalysisState::SomFit> fit = job_result(state, job);
+  if (!fit) return;
+  analysis.som = std::move(fit->som);
+  analysis.som_spread_for = nullptr;
+  analysis.som_classes = std::move(fit->classes);
+  analysis.som_winners = std::move(fit->winners);
+  analysis.som_quality = fit->quality;
+  analysis.som_for = analysis.dataset ? &*analysis.dataset : nullptr;
+}
+
+void apply_scatter_fit(WorkbenchState& state, Job<AnalysisState::ScatterFit>& job) {
+  AnalysisState& analysis = state.analysis;
+  if (job.status() == JobStatus::kCancelled) analysis.scatter_held = true;
+  std::optional<AnalysisState::ScatterFit> fit = job_result(state, job);
+  if (!fit) return;
+  analysis.scatter = std::move(fit->scatter);
+  analysis.scatter_explained = fit->explained;
+}
+
+void apply_map_made(WorkbenchState& state, Job<AnalysisState::MapMade>& job) {
+  AnalysisState& analysis = state.analysis;
+  std::optional<AnalysisState::MapMade> made = job_result(state, job);
+  if (made && made->key == analysis.map_for) {
+    analysis.map = std::move(made->map);
+    analysis.map_layout.reset();
   }
 }
+
+}  // namespace
 
 bool ensure_som(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
@@ -550,7 +555,7 @@ bool ensure_som(WorkbenchState& state) {
   const void* table = analysis.dataset ? &*analysis.dataset : nullptr;
   poll_jobs(state);
   if (analysis.som && analysis.som_for == table) return true;
-  if (analysis.som_job) return false;                    // fitting: the view shows its progress
+  if (find_job(state, "som")) return false;              // fitting: the view shows its progress
   if (!analysis.som && analysis.som_held) return false;  // cancelled: the view offers it again
   try {
     if (!analysis.som) {
@@ -558,14 +563,16 @@ bool ensure_som(WorkbenchState& state) {
       // The map of the table: the flux paper's 7 x 7 SOM fitted on every row, on a worker
       // (18-20 s on a 454 x 1692 table), with its rows' winners.
       start_job<AnalysisState::SomFit>(
-          state, analysis.som_job, "SOM map", [table = analysis.dataset](JobProgress& progress) {
+          state, "som", "SOM map",
+          [table = analysis.dataset](JobProgress& progress) {
             ml::TableSom fit = ml::som_of(*table, [&progress](double fraction) {
               progress.report(fraction, "fitting the map");
               progress.check();
             });
             return AnalysisState::SomFit{std::move(fit.som), std::move(fit.classes),
                                          std::move(fit.winners), fit.quality};
-          });
+          },
+          apply_som_fit);
       return false;
     }
     // A loaded map: the winners of this table's rows (a pass over the rows, no fit).
@@ -586,20 +593,22 @@ bool ensure_scatter(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   if (!analysis.dataset) return false;
   poll_jobs(state);
-  if (analysis.scatter_job) return false;   // computing: the view shows its progress
-  if (analysis.scatter_held) return false;  // cancelled: the view offers it again
+  if (find_job(state, "scatter")) return false;  // computing: the view shows its progress
+  if (analysis.scatter_held) return false;       // cancelled: the view offers it again
   if (analysis.scatter_for == &*analysis.dataset) return analysis.scatter.rows() > 0;
   analysis.scatter_for = &*analysis.dataset;
   analysis.scatter.resize(0, 2);
   // The table on its first two principal components, on a worker (7.8 s at 454 x 1692).
   start_job<AnalysisState::ScatterFit>(
-      state, analysis.scatter_job, "scatter", [table = analysis.dataset](JobProgress& progress) {
+      state, "scatter", "scatter",
+      [table = analysis.dataset](JobProgress& progress) {
         ml::TableScatter scatter =
             ml::scatter_of(table->features, progress.steps("principal components of " +
                                                            std::to_string(table->rows()) + " x " +
                                                            std::to_string(table->features.cols())));
         return AnalysisState::ScatterFit{std::move(scatter.points), scatter.explained};
-      });
+      },
+      apply_scatter_fit);
   return false;
 }
 
@@ -624,7 +633,7 @@ bool ensure_somatosensory(WorkbenchState& state) {
     for (const std::string& file : state.workspace_files)
       if (!state.damaged.count(file)) files.push_back(file);
     start_job<AnalysisState::MapMade>(
-        state, analysis.map_job, "somatosensory map (all recordings)",
+        state, "somatosensory", "somatosensory map (all recordings)",
         [key, files, layout, modality, index = state.modality,
          cache = somatosensory_corpus_cache_path(state.workspace, layout.id, modality)](
             JobProgress& progress) {
@@ -649,21 +658,23 @@ bool ensure_somatosensory(WorkbenchState& state) {
                              " recordings"));
           write_somatosensory_corpus_cache(cache, same_skin, made.map);
           return made;
-        });
+        },
+        apply_map_made);
   } else if (!dynamic_cast<const FileSampleSource*>(&state.document->samples())) {
     // A live stream: over what has arrived so far, copied now; no cache (nothing on disk yet).
     start_job<AnalysisState::MapMade>(
-        state, analysis.map_job, "somatosensory map",
+        state, "somatosensory", "somatosensory map",
         [key, read = recording_for_job(*state.document, 0.0, 0.0), layout,
          index = state.modality](JobProgress& progress) {
           const Recording recording = read(progress);
           return AnalysisState::MapMade{
               key, somatosensory_map(MemorySampleSource(recording, recording.streams.front()),
                                      layout, index, progress.steps("correlations of the taxels"))};
-        });
+        },
+        apply_map_made);
   } else {
     start_job<AnalysisState::MapMade>(
-        state, analysis.map_job, "somatosensory map",
+        state, "somatosensory", "somatosensory map",
         [key, path = state.document->path, stream = state.document->samples().info().stream, layout,
          modality, index = state.modality](JobProgress& progress) {
           AnalysisState::MapMade made{key, {}};
@@ -681,7 +692,8 @@ bool ensure_somatosensory(WorkbenchState& state) {
                                        progress.steps("correlations of the taxels"));
           write_somatosensory_cache(path, made.map);
           return made;
-        });
+        },
+        apply_map_made);
   }
   return false;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The workbench's classifier side, shared by the model panel and the confusion, scatter,
-// SOM and somatosensory views: training in the background (TrainingJob), results
+// SOM and somatosensory views: training in the background (the job "training"), results
 // opened from files, the way from a confusion cell to a segment and back.
 
 #include <string>
@@ -10,14 +10,13 @@
 namespace tactile {
 
 // Starts training on the open recording's skin over the workspace's label store, with
-// the panel's choices; `classifier` is a specification or "all". Reports in state.error.
+// the panel's choices; `classifier` is a specification or "all". Reports in state.error. Its
+// results are shown as they arrive; when it ends, the best becomes current.
 bool start_training(WorkbenchState& state, const std::string& classifier);
-// Called every frame: takes a finished job's results (the best one becomes current).
-void poll_training(WorkbenchState& state);
 
 // Applies the last model trained here (one classifier: fitted on every row and saved in
 // the workspace's models/ folder) to the open recording's segments, as a job; when it ends
-// its answers replace the recording's prediction lane as one command (poll_jobs).
+// its answers replace the recording's prediction lane as one command.
 // The model is that of the results row the views show (after Train all: fitted on every row
 // of the table by the job, then saved in models/ too), else of the classifier box.
 bool predict_open_recording(WorkbenchState& state);
@@ -58,9 +57,6 @@ struct RowOutcome {
 };
 std::vector<RowOutcome> row_outcomes(const WorkbenchState& state);
 
-// Applies the jobs that ended (segmenter run, prediction, SOM map, scatter, somatosensory
-// map), once a frame whichever view is shown, so a result never waits for its tab.
-void poll_jobs(WorkbenchState& state);
 // The SOM map of the current table (fitted once per table, or the opened model).
 bool ensure_som(WorkbenchState& state);
 // The table's rows on their first two principal components (computed once per table).

@@ -133,7 +133,7 @@ void draw_labels_export_dialog(WorkbenchState& state) {
     }
   }
   ImGui::Separator();
-  AnyJob* running = running_file_job(state, "export labels");
+  AnyJob* running = running_job(state, "export labels");
   ImGui::BeginDisabled(running != nullptr);
   if (ImGui::Button("Export...")) {
     std::string stem =
@@ -154,31 +154,17 @@ void draw_labels_export_dialog(WorkbenchState& state) {
 
 //---- Labels > Import labels... of ELAN and Label Studio
 
-void open_labels_import_dialog(WorkbenchState& state, const std::string& file) {
-  LabelsImportDialog& dialog = state.files.labels_import;
-  dialog.open = dialog.focus = true;
-  dialog.file = file;
-  dialog.sources.reset();
-  dialog.failure.clear();
-  dialog.choices.clear();
-  dialog.recording = {};
-  // Read on a worker: the file may be large or on a disk that hangs.
-  dialog.read_job =
-      std::make_unique<Job<InteropSources>>("read labels file", [file](JobProgress& progress) {
-        progress.report(0.0, "reading " + file);
-        return interop_sources(file);
-      });
-}
+namespace {
 
-void take_labels_import_sources(WorkbenchState& state) {
+// What the file holds, once read: the sources to choose among, or (our own CSV or JSON) the
+// import at once.
+void take_labels_import_sources(WorkbenchState& state, Job<InteropSources>& job) {
   LabelsImportDialog& dialog = state.files.labels_import;
-  if (!dialog.read_job || dialog.read_job->status() == JobStatus::kRunning) return;
-  std::optional<InteropSources> sources = dialog.read_job->take();
-  if (!sources) dialog.failure = dialog.read_job->error();
-  dialog.read_job.reset();
+  std::optional<InteropSources> sources = job.take();
+  if (!sources) dialog.failure = job.error();
   if (!sources) return;
   if (sources->format.empty()) {
-    // Our own JSON: nothing to choose.
+    // Our own file: nothing to choose.
     dialog.open = false;
     start_labels_import(state, dialog.file);
     return;
@@ -188,11 +174,34 @@ void take_labels_import_sources(WorkbenchState& state) {
     set_field(choice.lane, source.lane);
     dialog.choices.push_back(choice);
   }
-  // An ELAN document is of one recording: the open one unless the user says otherwise. Label
-  // Studio's tasks name their own files.
-  if (sources->format == "ELAN" && state.document)
+  // A format of one recording per file (an ELAN document): the open one unless the user says
+  // otherwise. Label Studio's tasks name their own files.
+  const LabelFormat* format = label_format_named(sources->format);
+  if (format && format->one_recording() && state.document)
     set_field(dialog.recording, state.document->recording_id());
   dialog.sources = std::move(*sources);
+}
+
+}  // namespace
+
+void open_labels_import_dialog(WorkbenchState& state, const std::string& file) {
+  LabelsImportDialog& dialog = state.files.labels_import;
+  dialog.open = dialog.focus = true;
+  dialog.file = file;
+  dialog.sources.reset();
+  dialog.failure.clear();
+  dialog.choices.clear();
+  dialog.recording = {};
+  // Read on a worker: the file may be large or on a disk that hangs.
+  JobExtras quiet;
+  quiet.logged = false;
+  start_job<InteropSources>(
+      state, "read labels file", "read labels file",
+      [file](JobProgress& progress) {
+        progress.report(0.0, "reading " + file);
+        return interop_sources(file);
+      },
+      take_labels_import_sources, std::move(quiet));
 }
 
 void draw_labels_import_dialog(WorkbenchState& state) {
@@ -202,15 +211,13 @@ void draw_labels_import_dialog(WorkbenchState& state) {
     dialog.open = false;
     return;
   }
-  take_labels_import_sources(state);
-  if (!dialog.open) return;
   if (!begin_file_dialog("Import labels###import labels", dialog.open, dialog.focus,
                          ImVec2(640, 360)))
     return;
   dialog_keys(state, dialog.open);
   ImGui::TextDisabled("as tactile labels import: %s", dialog.file.c_str());
-  if (dialog.read_job) {
-    draw_job_progress(*dialog.read_job, "reading");
+  if (AnyJob* reading = find_job(state, "read labels file")) {
+    draw_job_progress(*reading, "reading");
   } else if (!dialog.failure.empty() || !dialog.sources) {
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", dialog.failure.c_str());
@@ -263,7 +270,7 @@ void draw_labels_import_dialog(WorkbenchState& state) {
       ImGui::EndTable();
     }
   }
-  AnyJob* running = running_file_job(state, "import labels");
+  AnyJob* running = running_job(state, "import labels");
   ImGui::BeginDisabled(running != nullptr || !dialog.sources);
   if (ImGui::Button("Import")) {
     InteropImport options;
@@ -335,7 +342,7 @@ void draw_features_export_dialog(WorkbenchState& state) {
   if (radio_item(state, "radio:export-features/ARFF", "ARFF (Weka)", dialog.arff))
     dialog.arff = true;
   ImGui::Separator();
-  AnyJob* running = running_file_job(state, "export features");
+  AnyJob* running = running_job(state, "export features");
   ImGui::BeginDisabled(running != nullptr);
   if (ImGui::Button("Export...")) {
     const std::string stem =
@@ -398,7 +405,7 @@ void draw_agreement_dialog(WorkbenchState& state) {
       state, "input:agreement/--iou",
       "How much two segments must overlap (intersection over union) to count as the same touch");
   ImGui::Separator();
-  AnyJob* running = running_file_job(state, "agreement");
+  AnyJob* running = running_job(state, "agreement");
   ImGui::BeginDisabled(running != nullptr || dialog.a.empty() || dialog.b.empty());
   if (ImGui::Button("Compute")) start_agreement(state);
   remember_item(state, "button:agreement/Compute",

@@ -19,9 +19,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A file command's outcome applied once it ends; an import's failure also stays in its dialog.
+void apply_file_job(WorkbenchState& state, Job<FileOutcome>& job);
+
 void start_file_job(WorkbenchState& state, const std::string& kind,
                     std::function<FileOutcome(JobProgress&)> work) {
-  start_job<FileOutcome>(state, state.files.jobs[kind], kind, std::move(work));
+  start_job<FileOutcome>(state, kind, kind, std::move(work), apply_file_job);
 }
 
 std::string joined_lines(const std::vector<std::string>& lines) {
@@ -56,6 +59,17 @@ void apply_file_outcome(WorkbenchState& state, FileOutcome outcome) {
   if (!outcome.open.empty()) state.open_request = outcome.open;
 }
 
+void apply_file_job(WorkbenchState& state, Job<FileOutcome>& job) {
+  const std::string error = job.status() == JobStatus::kFailed ? job.error() : std::string();
+  std::optional<FileOutcome> outcome = job_result(state, job);
+  if (job.name() == "import") {
+    ImportDialog& dialog = state.files.import;
+    dialog.failure = error;
+    if (outcome) dialog.open = false;  // written: the new recording opens
+  }
+  if (outcome) apply_file_outcome(state, std::move(*outcome));
+}
+
 }  // namespace
 
 std::string label_store_path(const WorkbenchState& state) {
@@ -72,12 +86,6 @@ std::vector<std::string> open_recording_files(const WorkbenchState& state) {
   const std::string store = label_store_path(state);
   if (fs::exists(store, error)) files.push_back(store);
   return files;
-}
-
-AnyJob* running_file_job(const WorkbenchState& state, const std::string& kind) {
-  const auto found = state.files.jobs.find(kind);
-  if (found == state.files.jobs.end() || !found->second) return nullptr;
-  return found->second->status() == JobStatus::kRunning ? found->second.get() : nullptr;
 }
 
 //---- Import
@@ -106,10 +114,25 @@ void start_import_preview(WorkbenchState& state, const FileImportOptions& option
   ImportDialog& dialog = state.files.import;
   dialog.preview_job_for = fields;
   // Not logged: one runs after each change of the fields. `wait jobs` waits for it.
-  dialog.preview_job =
-      std::make_unique<Job<ImportPreview>>("import preview", [options](JobProgress& progress) {
+  JobExtras quiet;
+  quiet.logged = false;
+  start_job<ImportPreview>(
+      state, "import preview", "import preview",
+      [options](JobProgress& progress) {
         return preview_import(options, 10, progress.steps("reading " + options.file));
-      });
+      },
+      [](WorkbenchState& window, Job<ImportPreview>& job) {
+        ImportDialog& shown = window.files.import;
+        if (std::optional<ImportPreview> preview = job.take()) {
+          shown.preview = std::move(*preview);
+        } else {
+          ImportPreview failed;  // an exception that is no refusal (memory, ...): shown as one
+          failed.refusal = job.error();
+          shown.preview = std::move(failed);
+        }
+        shown.preview_for = shown.preview_job_for;
+      },
+      std::move(quiet));
 }
 
 //---- Labels
@@ -277,40 +300,6 @@ void start_upgrade(WorkbenchState& state, const std::vector<std::string>& paths)
     outcome.notice = lines.empty() ? "nothing to upgrade" : lines.back();
     return outcome;
   });
-}
-
-//---- Polling
-
-void poll_file_jobs(WorkbenchState& state) {
-  ImportDialog& dialog = state.files.import;
-  if (dialog.preview_job && dialog.preview_job->status() != JobStatus::kRunning) {
-    if (std::optional<ImportPreview> preview = dialog.preview_job->take()) {
-      dialog.preview = std::move(*preview);
-    } else {
-      ImportPreview failed;  // an exception that is no refusal (memory, ...): shown as one
-      failed.refusal = dialog.preview_job->error();
-      dialog.preview = std::move(failed);
-    }
-    dialog.preview_for = dialog.preview_job_for;
-    dialog.preview_job.reset();
-  }
-  for (auto it = state.files.jobs.begin(); it != state.files.jobs.end();) {
-    std::unique_ptr<Job<FileOutcome>>& job = it->second;
-    if (job && job->status() == JobStatus::kRunning) {
-      ++it;
-      continue;
-    }
-    const std::string kind = it->first;
-    const bool failed = job && job->status() == JobStatus::kFailed;
-    const std::string error = failed ? job->error() : std::string();
-    std::optional<FileOutcome> outcome = finished_job(state, job);
-    it = state.files.jobs.erase(it);
-    if (kind == "import") {
-      dialog.failure = error;
-      if (outcome) dialog.open = false;  // written: the new recording opens
-    }
-    if (outcome) apply_file_outcome(state, std::move(*outcome));
-  }
 }
 
 }  // namespace tactile

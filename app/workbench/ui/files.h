@@ -83,9 +83,8 @@ void start_upgrade(WorkbenchState& state, const std::vector<std::string>& paths)
 std::vector<std::string> open_recording_files(const WorkbenchState& state);
 // The open recording's label store: its own, else labels.db beside it.
 std::string label_store_path(const WorkbenchState& state);
-// Applies ended file jobs' outcomes and the import preview; once a frame.
-void poll_file_jobs(WorkbenchState& state);
-// The file job of `kind` while it runs; null otherwise.
-AnyJob* running_file_job(const WorkbenchState& state, const std::string& kind);
+// The jobs the dialogs show themselves (the status bar leaves them out): the import's preview,
+// what a label file holds.
+inline constexpr const char* kDialogJobs[] = {"import preview", "read labels file"};
 
 }  // namespace tactile

@@ -17,7 +17,7 @@
 
 namespace tactile {
 
-// What a file job hands the window to apply once it has ended (poll_file_jobs).
+// What a file job hands the window to apply once it has ended (jobs.h, apply_file_job).
 struct FileOutcome {
   std::string notice;   // the status bar's line
   std::string problem;  // shown as the error line ("" clears it): damage left out, problems
@@ -41,7 +41,7 @@ struct ImportDialog {
   std::map<std::string, bool> switches;
   // The preview of what the fields read, made on a worker; a change of the fields starts the
   // next once the running one has ended.
-  std::unique_ptr<Job<ImportPreview>> preview_job;
+  // (its job: "import preview")
   std::string preview_job_for;  // the fields (as text) the running preview reads
   std::string preview_for;      // the fields the preview shown was made for
   std::optional<ImportPreview> preview;
@@ -63,7 +63,7 @@ struct LabelsExportDialog {
 struct LabelsImportDialog {
   bool open = false, focus = false;
   std::string file;
-  std::unique_ptr<Job<InteropSources>> read_job;  // what the file holds, read on a worker
+  // What the file holds is read on a worker (job "read labels file").
   std::optional<InteropSources> sources;
   std::string failure;  // the file could not be read
   struct Choice {
@@ -104,10 +104,8 @@ struct FilesState {
   FeaturesExportDialog features_export;
   AgreementDialog agreement;
   ReportWindow report;
-  // The file jobs by kind ("import", "export labels", "export features", "import labels",
-  // "agreement", "verify", "upgrade"): a second request of a kind replaces the first, kinds
-  // run side by side.
-  std::map<std::string, std::unique_ptr<Job<FileOutcome>>> jobs;
+  // The file jobs are in the window's list (jobs.h) by kind: "import", "export labels",
+  // "export features", "import labels", "agreement", "verify", "upgrade".
   // A dialog (or the file browser) had the keyboard on the last frame: the window's own keys
   // (labelling, playback) leave it alone.
   bool has_keys = false;

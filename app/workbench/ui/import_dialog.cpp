@@ -310,9 +310,9 @@ void draw_import_dialog(WorkbenchState& state) {
   } else if (!parsed) {
     ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "refused: %s", refusal.c_str());
   } else {
-    if (!dialog.preview_job && fields != dialog.preview_for)
-      start_import_preview(state, options, fields);
-    if (dialog.preview_job) draw_job_progress(*dialog.preview_job);
+    AnyJob* previewing = find_job(state, "import preview");
+    if (!previewing && fields != dialog.preview_for) start_import_preview(state, options, fields);
+    if ((previewing = find_job(state, "import preview"))) draw_job_progress(*previewing);
     ImGui::BeginChild("preview", ImVec2(0, -ImGui::GetFrameHeightWithSpacing() * 2.2f), false,
                       ImGuiWindowFlags_HorizontalScrollbar);
     draw_import_preview(dialog, fields == dialog.preview_for);
@@ -323,7 +323,7 @@ void draw_import_dialog(WorkbenchState& state) {
         ImVec2(0, ImGui::GetContentRegionAvail().y - ImGui::GetFrameHeightWithSpacing() * 2.2f));
 
   ImGui::Separator();
-  AnyJob* running = running_file_job(state, "import");
+  AnyJob* running = running_job(state, "import");
   ImGui::BeginDisabled(running != nullptr || file.empty() || !parsed);
   if (ImGui::Button("Import")) start_import(state, options);
   remember_item(state, "button:import/Import",

@@ -50,23 +50,64 @@ void retire_job(WorkbenchState& state, std::unique_ptr<AnyJob> job) {
   state.retired_jobs.push_back(std::move(job));
 }
 
-void drop_ended_jobs(WorkbenchState& state) {
+AnyJob* find_job(const WorkbenchState& state, const std::string& kind) {
+  for (const WindowJob& entry : state.jobs)
+    if (entry.kind == kind) return entry.job.get();
+  return nullptr;
+}
+
+AnyJob* running_job(const WorkbenchState& state, const std::string& kind) {
+  AnyJob* job = find_job(state, kind);
+  return job && job->status() == JobStatus::kRunning ? job : nullptr;
+}
+
+void drop_job(WorkbenchState& state, const std::string& kind) {
+  for (auto entry = state.jobs.begin(); entry != state.jobs.end(); ++entry)
+    if (entry->kind == kind) {
+      std::unique_ptr<AnyJob> job = std::move(entry->job);
+      const bool logged = entry->logged;
+      state.jobs.erase(entry);
+      if (!logged && job->status() == JobStatus::kRunning) {
+        job->cancel();
+        state.retired_jobs.push_back(std::move(job));
+        return;
+      }
+      retire_job(state, std::move(job));
+      return;
+    }
+}
+
+void poll_jobs(WorkbenchState& state) {
   std::erase_if(state.retired_jobs, [](const std::unique_ptr<AnyJob>& job) {
     return job->status() != JobStatus::kRunning;
   });
+  // Taken off the list before they are applied: an apply step may start the next job of its
+  // kind (or drop another).
+  std::vector<WindowJob> ended;
+  for (auto entry = state.jobs.begin(); entry != state.jobs.end();) {
+    if (entry->job->status() == JobStatus::kRunning) {
+      ++entry;
+      continue;
+    }
+    ended.push_back(std::move(*entry));
+    entry = state.jobs.erase(entry);
+  }
+  for (size_t k = 0; k < state.jobs.size(); ++k)
+    if (state.jobs[k].while_running) {
+      // A copy: the step may change the list.
+      const std::function<void(WorkbenchState&)> step = state.jobs[k].while_running;
+      step(state);
+    }
+  for (WindowJob& entry : ended) {
+    if (entry.logged) log_job_end(state, entry.job->name(), to_string(entry.job->status()));
+    entry.apply(state);
+  }
+  if (!ended.empty()) return_freed_memory();
 }
 
 std::vector<AnyJob*> pending_jobs(const WorkbenchState& state) {
   std::vector<AnyJob*> jobs;
-  for (AnyJob* job : std::initializer_list<AnyJob*>{
-           state.labelling.segment_job.get(), state.labelling.fit_job.get(),
-           state.analysis.predict_job.get(), state.analysis.som_job.get(),
-           state.analysis.scatter_job.get(), state.analysis.map_job.get(), state.export_job.get(),
-           state.analysis.job.get(), state.demo_job.get(), state.files.import.preview_job.get(),
-           state.files.labels_import.read_job.get()})
-    if (job) jobs.push_back(job);
-  for (const auto& [kind, job] : state.files.jobs)
-    if (job) jobs.push_back(job.get());
+  for (const WindowJob& entry : state.jobs) jobs.push_back(entry.job.get());
   return jobs;
 }
 
@@ -109,16 +150,12 @@ bool draw_job(WorkbenchState& state, AnyJob* job, bool* held, const char* what) 
 }
 
 bool draw_job_status(WorkbenchState& state) {
-  // The first that runs of the segmenter run, Predict, the demo workspace and the file commands
-  // (import, export, verify, ...).
-  std::vector<AnyJob*> candidates = {state.labelling.segment_job.get(),
-                                     state.labelling.fit_job.get(),
-                                     state.analysis.predict_job.get(), state.demo_job.get()};
-  for (const auto& [kind, file_job] : state.files.jobs) candidates.push_back(file_job.get());
+  // The first running job that no view or dialog shows (the segmenter run, Predict, the demo
+  // workspace, the file commands: import, export, verify, ...).
   AnyJob* job = nullptr;
-  for (AnyJob* candidate : candidates)
-    if (candidate && candidate->status() == JobStatus::kRunning) {
-      job = candidate;
+  for (const WindowJob& entry : state.jobs)
+    if (entry.job->status() == JobStatus::kRunning && job_shown_in(entry.kind).empty()) {
+      job = entry.job.get();
       break;
     }
   if (!job) return false;

@@ -329,11 +329,12 @@ bool undo_edit(WorkbenchState& state, bool redo) {
   LabellingState& labelling = state.labelling;
   // While a segmenter run goes on, Ctrl+Z stops it: the newest thing the operator did is that
   // run, not the label before it.
-  if (!redo && labelling.segment_job && labelling.segment_job->status() == JobStatus::kRunning) {
-    labelling.segment_job->cancel();
+  AnyJob* run = redo ? nullptr : running_job(state, "segmenter");
+  if (run) {
+    run->cancel();
     labelling.run_cancelled_by_undo = true;
     state.error.clear();
-    state.notice = labelling.segment_job->name() + " cancelled (Ctrl+Z): nothing of it is kept";
+    state.notice = run->name() + " cancelled (Ctrl+Z): nothing of it is kept";
     return true;
   }
   EditSummary taken_back, changed;
@@ -378,6 +379,14 @@ bool select_next_suggestion(WorkbenchState& state, const std::string& method, do
 
 }  // namespace
 
+namespace {
+
+// The ends of the two labelling jobs, applied on the window's thread (jobs.h).
+void apply_finished_segmenter(WorkbenchState& state, Job<LabellingState::SegmentsFound>& job);
+void apply_finished_fit(WorkbenchState& state, Job<LabellingState::SegmenterFitted>& job);
+
+}  // namespace
+
 bool run_segmenter(WorkbenchState& state, const std::string& method) {
   if (!state.document) return false;
   Document& document = *state.document;
@@ -390,7 +399,7 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
     // On a worker, reading and storing included (2.9 s for 30 min of Robovie's 274 channels
     // when it ran in one frame). A second G replaces a run still going.
     start_job<LabellingState::SegmentsFound>(
-        state, state.labelling.segment_job, "segmenter " + method,
+        state, "segmenter", "segmenter " + method,
         [open = source_for_job(document), layout = document.layout, method, parameters,
          path = document.path, database, recording = document.recording_id(),
          annotator = state.labelling.annotator](JobProgress& progress) {
@@ -407,7 +416,8 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
           store.apply(run.edit, annotator);
           return LabellingState::SegmentsFound{path, method, run.annotator, run.edit.add.size(),
                                                run.rejected};
-        });
+        },
+        apply_finished_segmenter);
     state.error.clear();
     state.notice = method + ": finding segments...";
     return true;
@@ -416,13 +426,13 @@ bool run_segmenter(WorkbenchState& state, const std::string& method) {
   }
 }
 
-void apply_finished_segmenter(WorkbenchState& state) {
+namespace {
+
+void apply_finished_segmenter(WorkbenchState& state, Job<LabellingState::SegmentsFound>& job) {
   LabellingState& labelling = state.labelling;
-  const bool ended =
-      labelling.segment_job && labelling.segment_job->status() != JobStatus::kRunning;
-  const bool by_undo = ended && std::exchange(labelling.run_cancelled_by_undo, false);
+  const bool by_undo = std::exchange(labelling.run_cancelled_by_undo, false);
   const std::string undo_notice = state.notice;
-  std::optional<LabellingState::SegmentsFound> found = finished_job(state, labelling.segment_job);
+  std::optional<LabellingState::SegmentsFound> found = job_result(state, job);
   // Stopped by Ctrl+Z before it stored anything: the undo's notice says more than "cancelled".
   if (by_undo && !found) state.notice = undo_notice;
   if (by_undo && found) {
@@ -448,6 +458,8 @@ void apply_finished_segmenter(WorkbenchState& state) {
   select_next_suggestion(state, found->annotator, -1e300);
 }
 
+}  // namespace
+
 bool fit_segmenter_to_labels(WorkbenchState& state) {
   if (!state.document) return false;
   Document& document = *state.document;
@@ -463,7 +475,7 @@ bool fit_segmenter_to_labels(WorkbenchState& state) {
                              std::to_string(touches.size()) + ": label more, then fit again");
     const std::string presets = segmenter_presets_path(document.label_store().path());
     start_job<LabellingState::SegmenterFitted>(
-        state, state.labelling.fit_job, "fit segmenter",
+        state, "fit segmenter", "fit segmenter",
         [read = recording_for_job(document, 0.0, 0.3), layout = document.layout,
          touches = std::move(touches), presets, path = document.path,
          lane = state.labelling.active_lane()](JobProgress& progress) {
@@ -475,7 +487,8 @@ bool fit_segmenter_to_labels(WorkbenchState& state) {
           });
           save_segmenter_preset(presets, fit_preset(fit, "fitted", lane));
           return LabellingState::SegmenterFitted{path, std::move(fit)};
-        });
+        },
+        apply_finished_fit);
     state.error.clear();
     state.notice = "fitting the segmenter to your labels...";
     return true;
@@ -484,9 +497,10 @@ bool fit_segmenter_to_labels(WorkbenchState& state) {
   }
 }
 
-void apply_finished_fit(WorkbenchState& state) {
-  std::optional<LabellingState::SegmenterFitted> fitted =
-      finished_job(state, state.labelling.fit_job);
+namespace {
+
+void apply_finished_fit(WorkbenchState& state, Job<LabellingState::SegmenterFitted>& job) {
+  std::optional<LabellingState::SegmenterFitted> fitted = job_result(state, job);
   if (!fitted) return;
   const SegmenterFit& fit = fitted->fit;
   state.labelling.last_segmenter = fit.method;
@@ -502,6 +516,8 @@ void apply_finished_fit(WorkbenchState& state) {
                  ": " + fit.params + " (held out " + fit.folds + ": event F1 " +
                  fixed_text(fit.held_out.events.f1(), 2) + "); G suggests with it";
 }
+
+}  // namespace
 
 bool accept_suggestion(WorkbenchState& state) {
   const std::optional<Label> selected = selected_label(state);

@@ -51,17 +51,15 @@ bool undo_edit(WorkbenchState& state, bool redo);
 // and moves the cursor to its start.
 bool walk_labels(WorkbenchState& state, int direction);
 
-// Runs a segmenter on the open recording (parameters from the Labels menu) as a job; when it
-// ends (apply_finished_segmenter, once a frame) its segments replace its earlier ones for
-// this recording, less the rejected ones, as one command, and the first is selected.
+// Runs a segmenter on the open recording (parameters from the Labels menu) as the job
+// "segmenter"; when it ends its segments replace its earlier ones for this recording, less the
+// rejected ones, as one command, and the first is selected.
 bool run_segmenter(WorkbenchState& state, const std::string& method);
-void apply_finished_segmenter(WorkbenchState& state);
 // Labels > Fit segmenter to my labels: a job that chooses adaptive's parameters on the
 // operator's labels in the open recording (at least three) and saves them as the preset
-// "fitted" beside the label store; when it ends (apply_finished_fit, once a frame) G runs
-// adaptive with them. Never changes a label.
+// "fitted" beside the label store (the job "fit segmenter"); once it has ended G runs adaptive
+// with them. Never changes a label.
 bool fit_segmenter_to_labels(WorkbenchState& state);
-void apply_finished_fit(WorkbenchState& state);
 // A: the selected suggestion (a segmenter's label) becomes a label of the operator's
 // lane with its bounds and region, and the class chosen with 1-9 (else its own when
 // it has one); R: rejects it (remembered in the store). Both move to the next one.

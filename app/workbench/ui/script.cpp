@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "document.h"
+#include "jobs.h"
 #include "script_commands.h"
 #include "tactile/error.h"
 
@@ -395,7 +396,7 @@ void ScriptPlayer::wait_frames(const ScriptStep& step) {
 void ScriptPlayer::wait_training(const ScriptStep& step) {
   draw_until(
       [this, step](Workbench& workbench) {
-        if (workbench.state().analysis.job) return false;
+        if (find_job(workbench.state(), "training")) return false;
         if (!workbench.error().empty() && workbench.error().starts_with("training failed"))
           fail(step, workbench.error());
         return true;

@@ -69,7 +69,7 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("scatter_view", size, false);
   AnalysisState& analysis = state.analysis;
   if (!analysis.dataset || !ensure_scatter(state)) {
-    if (!draw_job(state, analysis.scatter_job.get(), &analysis.scatter_held, "scatter"))
+    if (!draw_job(state, find_job(state, "scatter"), &analysis.scatter_held, "scatter"))
       ImGui::TextDisabled("No feature table: train in the Model tab, or open one with --features.");
     ImGui::EndChild();
     return;
@@ -148,7 +148,7 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("som_view", size, false);
   AnalysisState& analysis = state.analysis;
   if (!ensure_som(state)) {
-    if (!draw_job(state, analysis.som_job.get(), &analysis.som_held, "SOM map"))
+    if (!draw_job(state, find_job(state, "som"), &analysis.som_held, "SOM map"))
       ImGui::TextDisabled(
           "No SOM: train (the map is fitted on the feature table), or open --model.");
     ImGui::EndChild();

@@ -79,7 +79,8 @@ void draw_choices(WorkbenchState& state) {
 
 void draw_run_controls(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
-  const bool running = analysis.job && analysis.job->status() == JobStatus::kRunning;
+  AnyJob* training = running_job(state, "training");
+  const bool running = training != nullptr;
   ImGui::BeginDisabled(running || !state.document);
   if (ImGui::Button("Run")) start_training(state, analysis.classifier.data());
   remember_item(state, "button:Run",
@@ -102,10 +103,10 @@ void draw_run_controls(WorkbenchState& state) {
           : "Run one classifier or Train all first: a model predicts this recording");
   if (running) {
     ImGui::SameLine();
-    if (ImGui::Button("Cancel")) analysis.job->cancel();
+    if (ImGui::Button("Cancel")) training->cancel();
     remember_item(state, "button:Cancel", "Stop the training run");
     ImGui::SameLine();
-    draw_job_progress(*analysis.job);
+    draw_job_progress(*training);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <functional>
 #include <limits>
 
+#include "files.h"
 #include "tactile/signal/taxel_values.h"
 #include "views.h"
 
@@ -14,16 +15,16 @@ namespace {
 constexpr ViewSpec kViews[] = {
     {"workspace", "Workspace", false, draw_workspace_view},
     {"info", "Recording", true, draw_info_view},
-    {"skin", "Skin", true, draw_skin_panel_view},
+    {"skin", "Skin", true, draw_skin_panel_view, "somatosensory"},
     {"signals", "Signals", true, draw_signals_view},
     {"timeline", "Timeline", true, draw_timeline_view},
     {"labels", "Labels", true, draw_labels_view},
     {"quality", "Quality", true, draw_quality_view},
-    {"model", "Model", true, draw_model_view},
+    {"model", "Model", true, draw_model_view, "training"},
     {"confusion", "Confusion", false, draw_confusion_view},
-    {"scatter", "Scatter", false, draw_scatter_view},
-    {"som", "SOM", false, draw_som_view},
-    {"somatosensory", "Somatosensory map", true, draw_somatosensory_view},
+    {"scatter", "Scatter", false, draw_scatter_view, "scatter"},
+    {"som", "SOM", false, draw_som_view, "som"},
+    {"somatosensory", "Somatosensory map", true, draw_somatosensory_view, "somatosensory"},
 };
 
 }  // namespace
@@ -40,6 +41,16 @@ std::string view_names() {
   std::string names;
   for (const ViewSpec& view : kViews) names += (names.empty() ? "" : ", ") + std::string(view.name);
   return names;
+}
+
+std::string job_shown_in(const std::string& kind) {
+  for (const ViewSpec& view : kViews) {
+    const std::string kinds = std::string(",") + view.jobs + ",";
+    if (kinds.find("," + kind + ",") != std::string::npos) return view.name;
+  }
+  for (const char* dialog_kind : kDialogJobs)
+    if (kind == dialog_kind) return "dialog";
+  return {};
 }
 
 uint32_t class_colour(WorkbenchState& state, const std::string& class_name, int alpha) {

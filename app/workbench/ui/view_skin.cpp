@@ -259,7 +259,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     }
   } else if (state.analysis.somatosensory) {
     // Computing: the body map meanwhile, the job's progress above it.
-    draw_job(state, state.analysis.map_job.get(), nullptr, "somatosensory map");
+    draw_job(state, find_job(state, "somatosensory"), nullptr, "somatosensory map");
   }
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();

@@ -18,6 +18,9 @@ struct ViewSpec {
   const char* title;  // shown in tabs and menus
   bool needs_recording;
   void (*draw)(WorkbenchState& state, ImVec2 size);
+  // The kinds of job (jobs.h) whose progress and Cancel the view shows, comma-separated; the
+  // status bar shows the jobs no view or dialog shows.
+  const char* jobs = "";
 };
 
 void draw_workspace_view(WorkbenchState& state, ImVec2 size);
@@ -38,6 +41,9 @@ std::span<const ViewSpec> all_views();
 const ViewSpec* find_view(const std::string& name);
 // Comma-separated names, for error messages.
 std::string view_names();
+// The view that shows jobs of this kind (ViewSpec::jobs), "dialog" for a dialog's own
+// (kDialogJobs, files.h); "" when the status bar shows them.
+std::string job_shown_in(const std::string& kind);
 
 //---- Shared by the views
 // The label lanes as the timeline shows them, in the user's order, hidden ones left out

@@ -241,10 +241,7 @@ void Workbench::frame_work(double seconds) {
     }
     until = -1.0;
   }
-  poll_training(state_);
   poll_jobs(state_);
-  poll_demo();
-  poll_file_jobs(state_);
   follow_other_writers(state_);
   apply_dragged_bounds(state_);
   // A dialog or the file browser with the keyboard keeps its keys (Escape, Enter, digits).
@@ -316,11 +313,16 @@ std::optional<ViewExport> Workbench::take_export() { return std::exchange(export
 
 void Workbench::write_export(const ViewExport& request, Image pixels) {
   // Encoding and writing a PNG of the whole window takes tens of milliseconds: a job.
-  start_job<std::string>(state_, state_.export_job, "export " + request.view,
-                         [path = request.path, pixels = std::move(pixels)](JobProgress&) {
-                           write_png(path, pixels);
-                           return path;
-                         });
+  start_job<std::string>(
+      state_, "export view", "export " + request.view,
+      [path = request.path, pixels = std::move(pixels)](JobProgress&) {
+        write_png(path, pixels);
+        return path;
+      },
+      [](WorkbenchState& state, Job<std::string>& job) {
+        if (std::optional<std::string> written = job_result(state, job))
+          state.notice = "wrote " + *written;
+      });
 }
 
 void Workbench::draw_view(const char* name, ImVec2 size) {
@@ -445,7 +447,7 @@ void Workbench::draw_welcome(ImVec2 size) {
   remember_item(state_, "input:demo-folder",
                 "The folder the demo is written to (created if missing).");
   ImGui::SameLine();
-  const bool making = state_.demo_job && state_.demo_job->status() == JobStatus::kRunning;
+  const bool making = running_job(state_, "demo") != nullptr;
   ImGui::BeginDisabled(making);
   if (ImGui::Button("Make the demo workspace")) start_demo(demo_folder_.data());
   ImGui::EndDisabled();
@@ -461,23 +463,24 @@ void Workbench::draw_welcome(ImVec2 size) {
 }
 
 void Workbench::start_demo(const std::string& folder) {
+  // Its end opens the folder and its first recording (the Workbench outlives its jobs).
   start_job<std::string>(
-      state_, state_.demo_job, "demo workspace", [folder](JobProgress& progress) {
+      state_, "demo", "demo workspace",
+      [folder](JobProgress& progress) {
         progress.report(0.0, "simulating");
         write_demo_workspace(folder, 1, [&progress](int done, int total) {
           progress.report(static_cast<double>(done) / std::max(1, total), "simulating");
         });
         return folder;
+      },
+      [this](WorkbenchState& state, Job<std::string>& job) {
+        std::optional<std::string> made = job_result(state, job);
+        if (!made) return;
+        set_workspace(*made);
+        for (const std::string& file : state_.workspace_files)
+          if (open(file)) break;
+        state_.notice = "made the demo workspace in " + *made;
       });
-}
-
-void Workbench::poll_demo() {
-  if (std::optional<std::string> folder = finished_job(state_, state_.demo_job)) {
-    set_workspace(*folder);
-    for (const std::string& file : state_.workspace_files)
-      if (open(file)) break;
-    state_.notice = "made the demo workspace in " + *folder;
-  }
 }
 
 void Workbench::draw_getting_started() {

@@ -78,7 +78,6 @@ class Workbench {
   void draw_getting_started();
   // Makes the demo workspace in `folder` as a job; when it ends the folder opens.
   void start_demo(const std::string& folder);
-  void poll_demo();
   void carry_out_requests();
   // The file commands' requests (files.h): a new workspace, a list to read again.
   void carry_out_file_requests();

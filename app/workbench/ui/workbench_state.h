@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -37,6 +38,19 @@
 #include "tactile/widgets/skin_view.h"
 
 namespace tactile {
+
+struct WorkbenchState;
+
+// One job of the window's list (jobs.h): its kind (one at a time per kind: "segmenter",
+// "predict", "training", "som", "import", ...), the job, and the steps that apply its end and,
+// while it runs, what it has so far.
+struct WindowJob {
+  std::string kind;
+  std::unique_ptr<AnyJob> job;
+  std::function<void(WorkbenchState&)> apply;
+  std::function<void(WorkbenchState&)> while_running;  // may be empty
+  bool logged = true;                                  // in the state JSON's "jobs"
+};
 
 struct ScreenRect {
   float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -116,14 +130,12 @@ struct LabellingState {
     std::string method, annotator;  // "threshold", "segmenter:threshold"
     size_t added = 0, rejected = 0;
   };
-  std::unique_ptr<Job<SegmentsFound>> segment_job;
   // Labels > Fit segmenter to my labels, on a worker: adaptive's parameters chosen on the
   // operator's touches in the open recording (segment/fit.h), saved as the preset "fitted".
   struct SegmenterFitted {
     std::string document;
     SegmenterFit fit;
   };
-  std::unique_ptr<Job<SegmenterFitted>> fit_job;
   std::string active_lane() const { return "manual:" + annotator; }
 };
 
@@ -136,7 +148,6 @@ struct AnalysisState {
   std::array<char, 64> protocol{"kfold:5"};
   std::array<char, 128> pipeline_params{};  // the features' parameters (key=value,...)
   LabelSource segments = LabelSource::kGroundTruth;
-  std::unique_ptr<TrainingJob> job;
   TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
   // The running job's results as they arrive (shown at once, kept on Cancel), and how many of
   // them the results hold.
@@ -161,7 +172,6 @@ struct AnalysisState {
     std::string classifier;  // its classifier
     std::shared_ptr<const SavedModel> fitted;  // the model predicted with
   };
-  std::unique_ptr<Job<PredictionsMade>> predict_job;
   // The feature table the results are about; shared (never changed) with the views' jobs,
   // so starting one copies nothing on the window's thread.
   std::shared_ptr<const Dataset> dataset;
@@ -184,8 +194,7 @@ struct AnalysisState {
     std::vector<int> winners;
     std::optional<ml::SomQuality> quality;
   };
-  std::unique_ptr<Job<SomFit>> som_job;  // fitting the table's map on a worker
-  bool som_held = false;                 // cancelled: not started again until asked
+  bool som_held = false;  // its fit (job "som") cancelled: not started again until asked
   std::unique_ptr<ml::SomClassifier> som;
   std::vector<std::string> som_classes;
   std::vector<int> som_winners;               // per dataset row
@@ -200,8 +209,7 @@ struct AnalysisState {
     Eigen::MatrixXd scatter;
     double explained = 0.0;
   };
-  std::unique_ptr<Job<ScatterFit>> scatter_job;  // the PCA on a worker
-  bool scatter_held = false;                     // cancelled: not started again until asked
+  bool scatter_held = false;  // its PCA (job "scatter") cancelled: not started again until asked
   Eigen::MatrixXd scatter;
   double scatter_explained = 0.0;
   const void* scatter_for = nullptr;
@@ -215,8 +223,7 @@ struct AnalysisState {
     std::string key;  // as map_for
     SomatosensoryMap map;
   };
-  std::unique_ptr<Job<MapMade>> map_job;  // computing (or reading the cache of) a map
-  std::string tab_request;                // a view tab to bring to front next frame
+  std::string tab_request;  // a view tab to bring to front next frame
 };
 
 // Live mode (live.h), as data: what the services (services.h) report each frame, the user's
@@ -343,16 +350,15 @@ struct WorkbenchState {
     int64_t started_frame = 0, finished_frame = -1;
   };
   std::vector<JobRecord> job_log;
-  // Jobs cancelled or replaced by a newer request, kept until their worker has ended.
+  // Every job whose end the window has not applied yet (jobs.h), and the jobs cancelled or
+  // replaced by a newer request, kept until their worker has ended.
+  std::vector<WindowJob> jobs;
   std::vector<std::unique_ptr<AnyJob>> retired_jobs;
 
   // Requests from views, carried out by the workbench after the frame.
   std::optional<std::string> open_request;
   std::optional<std::string> stream_request;
-  std::optional<std::string> export_request;     // view name to export as PNG
-  std::unique_ptr<Job<std::string>> export_job;  // writing an exported view's PNG: its path
-  // Writing the demo workspace (the welcome panel's button): the folder it made.
-  std::unique_ptr<Job<std::string>> demo_job;
+  std::optional<std::string> export_request;  // view name to export as PNG
   bool quit = false;
   FileBrowser file_browser;
   LabelsViewState labels_view;

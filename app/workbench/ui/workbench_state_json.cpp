@@ -1,5 +1,6 @@
 // The workbench's state as JSON, for scripts (docs/SCRIPTING.md, "state").
 #include <algorithm>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -15,6 +16,8 @@
 #include "workbench.h"
 
 namespace tactile {
+
+namespace fs = std::filesystem;
 
 bool Workbench::jobs_running() const {
   // Until its result is applied on the window's thread: a job that has just ended is still
@@ -171,6 +174,15 @@ nlohmann::json Workbench::state_json() const {
                     {"started_frame", record.started_frame},
                     {"finished_frame", record.finished_frame}});
   json["jobs"] = jobs;
+  // The list as it stands: every job whose end is not applied yet, and where it is shown.
+  nlohmann::json pending = nlohmann::json::array();
+  for (const WindowJob& entry : state_.jobs)
+    pending.push_back({{"kind", entry.kind},
+                       {"name", entry.job->name()},
+                       {"status", to_string(entry.job->status())},
+                       {"progress", entry.job->progress()},
+                       {"shown_in", job_shown_in(entry.kind)}});
+  json["pending_jobs"] = pending;
   json["files"] = files_json(state_);
   return json;
 }
@@ -210,9 +222,9 @@ nlohmann::json Workbench::analysis_json() const {
               {"segment_id", analysis.landed->segment_id}};
   std::string training = "idle";
   std::string training_progress;
-  if (analysis.job) {
-    training = analysis.job->status() == JobStatus::kRunning ? "running" : "finished";
-    training_progress = progress_text(analysis.job->progress(), analysis.job->seconds_left());
+  if (AnyJob* job = find_job(state_, "training")) {
+    training = job->status() == JobStatus::kRunning ? "running" : "finished";
+    training_progress = progress_text(job->progress(), job->seconds_left());
   }
   nlohmann::json confusion = nullptr;
   if (current) {

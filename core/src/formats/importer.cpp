@@ -191,9 +191,11 @@ void check_import_values(const RecordingImporter& importer, const ImportValues& 
   const std::vector<ImportOption> options = importer.options();
   std::vector<std::string> flags;
   for (const ImportOption& option : options) flags.push_back(option.flag);
-  for (const auto& [flag, text] : values.all()) {
+  for (const auto& given : values.all()) {
+    const std::string& flag = given.first;
+    const std::string& text = given.second;
     const auto option = std::find_if(options.begin(), options.end(),
-                                     [&](const ImportOption& o) { return o.flag == flag; });
+                                     [&flag](const ImportOption& o) { return o.flag == flag; });
     if (option == options.end()) {
       const std::string reason = importer.refusal_of(flag);
       if (!reason.empty()) throw Error(flag, reason);
