@@ -28,9 +28,9 @@
 
 #include "tactile/io/disk_room.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/repair.h"
-#include "tactile/io/verify.h"
 #include "tactile/live/live_recorder.h"
+#include "tactile/verify/repair.h"
+#include "tactile/verify/verify.h"
 
 namespace fs = std::filesystem;
 using namespace tactile;

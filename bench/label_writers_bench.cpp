@@ -35,8 +35,8 @@
 #include <vector>
 
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
-#include "tactile/io/verify.h"
+#include "tactile/labelstore/label_store.h"
+#include "tactile/verify/verify.h"
 
 namespace {
 

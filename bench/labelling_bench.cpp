@@ -20,8 +20,8 @@
 #include "bench_support.h"
 #include "osmesa_renderer.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
 #include "tactile/labels/lanes.h"
+#include "tactile/labelstore/label_store.h"
 #include "workbench.h"
 
 namespace {

@@ -34,7 +34,6 @@
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/verify.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/live/live_input.h"
 #include "tactile/live/live_receiver.h"
@@ -43,6 +42,7 @@
 #include "tactile/live/packets.h"
 #include "tactile/live/udp.h"
 #include "tactile/skins/skin.h"
+#include "tactile/verify/verify.h"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/sim/simulator.h"
 #include "tactile/skins/skin.h"

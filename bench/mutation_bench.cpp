@@ -38,8 +38,8 @@
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
-#include "tactile/io/verify.h"
+#include "tactile/labelstore/label_store.h"
+#include "tactile/verify/verify.h"
 
 namespace {
 

@@ -32,7 +32,7 @@
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/segment/fit.h"
 #include "tactile/segment/scoring.h"
 #include "tactile/segment/segmenter.h"

@@ -28,7 +28,7 @@
 #include "process_memory.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/ml/somatosensory.h"
 #include "tactile/sim/simulator.h"

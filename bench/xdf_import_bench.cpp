@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "../tests/core/xdf_writer.h"
-#include "tactile/io/xdf_import.h"
+#include "tactile/formats/xdf_files.h"
 #include "tactile/layout/skin_layout.h"
 
 using tactile::testing::XdfWriter;

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "tactile/io/csv.h"
+#include "tactile/formats/csv_files.h"
 #include "tactile/io/hdf5_file.h"
 
 namespace tactile::cli {

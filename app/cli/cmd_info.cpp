@@ -12,7 +12,7 @@
 
 #include "commands.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile::cli {
 

@@ -18,11 +18,11 @@
 
 #include "commands.h"
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
-#include "tactile/labels/label_files.h"
+#include "tactile/labels/label_file_commands.h"
 #include "tactile/labels/label_format.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/labels/quality.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
 

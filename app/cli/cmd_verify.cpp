@@ -10,8 +10,8 @@
 #include "commands.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
-#include "tactile/io/repair.h"
-#include "tactile/io/verify.h"
+#include "tactile/verify/repair.h"
+#include "tactile/verify/verify.h"
 
 namespace tactile::cli {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/shard.h"
+#include "tactile/shards/shard.h"
 
 namespace tactile::cli {
 

@@ -8,7 +8,7 @@
 #include "../core/edf_test_files.h"
 #include "cli_test_support.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 namespace {

@@ -12,7 +12,7 @@
 #include "cli_test_support.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/segment/segmenter.h"
 

@@ -10,7 +10,7 @@
 
 #include "cli_test_support.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "test_paths.h"
 
 namespace tactile {

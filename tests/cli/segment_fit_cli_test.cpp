@@ -9,7 +9,7 @@
 
 #include "cli_test_support.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "touch_scenes.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "cli_test_support.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 namespace {

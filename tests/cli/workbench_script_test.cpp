@@ -11,7 +11,7 @@
 
 #include "cli_test_support.h"
 #include "png_test_support.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 namespace {

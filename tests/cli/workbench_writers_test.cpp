@@ -16,8 +16,8 @@
 #include <thread>
 
 #include "cli_test_support.h"
-#include "tactile/io/label_store.h"
 #include "tactile/labels/commands.h"
+#include "tactile/labelstore/label_store.h"
 #include "test_paths.h"
 
 extern char** environ;

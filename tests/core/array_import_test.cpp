@@ -2,8 +2,6 @@
 // the same numbers in every format, classes per frame and per capture as labels, and every
 // malformed or truncated file refused with its place, never read as other numbers, never
 // a crash, never an allocation larger than the file.
-#include "tactile/io/array_import.h"
-
 #include <gtest/gtest.h>
 #include <hdf5/serial/hdf5.h>
 
@@ -14,7 +12,8 @@
 
 #include "io_test_files.h"
 #include "tactile/error.h"
-#include "tactile/io/csv.h"
+#include "tactile/formats/array_files.h"
+#include "tactile/formats/csv_files.h"
 #include "test_paths.h"
 
 namespace tactile {

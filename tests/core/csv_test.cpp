@@ -1,5 +1,3 @@
-#include "tactile/io/csv.h"
-
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -10,6 +8,7 @@
 
 #include "io_test_files.h"
 #include "tactile/error.h"
+#include "tactile/formats/csv_files.h"
 
 namespace tactile {
 namespace {

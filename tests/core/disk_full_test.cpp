@@ -23,9 +23,9 @@
 #include "tactile/io/disk_room.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/io/recording_writer.h"
-#include "tactile/io/repair.h"
-#include "tactile/io/verify.h"
 #include "tactile/live/live_recorder.h"
+#include "tactile/verify/repair.h"
+#include "tactile/verify/verify.h"
 
 namespace tactile {
 namespace {

@@ -1,8 +1,6 @@
-// EDF+ and BDF+ recordings read with EDFlib (io/edf_import.h): files written by EDFlib itself,
+// EDF+ and BDF+ recordings read with EDFlib (formats/edf_files.h): files written by EDFlib itself,
 // read back value by value (within half a digital step), their annotations as labels, and the
 // header checks that run before EDFlib sees a file.
-#include "tactile/io/edf_import.h"
-
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -10,8 +8,9 @@
 #include "edf_test_files.h"
 #include "io_test_files.h"
 #include "tactile/error.h"
+#include "tactile/formats/edf_files.h"
 #include "tactile/formats/import.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 namespace {

@@ -1,4 +1,4 @@
-// The import that `tactile import` and the workbench share (labels/import_files.h): what it
+// The import that `tactile import` and the workbench share (formats/import.h): what it
 // writes and reports, where it stops when asked to, and a preview that reads the same and
 // writes nothing.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include "tactile/error.h"
 #include "tactile/formats/import.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "test_paths.h"
 
 namespace tactile {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "nao_test_recording.h"
-#include "tactile/io/label.h"
+#include "tactile/labelstore/label.h"
 
 namespace tactile::testing {
 

@@ -8,10 +8,10 @@
 
 #include "label_store_fixture.h"
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
 #include "tactile/labels/commands.h"
 #include "tactile/labels/predict.h"
 #include "tactile/labels/suggestions.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 namespace {

@@ -1,7 +1,5 @@
 // ELAN .eaf and Label Studio JSON, both ways: hand-written files of those tools read value by
 // value, our exports read back equal, malformed elements refused by name.
-#include "tactile/labels/label_interop.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,8 +9,9 @@
 
 #include "label_store_fixture.h"
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
-#include "tactile/labels/label_files.h"
+#include "tactile/labels/elan_and_label_studio.h"
+#include "tactile/labels/label_file_commands.h"
+#include "tactile/labelstore/label_store.h"
 #include "temp_folder.h"
 #include "test_paths.h"
 

@@ -11,8 +11,8 @@
 
 #include "label_store_fixture.h"
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
-#include "tactile/io/verify.h"
+#include "tactile/labelstore/label_store.h"
+#include "tactile/verify/verify.h"
 #include "test_paths.h"
 
 namespace tactile {

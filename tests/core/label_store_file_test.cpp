@@ -11,7 +11,7 @@
 
 #include "label_store_fixture.h"
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 namespace {

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "tactile/io/label.h"
+#include "tactile/labelstore/label.h"
 #include "temp_folder.h"
 
 namespace tactile {

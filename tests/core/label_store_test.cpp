@@ -1,5 +1,5 @@
 // LabelStore: adding, changing, removing and querying labels, class vocabulary.
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 #include <gtest/gtest.h>
 

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "label_store_fixture.h"
-#include "tactile/io/label_store.h"
-#include "tactile/io/verify.h"
 #include "tactile/labels/commands.h"
+#include "tactile/labelstore/label_store.h"
+#include "tactile/verify/verify.h"
 #include "test_paths.h"
 
 namespace tactile {

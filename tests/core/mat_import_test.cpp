@@ -3,8 +3,6 @@
 // C order (samples(t, c) = 100 t + c, so a transposed read shows); names, classes and the rate
 // through the import; and files whose structure lies refused with their place before libmatio
 // is given them.
-#include "tactile/io/mat_import.h"
-
 #include <gtest/gtest.h>
 #include <matio.h>
 
@@ -16,6 +14,7 @@
 #include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/formats/import.h"
+#include "tactile/formats/mat_files.h"
 #include "test_paths.h"
 
 namespace tactile {

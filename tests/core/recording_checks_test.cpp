@@ -11,7 +11,7 @@
 #include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/verify.h"
+#include "tactile/verify/verify.h"
 #include "test_paths.h"
 
 namespace tactile {

@@ -16,7 +16,7 @@
 #include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/verify.h"
+#include "tactile/verify/verify.h"
 
 namespace tactile {
 namespace {

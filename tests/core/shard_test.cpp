@@ -1,6 +1,6 @@
-// Shards and their part files (tactile/io/shard.h): which items a shard does, and what
+// Shards and their part files (tactile/shards/shard.h): which items a shard does, and what
 // gather_parts refuses, by name.
-#include "tactile/io/shard.h"
+#include "tactile/shards/shard.h"
 
 #include <gtest/gtest.h>
 

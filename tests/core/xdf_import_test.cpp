@@ -2,8 +2,6 @@
 // xdf_writer.h, checked in libxdf itself, then imported and checked value by value (the
 // resampled grid, the dropout's gap, the interpolated points, the markers' labels, the clock
 // offsets); stream choice, marker pairing and malformed files.
-#include "tactile/io/xdf_import.h"
-
 #include <gtest/gtest.h>
 #include <xdf.h>
 
@@ -11,6 +9,7 @@
 
 #include "io_test_files.h"
 #include "tactile/error.h"
+#include "tactile/formats/xdf_files.h"
 #include "tactile/layout/skin_layout.h"
 #include "test_paths.h"
 #include "xdf_writer.h"

@@ -4,7 +4,7 @@
 // The first byte picks the format and the shape's reading.
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/io/array_import.h"
+#include "tactile/formats/array_files.h"
 #include "tactile/layout/skin_layout.h"
 
 using namespace tactile;

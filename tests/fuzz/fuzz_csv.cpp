@@ -6,7 +6,7 @@
 
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/io/csv.h"
+#include "tactile/formats/csv_files.h"
 #include "tactile/layout/skin_layout.h"
 
 using namespace tactile;

@@ -1,11 +1,11 @@
-// ELAN .eaf (label_interop.h): `parse_eaf` on the bytes; what it accepts is written again by
-// `labels_eaf` and must read back as as many labels (an export that its own reader refuses
-// is a finding too).
+// ELAN .eaf (elan_and_label_studio.h): `parse_eaf` on the bytes; what it accepts is written again
+// by `labels_eaf` and must read back as as many labels (an export that its own reader refuses is a
+// finding too).
 #include <string>
 
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/labels/label_interop.h"
+#include "tactile/labels/elan_and_label_studio.h"
 
 using namespace tactile;
 

@@ -7,7 +7,7 @@
 
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/io/edf_import.h"
+#include "tactile/formats/edf_files.h"
 
 using namespace tactile;
 

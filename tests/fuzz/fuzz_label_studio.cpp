@@ -1,11 +1,11 @@
-// Label Studio's JSON export (label_interop.h): `is_label_studio_json` and
+// Label Studio's JSON export (elan_and_label_studio.h): `is_label_studio_json` and
 // `parse_label_studio` on the bytes; what it accepts is written again by `labels_label_studio`
 // and must read back as as many labels.
 #include <string>
 
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/labels/label_interop.h"
+#include "tactile/labels/elan_and_label_studio.h"
 
 using namespace tactile;
 

@@ -2,7 +2,7 @@
 // byte picks the format.
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/io/label_import.h"
+#include "tactile/labelstore/label_csv_json.h"
 
 using namespace tactile;
 

@@ -1,11 +1,11 @@
-// MATLAB .mat files (io/mat_import.h): the input is written to a file of this process (libmatio
+// MATLAB .mat files (formats/mat_files.h): the input is written to a file of this process (libmatio
 // reads paths), every variable and struct field is listed, and each is read as `tactile import`
 // would read it (numbers in C order, or names), the numeric ones then made into a recording of a
 // small generic layout. Refusals are tactile::Error; libmatio must never be handed a structure
 // it would crash, overread or allocate without bound on (mat_structure.cpp checks it first).
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/io/mat_import.h"
+#include "tactile/formats/mat_files.h"
 #include "tactile/layout/skin_layout.h"
 
 using namespace tactile;

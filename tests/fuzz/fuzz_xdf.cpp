@@ -6,7 +6,7 @@
 
 #include "fuzz_support.h"
 #include "tactile/error.h"
-#include "tactile/io/xdf_import.h"
+#include "tactile/formats/xdf_files.h"
 #include "tactile/layout/skin_layout.h"
 
 using namespace tactile;

@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "tactile/error.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 

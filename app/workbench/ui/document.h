@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/label.h"
-#include "tactile/io/label_store.h"
 #include "tactile/labels/lanes.h"
+#include "tactile/labelstore/label.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/live/online_classifier.h"
 #include "tactile/signal/sample_source.h"

@@ -12,7 +12,7 @@
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/atomic_file.h"
-#include "tactile/labels/label_files.h"
+#include "tactile/labels/label_file_commands.h"
 #include "tactile/labels/label_format.h"
 #include "tactile/skins/skin.h"
 #include "views.h"

@@ -8,10 +8,10 @@
 #include "jobs.h"
 #include "tactile/error.h"
 #include "tactile/features/feature_table.h"
-#include "tactile/io/verify.h"
-#include "tactile/labels/label_files.h"
+#include "tactile/labels/label_file_commands.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
+#include "tactile/verify/verify.h"
 
 namespace tactile {
 

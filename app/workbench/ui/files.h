@@ -17,7 +17,7 @@
 
 #include "file_browser.h"
 #include "tactile/formats/import.h"
-#include "tactile/labels/label_interop.h"
+#include "tactile/labels/elan_and_label_studio.h"
 #include "workbench_state.h"
 
 namespace tactile {

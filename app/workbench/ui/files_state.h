@@ -1,8 +1,8 @@
 #pragma once
 // The file commands of the window as plain data (files.h draws and runs them): the dialogs'
 // fields, the jobs that read and write the files, the report shown. Every command is core's
-// (formats/import.h, labels/label_files.h, features/feature_table.h, io/verify.h), as the
-// command line calls it; the window only gathers its options and shows what it did.
+// (formats/import.h, labels/label_file_commands.h, features/feature_table.h, verify/verify.h), as
+// the command line calls it; the window only gathers its options and shows what it did.
 
 #include <array>
 #include <map>
@@ -13,7 +13,7 @@
 
 #include "tactile/formats/import.h"
 #include "tactile/jobs/job.h"
-#include "tactile/labels/label_interop.h"
+#include "tactile/labels/elan_and_label_studio.h"
 
 namespace tactile {
 

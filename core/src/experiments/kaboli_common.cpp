@@ -9,7 +9,7 @@
 #include "tactile/error.h"
 #include "tactile/features/feature_extractor.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/ml/classifier.h"
 #include "tactile/ml/evaluation.h"

@@ -13,8 +13,8 @@
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
 #include "tactile/jobs/job.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
 

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <set>
 
-#include "../io/csv_text.h"
 #include "dataset_files.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
+#include "tactile/io/csv_text.h"
 #include "tactile/text.h"
 
 namespace tactile {

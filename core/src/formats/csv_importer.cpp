@@ -1,5 +1,5 @@
 // CSV: long (a header, a time column, one column per channel; a class column and grouping
-// columns) or wide (one capture per row, with a labels file) (io/csv.h).
+// columns) or wide (one capture per row, with a labels file) (formats/csv_files.h).
 #include "builtin.h"
 #include "tactile/error.h"
 

@@ -1,7 +1,7 @@
-// EDF+ and BDF+: the signals chosen by label, the annotations as labels (io/edf_import.h).
-#include "array_files.h"
+// EDF+ and BDF+: the signals chosen by label, the annotations as labels (formats/edf_files.h).
+#include "array_importers.h"
 #include "builtin.h"
-#include "tactile/io/edf_import.h"
+#include "tactile/formats/edf_files.h"
 
 namespace tactile::formats {
 

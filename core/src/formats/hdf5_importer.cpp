@@ -1,7 +1,7 @@
-// HDF5: one dataset of a file any program wrote (io/array_import.h).
+// HDF5: one dataset of a file any program wrote (formats/array_files.h).
 #include <optional>
 
-#include "array_files.h"
+#include "array_importers.h"
 #include "builtin.h"
 #include "tactile/error.h"
 

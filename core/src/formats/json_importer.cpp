@@ -1,8 +1,8 @@
 // JSON: an array of frames, at the top level or under a key, of numbers or of objects whose
-// members hold the frame and its class (io/array_import.h).
+// members hold the frame and its class (formats/array_files.h).
 #include <optional>
 
-#include "array_files.h"
+#include "array_importers.h"
 #include "builtin.h"
 #include "tactile/error.h"
 

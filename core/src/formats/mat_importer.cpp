@@ -1,13 +1,13 @@
-// MATLAB: a variable (or a struct's field) of a .mat file, v4 to v7.3 (io/mat_import.h); the
+// MATLAB: a variable (or a struct's field) of a .mat file, v4 to v7.3 (formats/mat_files.h); the
 // rate may be a scalar variable of the same file.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "array_files.h"
+#include "array_importers.h"
 #include "builtin.h"
 #include "tactile/error.h"
-#include "tactile/io/mat_import.h"
+#include "tactile/formats/mat_files.h"
 
 namespace tactile::formats {
 

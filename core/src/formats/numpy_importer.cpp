@@ -1,7 +1,7 @@
-// NumPy: a .npy array, or one array of a .npz archive (io/array_import.h).
+// NumPy: a .npy array, or one array of a .npz archive (formats/array_files.h).
 #include <optional>
 
-#include "array_files.h"
+#include "array_importers.h"
 #include "builtin.h"
 #include "tactile/error.h"
 #include "tactile/text.h"

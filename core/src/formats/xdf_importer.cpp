@@ -1,7 +1,7 @@
 // XDF (LabRecorder): a numeric stream resampled to its nominal rate, a markers stream's
-// markers as labels (io/xdf_import.h).
+// markers as labels (formats/xdf_files.h).
 #include "builtin.h"
-#include "tactile/io/xdf_import.h"
+#include "tactile/formats/xdf_files.h"
 #include "tactile/text.h"
 
 namespace tactile::formats {

@@ -1,4 +1,4 @@
-#include "csv_text.h"
+#include "tactile/io/csv_text.h"
 
 #include <algorithm>
 #include <charconv>

@@ -10,7 +10,7 @@
 #include <optional>
 #include <span>
 
-#include "hdf5_object.h"
+#include "tactile/io/hdf5_object.h"
 #include "tactile/io/minmax_pyramid.h"
 
 namespace tactile {

@@ -1,4 +1,4 @@
-#include "hdf5_object.h"
+#include "tactile/io/hdf5_object.h"
 
 #include <algorithm>
 #include <cstdio>

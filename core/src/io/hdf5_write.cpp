@@ -3,9 +3,9 @@
 #include <cmath>
 #include <set>
 
-#include "hdf5_object.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/io/hdf5_file.h"
+#include "tactile/io/hdf5_object.h"
 
 namespace tactile {
 

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <limits>
 
-#include "hdf5_object.h"
 #include "tactile/io/hdf5_file.h"
+#include "tactile/io/hdf5_object.h"
 #include "tactile/io/minmax_pyramid.h"
 
 namespace tactile {

@@ -1,5 +1,5 @@
 // ELAN's .eaf (EAF 3.0) both ways: a tier per lane, the classes as a controlled vocabulary,
-// region, confidence and note as Symbolic_Association dependent tiers (label_interop.h).
+// region, confidence and note as Symbolic_Association dependent tiers (elan_and_label_studio.h).
 #include <tinyxml2.h>
 
 #include <algorithm>
@@ -11,8 +11,8 @@
 #include <set>
 
 #include "tactile/error.h"
+#include "tactile/labels/elan_and_label_studio.h"
 #include "tactile/labels/label_format.h"
-#include "tactile/labels/label_interop.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/text.h"
 

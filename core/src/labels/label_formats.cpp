@@ -1,15 +1,15 @@
 // The label formats (labels/label_format.h): the list, and our own two, CSV and JSON, as
-// `labels export` writes them and io/label_import.h reads them. ELAN and Label Studio are rows
-// of their own files (label_eaf.cpp, label_studio.cpp).
+// `labels export` writes them and labelstore/label_csv_json.h reads them. ELAN and Label Studio are
+// rows of their own files (label_eaf.cpp, label_studio.cpp).
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <mutex>
 
 #include "tactile/error.h"
-#include "tactile/io/label_import.h"
-#include "tactile/io/label_store.h"
 #include "tactile/labels/label_format.h"
+#include "tactile/labelstore/label_csv_json.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/text.h"
 
 namespace tactile {

@@ -1,5 +1,5 @@
-// Label Studio's JSON export of time-series labels both ways (label_interop.h): a list of tasks,
-// each with annotations (people; "ground_truth": true for ground truth) and predictions
+// Label Studio's JSON export of time-series labels both ways (elan_and_label_studio.h): a list of
+// tasks, each with annotations (people; "ground_truth": true for ground truth) and predictions
 // (segmenters and models), each holding "timeserieslabels" results with start and end.
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "tactile/error.h"
+#include "tactile/labels/elan_and_label_studio.h"
 #include "tactile/labels/label_format.h"
-#include "tactile/labels/label_interop.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/text.h"
 

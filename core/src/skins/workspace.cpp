@@ -9,7 +9,7 @@
 
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/sim/grid_sim.h"
 #include "tactile/sim/sensor_faults.h"
 #include "tactile/skins/skin.h"

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "tactile/error.h"
+#include "tactile/formats/array_files.h"
 #include "tactile/formats/importer.h"
-#include "tactile/io/array_import.h"
 
 namespace tactile::test {
 

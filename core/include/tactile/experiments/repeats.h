@@ -2,7 +2,7 @@
 // Repeats of one experiment (`tactile experiment NAME --repeats R`): R runs with the seeds
 // S, S+1, ..., S+R-1, each simulating into its own folder WORK/seed-S, and a summary of the
 // figures they give (mean, standard deviation, min and max over the runs) beside the
-// paper's. The runs are the items of `--shard I/N` (tactile/io/shard.h) in seed order; a run
+// paper's. The runs are the items of `--shard I/N` (tactile/shards/shard.h) in seed order; a run
 // is kept as JSON (report_to_json) so the summary and the text assembled from every shard's
 // runs are the ones a single process gives.
 
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "tactile/experiments/experiment.h"
-#include "tactile/io/shard.h"
+#include "tactile/shards/shard.h"
 
 namespace tactile::experiments {
 

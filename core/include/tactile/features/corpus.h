@@ -12,7 +12,7 @@
 
 #include "tactile/features/dataset.h"
 #include "tactile/features/feature_extractor.h"
-#include "tactile/io/label.h"
+#include "tactile/labelstore/label.h"
 
 namespace tactile {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "tactile/features/corpus.h"
-#include "tactile/io/shard.h"
+#include "tactile/shards/shard.h"
 
 namespace tactile {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/csv.h"
+#include "tactile/formats/csv_files.h"
 #include "tactile/layout/skin_layout.h"
 
 namespace tactile {

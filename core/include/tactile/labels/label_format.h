@@ -1,7 +1,7 @@
 #pragma once
 // A label file format behind one interface, as recording formats are (formats/importer.h): ours
 // (CSV and JSON, as `labels export` writes them) and other tools' (ELAN's .eaf, Label Studio's
-// JSON; label_interop.h). `tactile labels export`'s flags, the workbench's Export labels
+// JSON; elan_and_label_studio.h). `tactile labels export`'s flags, the workbench's Export labels
 // choices and the import of a label file come from this list; a program adds its own with
 // register_label_format.
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/label.h"
-#include "tactile/labels/label_interop.h"
+#include "tactile/labels/elan_and_label_studio.h"
+#include "tactile/labelstore/label.h"
 
 namespace tactile {
 

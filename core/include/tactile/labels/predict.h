@@ -13,9 +13,9 @@
 
 #include "tactile/features/corpus.h"
 #include "tactile/features/dataset.h"
-#include "tactile/io/label.h"
-#include "tactile/io/label_store.h"
 #include "tactile/io/recording.h"
+#include "tactile/labelstore/label.h"
+#include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/ml/classifier.h"
 

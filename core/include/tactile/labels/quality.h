@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/label.h"
+#include "tactile/labelstore/label.h"
 
 namespace tactile {
 

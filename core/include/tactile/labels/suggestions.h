@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/label.h"
-#include "tactile/io/label_store.h"
+#include "tactile/labelstore/label.h"
+#include "tactile/labelstore/label_store.h"
 
 namespace tactile {
 

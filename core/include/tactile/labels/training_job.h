@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "tactile/features/dataset.h"
-#include "tactile/io/label.h"
 #include "tactile/jobs/job.h"
+#include "tactile/labelstore/label.h"
 #include "tactile/ml/evaluation.h"
 
 namespace tactile {

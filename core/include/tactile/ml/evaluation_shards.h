@@ -1,5 +1,5 @@
 #pragma once
-// The work of `tactile evaluate` as items for shards (tactile/io/shard.h): the folds of one
+// The work of `tactile evaluate` as items for shards (tactile/shards/shard.h): the folds of one
 // classifier, or for `--classifier all` every preset's folds, preset after preset (item
 // preset * folds + fold). Each item is one fold's outcome, kept exactly (predictions, scores,
 // the model it chose, importances, timings), so the result assembled from every shard's items
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/shard.h"
 #include "tactile/ml/evaluation.h"
+#include "tactile/shards/shard.h"
 
 namespace tactile::ml {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "tactile/dsp/flux.h"
-#include "tactile/io/label.h"
 #include "tactile/io/recording.h"
+#include "tactile/labelstore/label.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/label.h"
 #include "tactile/io/recording.h"
+#include "tactile/labelstore/label.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
 

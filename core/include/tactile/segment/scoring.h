@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tactile/io/label.h"
+#include "tactile/labelstore/label.h"
 
 namespace tactile {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "tactile/io/label.h"
 #include "tactile/io/recording.h"
+#include "tactile/labelstore/label.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/parameters.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "tactile/io/shard.h"
+#include "tactile/shards/shard.h"
 #include "tactile/sim/simulator.h"
 
 namespace tactile {
@@ -30,7 +30,7 @@ SimulationSummary write_simulation(const std::string& folder, const std::string&
                                    const SimulationProgress& progress = {});
 
 // The same work in its two halves, as `tactile simulate --shard I/N` and `tactile merge` do it
-// (io/shard.h). The items are the (subject, trial) trials, subject-major; a shard generates and
+// (shards/shard.h). The items are the (subject, trial) trials, subject-major; a shard generates and
 // writes the recordings of its own items into `folder` (each the file one process writes) and
 // keeps their labels; the store is written once, from every item's labels in item order.
 struct SimulatedTrials {
@@ -52,7 +52,7 @@ SimulationSummary store_simulated_labels(const std::string& folder, const std::s
 // (name and size), seconds and labels.
 Part simulation_part(const SimulatedTrials& trials, const std::string& folder,
                      const std::string& skin, const SimulationOptions& options, const Shard& shard);
-// The gathered parts (io/shard.h gather_parts) merged into `folder`: every item's recording
+// The gathered parts (shards/shard.h gather_parts) merged into `folder`: every item's recording
 // checked to be there with the size its part names, then store_simulated_labels. Throws
 // tactile::Error naming a missing or changed recording (and the part that made it).
 SimulationSummary merge_simulation_parts(const std::vector<Part>& parts, const std::string& folder);

@@ -1,0 +1,78 @@
+#pragma once
+// A label store's labels to and from files, and the agreement of two of its lanes as a report:
+// `tactile labels export / import / agreement` and the workbench's File > Export labels,
+// Labels > Import labels and Labels > Agreement report call these, so both write the same
+// bytes and print the same report.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tactile/labels/agreement.h"
+#include "tactile/labels/elan_and_label_studio.h"
+#include "tactile/labelstore/label.h"
+#include "tactile/labelstore/label_store.h"
+
+namespace tactile {
+
+// A --source option's value ("manual", "segmenter", "model", "ground-truth"); throws
+// tactile::Error naming `option`.
+LabelSource label_source_option(const std::string& text, const std::string& option = "--source");
+
+// "DB: labels row 17 field t1: what", one per damaged row a read of `store` met.
+std::vector<std::string> damage_lines(const LabelStore& store);
+
+struct LabelExport {
+  size_t labels = 0;                 // written
+  std::vector<std::string> damaged;  // damaged rows left out (damage_lines)
+};
+
+// The labels the filter matches in a label format (labels/label_format.h, by its name: "CSV",
+// "JSON", "ELAN", "Label Studio"), written in one rename. `vocabulary` is ELAN's controlled
+// vocabulary (the skin's classes). The database must exist (a mistyped path leaves no new
+// database behind). A damaged row is left out and named in `damaged`: the caller decides
+// whether that fails.
+LabelExport export_label_file(const std::string& database, const std::string& out,
+                              const std::string& format, const LabelFilter& filter = {},
+                              const std::vector<std::string>& vocabulary = {});
+
+// The labels of a file of any label format (label_format_of), checked whole and added in one
+// transaction (the store is created when missing), with `options` (recording, tier and
+// annotator mappings) for the formats that take them. Returns how many.
+size_t import_label_file(const std::string& database, const std::string& file,
+                         const InteropImport& options = {});
+// The tiers (ELAN) or annotators and models (Label Studio) of a file import_label_file reads
+// through `options`; format "" for a file of our own CSV or JSON, which has none to choose.
+InteropSources interop_sources(const std::string& file);
+// "imported N label(s) into DB", as `tactile labels import` prints it.
+std::string imported_labels_line(size_t labels, const std::string& database);
+
+// Two lanes of a store compared (`tactile labels agreement`).
+struct AgreementQuery {
+  std::string database;
+  // "ground-truth", "manual:NAME" (or just NAME), "segmenter:METHOD", "model:NAME".
+  std::string a, b;
+  std::string recording;   // "" = every recording
+  std::string recordings;  // folder of RECORDING.h5 for spans and rates; "" = the database's
+  double iou = 0.5;
+};
+
+struct AgreementReport {
+  AgreementQuery query;
+  Agreement agreement;
+  std::vector<std::string> damaged;  // damaged rows the lanes leave out (damage_lines)
+};
+
+// Each lane's labels (refused naming --a or --b when it has none), each recording's span and
+// rate from its file when the folder holds it.
+AgreementReport lane_agreement(const AgreementQuery& query,
+                               const std::function<void(double)>& step = {});
+// The report as the command line prints it: the lanes, kappa, segment F1, the class
+// confusion, one line per disagreement.
+std::string agreement_text(const AgreementReport& report);
+// The same as JSON (`--json`), indented, with a final line break.
+std::string agreement_json(const AgreementReport& report);
+
+}  // namespace tactile

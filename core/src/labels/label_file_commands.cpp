@@ -1,0 +1,199 @@
+#include "tactile/labels/label_file_commands.h"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
+#include "tactile/io/hdf5_file.h"
+#include "tactile/labels/label_format.h"
+#include "tactile/labels/lanes.h"
+#include "tactile/text.h"
+
+namespace tactile {
+
+namespace {
+
+// printf's formatting into a string: the agreement report keeps the columns it always had.
+std::string formatted_line(const char* format, ...) {
+  va_list arguments;
+  va_start(arguments, format);
+  va_list again;
+  va_copy(again, arguments);
+  const int size = std::vsnprintf(nullptr, 0, format, arguments);
+  va_end(arguments);
+  std::string text(static_cast<size_t>(std::max(size, 0)) + 1, '\0');
+  std::vsnprintf(text.data(), text.size(), format, again);
+  va_end(again);
+  text.resize(static_cast<size_t>(std::max(size, 0)));
+  return text;
+}
+
+// A lane as --a / --b name it: "ground-truth", "manual:NAME" (or just NAME),
+// "segmenter:METHOD", "model:NAME".
+std::vector<Label> labels_of_lane(const LabelStore& store, const std::string& recording,
+                                  const std::string& lane, const char* option) {
+  std::string id = lane;
+  if (lane != "ground-truth" && lane.find(':') == std::string::npos) id = "manual:" + lane;
+  // The form lane ids had before they followed the documentation.
+  if (lane.starts_with("segmenter:segmenter:")) id = lane.substr(10);
+  LabelFilter filter;
+  if (!recording.empty()) filter.recording = recording;
+  std::vector<Label> labels;
+  for (const Label& label : store.list(filter))
+    if (lane_of(label).id() == id) labels.push_back(label);
+  if (labels.empty()) throw Error(option, "no labels in lane '" + id + "' of " + store.path());
+  return labels;
+}
+
+}  // namespace
+
+LabelSource label_source_option(const std::string& text, const std::string& option) {
+  try {
+    return parse_label_source(text);
+  } catch (const Error& error) {
+    throw Error(option, error.message());
+  }
+}
+
+std::vector<std::string> damage_lines(const LabelStore& store) {
+  std::vector<std::string> lines;
+  for (const StoreProblem& problem : store.problems())
+    lines.push_back(problem.where(store.path()) + ": " + problem.what);
+  return lines;
+}
+
+LabelExport export_label_file(const std::string& database, const std::string& out,
+                              const std::string& format, const LabelFilter& filter,
+                              const std::vector<std::string>& vocabulary) {
+  const LabelFormat* chosen = label_format_named(format);
+  if (!chosen) {
+    std::vector<std::string> names;
+    for (const LabelFormat* known : label_formats()) names.push_back(known->name());
+    throw Error("format", in_quotes(format) + " is not a label format (" + joined(names) + ")");
+  }
+  const LabelStore store(database, LabelStore::OpenMode::kExisting);
+  const std::vector<Label> labels = store.list(filter);
+  write_file_atomically(out, chosen->write(labels, vocabulary), chosen->name() + " export");
+  LabelExport written;
+  written.labels = labels.size();
+  written.damaged = damage_lines(store);
+  return written;
+}
+
+InteropSources interop_sources(const std::string& file) {
+  return label_format_of(file).sources(file);
+}
+
+size_t import_label_file(const std::string& database, const std::string& file,
+                         const InteropImport& options) {
+  // All or nothing: the file is read and checked whole, then added in one transaction.
+  const std::vector<Label> labels = label_format_of(file).read(file, options);
+  LabelStore store(database);
+  store.add_many(labels);
+  return labels.size();
+}
+
+std::string imported_labels_line(size_t labels, const std::string& database) {
+  return "imported " + std::to_string(labels) + (labels == 1 ? " label" : " labels") + " into " +
+         database;
+}
+
+AgreementReport lane_agreement(const AgreementQuery& query,
+                               const std::function<void(double)>& step) {
+  const LabelStore store(query.database, LabelStore::OpenMode::kExisting);
+  const std::vector<Label> a = labels_of_lane(store, query.recording, query.a, "--a");
+  const std::vector<Label> b = labels_of_lane(store, query.recording, query.b, "--b");
+  const std::vector<std::string> damaged = damage_lines(store);
+  if (step) step(0.3);
+  // Each recording's span and rate from its file, when it is in the folder.
+  const std::filesystem::path folder = query.recordings.empty()
+                                           ? std::filesystem::path(query.database).parent_path()
+                                           : std::filesystem::path(query.recordings);
+  std::map<std::string, RecordingTiming> timing;
+  for (const auto* labels : {&a, &b})
+    for (const Label& label : *labels) {
+      if (timing.count(label.recording)) continue;
+      const std::filesystem::path file = folder / (label.recording + ".h5");
+      std::error_code error;
+      if (!std::filesystem::exists(file, error)) continue;
+      const RecordingFile recording(file.string());
+      if (recording.streams().empty()) continue;
+      const StreamInfo& stream = recording.streams().front();
+      const double start = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
+      timing[label.recording] = {start, start + stream.duration(), stream.rate_hz};
+    }
+  if (step) step(0.6);
+  return {query, compute_agreement(a, b, timing, query.iou), damaged};
+}
+
+std::string agreement_text(const AgreementReport& report) {
+  const Agreement& agreement = report.agreement;
+  const AgreementQuery& query = report.query;
+  std::string text;
+  text += formatted_line("A: %s (%lld labels)   B: %s (%lld labels)\n", query.a.c_str(),
+                         static_cast<long long>(agreement.a_segments), query.b.c_str(),
+                         static_cast<long long>(agreement.b_segments));
+  text += formatted_line("kappa over time: %.3f (observed %.3f, chance %.3f, %lld samples)\n",
+                         agreement.kappa, agreement.observed, agreement.expected,
+                         static_cast<long long>(agreement.samples));
+  text += formatted_line(
+      "segments at IoU >= %.2f: precision %.3f, recall %.3f, F1 %.3f (%lld matched)\n", query.iou,
+      agreement.precision, agreement.recall, agreement.f1,
+      static_cast<long long>(agreement.matched));
+  text += formatted_line("classes of matched segments (rows A, columns B):\n%12s", "");
+  for (const std::string& name : agreement.classes)
+    text += formatted_line(" %10.10s", name.c_str());
+  text += "\n";
+  for (size_t row = 0; row < agreement.classes.size(); ++row) {
+    text += formatted_line("%12.12s", agreement.classes[row].c_str());
+    for (int64_t count : agreement.confusion[row])
+      text += formatted_line(" %10lld", static_cast<long long>(count));
+    text += "\n";
+  }
+  text += formatted_line("%zu disagreements\n", agreement.disagreements.size());
+  for (const Disagreement& d : agreement.disagreements) {
+    std::string what;
+    if (d.kind == "class") what = "class " + d.a_class + " vs " + d.b_class;
+    if (d.kind == "missed") what = "only in A: " + d.a_class;
+    if (d.kind == "extra") what = "only in B: " + d.b_class;
+    text += formatted_line("  %s %.3f-%.3f s: %s\n", d.recording.c_str(), d.t0, d.t1, what.c_str());
+  }
+  return text;
+}
+
+std::string agreement_json(const AgreementReport& report) {
+  const Agreement& agreement = report.agreement;
+  nlohmann::json disagreements = nlohmann::json::array();
+  for (const Disagreement& d : agreement.disagreements)
+    disagreements.push_back({{"recording", d.recording},
+                             {"t0", d.t0},
+                             {"t1", d.t1},
+                             {"a", d.a_class},
+                             {"b", d.b_class},
+                             {"kind", d.kind}});
+  return nlohmann::json{{"a", report.query.a},
+                        {"b", report.query.b},
+                        {"kappa", agreement.kappa},
+                        {"observed", agreement.observed},
+                        {"expected", agreement.expected},
+                        {"samples", agreement.samples},
+                        {"iou", report.query.iou},
+                        {"a_segments", agreement.a_segments},
+                        {"b_segments", agreement.b_segments},
+                        {"matched", agreement.matched},
+                        {"precision", agreement.precision},
+                        {"recall", agreement.recall},
+                        {"f1", agreement.f1},
+                        {"classes", agreement.classes},
+                        {"confusion", agreement.confusion},
+                        {"disagreements", disagreements}}
+             .dump(2) +
+         "\n";
+}
+
+}  // namespace tactile
