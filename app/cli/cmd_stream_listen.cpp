@@ -29,7 +29,8 @@ struct StreamListenOptions {
   std::string skin;
   std::string from;
   double duration = 0.0;
-  double idle = 0.0;  // 0: listen for the whole duration
+  double idle = 0.0;      // 0: listen for the whole duration
+  int64_t datagrams = 0;  // stop once this many have arrived; 0: no such limit
   std::string out;
   bool json = false;
 };
@@ -40,6 +41,7 @@ void run_stream_listen(const StreamListenOptions& options) {
     throw Error("--duration", "must be a number of seconds above 0");
   if (!(options.idle >= 0.0) || !std::isfinite(options.idle))
     throw Error("--idle", "must be a number of seconds, 0 or more (0: never)");
+  if (options.datagrams < 0) throw Error("--datagrams", "must be 0 (no limit) or more");
   skin_record(options.skin, "--skin " + options.skin);  // an unknown skin is named at its option
   packet_format_info(options.skin);                     // refuses a skin without a packet format
   PacketCollector collector(load_layout(options.skin), !options.out.empty());
@@ -73,6 +75,7 @@ void run_stream_listen(const StreamListenOptions& options) {
     }
     collector.add(std::span<const uint8_t>(buffer.data(), *size),
                   std::chrono::duration<double>(last_arrival - start).count());
+    if (options.datagrams > 0 && collector.datagrams() >= options.datagrams) break;
   }
 
   const SequenceTracker& sequence = collector.sequence();
@@ -147,6 +150,8 @@ void register_stream_listen(CLI::App& app) {
   command->add_option("--duration", options->duration, "Seconds to listen at most")->required();
   command->add_option("--idle", options->idle,
                       "Stop once no datagram has come for this many seconds (default: never)");
+  command->add_option("--datagrams", options->datagrams,
+                      "Stop once this many datagrams have arrived (default: no such limit)");
   command->add_option("--out", options->out, "Write what arrived as a recording (.h5)");
   command->add_flag("--json", options->json, "Print the report as JSON");
   command->callback([options] { run_stream_listen(*options); });

