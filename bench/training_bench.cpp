@@ -12,9 +12,9 @@
 #include <thread>
 #include <vector>
 
-#include "analysis.h"
 #include "bench_support.h"
 #include "jobs.h"
+#include "model_panel.h"
 #include "tactile/skins/workspace.h"
 #include "workbench.h"
 
@@ -57,13 +57,14 @@ int main(int argc, char** argv) {
   }
   while (tactile::find_job(state, "training")) training.push_back(draw());
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  const size_t presets = state.analysis.results.size();
+  const size_t presets = state.analysis.results.rows.size();
   // The same run with no window drawing: what the training costs on its own.
   const auto alone_start = Clock::now();
-  tactile::start_training_job(state.analysis.last_request)->wait();
+  tactile::start_training_job(state.analysis.panel.last_request)->wait();
   const double alone_seconds = std::chrono::duration<double>(Clock::now() - alone_start).count();
-  const double rows =
-      state.analysis.dataset ? static_cast<double>(state.analysis.dataset->rows()) : 0;
+  const double rows = state.analysis.results.dataset
+                          ? static_cast<double>(state.analysis.results.dataset->rows())
+                          : 0;
   std::printf(
       "{\"rows\": %.0f, \"presets\": %zu, \"train_all_seconds\": %.2f, "
       "\"train_all_seconds_without_window\": %.2f, \"frames_while_training\": %zu,\n"

@@ -20,11 +20,11 @@
 #include <thread>
 #include <vector>
 
-#include "analysis.h"
 #include "bench_support.h"
 #include "jobs.h"
 #include "labelling.h"
 #include "long_robovie.h"
+#include "model_panel.h"
 #include "process_memory.h"
 #include "tactile/features/dataset.h"
 #include "tactile/io/hdf5_file.h"
@@ -148,9 +148,9 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 300; ++k) idle.push_back(draw());
     std::printf(
         "{\"rows\": %lld, \"features\": %lld, \"idle_ms_median\": %.2f, \"idle_ms_max\": %.2f",
-        static_cast<long long>(state.analysis.dataset->rows()),
-        static_cast<long long>(state.analysis.dataset->features.cols()), percentile(idle, 0.5),
-        percentile(idle, 1.0));
+        static_cast<long long>(state.analysis.results.dataset->rows()),
+        static_cast<long long>(state.analysis.results.dataset->features.cols()),
+        percentile(idle, 0.5), percentile(idle, 1.0));
     // Each view's job: started by drawing the view, frames drawn until its result is applied.
     for (const char* view : {"scatter", "som"}) {
       if (!wants(view)) continue;
@@ -161,9 +161,9 @@ int main(int argc, char** argv) {
           workbench, draw,
           [&] {
             if (std::string(view) == "scatter")
-              state.analysis.scatter_for = nullptr;
+              state.analysis.scatter.table = nullptr;
             else
-              state.analysis.som.reset();
+              state.analysis.som.model.reset();
           },
           5);
       print_job(view, job, percentile(idle, 0.5), cancel);
@@ -200,8 +200,8 @@ int main(int argc, char** argv) {
     tactile::undo_edit(at, false);  // Predict takes the ground truth when there are no suggestions
   }
   if (wants("predict")) {
-    at.analysis.segments = tactile::LabelSource::kGroundTruth;
-    std::snprintf(at.analysis.protocol.data(), at.analysis.protocol.size(), "kfold:3");
+    at.analysis.panel.segments = tactile::LabelSource::kGroundTruth;
+    std::snprintf(at.analysis.panel.protocol.data(), at.analysis.panel.protocol.size(), "kfold:3");
     const auto train = [&] { tactile::start_training(at, "linear-svm"); };
     const double train_cancel = cancel_after(window, frame, train, 30);
     print_job("train", until_done(window, frame, train), median, train_cancel);
@@ -215,8 +215,8 @@ int main(int argc, char** argv) {
     std::filesystem::remove(tactile::somatosensory_cache_path(
         robovie.string(),
         at.document->layout.modalities.empty() ? "" : at.document->layout.modalities[0]));
-    at.analysis.somatosensory = true;
-    at.analysis.map_for.clear();
+    at.analysis.somatosensory.shown = true;
+    at.analysis.somatosensory.key.clear();
   };
   if (wants("somatosensory_map")) {
     const double map_cancel = cancel_after(window, frame, map, 3);

@@ -4,9 +4,10 @@
 
 #include <algorithm>
 
-#include "analysis.h"
+#include "confusion.h"
 #include "labelling.h"
 #include "live.h"
+#include "results.h"
 #include "views.h"
 
 namespace tactile {
@@ -19,7 +20,7 @@ bool always(const WorkbenchState&) { return true; }
 
 // A confusion cell's list of segments is open and has rows.
 bool segment_list_open(const WorkbenchState& state) {
-  return state.analysis.list_active && !state.analysis.cell_rows.empty() &&
+  return state.analysis.confusion.list_active && !state.analysis.confusion.cell_rows.empty() &&
          current_evaluation(state) != nullptr;
 }
 // Enter belongs to a cell's list while one is open and nothing is marked for labelling.
@@ -40,14 +41,15 @@ void step_cursor(WorkbenchState& state, double direction, bool by_second) {
 
 void move_in_segment_list(WorkbenchState& state, int direction) {
   AnalysisState& analysis = state.analysis;
-  const int last = static_cast<int>(analysis.cell_rows.size()) - 1;
-  analysis.cell_selected = std::clamp(analysis.cell_selected + direction, 0, last);
+  const int last = static_cast<int>(analysis.confusion.cell_rows.size()) - 1;
+  analysis.confusion.cell_selected =
+      std::clamp(analysis.confusion.cell_selected + direction, 0, last);
 }
 
 void land_on_selected_segment(WorkbenchState& state) {
   const AnalysisState& analysis = state.analysis;
-  land_on(state, current_evaluation(state)
-                     ->rows[analysis.cell_rows[static_cast<size_t>(analysis.cell_selected)]]);
+  land_on(state, current_evaluation(state)->rows[analysis.confusion.cell_rows[static_cast<size_t>(
+                     analysis.confusion.cell_selected)]]);
 }
 
 void drop_marks(WorkbenchState& state) {

@@ -423,7 +423,7 @@ void ScriptPlayer::wait_results(const ScriptStep& step) {
   const size_t wanted = static_cast<size_t>(std::stod(step.words[1]));
   draw_until(
       [wanted](Workbench& workbench) {
-        return workbench.state().analysis.results.size() >= wanted;
+        return workbench.state().analysis.results.rows.size() >= wanted;
       },
       "the results do not hold " + step.words[1] + " rows after 10 minutes", step);
 }

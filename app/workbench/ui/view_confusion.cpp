@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "analysis.h"
+#include "confusion.h"
+#include "results.h"
 #include "tactile/widgets/colormap.h"
 #include "views.h"
 
@@ -68,8 +69,8 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
       const Colour colour = count == 0 ? Colour{38, 38, 44, 255} : viridis(0.15f + 0.85f * share);
       draw.AddRectFilled(low, high, pack_abgr(colour));
       const int predicted = column < classes ? column : ml::kUnknownClass;
-      const bool chosen =
-          state.analysis.cell_true == row && state.analysis.cell_predicted == predicted;
+      const bool chosen = state.analysis.confusion.cell_true == row &&
+                          state.analysis.confusion.cell_predicted == predicted;
       if (row != column && count > 0)  // wrong cells are framed: they are the ones to click
         draw.AddRect(low, high, IM_COL32(230, 90, 70, 200), 0.0f, 0, 1.5f);
       if (chosen) draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 0.0f, 0, 3.0f);
@@ -119,24 +120,25 @@ void draw_matrix(WorkbenchState& state, const ml::EvaluationResult& result, ImVe
 
 void draw_cell_list(WorkbenchState& state, const ml::EvaluationResult& result, ImVec2 size) {
   AnalysisState& analysis = state.analysis;
-  if (analysis.cell_true < 0) {
+  if (analysis.confusion.cell_true < 0) {
     ImGui::TextDisabled(
         "Click a cell (framed red: wrong) to list its segments; N walks the mistakes.");
     return;
   }
   ImGui::Text("true %s, predicted %s: %zu segments, least sure first",
-              class_name(result, analysis.cell_true).c_str(),
-              class_name(result, analysis.cell_predicted).c_str(), analysis.cell_rows.size());
+              class_name(result, analysis.confusion.cell_true).c_str(),
+              class_name(result, analysis.confusion.cell_predicted).c_str(),
+              analysis.confusion.cell_rows.size());
   ImGui::BeginChild("cell_list", size, true);
-  for (size_t k = 0; k < analysis.cell_rows.size(); ++k) {
-    const ml::RowPrediction& row = result.rows[analysis.cell_rows[k]];
+  for (size_t k = 0; k < analysis.confusion.cell_rows.size(); ++k) {
+    const ml::RowPrediction& row = result.rows[analysis.confusion.cell_rows[k]];
     char text[256];
     std::snprintf(text, sizeof text, "%s  %s-%s  %s  margin %.2f  probability %.2f##%zu",
                   row.recording.c_str(), format_seconds(row.t0).c_str(),
                   format_seconds(row.t1).c_str(), row.region.c_str(), row.margin, row.score, k);
-    const bool selected = static_cast<int>(k) == analysis.cell_selected;
+    const bool selected = static_cast<int>(k) == analysis.confusion.cell_selected;
     if (ImGui::Selectable(text, selected)) {
-      analysis.cell_selected = static_cast<int>(k);
+      analysis.confusion.cell_selected = static_cast<int>(k);
       land_on(state, row);
     }
     if (selected && ImGui::IsWindowAppearing()) ImGui::SetScrollHereY();

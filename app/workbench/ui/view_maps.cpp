@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "analysis.h"
+#include "confusion.h"
 #include "jobs.h"
+#include "results.h"
+#include "table_maps.h"
 #include "tactile/widgets/signal_plot.h"
 #include "views.h"
 
@@ -54,7 +56,7 @@ std::optional<ml::RowPrediction> prediction_of(const WorkbenchState& state, int6
   if (row >= 0 && row < static_cast<int64_t>(outcomes.size()) &&
       outcomes[static_cast<size_t>(row)].prediction)
     return *outcomes[static_cast<size_t>(row)].prediction;
-  const Dataset& dataset = *state.analysis.dataset;
+  const Dataset& dataset = *state.analysis.results.dataset;
   ml::RowPrediction prediction = ml::row_place(dataset, row);
   const std::vector<std::string> classes = dataset.class_names();
   const auto truth =
@@ -68,13 +70,13 @@ std::optional<ml::RowPrediction> prediction_of(const WorkbenchState& state, int6
 void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("scatter_view", size, false);
   AnalysisState& analysis = state.analysis;
-  if (!analysis.dataset || !ensure_scatter(state)) {
-    if (!draw_job(state, find_job(state, "scatter"), &analysis.scatter_held, "scatter"))
+  if (!analysis.results.dataset || !ensure_scatter(state)) {
+    if (!draw_job(state, find_job(state, "scatter"), &analysis.scatter.held, "scatter"))
       ImGui::TextDisabled("No feature table: train in the Model tab, or open one with --features.");
     ImGui::EndChild();
     return;
   }
-  const Dataset& dataset = *analysis.dataset;
+  const Dataset& dataset = *analysis.results.dataset;
   const std::vector<std::string> classes = dataset.class_names();
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
   int64_t wrong = 0;
@@ -83,7 +85,7 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   ImGui::TextWrapped(
       "PCA of %lld rows x %lld features: PC1-PC2 explain %.0f %%   %lld misclassified (ringed)",
       static_cast<long long>(dataset.rows()), static_cast<long long>(dataset.features.cols()),
-      100.0 * analysis.scatter_explained, static_cast<long long>(wrong));
+      100.0 * analysis.scatter.explained, static_cast<long long>(wrong));
   remember_box(state, "text:scatter-header", ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
@@ -95,7 +97,7 @@ void draw_scatter_view(WorkbenchState& state, ImVec2 size) {
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   draw.AddRectFilled(origin, ImVec2(origin.x + plot.x, origin.y + plot.y),
                      IM_COL32(22, 22, 26, 255));
-  const Eigen::MatrixXd& xy = analysis.scatter;
+  const Eigen::MatrixXd& xy = analysis.scatter.points;
   const double x0 = xy.col(0).minCoeff(), x1 = xy.col(0).maxCoeff();
   const double y0 = xy.col(1).minCoeff(), y1 = xy.col(1).maxCoeff();
   const float margin = 14.0f;
@@ -148,40 +150,40 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("som_view", size, false);
   AnalysisState& analysis = state.analysis;
   if (!ensure_som(state)) {
-    if (!draw_job(state, find_job(state, "som"), &analysis.som_held, "SOM map"))
+    if (!draw_job(state, find_job(state, "som"), &analysis.som.held, "SOM map"))
       ImGui::TextDisabled(
           "No SOM: train (the map is fitted on the feature table), or open --model.");
     ImGui::EndChild();
     return;
   }
-  const ml::SomMap& map = analysis.som->map();
-  const std::vector<std::string>& classes = analysis.som_classes;
+  const ml::SomMap& map = analysis.som.model->map();
+  const std::vector<std::string>& classes = analysis.som.classes;
   // The check box first and the words wrapped after it: at the end of the line it ran off a
   // narrow view.
-  ImGui::Checkbox("U-matrix", &analysis.u_matrix);
+  ImGui::Checkbox("U-matrix", &analysis.som.u_matrix);
   remember_item(state, "U-matrix",
                 "Shade each neuron by its distance to its neighbours: dark valleys are clusters");
   ImGui::SameLine();
   ImGui::TextWrapped("SOM %d x %d: neurons coloured by their class, each row a dot on its winner",
                      map.rows, map.columns);
-  if (analysis.som_quality)
+  if (analysis.som.quality)
     ImGui::TextDisabled("quantisation error %.3g, topographic error %.0f %%",
-                        analysis.som_quality->quantisation_error,
-                        100.0 * analysis.som_quality->topographic_error);
+                        analysis.som.quality->quantisation_error,
+                        100.0 * analysis.som.quality->topographic_error);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 available = ImGui::GetContentRegionAvail();
   const float legend_width = legend_width_for(classes, available.x);
-  const float list_height = analysis.som_neuron >= 0 ? std::min(140.0f, available.y * 0.3f) : 0.0f;
+  const float list_height = analysis.som.neuron >= 0 ? std::min(140.0f, available.y * 0.3f) : 0.0f;
   const float cell = std::max(8.0f, std::min((available.x - legend_width) / map.columns,
                                              (available.y - list_height - 8) / map.rows));
   ImDrawList& draw = *ImGui::GetWindowDrawList();
   // U-matrix: each neuron's mean weight distance to its grid neighbours, once per map (a
   // neuron of a wide table has tens of thousands of weights).
-  if (analysis.som_spread_for != analysis.som.get()) {
-    analysis.som_spread = ml::som_u_matrix(map);
-    analysis.som_spread_for = analysis.som.get();
+  if (analysis.som.spread_for != analysis.som.model.get()) {
+    analysis.som.spread = ml::som_u_matrix(map);
+    analysis.som.spread_for = analysis.som.model.get();
   }
-  const std::vector<double>& spread = analysis.som_spread;
+  const std::vector<double>& spread = analysis.som.spread;
   const double spread_max =
       std::max(1e-12, spread.empty() ? 0.0 : *std::max_element(spread.begin(), spread.end()));
   const std::vector<RowOutcome> outcomes = row_outcomes(state);
@@ -195,15 +197,15 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
                        ? class_colour(state, classes[static_cast<size_t>(owner)], 200)
                        : IM_COL32(60, 60, 60, 255);
       draw.AddRectFilled(low, high, fill, 3.0f);
-      if (analysis.u_matrix) {  // dark where the map folds: the borders between regions
+      if (analysis.som.u_matrix) {  // dark where the map folds: the borders between regions
         const auto shade = static_cast<int>(200.0 * spread[static_cast<size_t>(k)] / spread_max);
         draw.AddRectFilled(low, high, IM_COL32(0, 0, 0, shade), 3.0f);
       }
-      if (analysis.som_neuron == k)
+      if (analysis.som.neuron == k)
         draw.AddRect(low, high, IM_COL32(255, 255, 255, 255), 3.0f, 0, 3.0f);
       ImGui::SetCursorScreenPos(low);
       ImGui::PushID(k);
-      if (ImGui::InvisibleButton("neuron", ImVec2(cell - 2, cell - 2))) analysis.som_neuron = k;
+      if (ImGui::InvisibleButton("neuron", ImVec2(cell - 2, cell - 2))) analysis.som.neuron = k;
       ImGui::PopID();
       remember_item(state, "neuron:" + std::to_string(k));
       if (ImGui::IsItemHovered()) {
@@ -217,14 +219,14 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   // The rows' winners: a dot per row in its true class's colour, spread inside the neuron,
   // ringed red when the evaluation got it wrong.
   std::vector<int> placed(static_cast<size_t>(map.rows * map.columns), 0);
-  for (size_t row = 0; row < analysis.som_winners.size(); ++row) {
-    const int k = analysis.som_winners[row];
+  for (size_t row = 0; row < analysis.som.winners.size(); ++row) {
+    const int k = analysis.som.winners[row];
     const int n = placed[static_cast<size_t>(k)]++;
     const float angle = 2.399963f * static_cast<float>(n);  // golden angle: a sunflower spiral
     const float radius = std::min(cell * 0.38f, 3.6f * std::sqrt(static_cast<float>(n)));
     const ImVec2 centre(origin.x + (k % map.columns + 0.5f) * cell - 1 + radius * std::cos(angle),
                         origin.y + (k / map.columns + 0.5f) * cell - 1 + radius * std::sin(angle));
-    draw.AddCircleFilled(centre, 3.8f, class_colour(state, analysis.dataset->classes[row]));
+    draw.AddCircleFilled(centre, 3.8f, class_colour(state, analysis.results.dataset->classes[row]));
     draw.AddCircle(centre, 3.8f, IM_COL32(255, 255, 255, 220));
     if (row < outcomes.size() && outcomes[row].tested &&
         outcomes[row].truth != outcomes[row].predicted)
@@ -232,12 +234,12 @@ void draw_som_view(WorkbenchState& state, ImVec2 size) {
   }
   draw_legend(state, "som", classes, ImVec2(origin.x + map.columns * cell + 10, origin.y));
   ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + map.rows * cell + 4));
-  if (analysis.som_neuron >= 0 && analysis.dataset) {
-    ImGui::Text("neuron %d wins:", analysis.som_neuron);
+  if (analysis.som.neuron >= 0 && analysis.results.dataset) {
+    ImGui::Text("neuron %d wins:", analysis.som.neuron);
     ImGui::BeginChild("neuron_rows", ImVec2(0, list_height), true);
-    const Dataset& dataset = *analysis.dataset;
-    for (size_t row = 0; row < analysis.som_winners.size(); ++row) {
-      if (analysis.som_winners[row] != analysis.som_neuron) continue;
+    const Dataset& dataset = *analysis.results.dataset;
+    for (size_t row = 0; row < analysis.som.winners.size(); ++row) {
+      if (analysis.som.winners[row] != analysis.som.neuron) continue;
       const std::string text = dataset.recordings[row] + "  segment " +
                                std::to_string(dataset.segment_ids[row]) + "  " +
                                dataset.classes[row] + "##" + std::to_string(row);

@@ -4,8 +4,9 @@
 #include <algorithm>
 #include <numeric>
 
-#include "analysis.h"
 #include "jobs.h"
+#include "model_panel.h"
+#include "results.h"
 #include "tactile/features/feature_extractor.h"
 #include "views.h"
 
@@ -17,41 +18,43 @@ void draw_choices(WorkbenchState& state) {
   AnalysisState& analysis = state.analysis;
   const std::string own = state.document ? default_pipeline(state.document->layout.id) : "generic";
   const std::string shown =
-      analysis.pipeline.empty() ? own + " (the skin's own)" : analysis.pipeline;
+      analysis.panel.pipeline.empty() ? own + " (the skin's own)" : analysis.panel.pipeline;
   ImGui::SetNextItemWidth(180);
   const bool features = ImGui::BeginCombo("features", shown.c_str());
   remember_item(state, "features",
                 "The feature set computed from each segment (each paper's own, or generic)");
   if (features) {
-    if (ImGui::Selectable((own + " (the skin's own)").c_str(), analysis.pipeline.empty()))
-      analysis.pipeline.clear();
+    if (ImGui::Selectable((own + " (the skin's own)").c_str(), analysis.panel.pipeline.empty()))
+      analysis.panel.pipeline.clear();
     for (const std::string& name : feature_pipelines()) {
-      if (ImGui::Selectable(name.c_str(), analysis.pipeline == name)) analysis.pipeline = name;
+      if (ImGui::Selectable(name.c_str(), analysis.panel.pipeline == name))
+        analysis.panel.pipeline = name;
       remember_item(state, "pipeline:" + name);
     }
     ImGui::EndCombo();
   }
   ImGui::SameLine();
   ImGui::SetNextItemWidth(110);
-  ImGui::InputTextWithHint("##pipeline-params", "parameters", analysis.pipeline_params.data(),
-                           analysis.pipeline_params.size());
+  ImGui::InputTextWithHint("##pipeline-params", "parameters", analysis.panel.pipeline_params.data(),
+                           analysis.panel.pipeline_params.size());
   remember_item(state, "input:pipeline-params",
                 "The feature set's parameters, key=value,... (tactile features --describe NAME "
                 "lists them); e.g. share=0.5 for grid on people's touches (docs/FEATURES.md)");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(130);
-  const bool segments = ImGui::BeginCombo("segments", to_string(analysis.segments));
+  const bool segments = ImGui::BeginCombo("segments", to_string(analysis.panel.segments));
   remember_item(state, "combo:segments",
                 "Which labels are the segments to learn from and their classes");
   if (segments) {
     for (LabelSource source : {LabelSource::kGroundTruth, LabelSource::kManual,
                                LabelSource::kSegmenter, LabelSource::kModel})
-      if (ImGui::Selectable(to_string(source), analysis.segments == source))
-        analysis.segments = source;
+      if (ImGui::Selectable(to_string(source), analysis.panel.segments == source))
+        analysis.panel.segments = source;
     ImGui::EndCombo();
   }
   ImGui::SetNextItemWidth(180);
-  ImGui::InputText("classifier", analysis.classifier.data(), analysis.classifier.size());
+  ImGui::InputText("classifier", analysis.panel.classifier.data(),
+                   analysis.panel.classifier.size());
   remember_item(
       state, "classifier",
       "A classifier specification (name[:key=value,...]); the list beside has every preset");
@@ -61,9 +64,10 @@ void draw_choices(WorkbenchState& state) {
   if (presets) {
     for (const ml::ClassifierEntry& entry : ml::classifier_catalog()) {
       if (ImGui::Selectable(entry.name.c_str())) {
-        analysis.classifier.fill('\0');
-        std::copy_n(entry.name.begin(), std::min(entry.name.size(), analysis.classifier.size() - 1),
-                    analysis.classifier.begin());
+        analysis.panel.classifier.fill('\0');
+        std::copy_n(entry.name.begin(),
+                    std::min(entry.name.size(), analysis.panel.classifier.size() - 1),
+                    analysis.panel.classifier.begin());
       }
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", entry.description.c_str());
     }
@@ -71,7 +75,7 @@ void draw_choices(WorkbenchState& state) {
   }
   ImGui::SameLine();
   ImGui::SetNextItemWidth(110);
-  ImGui::InputText("protocol", analysis.protocol.data(), analysis.protocol.size());
+  ImGui::InputText("protocol", analysis.panel.protocol.data(), analysis.panel.protocol.size());
   remember_item(state, "input:protocol",
                 "How rows are split for testing: kfold:K[xR] | loo | loso | holdout:FxR | "
                 "split:TRAIN_QUERY/TEST_QUERY");
@@ -82,7 +86,7 @@ void draw_run_controls(WorkbenchState& state) {
   AnyJob* training = running_job(state, "training");
   const bool running = training != nullptr;
   ImGui::BeginDisabled(running || !state.document);
-  if (ImGui::Button("Run")) start_training(state, analysis.classifier.data());
+  if (ImGui::Button("Run")) start_training(state, analysis.panel.classifier.data());
   remember_item(state, "button:Run",
                 "Evaluate the classifier in the box and fit it on every row (Predict uses it)");
   ImGui::SameLine();
@@ -112,12 +116,12 @@ void draw_run_controls(WorkbenchState& state) {
 
 void draw_results_table(WorkbenchState& state, float height) {
   AnalysisState& analysis = state.analysis;
-  if (analysis.results.empty()) {
+  if (analysis.results.rows.empty()) {
     ImGui::TextDisabled(
         "No results yet: Run one classifier, or Train all to compare every preset.");
     return;
   }
-  ImGui::Text("%s", analysis.results_from.c_str());
+  ImGui::Text("%s", analysis.results.from.c_str());
   const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg |
                                 ImGuiTableFlags_BordersOuter | ImGuiTableFlags_ScrollY |
                                 ImGuiTableFlags_Resizable;
@@ -125,27 +129,27 @@ void draw_results_table(WorkbenchState& state, float height) {
   // four columns shared the width); the numbers share the rest. A table keeps the widths of its
   // first frame, and Train all's results arrive one by one: a longer name makes it afresh.
   float names = ImGui::CalcTextSize("classifier").x;
-  for (const ml::PresetOutcome& outcome : analysis.results)
+  for (const ml::PresetOutcome& outcome : analysis.results.rows)
     names = std::max(names, ImGui::CalcTextSize(outcome.classifier.c_str()).x);
-  analysis.results_name_width = std::max(analysis.results_name_width, names);
+  analysis.results.name_width = std::max(analysis.results.name_width, names);
   const std::string table_id =
-      "results##" + std::to_string(static_cast<int>(analysis.results_name_width));
+      "results##" + std::to_string(static_cast<int>(analysis.results.name_width));
   if (!ImGui::BeginTable(table_id.c_str(), 4, flags, ImVec2(0, height))) return;
   ImGui::TableSetupScrollFreeze(0, 1);
   ImGui::TableSetupColumn("classifier", ImGuiTableColumnFlags_WidthFixed,
-                          analysis.results_name_width + 8.0f);
+                          analysis.results.name_width + 8.0f);
   ImGui::TableSetupColumn(
       "accuracy", ImGuiTableColumnFlags_DefaultSort | ImGuiTableColumnFlags_PreferSortDescending);
   ImGui::TableSetupColumn("mean recall", ImGuiTableColumnFlags_PreferSortDescending);
   ImGui::TableSetupColumn("time (s)");
   ImGui::TableHeadersRow();
   if (ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs(); specs && specs->SpecsCount > 0) {
-    analysis.sort_column = specs->Specs[0].ColumnIndex;
-    analysis.sort_ascending = specs->Specs[0].SortDirection == ImGuiSortDirection_Ascending;
+    analysis.results.sort_column = specs->Specs[0].ColumnIndex;
+    analysis.results.sort_ascending = specs->Specs[0].SortDirection == ImGuiSortDirection_Ascending;
   }
   const auto key = [&](const ml::PresetOutcome& outcome) -> double {
     if (!outcome.result) return -1.0;
-    switch (analysis.sort_column) {
+    switch (analysis.results.sort_column) {
       case 2:
         return ml::mean_recall(*outcome.result);
       case 3:
@@ -154,21 +158,22 @@ void draw_results_table(WorkbenchState& state, float height) {
         return outcome.result->accuracy;
     }
   };
-  std::vector<size_t> order(analysis.results.size());
+  std::vector<size_t> order(analysis.results.rows.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    const ml::PresetOutcome& x = analysis.results[a];
-    const ml::PresetOutcome& y = analysis.results[b];
-    if (analysis.sort_column == 0)
-      return analysis.sort_ascending ? x.classifier < y.classifier : x.classifier > y.classifier;
+    const ml::PresetOutcome& x = analysis.results.rows[a];
+    const ml::PresetOutcome& y = analysis.results.rows[b];
+    if (analysis.results.sort_column == 0)
+      return analysis.results.sort_ascending ? x.classifier < y.classifier
+                                             : x.classifier > y.classifier;
     if (x.result.has_value() != y.result.has_value()) return x.result.has_value();
-    return analysis.sort_ascending ? key(x) < key(y) : key(x) > key(y);
+    return analysis.results.sort_ascending ? key(x) < key(y) : key(x) > key(y);
   });
   for (size_t index : order) {
-    const ml::PresetOutcome& outcome = analysis.results[index];
+    const ml::PresetOutcome& outcome = analysis.results.rows[index];
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    const bool selected = static_cast<int>(index) == analysis.current;
+    const bool selected = static_cast<int>(index) == analysis.results.current;
     const ImVec2 at = ImGui::GetCursorScreenPos();
     remember_box(
         state, "result-cell:" + outcome.classifier, at,

@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <map>
 
-#include "analysis.h"
 #include "jobs.h"
+#include "results.h"
+#include "table_maps.h"
 #include "tactile/labels/region.h"
 #include "views.h"
 
@@ -112,8 +113,9 @@ const SkinLayout& skin_drawing_of(WorkbenchState& state, const SkinLayout& layou
                                 : 0;
   std::string key = state.document->path + "|" + layout.id + "|" + std::to_string(columns);
   if (on_map) {
-    const SomatosensoryMap& map = *state.analysis.map;
-    key += "|map " + state.analysis.map_for + " " + map.source + " " + std::to_string(map.samples);
+    const SomatosensoryMap& map = *state.analysis.somatosensory.map;
+    key += "|map " + state.analysis.somatosensory.key + " " + map.source + " " +
+           std::to_string(map.samples);
   }
   if (drawing.key != key) {
     drawing = {};
@@ -186,8 +188,8 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   // The body as built, or the somatosensory map: taxels placed by how they are touched together.
   ImGui::SetNextItemWidth(120);
   AnalysisState& analysis = state.analysis;
-  const char* shown = !analysis.somatosensory         ? "body map"
-                      : analysis.somatosensory_corpus ? "somatosensory (all)"
+  const char* shown = !analysis.somatosensory.shown   ? "body map"
+                      : analysis.somatosensory.corpus ? "somatosensory (all)"
                                                       : "somatosensory";
   const bool maps = ImGui::BeginCombo("##map", shown);
   remember_item(
@@ -195,15 +197,16 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
       "body map: the skin as built\nsomatosensory: taxels placed by MDS of their correlation\n"
       "distances -ln|R| over this recording (Robovie paper); cached beside it");
   if (maps) {
-    if (ImGui::Selectable("body map", !analysis.somatosensory)) analysis.somatosensory = false;
+    if (ImGui::Selectable("body map", !analysis.somatosensory.shown))
+      analysis.somatosensory.shown = false;
     remember_item(state, "map:body");
     if (ImGui::Selectable("somatosensory: this recording",
-                          analysis.somatosensory && !analysis.somatosensory_corpus))
-      analysis.somatosensory = true, analysis.somatosensory_corpus = false;
+                          analysis.somatosensory.shown && !analysis.somatosensory.corpus))
+      analysis.somatosensory.shown = true, analysis.somatosensory.corpus = false;
     remember_item(state, "map:somatosensory");
     if (ImGui::Selectable("somatosensory: every recording of the skin",
-                          analysis.somatosensory && analysis.somatosensory_corpus))
-      analysis.somatosensory = true, analysis.somatosensory_corpus = true;
+                          analysis.somatosensory.shown && analysis.somatosensory.corpus))
+      analysis.somatosensory.shown = true, analysis.somatosensory.corpus = true;
     remember_item(state, "map:somatosensory-corpus");
     ImGui::EndCombo();
   }
@@ -222,7 +225,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
       if (label.id == state.selection.labels.front() && label.region != "all")
         for (int64_t taxel : taxels_of_region(layout, label.region)) outlined.push_back(taxel);
   // The segment landed on from a classifier view: its region outlined, both classes named.
-  const auto& landed = state.analysis.landed;
+  const auto& landed = state.analysis.confusion.landed;
   const bool landed_here = landed && landed->recording == state.document->recording_id();
   if (landed_here && landed->region != "all" && !landed->region.empty())
     for (int64_t taxel : taxels_of_region(layout, landed->region)) outlined.push_back(taxel);
@@ -230,16 +233,18 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
   // was added, it pointed into the freed buffer; found by ASan in the landing test).
   style.selected_taxels = outlined;
   const SkinLayout* drawn = &layout;
-  const bool on_map = state.analysis.somatosensory && ensure_somatosensory(state);
+  const bool on_map = state.analysis.somatosensory.shown && ensure_somatosensory(state);
   if (on_map) {
-    if (!state.analysis.map_layout || state.analysis.map_layout->id != layout.id)
-      state.analysis.map_layout = layout_on_map(layout, *state.analysis.map);
+    if (!state.analysis.somatosensory.layout ||
+        state.analysis.somatosensory.layout->id != layout.id)
+      state.analysis.somatosensory.layout =
+          layout_on_map(layout, *state.analysis.somatosensory.map);
     // Robovie's 274 dots were 5 pixels across in the default window's panel, too small to tell
     // their colours apart.
     style.min_taxel_pixels = 8.0f;
-    drawn = &*state.analysis.map_layout;
+    drawn = &*state.analysis.somatosensory.layout;
     style.show_group_names = false;
-    const SomatosensoryMap& map = *state.analysis.map;
+    const SomatosensoryMap& map = *state.analysis.somatosensory.map;
     // In plain words, wrapped at the panel's edge; the method's terms in the tooltip.
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped(
@@ -257,7 +262,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
                     map.taxels.size(), map.source.c_str(), map.negative_eigenvalue_ratio);
       view_tooltip(state, tip);
     }
-  } else if (state.analysis.somatosensory) {
+  } else if (state.analysis.somatosensory.shown) {
     // Computing: the body map meanwhile, the job's progress above it.
     draw_job(state, find_job(state, "somatosensory"), nullptr, "somatosensory map");
   }
@@ -333,10 +338,10 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
 }
 
 void draw_somatosensory_view(WorkbenchState& state, ImVec2 size) {
-  const bool was = state.analysis.somatosensory;
-  state.analysis.somatosensory = true;
+  const bool was = state.analysis.somatosensory.shown;
+  state.analysis.somatosensory.shown = true;
   draw_skin_panel_view(state, size);
-  state.analysis.somatosensory = was;
+  state.analysis.somatosensory.shown = was;
 }
 
 }  // namespace tactile

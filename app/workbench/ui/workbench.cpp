@@ -10,12 +10,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "analysis.h"
+#include "confusion.h"
 #include "files.h"
 #include "jobs.h"
 #include "keys.h"
 #include "labelling.h"
 #include "live.h"
+#include "results.h"
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
 #include "tactile/segment/segmenter.h"
@@ -233,11 +234,12 @@ void Workbench::frame_work(double seconds) {
   poll_live(state_, services_.live);
   if (!state_.live.connected) state_.clock.advance(seconds);
   // A landed segment replays once, then the cursor rests in its middle.
-  double& until = state_.analysis.replay_until;
+  double& until = state_.analysis.confusion.replay_until;
   if (until >= 0.0 && (!state_.clock.playing() || state_.clock.time() >= until)) {
-    if (state_.clock.playing() && state_.analysis.landed) {
+    if (state_.clock.playing() && state_.analysis.confusion.landed) {
       state_.clock.pause();
-      state_.clock.seek(0.5 * (state_.analysis.landed->t0 + state_.analysis.landed->t1));
+      state_.clock.seek(
+          0.5 * (state_.analysis.confusion.landed->t0 + state_.analysis.confusion.landed->t1));
     }
     until = -1.0;
   }
@@ -376,8 +378,8 @@ void Workbench::draw_arrangement(ImVec2 area) {
   ImGui::SameLine(0.0f, 0.0f);
   ImGui::BeginGroup();
   const float right_width = area.x - sizes.sidebar_width - kSplitterThickness;
-  const bool any_analysis =
-      !state_.analysis.results.empty() || state_.analysis.dataset || state_.analysis.som;
+  const bool any_analysis = !state_.analysis.results.rows.empty() ||
+                            state_.analysis.results.dataset || state_.analysis.som.model;
   if (!state_.document && any_analysis) {
     // Results opened without a recording: the classifier views take the space.
     ImGui::BeginChild("analysis_frame", ImVec2(right_width, area.y), true);

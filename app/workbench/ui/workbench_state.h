@@ -139,25 +139,15 @@ struct LabellingState {
   std::string active_lane() const { return "manual:" + annotator; }
 };
 
-// The classifier side: the model panel's choices and its background run, the results
-// (trained here or opened from files) and where the views stand in them.
-struct AnalysisState {
-  // The model panel.
+// The model panel: the choices of the next run, what the last one was asked, and the model it
+// left (Predict uses it).
+struct ModelPanelState {
   std::string pipeline;  // "" = the skin's own
   std::array<char, 128> classifier{"linear-svm"};
   std::array<char, 64> protocol{"kfold:5"};
   std::array<char, 128> pipeline_params{};  // the features' parameters (key=value,...)
   LabelSource segments = LabelSource::kGroundTruth;
   TrainingRequest last_request;  // what the last run was asked (benchmarks rerun it)
-  // The running job's results as they arrive (shown at once, kept on Cancel), and how many of
-  // them the results hold.
-  std::shared_ptr<TrainingSoFar> so_far;
-  size_t so_far_shown = 0;
-  float results_name_width = 0.0f;  // the results table's longest classifier name so far
-  // The results: one per classifier tried (one row of the train-all table each).
-  std::vector<ml::PresetOutcome> results;
-  std::string results_from;      // what they are of ("nao, kaboli features", a file)
-  int current = -1;              // the row whose views are shown
   std::string model_path;        // the last single classifier trained, fitted on every row
   std::string model_classifier;  // the classifier of model_path
   // model_path's model as fitted in this session (Predict reads no file then); null when
@@ -172,57 +162,95 @@ struct AnalysisState {
     std::string classifier;  // its classifier
     std::shared_ptr<const SavedModel> fitted;  // the model predicted with
   };
+};
+
+// The results: one per classifier tried (one row of the train-all table each), the feature
+// table they are about, and the row whose views are shown.
+struct ResultsState {
+  // The running job's results as they arrive (shown at once, kept on Cancel), and how many of
+  // them the rows hold.
+  std::shared_ptr<TrainingSoFar> so_far;
+  size_t so_far_shown = 0;
+  float name_width = 0.0f;  // the table's longest classifier name so far
+  std::vector<ml::PresetOutcome> rows;
+  std::string from;  // what they are of ("nao, kaboli features", a file)
+  int current = -1;  // the row whose views are shown
   // The feature table the results are about; shared (never changed) with the views' jobs,
   // so starting one copies nothing on the window's thread.
   std::shared_ptr<const Dataset> dataset;
   std::string dataset_layout;  // its skin
   int sort_column = 1;         // the table's: 0 name, 1 accuracy, 2 mean recall, 3 time
   bool sort_ascending = false;
-  // The confusion view: the clicked cell and its segments (indices into the rows).
+};
+
+// The confusion view: the clicked cell and its segments, and the segment landed on.
+struct ConfusionState {
   int cell_true = -1, cell_predicted = -1;
-  std::vector<size_t> cell_rows;
+  std::vector<size_t> cell_rows;  // indices into the results' rows
   int cell_selected = 0;
   bool list_active = false;  // Enter picks the selected segment
   // The segment landed on: the skin outlines its region and names both classes.
   std::optional<ml::RowPrediction> landed;
   bool landing_pending = false;  // land_on asked; carried out once its recording is open
   double replay_until = -1.0;    // the clock pauses here (the landed segment's end)
-  // The SOM map: a SOM fitted on the table (or loaded), and each row's winner.
-  struct SomFit {
+};
+
+// The SOM view: a SOM fitted on the results' table (the job "som") or loaded, and each row's
+// winner.
+struct SomState {
+  struct Fit {
     std::unique_ptr<ml::SomClassifier> som;
     std::vector<std::string> classes;
     std::vector<int> winners;
     std::optional<ml::SomQuality> quality;
   };
-  bool som_held = false;  // its fit (job "som") cancelled: not started again until asked
-  std::unique_ptr<ml::SomClassifier> som;
-  std::vector<std::string> som_classes;
-  std::vector<int> som_winners;               // per dataset row
-  const void* som_for = nullptr;              // which table the winners are for
-  std::optional<ml::SomQuality> som_quality;  // of a map fitted here, on its table
-  std::vector<double> som_spread;             // the U-matrix of `som`, computed once
-  const void* som_spread_for = nullptr;
+  bool held = false;  // its fit cancelled: not started again until asked
+  std::unique_ptr<ml::SomClassifier> model;
+  std::vector<std::string> classes;
+  std::vector<int> winners;               // per dataset row
+  const void* table = nullptr;            // which table the winners are for
+  std::optional<ml::SomQuality> quality;  // of a map fitted here, on its table
+  std::vector<double> spread;             // the U-matrix of `model`, computed once
+  const void* spread_for = nullptr;
   bool u_matrix = false;
-  int som_neuron = -1;  // clicked
-  // The scatter: the table's rows on the first two principal components.
-  struct ScatterFit {
-    Eigen::MatrixXd scatter;
+  int neuron = -1;  // clicked
+};
+
+// The scatter view: the table's rows on the first two principal components (the job
+// "scatter").
+struct ScatterState {
+  struct Fit {
+    Eigen::MatrixXd points;
     double explained = 0.0;
   };
-  bool scatter_held = false;  // its PCA (job "scatter") cancelled: not started again until asked
-  Eigen::MatrixXd scatter;
-  double scatter_explained = 0.0;
-  const void* scatter_for = nullptr;
-  // The somatosensory map of the open recording (per modality), computed or from its cache.
-  bool somatosensory = false;         // the skin view shows it instead of the body map
-  bool somatosensory_corpus = false;  // over every recording of the skin in the workspace
+  bool held = false;  // its PCA cancelled: not started again until asked
+  Eigen::MatrixXd points;
+  double explained = 0.0;
+  const void* table = nullptr;
+};
+
+// The somatosensory map of the open recording (per modality), computed (the job
+// "somatosensory") or from its cache.
+struct SomatosensoryState {
+  bool shown = false;   // the skin view shows it instead of the body map
+  bool corpus = false;  // over every recording of the skin in the workspace
   std::optional<SomatosensoryMap> map;
-  std::optional<SkinLayout> map_layout;  // the layout with its taxels moved onto the map
-  std::string map_for;                   // recording path + modality it was made for
-  struct MapMade {
-    std::string key;  // as map_for
+  std::optional<SkinLayout> layout;  // the layout with its taxels moved onto the map
+  std::string key;                   // recording path + modality it was made for
+  struct Made {
+    std::string key;
     SomatosensoryMap map;
   };
+};
+
+// The classifier side, one part per panel or view.
+struct AnalysisState {
+  ModelPanelState panel;
+  ResultsState results;
+  ConfusionState confusion;
+  SomState som;
+  ScatterState scatter;
+  SomatosensoryState somatosensory;
   std::string tab_request;  // a view tab to bring to front next frame
 };
 
@@ -231,6 +259,7 @@ struct AnalysisState {
 struct LiveState {
   bool connected = false;  // a live source is the open document
   std::string url;
+  std::string listening;         // a UDP source's address with the port it got (given as port 0)
   LiveCounters counters;         // as of this frame
   std::string failure;           // the source's, when it failed
   bool follow = true;            // plots and skin at the newest sample

@@ -4,12 +4,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "analysis.h"
 #include "files.h"
 #include "jobs.h"
 #include "keys.h"
 #include "labelling.h"
 #include "live.h"
+#include "results.h"
 #include "tactile/signal/taxel_values.h"
 #include "tactile/skins/skin.h"
 #include "views.h"
@@ -190,7 +190,7 @@ nlohmann::json Workbench::state_json() const {
 nlohmann::json Workbench::analysis_json() const {
   const AnalysisState& analysis = state_.analysis;
   nlohmann::json results = nlohmann::json::array();
-  for (const ml::PresetOutcome& outcome : analysis.results)
+  for (const ml::PresetOutcome& outcome : analysis.results.rows)
     results.push_back(ml::summary_json(outcome));
   const ml::EvaluationResult* current = current_evaluation(state_);
   const auto class_name = [&](int k) -> nlohmann::json {
@@ -201,7 +201,7 @@ nlohmann::json Workbench::analysis_json() const {
   };
   // The clicked cell's segments as its list shows them, the least sure first.
   nlohmann::json cell_list = nlohmann::json::array();
-  for (const size_t k : analysis.cell_rows) {
+  for (const size_t k : analysis.confusion.cell_rows) {
     if (!current || k >= current->rows.size()) break;
     const ml::RowPrediction& row = current->rows[k];
     cell_list.push_back({{"recording", row.recording},
@@ -212,14 +212,14 @@ nlohmann::json Workbench::analysis_json() const {
                          {"margin", row.margin}});
   }
   nlohmann::json landed = nullptr;
-  if (analysis.landed)
-    landed = {{"recording", analysis.landed->recording},
-              {"t0", analysis.landed->t0},
-              {"t1", analysis.landed->t1},
-              {"region", analysis.landed->region},
-              {"true", class_name(analysis.landed->truth)},
-              {"predicted", class_name(analysis.landed->predicted)},
-              {"segment_id", analysis.landed->segment_id}};
+  if (analysis.confusion.landed)
+    landed = {{"recording", analysis.confusion.landed->recording},
+              {"t0", analysis.confusion.landed->t0},
+              {"t1", analysis.confusion.landed->t1},
+              {"region", analysis.confusion.landed->region},
+              {"true", class_name(analysis.confusion.landed->truth)},
+              {"predicted", class_name(analysis.confusion.landed->predicted)},
+              {"segment_id", analysis.confusion.landed->segment_id}};
   std::string training = "idle";
   std::string training_progress;
   if (AnyJob* job = find_job(state_, "training")) {
@@ -244,26 +244,29 @@ nlohmann::json Workbench::analysis_json() const {
       {"classes", current ? nlohmann::json(current->classes) : nlohmann::json(nullptr)},
       {"confusion", confusion},
       {"current", current ? nlohmann::json(current->classifier) : nlohmann::json(nullptr)},
-      {"classifier_box", std::string(analysis.classifier.data())},
-      {"pipeline", analysis.pipeline},  // "" = the skin's own
-      {"pipeline_params", std::string(analysis.pipeline_params.data())},
-      {"model",
-       analysis.model_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(analysis.model_path)},
+      {"classifier_box", std::string(analysis.panel.classifier.data())},
+      {"pipeline", analysis.panel.pipeline},  // "" = the skin's own
+      {"pipeline_params", std::string(analysis.panel.pipeline_params.data())},
+      {"model", analysis.panel.model_path.empty() ? nlohmann::json(nullptr)
+                                                  : nlohmann::json(analysis.panel.model_path)},
       {"cell",
-       {{"true", analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_true)},
-        {"predicted",
-         analysis.cell_true < 0 ? nlohmann::json(nullptr) : class_name(analysis.cell_predicted)},
-        {"segments", analysis.cell_rows.size()},
-        {"selected", analysis.cell_selected},
+       {{"true", analysis.confusion.cell_true < 0 ? nlohmann::json(nullptr)
+                                                  : class_name(analysis.confusion.cell_true)},
+        {"predicted", analysis.confusion.cell_true < 0
+                          ? nlohmann::json(nullptr)
+                          : class_name(analysis.confusion.cell_predicted)},
+        {"segments", analysis.confusion.cell_rows.size()},
+        {"selected", analysis.confusion.cell_selected},
         {"list", cell_list}}},
       {"landed", landed},
-      {"dataset_rows", analysis.dataset ? analysis.dataset->rows() : 0},
-      {"som", analysis.som ? nlohmann::json({{"rows", analysis.som->map().rows},
-                                             {"columns", analysis.som->map().columns},
-                                             {"neuron", analysis.som_neuron}})
-                           : nlohmann::json(nullptr)},
-      {"somatosensory", analysis.somatosensory},
-      {"somatosensory_taxels", analysis.map ? analysis.map->taxels.size() : 0}};
+      {"dataset_rows", analysis.results.dataset ? analysis.results.dataset->rows() : 0},
+      {"som", analysis.som.model ? nlohmann::json({{"rows", analysis.som.model->map().rows},
+                                                   {"columns", analysis.som.model->map().columns},
+                                                   {"neuron", analysis.som.neuron}})
+                                 : nlohmann::json(nullptr)},
+      {"somatosensory", analysis.somatosensory.shown},
+      {"somatosensory_taxels",
+       analysis.somatosensory.map ? analysis.somatosensory.map->taxels.size() : 0}};
 }
 
 }  // namespace tactile
