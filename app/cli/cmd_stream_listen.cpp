@@ -1,5 +1,6 @@
 // `tactile stream-listen --skin ID --from udp://HOST:PORT --duration S [--idle S]
-//  [--out FILE.h5] [--json]`: receives live packets (docs/PACKETS.md) for S seconds (or until
+//  [--datagrams N] [--bound-to FILE] [--out FILE.h5] [--json]`: receives live packets
+//  (docs/PACKETS.md) for S seconds (or until
 // the stream has been silent for --idle seconds), decodes and checks them, reports loss,
 // restarts, stalls, clock jumps and rate, and optionally writes what arrived as a recording
 // (on the stream's clock: a sender's restart or clock jump does not move it; docs/LIVE.md).
@@ -15,6 +16,7 @@
 
 #include "commands.h"
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/live/packet_stream.h"
 #include "tactile/live/udp.h"
@@ -31,12 +33,13 @@ struct StreamListenOptions {
   double duration = 0.0;
   double idle = 0.0;      // 0: listen for the whole duration
   int64_t datagrams = 0;  // stop once this many have arrived; 0: no such limit
+  std::string bound_to;   // where to say the port listened on (port 0: the system's choice)
   std::string out;
   bool json = false;
 };
 
 void run_stream_listen(const StreamListenOptions& options) {
-  const UdpEndpoint local = parse_udp_url(options.from, "--from");
+  const UdpEndpoint local = parse_udp_url(options.from, "--from", UdpUse::kListen);
   if (!(options.duration > 0.0) || !std::isfinite(options.duration))
     throw Error("--duration", "must be a number of seconds above 0");
   if (!(options.idle >= 0.0) || !std::isfinite(options.idle))
@@ -46,6 +49,10 @@ void run_stream_listen(const StreamListenOptions& options) {
   packet_format_info(options.skin);                     // refuses a skin without a packet format
   PacketCollector collector(load_layout(options.skin), !options.out.empty());
   UdpSocket socket = UdpSocket::bind_to(local);
+  // Said once the socket listens, so a sender started after the file appears loses nothing.
+  if (!options.bound_to.empty())
+    write_file_atomically(options.bound_to,
+                          UdpEndpoint{local.host, socket.local_port()}.url() + "\n");
 
   using Clock = std::chrono::steady_clock;
   const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
@@ -146,12 +153,18 @@ void register_stream_listen(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "stream-listen", "Receive live UDP packets of a skin, report loss and rate, record them");
   command->add_option("--skin", options->skin, "Skin: " + joined(packet_skin_ids()))->required();
-  command->add_option("--from", options->from, "Where to listen, udp://HOST:PORT")->required();
+  command
+      ->add_option("--from", options->from,
+                   "Where to listen, udp://HOST:PORT (port 0: any free port, see --bound-to)")
+      ->required();
   command->add_option("--duration", options->duration, "Seconds to listen at most")->required();
   command->add_option("--idle", options->idle,
                       "Stop once no datagram has come for this many seconds (default: never)");
   command->add_option("--datagrams", options->datagrams,
                       "Stop once this many datagrams have arrived (default: no such limit)");
+  command->add_option("--bound-to", options->bound_to,
+                      "Once listening, write the address listened on (udp://HOST:PORT) to this "
+                      "file: with port 0 in --from, the free port the system gave");
   command->add_option("--out", options->out, "Write what arrived as a recording (.h5)");
   command->add_flag("--json", options->json, "Print the report as JSON");
   command->callback([options] { run_stream_listen(*options); });

@@ -33,7 +33,7 @@ struct StreamSimOptions {
 };
 
 void run_stream_sim(const StreamSimOptions& options) {
-  const UdpEndpoint destination = parse_udp_url(options.to, "--to");
+  const UdpEndpoint destination = parse_udp_url(options.to, "--to", UdpUse::kSend);
   if (!(options.rate_factor > 0.0) || !std::isfinite(options.rate_factor))
     throw Error("--rate-factor", "must be a number above 0");
   if (!(options.duration >= 0.0) || !std::isfinite(options.duration))

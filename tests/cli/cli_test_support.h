@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "tactile/live/udp.h"
 #include "temp_folder.h"
 #include "test_paths.h"
 
@@ -79,8 +78,5 @@ inline void expect_imports_refused(const std::vector<RefusedImport>& cases, cons
     EXPECT_FALSE(std::filesystem::exists(out)) << bad.arguments;
   }
 }
-
-// A UDP port on the loopback that nobody holds now (the system picks it).
-inline uint16_t free_port() { return UdpSocket::bind_to({"127.0.0.1", 0}).local_port(); }
 
 }  // namespace tactile::test

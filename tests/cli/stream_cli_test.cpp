@@ -4,36 +4,32 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <future>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <thread>
 
 #include "cli_test_support.h"
-#include "tactile/error.h"
-#include "tactile/live/udp.h"
 
 namespace tactile {
 namespace {
 
 using test::CommandResult;
-using test::free_port;
 using test::run_program;
 using test::TempFolder;
 
-// A loopback port nobody uses right now (the kernel's pick, released again).
-// True once someone holds `port` (the listener has bound it), false after `timeout`.
-bool wait_until_bound(uint16_t port, std::chrono::seconds timeout) {
+// The address a listener started on port 0 says it got (its --bound-to file), once it says
+// so; "" if it has not within `timeout` (it failed to start: its error tells why).
+std::string bound_address(const std::string& file, std::chrono::seconds timeout) {
   const auto end = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < end) {
-    try {
-      UdpSocket::bind_to({"127.0.0.1", port});
-    } catch (const Error&) {
-      return true;
-    }
+    std::ifstream in(file);
+    std::string url;
+    if (in && std::getline(in, url) && !url.empty()) return url;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  return false;
+  return "";
 }
 
 // The number after "key: " in a command's report, -1 when absent.
@@ -52,18 +48,19 @@ struct Session {
 // and waits for the listener to fall silent (at most 30 s).
 Session stream_one_second(const std::string& skin, const std::string& out,
                           const TempFolder& listen_folder, const TempFolder& send_folder) {
-  const uint16_t port = free_port();
-  const std::string url = "udp://127.0.0.1:" + std::to_string(port);
+  const std::string bound = listen_folder.file("bound.txt");
   std::future<CommandResult> listening = std::async(std::launch::async, [&] {
     return run_program("tactile",
-                       "stream-listen --skin " + skin + " --from " + url +
-                           " --duration 30 --idle 2" + (out.empty() ? "" : " --out '" + out + "'"),
+                       "stream-listen --skin " + skin +
+                           " --from udp://127.0.0.1:0 --duration 30 --idle 2 --bound-to '" + bound +
+                           "'" + (out.empty() ? "" : " --out '" + out + "'"),
                        listen_folder);
   });
   Session session;
-  if (!wait_until_bound(port, std::chrono::seconds(10))) {
+  const std::string url = bound_address(bound, std::chrono::seconds(30));
+  if (url.empty()) {
     session.listener = listening.get();
-    ADD_FAILURE() << "the listener never bound " << url << ": " << session.listener.err;
+    ADD_FAILURE() << "the listener never said where it listens: " << session.listener.err;
     return session;
   }
   session.sender = run_program(
@@ -118,16 +115,16 @@ INSTANTIATE_TEST_SUITE_P(Skins, StreamCli,
 // recording holds both runs with the silence between them as a gap.
 TEST(StreamCliFaults, ASenderRestartedAfterAPauseIsOneRestartAndOneStall) {
   const TempFolder listen_folder("tactile-listen-restart"), send_folder("tactile-send-restart");
-  const uint16_t port = free_port();
-  const std::string url = "udp://127.0.0.1:" + std::to_string(port);
   const std::string out = listen_folder.file("restarted.h5");
+  const std::string bound = listen_folder.file("bound.txt");
   std::future<CommandResult> listening = std::async(std::launch::async, [&] {
     return run_program("tactile",
-                       "stream-listen --skin fur --from " + url +
-                           " --duration 120 --datagrams 30 --json --out '" + out + "'",
+                       "stream-listen --skin fur --from udp://127.0.0.1:0 --bound-to '" + bound +
+                           "' --duration 120 --datagrams 30 --json --out '" + out + "'",
                        listen_folder);
   });
-  ASSERT_TRUE(wait_until_bound(port, std::chrono::seconds(10)));
+  const std::string url = bound_address(bound, std::chrono::seconds(30));
+  ASSERT_FALSE(url.empty()) << "the listener never said where it listens";
   // The listener ends at the 30th datagram, not after a silence: a slow machine (a sanitizer
   // build beside a compiler) may take seconds to start the second sender.
   for (int run = 0; run < 2; ++run) {
@@ -158,9 +155,8 @@ TEST(StreamCliFaults, ASenderRestartedAfterAPauseIsOneRestartAndOneStall) {
 
 TEST(StreamCliUrls, BadUrlsAndPortsAreRefusedNamingTheOption) {
   const TempFolder folder("tactile-urls");
-  for (const std::string url :
-       {"udp://127.0.0.1:0", "udp://127.0.0.1:65536", "http://127.0.0.1:9000", "udp://127.0.0.1",
-        "udp://127.0.0.1:port", "udp://nao.local:9000"}) {
+  for (const std::string url : {"udp://127.0.0.1:65536", "http://127.0.0.1:9000", "udp://127.0.0.1",
+                                "udp://127.0.0.1:port", "udp://nao.local:9000"}) {
     const CommandResult sim =
         run_program("tactile", "stream-sim --skin fur --to '" + url + "' --duration 1", folder);
     EXPECT_EQ(sim.exit_code, 1) << url;
@@ -170,6 +166,11 @@ TEST(StreamCliUrls, BadUrlsAndPortsAreRefusedNamingTheOption) {
     EXPECT_EQ(listen.exit_code, 1) << url;
     EXPECT_NE(listen.err.find("--from"), std::string::npos) << url << ": " << listen.err;
   }
+  // Port 0 is a listener's "any free port", never a place to send to.
+  const CommandResult nowhere =
+      run_program("tactile", "stream-sim --skin fur --to udp://127.0.0.1:0 --duration 1", folder);
+  EXPECT_EQ(nowhere.exit_code, 1);
+  EXPECT_NE(nowhere.err.find("--to"), std::string::npos) << nowhere.err;
   const CommandResult port_range = run_program(
       "tactile", "stream-sim --skin fur --to udp://127.0.0.1:70000 --duration 1", folder);
   EXPECT_NE(port_range.err.find("1-65535"), std::string::npos) << port_range.err;

@@ -21,7 +21,6 @@
 #include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/live/packets.h"
-#include "tactile/live/udp.h"
 #include "tactile/sim/simulator.h"
 #include "tactile/skins/skin.h"
 
@@ -29,7 +28,6 @@ namespace tactile {
 namespace {
 
 using test::CommandResult;
-using test::free_port;
 using test::run_program;
 
 class WorkbenchLive : public ::testing::Test {
@@ -62,18 +60,15 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
                   folder);
   ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
 
-  const uint16_t port = free_port();
-  const std::string url = "udp://127.0.0.1:" + std::to_string(port);
   // The workbench listens first; the sender starts once it has drawn a frame, sends 20 s
   // of device time at 4x (5 s), and the script watches for 9 s.
   const std::string record = folder.file("session.h5");
   std::future<CommandResult> workbench = std::async(std::launch::async, [&] {
     return run_program(
         "tactile-workbench-headless",
-        "--connect udp://:" + std::to_string(port) + " --skin fur --record " + record +
-            " --model " + folder.file("model.json") +
-            " --annotator ana --size 1200x800 --settings " + folder.file("settings.json") +
-            " --script " +
+        "--connect udp://:0 --skin fur --record " + record + " --model " +
+            folder.file("model.json") + " --annotator ana --size 1200x800 --settings " +
+            folder.file("settings.json") + " --script " +
             script("state @listening.json\nsleep 4\nscreenshot @live.png\nstate @during.json\n"
                    "key [\nsleep 1\nkey ]\nkey 1\nkey Enter\n"
                    "sleep 4\nstate @after.json\nkey Ctrl+R\nwait 2\nstate @stopped.json\n"),
@@ -86,6 +81,12 @@ TEST_F(WorkbenchLive, StreamSimIntoTheWorkbenchRecordsShowsAndClassifies) {
   for (int waited = 0; waited < 600 && !std::filesystem::exists(listening); ++waited)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(std::filesystem::exists(listening)) << "the workbench drew no frame in 30 s";
+  // It listens on the port the system gave it (asked for port 0), and says which.
+  const nlohmann::json listening_state = state("listening.json");
+  ASSERT_TRUE(listening_state["live"]["listening"].is_string()) << listening_state["live"].dump();
+  const std::string url = listening_state["live"]["listening"].get<std::string>();
+  EXPECT_EQ(url.rfind("udp://127.0.0.1:", 0), 0u) << url;
+  EXPECT_NE(url, "udp://127.0.0.1:0");
   const CommandResult sent = run_program(
       "tactile", "stream-sim --skin fur --to " + url + " --rate-factor 4 --duration 20", folder);
   ASSERT_EQ(sent.exit_code, 0) << sent.err;

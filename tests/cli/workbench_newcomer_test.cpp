@@ -194,12 +194,12 @@ TEST_F(Newcomer, TheAnalysisViewsAndLaneNamesFitTheDefaultWindowAndNoTooltipStay
 }
 
 TEST_F(Newcomer, TheLiveBarsClassifyButtonFitsTheDefaultWindow) {
-  const auto result = test::run_program(
-      "tactile-workbench-headless",
-      "--connect udp://127.0.0.1:" + std::to_string(test::free_port()) +
-          " --skin fur --size 1280x720 --settings " + folder.file("settings.json") + " --script " +
-          test::write_script(folder, "wait 3\nstate @live.json\n"),
-      folder);
+  const auto result =
+      test::run_program("tactile-workbench-headless",
+                        "--connect udp://127.0.0.1:0 --skin fur --size 1280x720 --settings " +
+                            folder.file("settings.json") + " --script " +
+                            test::write_script(folder, "wait 3\nstate @live.json\n"),
+                        folder);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json live = state("live.json");
   for (const char* item :

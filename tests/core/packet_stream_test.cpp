@@ -105,20 +105,37 @@ TEST(PacketCollector, CountsBrokenDatagramsAndKeepsTheirError) {
 //---- UDP -------------------------------------------------------------------------------
 
 TEST(UdpUrl, AcceptsHostAndPortAndNamesTheOptionOnEveryMistake) {
-  const UdpEndpoint endpoint = parse_udp_url("udp://127.0.0.1:9000", "--to");
+  const UdpEndpoint endpoint = parse_udp_url("udp://127.0.0.1:9000", "--to", UdpUse::kSend);
   EXPECT_EQ(endpoint.host, "127.0.0.1");
   EXPECT_EQ(endpoint.port, 9000);
-  EXPECT_EQ(parse_udp_url("udp://localhost:1", "--to").host, "127.0.0.1");
+  EXPECT_EQ(parse_udp_url("udp://localhost:1", "--to", UdpUse::kSend).host, "127.0.0.1");
   for (const char* url :
        {"tcp://127.0.0.1:9000", "udp://127.0.0.1", "udp://127.0.0.1:0", "udp://127.0.0.1:65536",
         "udp://127.0.0.1:90x", "udp://:9000", "udp://robot.example:9000", "udp://127.0.0.1:-5"}) {
     try {
-      parse_udp_url(url, "--to");
+      parse_udp_url(url, "--to", UdpUse::kSend);
       ADD_FAILURE() << url << " was accepted";
     } catch (const Error& error) {
       EXPECT_EQ(error.where(), "--to") << url;
     }
   }
+}
+
+// A listener may ask for port 0 and learn the port the system gave it, so that no test (or
+// user) has to guess a free port and race another program for it.
+TEST(UdpUrl, AListenerTakesPortZeroAndReportsThePortItGot) {
+  const UdpEndpoint any = parse_udp_url("udp://127.0.0.1:0", "--from", UdpUse::kListen);
+  EXPECT_EQ(any.port, 0);
+  UdpSocket listener = UdpSocket::bind_to(any);
+  const uint16_t port = listener.local_port();
+  EXPECT_GT(port, 0);
+  UdpSocket sender = UdpSocket::connect_to({"127.0.0.1", port});
+  const std::vector<uint8_t> datagram = {1, 2, 3};
+  sender.send(datagram);
+  std::vector<uint8_t> buffer(16);
+  EXPECT_EQ(listener.receive(buffer, 5.0), std::optional<size_t>(3));
+  for (const char* url : {"udp://127.0.0.1:65536", "udp://127.0.0.1:-1"})
+    EXPECT_THROW(parse_udp_url(url, "--from", UdpUse::kListen), Error) << url;
 }
 
 }  // namespace

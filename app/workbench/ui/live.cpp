@@ -216,6 +216,7 @@ bool connect_live(WorkbenchState& state, LiveServices& services, const std::stri
     services.receiver = std::move(receiver);
     state.live.connected = true;
     state.live.url = url;
+    state.live.listening = address.scheme == "udp" ? services.receiver->describe() : "";
     state.live.follow = true;
     state.live.counters = {};
     state.live.channels_chosen = false;
@@ -497,6 +498,8 @@ nlohmann::json live_json(const WorkbenchState& state) {
   const LiveCounters& counters = live.counters;
   nlohmann::json json;
   json["source"] = live.url;
+  json["listening"] =
+      live.listening.empty() ? nlohmann::json(nullptr) : nlohmann::json(live.listening);
   json["received"] = counters.datagrams;
   json["samples"] = state.document ? state.document->source->sample_count() : 0;
   json["lost"] = counters.lost;

@@ -71,7 +71,7 @@ class UdpInput final : public DatagramInput {
  public:
   explicit UdpInput(const UdpEndpoint& local)
       : socket_(UdpSocket::bind_to(local)),
-        where_(local.url()),
+        where_(UdpEndpoint{local.host, socket_.local_port()}.url()),
         buffer_(PacketFramer::kMaxDatagram) {}
   bool next(std::vector<uint8_t>& out, double timeout_seconds) override {
     const std::optional<size_t> size = socket_.receive(buffer_, timeout_seconds);
@@ -436,7 +436,7 @@ LiveAddress parse_live_address(const std::string& url, const std::string& option
     // Loopback unless an interface is named: a workbench does not listen on the network
     // by accident.
     const std::string host = rest.starts_with(":") ? "127.0.0.1" + rest : rest;
-    const UdpEndpoint endpoint = parse_udp_url("udp://" + host, option);
+    const UdpEndpoint endpoint = parse_udp_url("udp://" + host, option, UdpUse::kListen);
     address.host = endpoint.host;
     address.port = endpoint.port;
   } else if (address.scheme == "serial") {

@@ -16,7 +16,7 @@
 
 namespace tactile {
 
-UdpEndpoint parse_udp_url(const std::string& url, const std::string& option) {
+UdpEndpoint parse_udp_url(const std::string& url, const std::string& option, UdpUse use) {
   const std::string scheme = "udp://";
   if (url.rfind(scheme, 0) != 0)
     throw Error(option, "\"" + url + "\" is not a udp://HOST:PORT URL");
@@ -37,8 +37,11 @@ UdpEndpoint parse_udp_url(const std::string& url, const std::string& option) {
       std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
   if (port_text.empty() || failure != std::errc() || end != port_text.data() + port_text.size())
     throw Error(option, "port \"" + port_text + "\" in \"" + url + "\" is not a whole number");
-  if (port < 1 || port > 65535)
-    throw Error(option, "port " + port_text + " in \"" + url + "\" is not in 1-65535");
+  if (port == 0 && use == UdpUse::kSend)
+    throw Error(option, "port 0 in \"" + url + "\" names no port to send to (1-65535)");
+  if (port < 0 || port > 65535)
+    throw Error(option, "port " + port_text + " in \"" + url + "\" is not in " +
+                            (use == UdpUse::kListen ? "0-65535 (0: any free port)" : "1-65535"));
   endpoint.port = static_cast<uint16_t>(port);
   return endpoint;
 }

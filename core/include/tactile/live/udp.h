@@ -14,9 +14,14 @@ struct UdpEndpoint {
   std::string url() const { return "udp://" + host + ":" + std::to_string(port); }
 };
 
-// Parses "udp://HOST:PORT" (HOST a dotted IPv4 address or "localhost", PORT 1-65535).
-// Throws tactile::Error at `option` (e.g. "--to") saying what is wrong with the URL.
-UdpEndpoint parse_udp_url(const std::string& url, const std::string& option);
+// Where a URL is used: sent to (a port must be named), or listened on (port 0: any free port,
+// which the socket then reports: UdpSocket::local_port()).
+enum class UdpUse { kSend, kListen };
+
+// Parses "udp://HOST:PORT" (HOST a dotted IPv4 address or "localhost", PORT 1-65535, or 0 to
+// listen on any free port). Throws tactile::Error at `option` (e.g. "--to") saying what is
+// wrong with the URL.
+UdpEndpoint parse_udp_url(const std::string& url, const std::string& option, UdpUse use);
 
 // One UDP socket, closed on destruction. Errors throw tactile::Error naming the endpoint.
 class UdpSocket {
