@@ -54,7 +54,7 @@ sanitize: deps
 	cmake --build $(SANITIZE_DIR) -j$(JOBS)
 	cd $(SANITIZE_DIR) && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --output-on-failure -j$(JOBS) -L 'core|cli|fuzz|sanitizer'
+	  ctest --output-on-failure -j$(JOBS) -L 'core|cli|workbench|fuzz|sanitizer'
 
 # Every fuzz target for a few seconds (scripts/fuzz.sh --seconds N for longer).
 fuzz: deps

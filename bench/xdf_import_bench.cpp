@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "../tests/core/xdf_writer.h"
+#include "../tests/support/xdf_writer.h"
 #include "tactile/formats/xdf_files.h"
 #include "tactile/layout/skin_layout.h"
 

@@ -1,11 +1,11 @@
 // Writes the `edf` fuzz target's seeds (tests/fuzz/corpus/edf/) with EDFlib, the fixtures of
-// tests/core/edf_test_files.h and smaller files of the same kind, each under 20 kB:
+// tests/support/edf_test_files.h and smaller files of the same kind, each under 20 kB:
 //   build/bin/make_edf_seeds tests/fuzz/corpus/edf
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
-#include "../core/edf_test_files.h"
+#include "edf_test_files.h"
 
 using namespace tactile::testing;
 

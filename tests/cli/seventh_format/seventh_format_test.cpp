@@ -7,7 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "../cli_test_support.h"
+#include "cli_test_support.h"
 #include "tactile/formats/import.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/labelstore/label_store.h"

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "../cli_test_support.h"
-#include "../png_test_support.h"
+#include "cli_test_support.h"
+#include "png_test_support.h"
 #include "ring_skin.h"
 #include "tactile/features/corpus.h"
 #include "tactile/features/feature_extractor.h"

@@ -1,4 +1,4 @@
-% The MATLAB .mat fixtures of the .mat reader's tests (tests/core/mat_import_test.cpp,
+% The MATLAB .mat fixtures of the .mat reader's tests (tests/core/formats/mat_import_test.cpp,
 % tests/cli/import_formats_cli_test.cpp) and of the `mat` fuzz target's seeds. Written by GNU
 % Octave (Debian `octave`), which is not a dependency of the build or the tests: the .mat files
 % are committed. To make them again, from this folder:

@@ -57,7 +57,10 @@ TEST(LiveAddress, ReadsEveryKind) {
 TEST(LiveAddress, RefusesWithTheReason) {
   EXPECT_NE(refusal("tcp://1.2.3.4:5").find("not a live source kind"), std::string::npos);
   EXPECT_NE(refusal("nao").find("not a live source"), std::string::npos);
-  EXPECT_NE(refusal("udp://:0").find("not in 1-65535"), std::string::npos);
+  // Port 0 is a listener's "any free port" (the state JSON says which it got); above 65535 is
+  // no port.
+  EXPECT_NE(refusal("udp://:65536").find("not in 0-65535"), std::string::npos);
+  EXPECT_EQ(parse_live_address("udp://:0", "--connect").port, 0);
   EXPECT_NE(refusal("serial:///dev/ttyS0?baud=12345").find("not a standard rate"),
             std::string::npos);
   EXPECT_NE(refusal("serial://ttyS0").find("device path"), std::string::npos);

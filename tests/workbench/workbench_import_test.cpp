@@ -9,8 +9,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "../core/edf_test_files.h"
 #include "cli_test_support.h"
+#include "edf_test_files.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/labelstore/label_store.h"
 #include "test_paths.h"
