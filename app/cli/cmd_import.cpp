@@ -66,10 +66,34 @@ std::string help_of(const SharedImportOption& shared) {
       formats[static_cast<size_t>(found - helps.begin())].push_back(shared.formats[k]);
     }
   }
-  std::string text;
+  // Helps that differ in the middle ("Classes ...: a JSON key; names, ...") say their common
+  // start (to its last ": ") and end (from its first "; ") once.
+  const auto common = [&](auto same) {
+    size_t n = 0;
+    while (std::all_of(helps.begin(), helps.end(), [&](const std::string& help) {
+      return n < help.size() && same(help, n) == same(helps.front(), n);
+    }))
+      ++n;
+    return n;
+  };
+  size_t start = 0, end = 0;
+  if (helps.size() > 1) {
+    const size_t prefix = common([](const std::string& help, size_t n) { return help[n]; });
+    const size_t colon = helps.front().rfind(": ", prefix < 2 ? 0 : prefix - 2);
+    start = colon == std::string::npos || colon + 2 > prefix ? 0 : colon + 2;
+    const size_t suffix =
+        common([](const std::string& help, size_t n) { return help[help.size() - 1 - n]; });
+    const std::string& first = helps.front();
+    const size_t semicolon = first.find("; ", first.size() - suffix);
+    end = semicolon == std::string::npos ? 0 : first.size() - semicolon;
+    for (const std::string& help : helps)
+      if (start + end >= help.size()) start = end = 0;  // nothing would be left between
+  }
+  std::string text = helps.front().substr(0, start);
   for (size_t k = 0; k < helps.size(); ++k)
-    text += (k > 0 ? "; " : "") + helps[k] + " [" + joined(formats[k]) + "]";
-  return text;
+    text += (k > 0 ? "; " : "") + helps[k].substr(start, helps[k].size() - start - end) + " [" +
+            joined(formats[k]) + "]";
+  return text + helps.front().substr(helps.front().size() - end);
 }
 
 const char* type_name(ImportOption::Kind kind) {
@@ -127,8 +151,8 @@ void register_import(CLI::App& app) {
                                       ->type_name(type_name(shared.option.kind));
         break;
       default:
-        arguments->parsed[flag] =
-            command->add_option(flag, arguments->texts[flag], help_of(shared));
+        arguments->parsed[flag] = command->add_option(flag, arguments->texts[flag], help_of(shared))
+                                      ->type_name(type_name(shared.option.kind));
         break;
     }
   }

@@ -13,19 +13,23 @@ std::string lower_extension(const std::string& path) {
   return extension;
 }
 
-std::vector<ImportOption> array_options(const std::string& class_array_help,
-                                        const std::string& class_array_hint) {
-  return {
-      {"--rate", ImportOption::Kind::kNumber, "Sampling rate in Hz (an array carries no time)",
-       "Hz", "", ""},
-      {"--class-array", ImportOption::Kind::kText,
-       "Classes per frame (or per capture) in the same file: " + class_array_help +
-           "; names, or indices into the layout's classes; none/empty: no touch",
-       class_array_hint, "", ""},
-      {"--captures", ImportOption::Kind::kSwitch,
-       "The array is [captures][channels][samples]: captures laid end to end",
-       "[captures][channels][samples]", "", ""},
-  };
+std::vector<ImportOption> ArrayImporter::options() const {
+  std::vector<ImportOption> list = own_options();
+  list.push_back({"--rate", ImportOption::Kind::kNumber,
+                  "Sampling rate in Hz (an array carries no time)", "Hz", "", ""});
+  list.push_back({"--class-array", ImportOption::Kind::kText,
+                  "Classes per frame (or per capture) in the same file: " + classes_.help +
+                      "; names, or indices into the layout's classes; none/empty: no touch",
+                  classes_.hint, "", ""});
+  list.push_back({"--captures", ImportOption::Kind::kSwitch,
+                  "The array is [captures][channels][samples]: captures laid end to end",
+                  "[captures][channels][samples]", "", ""});
+  return list;
+}
+
+std::string ArrayImporter::refusal_of(const std::string& flag) const {
+  if (flag != "--class-column") return {};
+  return "is for CSV tables; the classes of an array file are named by " + classes_.instead;
 }
 
 double required_rate(const ImportValues& values) {
@@ -64,10 +68,6 @@ ImportRead array_recording(const std::string& path, const SkinLayout& layout, do
   read.described = described;
   read.shape = array.shape;
   return read;
-}
-
-std::string class_column_refusal(const std::string& instead) {
-  return "is for CSV tables; the classes of an array file are named by " + instead;
 }
 
 }  // namespace tactile::formats

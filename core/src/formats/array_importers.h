@@ -11,10 +11,28 @@
 
 namespace tactile::formats {
 
-// --rate (required unless `rate_optional`, when another option gives it), --class-array
-// (`class_array_help`: what names the classes in this format) and --captures.
-std::vector<ImportOption> array_options(const std::string& class_array_help,
-                                        const std::string& class_array_hint);
+// How an array format names the classes of its frames.
+struct ArrayClasses {
+  std::string help;     // what --class-array names ("a JSON key")
+  std::string hint;     // the dialog's hint for it ("the key of the classes")
+  std::string instead;  // where the classes are named, said when CSV's --class-column is given
+};
+
+// An array format (NumPy, JSON, HDF5, MATLAB): the options only it takes, then --rate,
+// --class-array and --captures; CSV's --class-column refused by saying where it names classes.
+class ArrayImporter : public RecordingImporter {
+ public:
+  explicit ArrayImporter(ArrayClasses classes) : classes_(std::move(classes)) {}
+  std::vector<ImportOption> options() const final;
+  std::string refusal_of(const std::string& flag) const final;
+
+ protected:
+  // The options only this format takes, listed first.
+  virtual std::vector<ImportOption> own_options() const = 0;
+
+ private:
+  ArrayClasses classes_;
+};
 
 // The file's extension in lower case, with the dot.
 std::string lower_extension(const std::string& path);
@@ -28,8 +46,5 @@ ImportRead array_recording(const std::string& path, const SkinLayout& layout, do
                            bool captures, const ImportedArray& array,
                            const std::optional<ImportedArray>& classes, const std::string& where,
                            const std::string& described);
-
-// The refusal of CSV's --class-column by an array format: where its classes are named instead.
-std::string class_column_refusal(const std::string& instead);
 
 }  // namespace tactile::formats

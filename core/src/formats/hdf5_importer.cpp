@@ -9,25 +9,15 @@ namespace tactile::formats {
 
 namespace {
 
-class Hdf5Importer : public RecordingImporter {
+class Hdf5Importer : public ArrayImporter {
  public:
+  Hdf5Importer()
+      : ArrayImporter({"an HDF5 dataset", "the dataset of the classes",
+                       "--class-array (an array or dataset of the same file)"}) {}
   std::string name() const override { return "HDF5"; }
   std::vector<std::string> extensions() const override { return {".h5", ".hdf5", ".hdf"}; }
   bool recognises(const std::string& bytes) const override {
     return bytes.rfind(std::string("\x89HDF\r\n\x1a\n", 8), 0) == 0;
-  }
-  std::vector<ImportOption> options() const override {
-    std::vector<ImportOption> list = {{"--dataset", ImportOption::Kind::kText,
-                                       "The dataset to read (required, e.g. /data/pressure)",
-                                       "the dataset, e.g. /data/pressure", "", ""}};
-    for (ImportOption& option : array_options("an HDF5 dataset", "the dataset of the classes"))
-      list.push_back(std::move(option));
-    return list;
-  }
-  std::string refusal_of(const std::string& flag) const override {
-    if (flag == "--class-column")
-      return class_column_refusal("--class-array (an array or dataset of the same file)");
-    return {};
   }
 
   ImportRead read(const std::string& path, const SkinLayout& layout,
@@ -42,6 +32,13 @@ class Hdf5Importer : public RecordingImporter {
       classes = read_hdf5_dataset(path, values.text("--class-array"));
     return array_recording(path, layout, rate_hz, values.on("--captures"), array, classes,
                            path + ":" + dataset, ".h5 array");
+  }
+
+ protected:
+  std::vector<ImportOption> own_options() const override {
+    return {{"--dataset", ImportOption::Kind::kText,
+             "The dataset to read (required, e.g. /data/pressure)",
+             "the dataset, e.g. /data/pressure", "", ""}};
   }
 };
 

@@ -10,32 +10,13 @@ namespace tactile::formats {
 
 namespace {
 
-class JsonImporter : public RecordingImporter {
+class JsonImporter : public ArrayImporter {
  public:
+  JsonImporter()
+      : ArrayImporter({"a JSON key", "the key of the classes",
+                       "--class-key (a member of each frame object) or --class-array (a key)"}) {}
   std::string name() const override { return "JSON"; }
   std::vector<std::string> extensions() const override { return {".json"}; }
-  std::vector<ImportOption> options() const override {
-    std::vector<ImportOption> list = {
-        {"--key", ImportOption::Kind::kText,
-         "The JSON key holding the frames (a.b for nested; default: the top level)",
-         "a.b (default: the top level)", "", ""},
-        {"--value-key", ImportOption::Kind::kText,
-         "Frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
-         "frame (e.g. data)",
-         "frames as objects: the member of each frame, e.g. data", "", ""},
-        {"--class-key", ImportOption::Kind::kText,
-         "Frames given as objects: the member holding each frame's class (e.g. label)",
-         "frames as objects: the member of each class, e.g. label", "", ""}};
-    for (ImportOption& option : array_options("a JSON key", "the key of the classes"))
-      list.push_back(std::move(option));
-    return list;
-  }
-  std::string refusal_of(const std::string& flag) const override {
-    if (flag == "--class-column")
-      return class_column_refusal(
-          "--class-key (a member of each frame object) or --class-array (a key)");
-    return {};
-  }
 
   ImportRead read(const std::string& path, const SkinLayout& layout,
                   const ImportValues& values) const override {
@@ -56,6 +37,20 @@ class JsonImporter : public RecordingImporter {
     if (!value_key.empty()) where += " member " + value_key;
     return array_recording(path, layout, rate_hz, values.on("--captures"), array, classes, where,
                            ".json array");
+  }
+
+ protected:
+  std::vector<ImportOption> own_options() const override {
+    return {{"--key", ImportOption::Kind::kText,
+             "The JSON key holding the frames (a.b for nested; default: the top level)",
+             "a.b (default: the top level)", "", ""},
+            {"--value-key", ImportOption::Kind::kText,
+             "Frames given as objects ({\"label\": ..., \"data\": [...]}): the member holding each "
+             "frame (e.g. data)",
+             "frames as objects: the member of each frame, e.g. data", "", ""},
+            {"--class-key", ImportOption::Kind::kText,
+             "Frames given as objects: the member holding each frame's class (e.g. label)",
+             "frames as objects: the member of each class, e.g. label", "", ""}};
   }
 };
 

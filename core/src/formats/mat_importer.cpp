@@ -13,32 +13,16 @@ namespace tactile::formats {
 
 namespace {
 
-class MatImporter : public RecordingImporter {
+class MatImporter : public ArrayImporter {
  public:
+  MatImporter()
+      : ArrayImporter({"a .mat variable (cell array of names, char matrix, numeric vector)",
+                       "the array of the classes",
+                       "--class-array (an array or dataset of the same file)"}) {}
   std::string name() const override { return "MATLAB"; }
   std::vector<std::string> extensions() const override { return {".mat"}; }
   bool recognises(const std::string& bytes) const override {
     return bytes.rfind("MATLAB 5.0 MAT-file", 0) == 0 || bytes.rfind("MATLAB 7.3 MAT-file", 0) == 0;
-  }
-  std::vector<ImportOption> options() const override {
-    std::vector<ImportOption> list = {
-        {"--dataset", ImportOption::Kind::kText,
-         "The variable to read (s.field for a struct's field; default: the file's one "
-         "array)",
-         "the variable, s.field (default: the only array)", "", ""},
-        {"--rate-variable", ImportOption::Kind::kText,
-         "The scalar variable holding the rate in Hz (e.g. fs or s.rate; not with --rate)",
-         "the variable holding the rate in Hz (not with --rate)", "", ""}};
-    for (ImportOption& option :
-         array_options("a .mat variable (cell array of names, char matrix, numeric vector)",
-                       "the array of the classes"))
-      list.push_back(std::move(option));
-    return list;
-  }
-  std::string refusal_of(const std::string& flag) const override {
-    if (flag == "--class-column")
-      return class_column_refusal("--class-array (an array or dataset of the same file)");
-    return {};
   }
 
   ImportRead read(const std::string& path, const SkinLayout& layout,
@@ -83,6 +67,17 @@ class MatImporter : public RecordingImporter {
                                    " numeric arrays of 2 or more dimensions: name one (" +
                                    (list.empty() ? "no variables" : list) + ")");
     return candidates.front();
+  }
+
+ protected:
+  std::vector<ImportOption> own_options() const override {
+    return {{"--dataset", ImportOption::Kind::kText,
+             "The variable to read (s.field for a struct's field; default: the file's one "
+             "array)",
+             "the variable, s.field (default: the only array)", "", ""},
+            {"--rate-variable", ImportOption::Kind::kText,
+             "The scalar variable holding the rate in Hz (e.g. fs or s.rate; not with --rate)",
+             "the variable holding the rate in Hz (not with --rate)", "", ""}};
   }
 };
 

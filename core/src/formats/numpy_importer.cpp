@@ -10,25 +10,15 @@ namespace tactile::formats {
 
 namespace {
 
-class NumpyImporter : public RecordingImporter {
+class NumpyImporter : public ArrayImporter {
  public:
+  NumpyImporter()
+      : ArrayImporter({"a .npz array", "the array of the classes",
+                       "--class-array (an array of the same file)"}) {}
   std::string name() const override { return "NumPy"; }
   std::vector<std::string> extensions() const override { return {".npy", ".npz"}; }
   bool recognises(const std::string& bytes) const override {
     return bytes.rfind("\x93NUMPY", 0) == 0;
-  }
-  std::vector<ImportOption> options() const override {
-    std::vector<ImportOption> list = {{"--dataset", ImportOption::Kind::kText,
-                                       "The .npz array to read (default: the archive's one array)",
-                                       "the array (default: the only one)", "", ""}};
-    for (ImportOption& option : array_options("a .npz array", "the array of the classes"))
-      list.push_back(std::move(option));
-    return list;
-  }
-  std::string refusal_of(const std::string& flag) const override {
-    if (flag == "--class-column")
-      return class_column_refusal("--class-array (an array of the same file)");
-    return {};
   }
 
   ImportRead read(const std::string& path, const SkinLayout& layout,
@@ -63,6 +53,13 @@ class NumpyImporter : public RecordingImporter {
       throw Error("--dataset", path + " holds " + std::to_string(names.size()) + " arrays (" +
                                    joined(names) + "): name one");
     return names.front();
+  }
+
+ protected:
+  std::vector<ImportOption> own_options() const override {
+    return {{"--dataset", ImportOption::Kind::kText,
+             "The .npz array to read (default: the archive's one array)",
+             "the array (default: the only one)", "", ""}};
   }
 };
 
