@@ -12,26 +12,17 @@
 #include <set>
 
 #include "cli_test_support.h"
+#include "demo_workspace.h"
 #include "png_test_support.h"
 
 namespace tactile {
 namespace {
 
-class WorkbenchClassifiers : public ::testing::Test {
+class WorkbenchClassifiers : public test::DemoWorkspace {
  protected:
-  void SetUp() override {
-    const auto made =
-        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
-    ASSERT_EQ(made.exit_code, 0) << made.err;
-  }
-  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
-  test::CommandResult workbench(const std::string& arguments, std::string script_text = "") {
-    std::string all =
-        arguments + " --annotator ana --size 1400x800 --settings " + folder.file("settings.json");
-    if (!script_text.empty()) {
-      all += " --script " + test::write_script(folder, script_text);
-    }
-    return test::run_program("tactile-workbench-headless", all, folder);
+  WorkbenchClassifiers() : DemoWorkspace("tactile-workbench-classifiers") {}
+  test::CommandResult workbench(const std::string& arguments, const std::string& text = "") {
+    return DemoWorkspace::workbench(arguments, text, "1400x800");
   }
   // SKIN simulated into folder/SKIN and described by its own pipeline: the table's path, or
   // "" (with the failure added) when a step failed.
@@ -51,12 +42,6 @@ class WorkbenchClassifiers : public ::testing::Test {
     if (described.exit_code != 0) ADD_FAILURE() << described.err;
     return simulated.exit_code == 0 && described.exit_code == 0 ? table : "";
   }
-  nlohmann::json state(const std::string& name) {
-    std::ifstream in(folder.file(name));
-    return nlohmann::json::parse(in);
-  }
-
-  test::TempFolder folder{"tactile-workbench-classifiers"};
 };
 
 const char* kTrainAll =

@@ -11,40 +11,20 @@
 #include <sstream>
 
 #include "cli_test_support.h"
+#include "demo_workspace.h"
 #include "test_paths.h"
 
 namespace tactile {
 namespace {
 
-class FirstHour : public ::testing::Test {
+class FirstHour : public test::DemoWorkspace {
  protected:
-  void SetUp() override {
-    const auto made =
-        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
-    ASSERT_EQ(made.exit_code, 0) << made.err;
-  }
-  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
-  // Runs the headless workbench on `open` (a file, a folder, or nothing) with a script whose
-  // `@` stand for this test's folder.
-  test::CommandResult workbench(const std::string& open, const std::string& text,
-                                const std::string& size = "1280x720") {
-    return test::run_program("tactile-workbench-headless",
-                             open + " --annotator ana --size " + size + " --settings " +
-                                 folder.file("settings.json") + " --script " +
-                                 test::write_script(folder, text),
-                             folder);
-  }
-  nlohmann::json state(const std::string& name) const {
-    std::ifstream in(folder.file(name));
-    return nlohmann::json::parse(in);
-  }
+  FirstHour() : DemoWorkspace("tactile-first-hour") {}
   static bool has_item(const nlohmann::json& state, const std::string& name) {
     for (const nlohmann::json& item : state["items"])
       if (item == name) return true;
     return false;
   }
-
-  test::TempFolder folder{"tactile-first-hour"};
 };
 
 TEST_F(FirstHour, AnEmptyWindowSaysWhatToDoAndMakesTheDemoWorkspace) {

@@ -15,33 +15,16 @@
 #include <string>
 
 #include "cli_test_support.h"
+#include "demo_workspace.h"
 #include "png_test_support.h"
 #include "test_paths.h"
 
 namespace tactile {
 namespace {
 
-class Newcomer : public ::testing::Test {
+class Newcomer : public test::DemoWorkspace {
  protected:
-  void SetUp() override {
-    const auto made =
-        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
-    ASSERT_EQ(made.exit_code, 0) << made.err;
-  }
-  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
-  // The headless workbench at 1280 x 720 on `open` with a script whose `@` stand for this
-  // test's folder.
-  test::CommandResult workbench(const std::string& open, const std::string& text) {
-    return test::run_program("tactile-workbench-headless",
-                             open + " --annotator ana --size 1280x720 --settings " +
-                                 folder.file("settings.json") + " --script " +
-                                 test::write_script(folder, text),
-                             folder);
-  }
-  nlohmann::json state(const std::string& name) const {
-    std::ifstream in(folder.file(name));
-    return nlohmann::json::parse(in);
-  }
+  Newcomer() : DemoWorkspace("tactile-newcomer") {}
   // The recording's labels as `tactile labels list --json` gives them.
   nlohmann::json labels(const std::string& recording, const std::string& source = "") {
     const auto listed =
@@ -52,8 +35,6 @@ class Newcomer : public ::testing::Test {
     EXPECT_EQ(listed.exit_code, 0) << listed.err;
     return nlohmann::json::parse(listed.out)["labels"];
   }
-
-  test::TempFolder folder{"tactile-newcomer"};
 };
 
 TEST_F(Newcomer, AClickOnARowOfTheLabelTableSelectsItsLabelAndGoesToIt) {

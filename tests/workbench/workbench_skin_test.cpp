@@ -12,20 +12,16 @@
 #include <string>
 
 #include "cli_test_support.h"
+#include "demo_workspace.h"
 #include "png_test_support.h"
 #include "tactile/layout/skin_layout.h"
 
 namespace tactile {
 namespace {
 
-class WorkbenchSkins : public ::testing::Test {
+class WorkbenchSkins : public test::DemoWorkspace {
  protected:
-  void SetUp() override {
-    const auto made =
-        test::run_program("tactile", "simulate --demo " + folder.file("demo"), folder);
-    ASSERT_EQ(made.exit_code, 0) << made.err;
-  }
-  std::string demo(const std::string& name) const { return folder.file("demo/" + name); }
+  WorkbenchSkins() : DemoWorkspace("tactile-workbench-skins") {}
   // Runs the headless workbench at 1280 x 720 on `arguments` with a script that waits for
   // its jobs, then writes NAME.json and NAME.png.
   void snapshot(const std::string& arguments, const std::string& name,
@@ -40,9 +36,9 @@ class WorkbenchSkins : public ::testing::Test {
                                        folder);
     ASSERT_EQ(run.exit_code, 0) << run.err;
   }
+  // What snapshot NAME wrote of the state.
   nlohmann::json state(const std::string& name) const {
-    std::ifstream in(folder.file(name + ".json"));
-    return nlohmann::json::parse(in);
+    return DemoWorkspace::state(name + ".json");
   }
   // How many times the skin view wrote the name of group (or taxel) `id`.
   static int times_named(const nlohmann::json& drawn, const std::string& id) {
@@ -50,8 +46,6 @@ class WorkbenchSkins : public ::testing::Test {
     for (const nlohmann::json& name : drawn["skin"]["names"]) times += name["id"] == id;
     return times;
   }
-
-  test::TempFolder folder{"tactile-workbench-skins"};
 };
 
 // Pixels of the ellipse inscribed in a drawn box whose colour passes `lit`.
