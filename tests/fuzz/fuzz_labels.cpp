@@ -9,8 +9,12 @@ using namespace tactile;
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   try {
-    read_label_file(
-        fuzz::write_input(fuzz::bytes_of(data + 1, size - 1), data[0] & 1 ? ".json" : ".csv"));
+    const std::string path =
+        fuzz::write_input(fuzz::bytes_of(data + 1, size - 1), data[0] & 1 ? ".json" : ".csv");
+    if (data[0] & 1)
+      read_labels_json(path);
+    else
+      read_labels_csv(path);
   } catch (const Error&) {
   }
   return 0;

@@ -27,7 +27,7 @@ class OurCsvFormat : public LabelFormat {
     return extension == ".csv";
   }
   std::vector<Label> read(const std::string& path, const InteropImport&) const override {
-    return read_label_file(path);
+    return read_labels_csv(path);
   }
   std::string write(const std::vector<Label>& labels,
                     const std::vector<std::string>&) const override {
@@ -46,7 +46,7 @@ class OurJsonFormat : public LabelFormat {
     return extension == ".json" && !is_label_studio_json(text());
   }
   std::vector<Label> read(const std::string& path, const InteropImport&) const override {
-    return read_label_file(path);
+    return read_labels_json(path);
   }
   std::string write(const std::vector<Label>& labels,
                     const std::vector<std::string>&) const override {

@@ -1,7 +1,6 @@
 #include "tactile/labelstore/label_csv_json.h"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -85,7 +84,9 @@ std::vector<Record> csv_records(const std::string& text, const std::string& path
   return records;
 }
 
-std::vector<Label> read_csv(const std::string& path) {
+}  // namespace
+
+std::vector<Label> read_labels_csv(const std::string& path) {
   const std::vector<Record> records = csv_records(read_all(path), path);
   if (records.empty()) throw Error(path, "empty file: expected the header of `labels export`");
   const Record& header = records.front();
@@ -122,7 +123,7 @@ std::vector<Label> read_csv(const std::string& path) {
   return labels;
 }
 
-std::vector<Label> read_json(const std::string& path) {
+std::vector<Label> read_labels_json(const std::string& path) {
   nlohmann::json document;
   try {
     document = nlohmann::json::parse(read_all(path));
@@ -148,16 +149,6 @@ std::vector<Label> read_json(const std::string& path) {
     labels.push_back(std::move(label));
   }
   return labels;
-}
-
-}  // namespace
-
-std::vector<Label> read_label_file(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".csv") return read_csv(path);
-  if (extension == ".json") return read_json(path);
-  throw Error(path, "expected a .csv or .json file as `labels export` writes");
 }
 
 }  // namespace tactile

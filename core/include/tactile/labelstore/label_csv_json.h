@@ -11,10 +11,12 @@
 
 namespace tactile {
 
-// By extension (.csv or .json). Every label is validated as the store validates a new
-// one; throws tactile::Error naming the file and line (CSV) or label index (JSON) of
-// the first bad one. Ids, created and modified are read but the store assigns its own.
-std::vector<Label> read_label_file(const std::string& path);
+// Each label is validated as the store validates a new one; throws tactile::Error naming the
+// file and line (CSV) or label index (JSON) of the first bad one. Ids, created and modified
+// are read but the store assigns its own. Which of the two a file is, is the label formats'
+// choice (labels/label_format.h).
+std::vector<Label> read_labels_csv(const std::string& path);
+std::vector<Label> read_labels_json(const std::string& path);
 
 // The CSV that `labels export --csv` writes for these labels (LabelStore::export_csv).
 std::string labels_csv(const std::vector<Label>& labels);
