@@ -9,6 +9,7 @@
 // leave a new empty database behind.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -185,6 +186,9 @@ void run_check(const LabelsOptions& options) {
       for (const std::string& name : store.classes(skin)) quality.vocabulary.insert(name);
   if (!options.skin.empty())
     for (const std::string& name : store.classes(options.skin)) quality.vocabulary.insert(name);
+  // Each label against its recording, where the recording is beside the store.
+  quality.spans =
+      recording_spans(labels, std::filesystem::path(options.database).parent_path().string());
   const std::vector<LabelIssue> issues = check_labels(labels, quality);
   if (options.as_json) {
     nlohmann::json list = nlohmann::json::array();

@@ -9,8 +9,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_test_support.h"
+#include "tactile/io/hdf5_file.h"
 #include "tactile/labelstore/label_store.h"
 
 namespace tactile {
@@ -245,6 +248,54 @@ TEST_F(LabelsCommandTest, AgreementComparesTwoLanes) {
   EXPECT_NE(text_of("stdout.txt").find("r 6.000-6.500 s: overlap: label 6 overlaps label 4"),
             std::string::npos)
       << text_of("stdout.txt");
+}
+
+// `labels check` holds each label against its recording beside the store: a label that ends
+// after the recording, or is shorter than one of its samples, is an issue; `labels import` of
+// the same file twice adds its labels once.
+TEST_F(LabelsCommandTest, CheckReportsLabelsOutsideTheirRecordingAndImportIsIdempotent) {
+  const std::string database = (directory_ / "bounded.db").string();
+  Recording recording;
+  recording.id = "r";
+  Stream skin;
+  skin.name = "skin";
+  skin.rate_hz = 50.0;
+  skin.channels = {"ch0"};
+  skin.units = {"V"};
+  skin.samples = SampleMatrix::Zero(150, 1);  // 3 s
+  recording.streams.push_back(skin);
+  write_recording((directory_ / "r.h5").string(), recording);
+  {
+    LabelStore store(database);
+    for (const auto& [t0, t1] : std::vector<std::pair<double, double>>{{0.5, 1.5}, {2.5, 3.5}}) {
+      Label label;
+      label.recording = "r";
+      label.t0 = t0;
+      label.t1 = t1;
+      label.class_name = "pat";
+      label.annotator = "ana";
+      store.add(label);
+    }
+  }
+  ASSERT_EQ(run("labels check '" + database + "'"), 1);
+  EXPECT_NE(text_of("stdout.txt")
+                .find("r 2.500-3.500 s: outside: label 2 (pat, 2.5 s to 3.5 s) ends after its "
+                      "recording's end at 3.000 s"),
+            std::string::npos)
+      << text_of("stdout.txt");
+
+  const std::string csv = (directory_ / "ours.csv").string();
+  std::ofstream(csv) << "id,recording,t0,t1,region,class,annotator,source,confidence,note,"
+                        "created,modified\n"
+                     << "1,r,0.2,0.4,all,stroke,bob,manual,1,,,\n"
+                     << "2,r,1.0,2.0,all,pat,bob,manual,1,,,\n";
+  const std::string fresh = (directory_ / "fresh.db").string();
+  ASSERT_EQ(run("labels import '" + fresh + "' '" + csv + "'"), 0) << text_of("stderr.txt");
+  EXPECT_EQ(text_of("stdout.txt"), "imported 2 labels into " + fresh + "\n");
+  ASSERT_EQ(run("labels import '" + fresh + "' '" + csv + "'"), 0) << text_of("stderr.txt");
+  EXPECT_EQ(text_of("stdout.txt"),
+            "imported 0 labels into " + fresh + "; 2 already there, not added again\n");
+  EXPECT_EQ(LabelStore(fresh).count("r"), 2);
 }
 
 }  // namespace

@@ -64,6 +64,14 @@ void draw_quality_view(WorkbenchState& state, ImVec2 size) {
       cache.lanes != state.quality_lanes) {
     QualityOptions options;
     options.vocabulary = {document.classes.begin(), document.classes.end()};
+    // The open recording's labels against its samples (a live buffer is no recording's span).
+    if (!state.live.connected) {
+      const SourceInfo& info = document.samples().info();
+      const bool regular = document.samples().timestamps() == nullptr && info.rate_hz > 0.0;
+      options.spans[info.recording_id] = {document.samples().start_time(),
+                                          document.samples().end_time(),
+                                          regular ? 1.0 / info.rate_hz : 0.0};
+    }
     cache.issues = check_labels(document.labels, options);
     cache.agreement = {};
     cache.touches = {};

@@ -8,6 +8,7 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/labels/commands.h"
+#include "tactile/labels/quality.h"
 #include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
 #include "tactile/text.h"
@@ -98,6 +99,12 @@ FileImportReport import_file(const FileImportOptions& options,
         label.source = LabelSource::kManual;
       }
     }
+    // A label outside the recording or shorter than one of its samples is refused before
+    // anything is written.
+    const RecordingSpan span = recording_span(recording);
+    for (const Label& label : imported.labels)
+      if (const SpanProblem problem = span_problem(label, span); !problem.kind.empty())
+        throw Error(options.file, problem.what);
     write_recording(out, recording);
     const Stream& stream = recording.streams.front();
     ImportedFile file{out,

@@ -1,11 +1,13 @@
 #include "tactile/labels/label_file_commands.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "tactile/error.h"
 #include "tactile/io/atomic_file.h"
@@ -89,18 +91,78 @@ InteropSources interop_sources(const std::string& file) {
   return label_format_of(file).sources(file);
 }
 
-size_t import_label_file(const std::string& database, const std::string& file,
-                         const InteropImport& options) {
-  // All or nothing: the file is read and checked whole, then added in one transaction.
-  const std::vector<Label> labels = label_format_of(file).read(file, options);
-  LabelStore store(database);
-  store.add_many(labels);
-  return labels.size();
+std::map<std::string, RecordingSpan> recording_spans(const std::vector<Label>& labels,
+                                                     const std::string& folder) {
+  std::map<std::string, RecordingSpan> spans;
+  std::set<std::string> missing;
+  for (const Label& label : labels) {
+    if (spans.count(label.recording) || missing.count(label.recording)) continue;
+    const std::filesystem::path path = std::filesystem::path(folder) / (label.recording + ".h5");
+    std::error_code error;
+    if (std::filesystem::exists(path, error))
+      spans[label.recording] = recording_span(path.string());
+    else
+      missing.insert(label.recording);
+  }
+  return spans;
 }
 
-std::string imported_labels_line(size_t labels, const std::string& database) {
-  return "imported " + std::to_string(labels) + (labels == 1 ? " label" : " labels") + " into " +
-         database;
+namespace {
+
+// Whether the store's `held` is the same label as `label` from a file: ids, revisions and
+// times of writing are the store's own; times within a microsecond (a file's rounding).
+bool same_label(const Label& held, const Label& label) {
+  return held.recording == label.recording && std::abs(held.t0 - label.t0) < 1e-6 &&
+         std::abs(held.t1 - label.t1) < 1e-6 && held.region == label.region &&
+         held.class_name == label.class_name && held.annotator == label.annotator &&
+         held.source == label.source && std::abs(held.confidence - label.confidence) < 1e-9 &&
+         held.note == label.note;
+}
+
+}  // namespace
+
+LabelFileImport import_label_file(const std::string& database, const std::string& file,
+                                  const InteropImport& options) {
+  // All or nothing: the file is read and checked whole, then added in one transaction.
+  const std::vector<Label> labels = label_format_of(file).read(file, options);
+  const std::string folder = std::filesystem::path(database).parent_path().string();
+  const std::map<std::string, RecordingSpan> spans = recording_spans(labels, folder);
+  for (const Label& label : labels) {
+    const auto span = spans.find(label.recording);
+    if (span == spans.end()) continue;
+    const SpanProblem problem = span_problem(label, span->second);
+    if (!problem.kind.empty())
+      throw Error(file,
+                  "recording " + label.recording + ": " + problem.what + "; nothing imported");
+  }
+  LabelStore store(database);
+  std::map<std::string, std::vector<Label>> held;
+  LabelFileImport imported;
+  std::vector<Label> added;
+  for (const Label& label : labels) {
+    if (!held.count(label.recording)) {
+      LabelFilter filter;
+      filter.recording = label.recording;
+      held[label.recording] = store.list(filter);
+    }
+    const std::vector<Label>& there = held[label.recording];
+    if (std::any_of(there.begin(), there.end(),
+                    [&](const Label& other) { return same_label(other, label); }))
+      ++imported.already;
+    else
+      added.push_back(label);
+  }
+  if (!added.empty()) store.add_many(added);
+  imported.added = added.size();
+  return imported;
+}
+
+std::string imported_labels_line(const LabelFileImport& imported, const std::string& database) {
+  std::string line = "imported " + std::to_string(imported.added) +
+                     (imported.added == 1 ? " label" : " labels") + " into " + database;
+  if (imported.already > 0)
+    line += "; " + std::to_string(imported.already) + " already there, not added again";
+  return line;
 }
 
 AgreementReport lane_agreement(const AgreementQuery& query,

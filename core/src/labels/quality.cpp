@@ -5,8 +5,10 @@
 #include <map>
 #include <tuple>
 
+#include "tactile/io/hdf5_file.h"
 #include "tactile/labels/lanes.h"
 #include "tactile/stats/statistics.h"
+#include "tactile/text.h"
 
 namespace tactile {
 
@@ -18,7 +20,62 @@ std::string seconds(double t) {
   return text;
 }
 
+// Label times are written with a few digits (CSV, ELAN's milliseconds) and sums of periods
+// are not exact: a label is not outside its recording by less than this.
+constexpr double kSpanTolerance = 1e-6;
+
+// The span of several streams: from the first one's start to the last one's end, with the
+// shortest period of those sampled regularly (`rate_hz` 0: time-stamped, no period).
+struct SpanWidener {
+  RecordingSpan span;
+  bool empty = true;
+  void operator()(double start, double end, double rate_hz) {
+    span.start = empty ? start : std::min(span.start, start);
+    span.end = empty ? end : std::max(span.end, end);
+    empty = false;
+    if (rate_hz > 0.0 && (span.sample_period == 0.0 || 1.0 / rate_hz < span.sample_period))
+      span.sample_period = 1.0 / rate_hz;
+  }
+};
+
 }  // namespace
+
+RecordingSpan recording_span(const Recording& recording) {
+  SpanWidener widen;
+  for (const Stream& stream : recording.streams)
+    if (stream.sample_count() > 0) {
+      const double start =
+          stream.timestamps.empty() ? stream.start_time : stream.timestamps.front();
+      widen(start, start + stream.duration(), stream.timestamps.empty() ? stream.rate_hz : 0.0);
+    }
+  return widen.span;
+}
+
+RecordingSpan recording_span(const std::string& path) {
+  SpanWidener widen;
+  const RecordingFile file(path);
+  for (const StreamInfo& stream : file.streams())
+    if (stream.sample_count > 0) {
+      const double start = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
+      widen(start, start + stream.duration(), stream.has_timestamps ? 0.0 : stream.rate_hz);
+    }
+  return widen.span;
+}
+
+SpanProblem span_problem(const Label& label, const RecordingSpan& span) {
+  // Times in full: a sliver of 1e-15 s must not read as "0.900 s to 0.900 s".
+  const std::string which = "label " + (label.id > 0 ? std::to_string(label.id) + " " : "") + "(" +
+                            label.class_name + ", " + shortest_text(label.t0) + " s to " +
+                            shortest_text(label.t1) + " s)";
+  if (label.t0 < span.start - kSpanTolerance)
+    return {"outside",
+            which + " starts before its recording's first sample at " + seconds(span.start)};
+  if (label.t1 > span.end + kSpanTolerance)
+    return {"outside", which + " ends after its recording's end at " + seconds(span.end)};
+  if (span.sample_period > 0.0 && label.t1 - label.t0 < span.sample_period - kSpanTolerance)
+    return {"short", which + " is shorter than one sample (" + seconds(span.sample_period) + ")"};
+  return {};
+}
 
 std::vector<LabelIssue> check_labels(const std::vector<Label>& labels,
                                      const QualityOptions& options) {
@@ -82,6 +139,15 @@ std::vector<LabelIssue> check_labels(const std::vector<Label>& labels,
       issues.push_back({"unlabelled", label.recording, label.t0, label.t1, label.id,
                         "segmenter event " + std::to_string(label.id) + " (" + label.annotator +
                             ") has no label"});
+  }
+  // Labels outside their recording, or shorter than one of its samples.
+  for (const Label& label : labels) {
+    const auto span = options.spans.find(label.recording);
+    if (span == options.spans.end()) continue;
+    SpanProblem problem = span_problem(label, span->second);
+    if (!problem.kind.empty())
+      issues.push_back(
+          {problem.kind, label.recording, label.t0, label.t1, label.id, std::move(problem.what)});
   }
   // Classes outside the vocabulary.
   if (!options.vocabulary.empty())

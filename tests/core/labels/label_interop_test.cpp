@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "label_store_fixture.h"
 #include "tactile/error.h"
+#include "tactile/io/hdf5_file.h"
 #include "tactile/labels/elan_and_label_studio.h"
 #include "tactile/labels/label_file_commands.h"
 #include "tactile/labelstore/label_store.h"
@@ -328,12 +330,60 @@ TEST_F(LabelStoreTest, LabelStudioMalformedResultsAreRefusedNamingTaskAndId) {
 //---- Into a store, all or nothing
 
 TEST_F(LabelStoreTest, InteropImportAddsAllOrNothing) {
-  EXPECT_EQ(import_label_file(path_, kInteropData + "session.eaf"), 5u);
+  EXPECT_EQ(import_label_file(path_, kInteropData + "session.eaf").added, 5u);
   EXPECT_THROW(import_label_file(path_, kInteropData + "unaligned.eaf"), Error);
-  EXPECT_EQ(import_label_file(path_, kInteropData + "label_studio.json"), 5u);
+  EXPECT_EQ(import_label_file(path_, kInteropData + "label_studio.json").added, 5u);
   LabelStore store(path_);
   EXPECT_EQ(store.count(), 10);
   EXPECT_EQ(store.count("s08"), 1);
+}
+
+// The same file imported again changes nothing: each label the store holds already is left
+// as it is and counted, so a second import of a session does not double its labels.
+TEST_F(LabelStoreTest, ImportingTheSameLabelFileTwiceChangesNothing) {
+  const LabelFileImport first = import_label_file(path_, kInteropData + "session.eaf");
+  EXPECT_EQ(first.added, 5u);
+  EXPECT_EQ(first.already, 0u);
+  const LabelFileImport again = import_label_file(path_, kInteropData + "session.eaf");
+  EXPECT_EQ(again.added, 0u);
+  EXPECT_EQ(again.already, 5u);
+  EXPECT_EQ(LabelStore(path_).count(), 5);
+  EXPECT_EQ(imported_labels_line(again, "labels.db"),
+            "imported 0 labels into labels.db; 5 already there, not added again");
+}
+
+// A recording beside the store (DB's folder/<id>.h5) bounds its labels: one that ends after
+// the recording, or is shorter than one of its samples, refuses the whole file by name.
+TEST_F(LabelStoreTest, ALabelOutsideItsRecordingBesideTheStoreRefusesTheFile) {
+  Recording recording;
+  recording.id = "session";
+  Stream skin;
+  skin.name = "skin";
+  skin.rate_hz = 100.0;
+  skin.channels = {"ch0"};
+  skin.units = {"V"};
+  skin.samples = SampleMatrix::Zero(200, 1);  // 2 s
+  recording.streams.push_back(skin);
+  write_recording((directory_ / "session.h5").string(), recording);
+  const auto file_with = [&](double t0, double t1) {
+    const std::string path = (directory_ / "labels.csv").string();
+    std::ofstream(path) << "id,recording,t0,t1,region,class,annotator,source,confidence,note,"
+                           "created,modified\n"
+                        << "1,session,0.5,1.0,all,pat,ana,manual,1,,,\n"
+                        << "2,session," << t0 << "," << t1 << ",all,stroke,ana,manual,1,,,\n";
+    return path;
+  };
+  try {
+    import_label_file(path_, file_with(1.5, 2.5));
+    ADD_FAILURE() << "a label ending at 2.5 s of a 2-s recording was imported";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("ends after its recording's end at 2.000 s"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(import_label_file(path_, file_with(1.5, 1.505)), Error);  // half a sample
+  EXPECT_EQ(LabelStore(path_).count(), 0);                               // nothing of either file
+  EXPECT_EQ(import_label_file(path_, file_with(1.5, 2.0)).added, 2u);    // to the last sample's end
 }
 
 }  // namespace

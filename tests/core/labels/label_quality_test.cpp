@@ -51,5 +51,31 @@ TEST(LabelQuality, EachKindOfIssueIsFoundAndNamed) {
       << issues[0].what;
 }
 
+// With its recording's span known, a label that starts before the first sample, ends after
+// the last one's period or is shorter than one sample is reported; one that ends exactly at the
+// end is not.
+TEST(LabelQuality, LabelsOutsideTheirRecordingOrShorterThanASampleAreReported) {
+  const std::vector<Label> labels = {
+      make(1, 0.0, 10.0, "pat", LabelSource::kManual, "ana"),                // the whole recording
+      make(2, -0.5, 1.0, "pat", LabelSource::kManual, "ana"),                // before its start
+      make(3, 9.5, 10.5, "pat", LabelSource::kManual, "ana"),                // after its end
+      make(4, 0.8999999999999986, 0.9, "pat", LabelSource::kManual, "ana"),  // a sliver
+  };
+  QualityOptions options;
+  options.spans["r"] = {0.0, 10.0, 0.01};
+  std::vector<std::string> found;
+  for (const LabelIssue& issue : check_labels(labels, options))
+    if (issue.kind == "outside" || issue.kind == "short")
+      found.push_back(issue.kind + " " + std::to_string(issue.label));
+  EXPECT_EQ(found, (std::vector<std::string>{"outside 2", "short 4", "outside 3"}));
+  // Without the span (the recording is not known) nothing of the kind is said.
+  options.spans.clear();
+  for (const LabelIssue& issue : check_labels(labels, options))
+    EXPECT_TRUE(issue.kind != "outside" && issue.kind != "short") << issue.what;
+  // The words name the label and the recording's end in full.
+  EXPECT_EQ(span_problem(labels[2], {0.0, 10.0, 0.01}).what,
+            "label 3 (pat, 9.5 s to 10.5 s) ends after its recording's end at 10.000 s");
+}
+
 }  // namespace
 }  // namespace tactile

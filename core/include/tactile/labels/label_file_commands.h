@@ -6,12 +6,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tactile/labels/agreement.h"
 #include "tactile/labels/elan_and_label_studio.h"
+#include "tactile/labels/quality.h"
 #include "tactile/labelstore/label.h"
 #include "tactile/labelstore/label_store.h"
 
@@ -40,14 +42,28 @@ LabelExport export_label_file(const std::string& database, const std::string& ou
 
 // The labels of a file of any label format (label_format_of), checked whole and added in one
 // transaction (the store is created when missing), with `options` (recording, tier and
-// annotator mappings) for the formats that take them. Returns how many.
-size_t import_label_file(const std::string& database, const std::string& file,
-                         const InteropImport& options = {});
+// annotator mappings) for the formats that take them. A label whose recording is beside the
+// store (DB's folder/<id>.h5) and that lies outside it or is shorter than one of its samples
+// refuses the whole file. A label the store holds already (same recording, times, region,
+// class, annotator, lane, confidence and note) is not added again: importing a file twice
+// changes nothing.
+struct LabelFileImport {
+  size_t added = 0;
+  size_t already = 0;  // in the store before, left as they were
+};
+LabelFileImport import_label_file(const std::string& database, const std::string& file,
+                                  const InteropImport& options = {});
 // The tiers (ELAN) or annotators and models (Label Studio) of a file import_label_file reads
 // through `options`; format "" for a file of our own CSV or JSON, which has none to choose.
 InteropSources interop_sources(const std::string& file);
-// "imported N label(s) into DB", as `tactile labels import` prints it.
-std::string imported_labels_line(size_t labels, const std::string& database);
+// "imported N label(s) into DB" (and "; M already there, not added again"), as `tactile labels
+// import` prints it.
+std::string imported_labels_line(const LabelFileImport& imported, const std::string& database);
+
+// The spans of the recordings `labels` name whose files are in `folder` as <id>.h5 (the others
+// are left out: their labels cannot be checked against them).
+std::map<std::string, RecordingSpan> recording_spans(const std::vector<Label>& labels,
+                                                     const std::string& folder);
 
 // Two lanes of a store compared (`tactile labels agreement`).
 struct AgreementQuery {
