@@ -138,5 +138,23 @@ TEST_F(LabelsInteropCommandTest, ImportMapsTiersAndUsersAndRefusesUnalignedAnnot
       << result_.err;
 }
 
+// An ELAN or Label Studio file given to `tactile import` is no recording: the refusal says
+// where labels go instead of asking for a rate, and nothing is written.
+TEST_F(LabelsInteropCommandTest, ALabelFileGivenToImportIsSentToLabelsImport) {
+  for (const char* file : {"session.eaf", "label_studio.json"}) {
+    SCOPED_TRACE(file);
+    const std::string out = (directory_ / "not-written.h5").string();
+    EXPECT_EQ(run("import '" + kInteropFiles + file + "' --layout nao --out '" + out + "'"), 1);
+    EXPECT_NE(result_.err.find(std::string("), not a recording: labels go into a label store with "
+                                           "`tactile labels import DB ")),
+              std::string::npos)
+        << result_.err;
+    EXPECT_NE(result_.err.find(std::string(file).ends_with(".eaf") ? "(ELAN)" : "(Label Studio)"),
+              std::string::npos)
+        << result_.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
 }  // namespace
 }  // namespace tactile

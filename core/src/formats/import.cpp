@@ -8,6 +8,7 @@
 #include "tactile/error.h"
 #include "tactile/io/hdf5_file.h"
 #include "tactile/labels/commands.h"
+#include "tactile/labels/label_format.h"
 #include "tactile/labels/quality.h"
 #include "tactile/labelstore/label_store.h"
 #include "tactile/layout/skin_layout.h"
@@ -17,12 +18,31 @@ namespace tactile {
 
 namespace {
 
+// A label file of another tool (ELAN, Label Studio) given to `import` is no recording: say where
+// it goes, instead of asking for the options of a recording format that claims its extension.
+void refuse_label_file(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return;
+  const LabelFormat* format = nullptr;
+  try {
+    format = &label_format_of(path);
+  } catch (const Error&) {
+    return;  // no label format reads it
+  }
+  if (format->reads_any_of_its_extension()) return;
+  throw Error(path, "a label file (" + format->name() +
+                        "), not a recording: labels go into a label store with `tactile labels "
+                        "import DB " +
+                        path + "`");
+}
+
 // The importer of the file, its options checked against what it takes.
 const RecordingImporter& checked_importer(const FileImportOptions& options) {
   if (options.layout.empty())
     throw Error("--layout",
                 "required: a layout id (" + joined(known_layout_ids()) + "), grid:RxC or strip:N");
   const RecordingImporter* importer = importer_for(options.file);
+  refuse_label_file(options.file);
   if (!importer)
     throw Error(options.file, "not a format import reads (" + import_formats_text() + ")");
   check_import_values(*importer, options.values);

@@ -26,6 +26,7 @@ class OurCsvFormat : public LabelFormat {
              const std::function<const std::string&()>&) const override {
     return extension == ".csv";
   }
+  bool reads_any_of_its_extension() const override { return true; }
   std::vector<Label> read(const std::string& path, const InteropImport&) const override {
     return read_labels_csv(path);
   }
@@ -45,6 +46,7 @@ class OurJsonFormat : public LabelFormat {
              const std::function<const std::string&()>& text) const override {
     return extension == ".json" && !is_label_studio_json(text());
   }
+  bool reads_any_of_its_extension() const override { return true; }
   std::vector<Label> read(const std::string& path, const InteropImport&) const override {
     return read_labels_json(path);
   }

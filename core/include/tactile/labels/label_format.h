@@ -24,6 +24,9 @@ class LabelFormat {
   virtual std::string extension() const = 0;    // of the file an export writes: ".eaf"
   // True when a file holds one recording's labels (ELAN): an export of several is refused.
   virtual bool one_recording() const { return false; }
+  // True when the format reads any file of its extension (our CSV and JSON): such a file may
+  // as well be a recording's (`tactile import`), so it is not taken for a label file there.
+  virtual bool reads_any_of_its_extension() const { return false; }
   // True when this format reads the file: by its lower-case extension and, where two formats
   // share one (.json), by the file's text, read only when asked for.
   virtual bool reads(const std::string& extension,
