@@ -23,6 +23,11 @@ std::string significant_text(double value, int digits);
 // "text" in double quotes, for messages that name a field or an id.
 std::string in_quotes(const std::string& text);
 
+// Bytes from a file as a message can print them: control bytes (a NUL among them, which
+// would cut the message short), DEL and bytes that are not UTF-8 become \xHH ("\xFE\x00");
+// printable ASCII and whole UTF-8 characters stay as they are.
+std::string printable_text(const std::string& bytes);
+
 // The items with `separator` between them ("nao, tsa, fur"): lists in help and errors.
 std::string joined(const std::vector<std::string>& items, const std::string& separator = ", ");
 

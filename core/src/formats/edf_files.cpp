@@ -41,6 +41,12 @@ std::string edf_field(const std::vector<unsigned char>& header, size_t offset, s
   return edf_trimmed(std::string(reinterpret_cast<const char*>(header.data()) + offset, width));
 }
 
+// A field as a refusal quotes it: a damaged header holds any bytes, a NUL among them.
+std::string edf_quoted_field(const std::vector<unsigned char>& header, size_t offset,
+                             size_t width) {
+  return in_quotes(printable_text(edf_field(header, offset, width)));
+}
+
 // An integer field (ASCII, space padded); nullopt when it is not one.
 std::optional<long long> edf_integer(const std::vector<unsigned char>& header, size_t offset,
                                      size_t width) {
@@ -174,8 +180,18 @@ std::vector<int> edf_chosen_signals(const edf_hdr_struct& header,
   return chosen;
 }
 
+// The annotations as labels on the data [0, end): EDF+ puts no bound on an onset, and
+// EDFbrowser and clinical recorders write "Recording ends" (or the like) at the last instant,
+// the data's end. A label is a stretch of the data, so an annotation that starts at or after
+// the end is no label: it is dropped and named in `dropped`. One that starts inside and runs
+// past the end is clipped to it; what is left shorter than one sample (`sample_seconds`) is
+// dropped the same way (no sample to label, and ELAN cannot hold under a millisecond).
 std::vector<Label> edf_labels(int handle, const edf_hdr_struct& header,
-                              const EdfImportOptions& options, const std::string& where) {
+                              const EdfImportOptions& options, double sample_seconds,
+                              const std::string& where, std::vector<std::string>& dropped) {
+  // The end in EDFlib's units (100 ns), as onsets are: "at or after" compares exactly.
+  const long long end_units = header.datarecords_in_file * header.datarecord_duration;
+  const double end = static_cast<double>(end_units) / EDFLIB_TIME_DIMENSION;
   std::vector<Label> labels;
   for (long long index = 0; index < header.annotations_in_file; ++index) {
     edf_annotation_struct annotation{};
@@ -184,10 +200,15 @@ std::vector<Label> edf_labels(int handle, const edf_hdr_struct& header,
     annotation.annotation[EDFLIB_MAX_ANNOTATION_LEN] = '\0';
     const std::string text = edf_trimmed(annotation.annotation);
     const double onset = static_cast<double>(annotation.onset) / EDFLIB_TIME_DIMENSION;
-    const std::string place = where + " annotation " + std::to_string(index + 1) + " at " +
-                              shortest_text(onset) + " s " + in_quotes(text);
+    const std::string named = "annotation " + std::to_string(index + 1) + " at " +
+                              shortest_text(onset) + " s " + in_quotes(printable_text(text));
+    const std::string place = where + " " + named;
     if (text.empty()) throw Error(place, "has no text (a label needs a class)");
     if (onset < 0.0) throw Error(place, "starts before the recording");
+    if (annotation.onset >= end_units) {
+      dropped.push_back(named + ": at or after the data's end (" + shortest_text(end) + " s)");
+      continue;
+    }
     double duration = annotation.duration_l > 0
                           ? static_cast<double>(annotation.duration_l) / EDFLIB_TIME_DIMENSION
                           : 0.0;
@@ -198,9 +219,16 @@ std::vector<Label> edf_labels(int handle, const edf_hdr_struct& header,
                                "--annotation-seconds S");
       duration = *options.annotation_seconds;
     }
+    // Clipped to the data; a millionth of a sample absorbs the rounding of the times.
+    if (onset + duration > end && end - onset < sample_seconds * (1.0 - 1e-6)) {
+      dropped.push_back(named + ": starts " + shortest_text(end - onset) +
+                        " s before the data's end (" + shortest_text(end) +
+                        " s), less than one sample (" + shortest_text(sample_seconds) + " s)");
+      continue;
+    }
     Label label;
     label.t0 = onset;
-    label.t1 = onset + duration;
+    label.t1 = std::min(onset + duration, end);
     label.region = "all";
     label.class_name = text;
     label.annotator = "import";
@@ -234,7 +262,7 @@ void check_edf_header(const std::vector<unsigned char>& header, long long file_s
   const std::optional<long long> signals = edf_integer(header, kEdfSignalCountOffset, 4);
   if (!signals || *signals < 1 || *signals > kEdfMaxSignals)
     throw Error(edf_byte_place(where, kEdfSignalCountOffset),
-                "number of signals " + in_quotes(edf_field(header, kEdfSignalCountOffset, 4)) +
+                "number of signals " + edf_quoted_field(header, kEdfSignalCountOffset, 4) +
                     ", expected 1 to " + std::to_string(kEdfMaxSignals));
   const long long header_bytes = static_cast<long long>(kEdfMainHeaderBytes) +
                                  *signals * static_cast<long long>(kEdfSignalHeaderBytes);
@@ -245,7 +273,7 @@ void check_edf_header(const std::vector<unsigned char>& header, long long file_s
   const std::optional<long long> records = edf_integer(header, kEdfRecordsOffset, 8);
   if (!records || *records < 1)
     throw Error(edf_byte_place(where, kEdfRecordsOffset),
-                "number of data records " + in_quotes(edf_field(header, kEdfRecordsOffset, 8)) +
+                "number of data records " + edf_quoted_field(header, kEdfRecordsOffset, 8) +
                     (records && *records == -1 ? ": unknown (the recording was never closed)"
                                                : ", expected a count of at least 1"));
   const long long sample_bytes = bdf ? 3 : 2;
@@ -259,7 +287,7 @@ void check_edf_header(const std::vector<unsigned char>& header, long long file_s
     if (!samples || *samples < 1 || *samples > max_record_bytes)
       throw Error(edf_byte_place(where, offset),
                   "signal " + std::to_string(signal + 1) + "'s samples per data record " +
-                      in_quotes(edf_field(header, offset, 8)) + ", expected a count of at least 1");
+                      edf_quoted_field(header, offset, 8) + ", expected a count of at least 1");
     record_bytes += *samples * sample_bytes;
   }
   if (record_bytes > max_record_bytes)
@@ -375,7 +403,10 @@ ImportedRecording import_edf(const std::string& path, const SkinLayout& layout,
       }
     }
   }
-  imported.labels = edf_labels(handle.handle, *edf, options, path);
+  std::vector<std::string> dropped;
+  imported.labels = edf_labels(handle.handle, *edf, options, 1.0 / stream.rate_hz, path, dropped);
+  if (!dropped.empty())
+    imported.recording.metadata["dropped_labels"] = tactile::joined(dropped, "; ");
   imported.recording.id = fs::path(path).stem().string();
   imported.recording.layout_id = layout.id;
   imported.recording.metadata["imported_from"] = fs::path(path).filename().string();

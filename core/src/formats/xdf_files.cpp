@@ -125,17 +125,17 @@ void xdf_read_header(const std::string& xml, XdfStreamInfo& stream, const std::s
   errno = 0;
   const long long channels = std::strtoll(count.c_str(), &end, 10);
   if (count.empty() || *end != '\0' || errno != 0 || channels < 1 || channels > kMaxXdfChannels)
-    throw Error(where, "channel_count '" + count + "': a whole number from 1 to " +
+    throw Error(where, "channel_count '" + printable_text(count) + "': a whole number from 1 to " +
                            std::to_string(kMaxXdfChannels) + " is needed");
   stream.channels = channels;
   const double nominal = rate.empty() ? 0.0 : std::strtod(rate.c_str(), &end);
   if ((!rate.empty() && *end != '\0') || !std::isfinite(nominal) || nominal < 0.0 ||
       nominal > kMaxXdfRate)
-    throw Error(where, "nominal_srate '" + rate + "': a rate from 0 to " +
+    throw Error(where, "nominal_srate '" + printable_text(rate) + "': a rate from 0 to " +
                            shortest_text(kMaxXdfRate) + " Hz is needed");
   stream.rate_hz = nominal;
   if (stream.format != "string" && xdf_value_bytes(stream.format) == 0)
-    throw Error(where, "channel_format '" + stream.format +
+    throw Error(where, "channel_format '" + printable_text(stream.format) +
                            "' (XDF has int8, int16, int32, int64, float32, double64, string)");
   // libxdf 0.99.8 reads one string per sample whatever the channel count, and would lose its
   // place in the file on a multi-channel string stream.
@@ -410,10 +410,8 @@ std::vector<XdfStreamInfo> scan_xdf(const std::string& path) {
     // sees them.
     offset = next;
   }
-  // Offsets by collection time (a recorder writes them in order; clock_corrected needs it).
-  for (XdfStreamInfo& stream : streams)
-    std::stable_sort(stream.clock_offsets.begin(), stream.clock_offsets.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Offsets stay in the file's order: sorting them by collection time would mix the
+  // measurements from before a clock reset with those after it (clock_corrected_stamps).
   return streams;
 }
 
@@ -422,9 +420,9 @@ std::string xdf_stream_list(const std::vector<XdfStreamInfo>& streams) {
   for (const XdfStreamInfo& stream : streams) {
     if (!list.empty()) list += "\n";
     list +=
-        "  " + in_quotes(stream.name) + " (type " + in_quotes(stream.type) + ", " +
-        std::to_string(stream.channels) + " " + stream.format +
-        (stream.channels == 1 ? " channel, " : " channels, ") +
+        "  " + in_quotes(printable_text(stream.name)) + " (type " +
+        in_quotes(printable_text(stream.type)) + ", " + std::to_string(stream.channels) + " " +
+        stream.format + (stream.channels == 1 ? " channel, " : " channels, ") +
         (stream.rate_hz > 0.0 ? shortest_text(stream.rate_hz) + " Hz" : std::string("irregular")) +
         ", " + std::to_string(stream.samples) + " samples)";
   }
@@ -436,7 +434,7 @@ ImportedRecording import_xdf(const std::string& path, const SkinLayout& layout,
   const std::vector<XdfStreamInfo> streams = scan_xdf(path);
   const XdfStreamInfo* data = xdf_choose(streams, false, options.stream, path);
   const XdfStreamInfo* markers = xdf_choose(streams, true, options.markers, path);
-  const std::string data_where = path + " stream " + in_quotes(data->name);
+  const std::string data_where = path + " stream " + in_quotes(printable_text(data->name));
   if (!(data->rate_hz > 0.0))
     throw Error(data_where, "has no nominal rate (irregular): it cannot be resampled onto one");
   const auto channels = static_cast<int64_t>(layout.channels.size());
@@ -463,11 +461,12 @@ ImportedRecording import_xdf(const std::string& path, const SkinLayout& layout,
   if (status != 0 || xdf.streams.empty() ||
       static_cast<int64_t>(xdf.streams.front().time_stamps.size()) != data->samples ||
       static_cast<int64_t>(xdf.streams.front().time_series.size()) != channels)
-    throw Error(path, "libxdf could not read the checked copy of stream " + in_quotes(data->name));
+    throw Error(path, "libxdf could not read the checked copy of stream " +
+                          in_quotes(printable_text(data->name)));
   const Xdf::Stream& loaded = xdf.streams.front();
-  std::vector<double> stamps(loaded.time_stamps.size());
+  const std::vector<double> stamps =
+      clock_corrected_stamps(loaded.time_stamps, data->clock_offsets);
   for (size_t k = 0; k < stamps.size(); ++k) {
-    stamps[k] = clock_corrected(loaded.time_stamps[k], data->clock_offsets);
     if (!std::isfinite(stamps[k]))
       throw Error(data_where + " sample " + std::to_string(k),
                   "time stamp " + shortest_text(loaded.time_stamps[k]) +
@@ -477,8 +476,8 @@ ImportedRecording import_xdf(const std::string& path, const SkinLayout& layout,
   for (int64_t column = 0; column < channels; ++column) {
     const std::vector<float>& values = loaded.time_series[static_cast<size_t>(column)];
     if (static_cast<int64_t>(values.size()) != data->samples)
-      throw Error(path,
-                  "libxdf could not read the checked copy of stream " + in_quotes(data->name));
+      throw Error(path, "libxdf could not read the checked copy of stream " +
+                            in_quotes(printable_text(data->name)));
     for (int64_t row = 0; row < data->samples; ++row) {
       const float value = values[static_cast<size_t>(row)];
       if (std::isinf(value))
@@ -508,23 +507,35 @@ ImportedRecording import_xdf(const std::string& path, const SkinLayout& layout,
   imported.recording.streams.push_back(std::move(stream));
   if (markers) {
     imported.recording.metadata["xdf_markers"] = markers->name;
-    std::vector<XdfMarker> events;
+    // libxdf keeps each stream's events in the file's order, the order clock resets are
+    // told in (clock_corrected_stamps).
+    std::vector<std::string> texts;
+    std::vector<double> raw_stamps;
     for (const auto& [event, stream_index] : xdf.eventMap) {
       if (stream_index != 1) continue;
+      texts.push_back(event.first);
+      raw_stamps.push_back(event.second);
+    }
+    const std::vector<double> times = clock_corrected_stamps(raw_stamps, markers->clock_offsets);
+    const std::string markers_where = path + " stream " + in_quotes(printable_text(markers->name));
+    std::vector<XdfMarker> events;
+    for (size_t k = 0; k < texts.size(); ++k) {
       // A markers stream with a rate sends a sample every tick, an empty one when nothing
       // happened: those are no markers (on an irregular stream an empty marker ends a label).
-      if (markers->rate_hz > 0.0 && event.first.empty()) continue;
-      const double time = clock_corrected(event.second, markers->clock_offsets) - first;
+      if (markers->rate_hz > 0.0 && texts[k].empty()) continue;
+      const double time = times[k] - first;
       if (!std::isfinite(time))
-        throw Error(path + " stream " + in_quotes(markers->name),
-                    "marker " + in_quotes(event.first) +
-                        " is at no finite time on the data stream's clock");
-      events.push_back({time, event.first});
+        throw Error(markers_where, "marker " + in_quotes(printable_text(texts[k])) +
+                                       " is at no finite time on the data stream's clock");
+      events.push_back({time, texts[k]});
     }
     std::stable_sort(events.begin(), events.end(),
                      [](const XdfMarker& a, const XdfMarker& b) { return a.time < b.time; });
-    imported.labels =
-        labels_from_markers(events, end_time, path + " stream " + in_quotes(markers->name));
+    XdfMarkerLabels paired =
+        labels_from_markers(events, end_time, 1.0 / data->rate_hz, markers_where);
+    imported.labels = std::move(paired.labels);
+    if (!paired.dropped.empty())
+      imported.recording.metadata["dropped_labels"] = joined(paired.dropped, "; ");
   }
   return imported;
 }

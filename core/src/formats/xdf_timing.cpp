@@ -51,6 +51,70 @@ double clock_corrected(double stamp, const std::vector<std::pair<double, double>
   return stamp + before->second + weight * (after->second - before->second);
 }
 
+std::vector<size_t> xdf_clock_resets(const std::vector<std::pair<double, double>>& offsets) {
+  std::vector<size_t> resets;
+  if (offsets.size() < 3) return resets;  // no usual interval to tell a jump from
+  std::vector<double> intervals, changes;
+  for (size_t k = 1; k < offsets.size(); ++k) {
+    intervals.push_back(offsets[k].first - offsets[k - 1].first);
+    changes.push_back(std::abs(offsets[k].second - offsets[k - 1].second));
+  }
+  const auto median = [](std::vector<double> values) {
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+  };
+  const double usual_interval = median(intervals), usual_change = median(changes);
+  for (size_t k = 0; k < intervals.size(); ++k) {
+    const bool time_jumps = intervals[k] < 0.0 || intervals[k] - usual_interval > kXdfResetSeconds;
+    const bool offset_jumps = changes[k] - usual_change > kXdfResetOffsetSeconds;
+    if (time_jumps && offset_jumps) resets.push_back(k + 1);
+  }
+  return resets;
+}
+
+std::vector<double> clock_corrected_stamps(const std::vector<double>& stamps,
+                                           const std::vector<std::pair<double, double>>& offsets) {
+  if (offsets.empty()) return stamps;
+  // The measurements between resets, each segment by collection time (clock_corrected's order).
+  std::vector<size_t> starts = xdf_clock_resets(offsets);
+  starts.insert(starts.begin(), 0);
+  std::vector<std::vector<std::pair<double, double>>> segments;
+  for (size_t k = 0; k < starts.size(); ++k) {
+    const size_t end = k + 1 < starts.size() ? starts[k + 1] : offsets.size();
+    segments.emplace_back(offsets.begin() + static_cast<std::ptrdiff_t>(starts[k]),
+                          offsets.begin() + static_cast<std::ptrdiff_t>(end));
+    std::stable_sort(segments.back().begin(), segments.back().end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
+  // How far a stamp lies from a segment's measurements (0 inside their span).
+  const auto distance = [&](double stamp, size_t segment) {
+    const double first = segments[segment].front().first, last = segments[segment].back().first;
+    return stamp < first ? first - stamp : (stamp > last ? stamp - last : 0.0);
+  };
+  std::vector<double> corrected(stamps.size());
+  size_t segment = 0;
+  for (size_t k = 0; k < stamps.size(); ++k) {
+    bool stepped = false;  // one jump of the stamps is one reset
+    // Samples come in the order they were sent, so the segment only moves on: at the sample
+    // whose stamp jumps as the offsets did at the reset (the clock jumps by minus the offset's
+    // jump), or once a stamp lies nearer the next segment's measurements (a stream without
+    // samples across the reset).
+    while (segment + 1 < segments.size()) {
+      const double jump = segments[segment + 1].front().second - segments[segment].back().second;
+      const double step = k > 0 ? stamps[k] - stamps[k - 1] : 0.0;
+      const bool steps_with_reset =
+          !stepped && step * jump < 0.0 && std::abs(step) > 0.5 * std::abs(jump);
+      if (!steps_with_reset && !(distance(stamps[k], segment + 1) < distance(stamps[k], segment)))
+        break;
+      stepped = stepped || steps_with_reset;
+      ++segment;
+    }
+    corrected[k] = clock_corrected(stamps[k], segments[segment]);
+  }
+  return corrected;
+}
+
 SampleMatrix resample_to_rate(const std::vector<double>& stamps, const SampleMatrix& samples,
                               double rate_hz, const std::string& where) {
   const auto count = static_cast<int64_t>(stamps.size());
@@ -71,8 +135,12 @@ SampleMatrix resample_to_rate(const std::vector<double>& stamps, const SampleMat
                            shortest_text(rate_hz) +
                            " Hz that is more than 8 grid points per sample held (" +
                            std::to_string(count) + ")");
-  // 1e-9 of a step absorbs the rounding of stamps that sit on the grid.
-  const auto points = static_cast<int64_t>(std::floor(span * rate_hz + 1e-9)) + 1;
+  // The grid runs to the point nearest the last stamp, so every sample has its point: clock
+  // offsets that drift shorten a span of N steps by microseconds (N - 1e-4 steps), and a grid
+  // cut at the last whole step before the last stamp lost the last sample to that rounding.
+  // A point past the last stamp (by under half a step) takes the last sample, below; a last
+  // stamp half way between two points ends the grid at the first.
+  const auto points = static_cast<int64_t>(std::ceil(span * rate_hz - 0.5)) + 1;
   SampleMatrix out(points, samples.cols());
   const double largest_step = 1.5 * step;
   int64_t below = 0;  // the last sample at or before the grid point
@@ -96,13 +164,36 @@ SampleMatrix resample_to_rate(const std::vector<double>& stamps, const SampleMat
   return out;
 }
 
-std::vector<Label> labels_from_markers(const std::vector<XdfMarker>& markers, double end_time,
-                                       const std::string& where) {
-  std::vector<Label> labels;
-  auto add = [&](const std::string& name, double t0, double t1) {
+XdfMarkerLabels labels_from_markers(const std::vector<XdfMarker>& markers, double end_time,
+                                    double sample_seconds, const std::string& where) {
+  XdfMarkerLabels result;
+  auto marker_text = [](const XdfMarker& marker) {
+    return in_quotes(printable_text(marker.text)) + " at " + shortest_text(marker.time) + " s";
+  };
+  // The label opened by marker `opened`, clipped to the data [0, end_time). One shorter than a
+  // sample holds no sample of the data: a marker at the data's end made [0.8999999999999986,
+  // 0.9) of a 0.9-s recording, a label ELAN cannot hold. It is dropped and said in `dropped`.
+  // A millionth of a sample absorbs the rounding of marker times (a difference of two stamps).
+  auto add = [&](size_t opened, const std::string& name, double t0, double t1) {
+    const std::string named =
+        "marker " + std::to_string(opened) + " " + marker_text(markers[opened]);
     t0 = std::max(t0, 0.0);
     t1 = std::min(t1, end_time);
-    if (!(t1 > t0)) return;
+    if (t0 >= end_time) {
+      result.dropped.push_back(named + ": at or after the data's end (" + shortest_text(end_time) +
+                               " s)");
+      return;
+    }
+    if (t1 <= 0.0) {
+      result.dropped.push_back(named + ": its label ends before the data's first sample");
+      return;
+    }
+    if (t1 - t0 < sample_seconds * (1.0 - 1e-6)) {
+      result.dropped.push_back(named + ": its label [" + shortest_text(t0) + ", " +
+                               shortest_text(t1) + ") is shorter than one sample (" +
+                               shortest_text(sample_seconds) + " s)");
+      return;
+    }
     Label label;
     label.t0 = t0;
     label.t1 = t1;
@@ -110,15 +201,13 @@ std::vector<Label> labels_from_markers(const std::vector<XdfMarker>& markers, do
     label.class_name = name;
     label.annotator = "import";
     label.source = LabelSource::kGroundTruth;
-    labels.push_back(std::move(label));
-  };
-  auto marker_text = [](const XdfMarker& marker) {
-    return in_quotes(marker.text) + " at " + shortest_text(marker.time) + " s";
+    result.labels.push_back(std::move(label));
   };
   // The open label: its class, its start, and whether a "start" opened it (index into markers).
   std::string open_class;
   double open_time = 0.0;
   int64_t open_start = -1;  // the "start" marker, -1 for a plain one
+  size_t open_marker = 0;   // the marker that opened it, whichever kind
   bool open = false;
   for (size_t k = 0; k < markers.size(); ++k) {
     const XdfMarker& marker = markers[k];
@@ -129,23 +218,24 @@ std::vector<Label> labels_from_markers(const std::vector<XdfMarker>& markers, do
       if (kind != -1 || name != open_class)
         throw Error(place, marker_text(marker) + " inside " + marker_text(start) +
                                ", which only \"" + open_class + " end\" closes");
-      add(open_class, open_time, marker.time);
+      add(open_marker, open_class, open_time, marker.time);
       open = false;
       continue;
     }
     if (kind == -1) throw Error(place, marker_text(marker) + " ends no \"" + name + " start\"");
-    if (open) add(open_class, open_time, marker.time);
+    if (open) add(open_marker, open_class, open_time, marker.time);
     open = !name.empty() && xdf_marker_lower(name) != "none";
     open_class = name;
     open_time = marker.time;
+    open_marker = k;
     open_start = kind == 1 ? static_cast<int64_t>(k) : -1;
     if (kind == 1 && !open) throw Error(place, marker_text(marker) + " starts no class");
   }
   if (open && open_start >= 0)
     throw Error(where + " marker " + std::to_string(open_start),
                 marker_text(markers[static_cast<size_t>(open_start)]) + " is never ended");
-  if (open) add(open_class, open_time, end_time);
-  return labels;
+  if (open) add(open_marker, open_class, open_time, end_time);
+  return result;
 }
 
 }  // namespace tactile

@@ -117,6 +117,55 @@ TEST_F(EdfImport, AnnotationsBecomeGroundTruthLabelsOfTheirText) {
   }
 }
 
+TEST_F(EdfImport, AnnotationsAtTheDatasEndAreDroppedAndReportedAndOnesRunningPastItClipped) {
+  // EDFbrowser and clinical recorders close an EDF+ file with an annotation at its last
+  // instant ("Recording ends" at 3 s of a 3-s file, here with the second EDFbrowser gives it).
+  // EDFlib writes the structure they write: the TALs in the annotation signal of the records.
+  // EDFlib's writer keeps room for one annotation per data record: records of half a second
+  // (50 samples of the 100-Hz signals) hold these five.
+  EdfTestFile spec = testing::edf_test_plus_file();
+  for (size_t signal = 0; signal < 4; ++signal) spec.signals[signal].samples_per_record = 50;
+  spec.records = 6;
+  spec.record_seconds = 0.5;
+  spec.annotations = {{0.5, 0.25, "Tap"},
+                      {2.5, 1.0, "Movement"},        // runs 0.5 s past the end: clipped
+                      {2.995, 0.5, "Artifact"},      // 5 ms left: less than a sample (10 ms)
+                      {3.0, 1.0, "Recording ends"},  // at the end: no label
+                      {3.5, 1.0, "After"}};          // after it: no label either
+  testing::write_edf_test_file(edf_path, spec);
+  const ImportedRecording imported = import_edf(edf_path, load_layout("strip:4"), four_signals());
+  ASSERT_EQ(imported.recording.streams.front().sample_count(), 300);
+  ASSERT_EQ(imported.labels.size(), 2u);
+  EXPECT_EQ(imported.labels[0].class_name, "Tap");
+  EXPECT_NEAR(imported.labels[0].t1, 0.75, 1e-9);
+  EXPECT_EQ(imported.labels[1].class_name, "Movement");
+  EXPECT_NEAR(imported.labels[1].t0, 2.5, 1e-9);
+  EXPECT_EQ(imported.labels[1].t1, 3.0) << "clipped to the data, not 3.5";
+  EXPECT_EQ(imported.recording.metadata.at("dropped_labels"),
+            "annotation 3 at 2.995 s \"Artifact\": starts 0.004999999999999893 s before the "
+            "data's end (3 s), less than one sample (0.01 s); annotation 4 at 3 s \"Recording "
+            "ends\": at or after the data's end (3 s); annotation 5 at 3.5 s \"After\": at or "
+            "after the data's end (3 s)");
+  // A file whose annotations all lie inside says nothing.
+  testing::write_edf_test_file(edf_path, testing::edf_test_plus_file());
+  EXPECT_EQ(import_edf(edf_path, load_layout("strip:4"), four_signals())
+                .recording.metadata.count("dropped_labels"),
+            0u);
+}
+
+TEST_F(EdfImport, AnAnnotationAtTheEndNeedsNoLengthItIsNoLabel) {
+  // "Recording ends" without a duration, as many recorders write it: no --annotation-seconds.
+  EdfTestFile spec = testing::edf_test_plus_file();
+  spec.annotations = {{0.5, 0.25, "Tap"}, {3.0, -1.0, "Recording ends"}};
+  testing::write_edf_test_file(edf_path, spec);
+  EdfImportOptions options = four_signals();
+  options.annotation_seconds.reset();
+  const ImportedRecording imported = import_edf(edf_path, load_layout("strip:4"), options);
+  ASSERT_EQ(imported.labels.size(), 1u);
+  EXPECT_NE(imported.recording.metadata.at("dropped_labels").find("\"Recording ends\""),
+            std::string::npos);
+}
+
 TEST_F(EdfImport, AnAnnotationWithoutDurationIsRefusedWithItsOnsetAndText) {
   EdfImportOptions options = four_signals();
   options.annotation_seconds.reset();
@@ -226,6 +275,20 @@ TEST_F(EdfImport, HeadersThatLieAreRefusedWithTheirByteOffset) {
   EXPECT_NE(refused(252, "9999", 4).find("byte 252: number of signals \"9999\""),
             std::string::npos);
   EXPECT_NE(refused(252, "700", 4).find("expected 1 to 640"), std::string::npos);
+  // A damaged signal count (bytes that are no text, a NUL among them) is quoted printable,
+  // whole: the NUL neither cuts the message nor reaches the terminal.
+  const std::string damaged = refused(252, std::string("\xfe\xff\x00\x18", 4), 4);
+  EXPECT_NE(damaged.find("byte 252: number of signals \"\\xFE\\xFF\\x00\\x18\", expected 1 to 640"),
+            std::string::npos)
+      << damaged;
+  EXPECT_EQ(damaged.find('\0'), std::string::npos);
+  EXPECT_NE(refused(236,
+                    std::string("1\0"
+                                "1",
+                                3),
+                    8)
+                .find("data records \"1\\x001\""),
+            std::string::npos);
   EXPECT_NE(refused(252, "40", 4).find("less than the 10496-byte header its 40 signals need"),
             std::string::npos);
   // Six signals (five and the annotations): signal 1's samples per record at 256 + 6 * 216.

@@ -248,7 +248,7 @@ TEST(XdfImport, EmptyTicksOfAMarkersStreamWithARateAreNoMarkers) {
 }
 
 std::vector<Label> paired(const std::vector<XdfMarker>& markers, double end = 10.0) {
-  return labels_from_markers(markers, end, "m");
+  return labels_from_markers(markers, end, 0.01, "m").labels;
 }
 
 TEST(XdfMarkers, APlainMarkerLastsUntilTheNextAndNoneClosesIt) {
@@ -334,9 +334,10 @@ TEST(XdfClock, OffsetsWrittenOutOfOrderAreUsedInTheOrderOfTheirCollectionTimes) 
   writer.clock_offset(1, 10.0, 1.0);
   writer.float_samples(1, {15.0}, {std::vector<float>(8, 1.0f)});
   writer.save(folder.file("late.xdf"));
+  // The scan keeps the file's order (a clock reset is told by it); the import sorts.
   const std::vector<XdfStreamInfo> streams = scan_xdf(folder.file("late.xdf"));
   ASSERT_EQ(streams.front().clock_offsets.size(), 2u);
-  EXPECT_EQ(streams.front().clock_offsets.front(), std::make_pair(10.0, 1.0));
+  EXPECT_EQ(streams.front().clock_offsets.front(), std::make_pair(20.0, 2.0));
   // 15 s is half way: offset 1.5 s.
   const ImportedRecording imported = import_xdf(folder.file("late.xdf"), glove_layout(), {});
   EXPECT_EQ(imported.recording.metadata.at("xdf_first_timestamp"), "16.5");
@@ -350,9 +351,12 @@ TEST(XdfResample, TwoSamplesUpToOneAndAHalfStepsApartAreInterpolatedFurtherIsAGa
   ASSERT_EQ(near.rows(), 2);
   EXPECT_EQ(near(0, 0), 0.0f);
   EXPECT_NEAR(near(1, 0), 2.0f, 1e-5);
+  // The grid runs to the point nearest the last stamp: 0.0151 s is nearer 0.02 than 0.01, so
+  // that point takes the last sample, and 0.01 between the two is the gap.
   const SampleMatrix far = resample_to_rate({0.0, 0.0151}, values, 100.0, "s");
-  ASSERT_EQ(far.rows(), 2);
+  ASSERT_EQ(far.rows(), 3);
   EXPECT_TRUE(std::isnan(far(1, 0)));
+  EXPECT_EQ(far(2, 0), 3.0f);
   EXPECT_EQ(refusal_of([&] {
               resample_to_rate({0.0, -1.0}, values, 100.0, "s");
             }),
@@ -437,6 +441,17 @@ TEST(XdfImport, MalformedFilesAreRefusedNamingTheChunkAndItsByte) {
     XdfWriter writer;
     writer.chunk(2, XdfWriter::id_bytes(1) + "<info><name>x</name>");
     EXPECT_NE(scan_refusal(writer.bytes()).find("stream header is not XML"), std::string::npos);
+  }
+  {
+    // A damaged header's control bytes are quoted printable, not sent to the terminal.
+    XdfWriter writer;
+    writer.chunk(2, XdfWriter::id_bytes(1) +
+                        "<info><name>g</name><channel_count>8\x01\x7f</channel_count>"
+                        "<nominal_srate>100</nominal_srate><channel_format>float32"
+                        "</channel_format></info>");
+    EXPECT_NE(scan_refusal(writer.bytes()).find("channel_count '8\\x01\\x7F': a whole number"),
+              std::string::npos)
+        << scan_refusal(writer.bytes());
   }
   {
     XdfWriter writer;

@@ -35,10 +35,13 @@ struct EdfImportOptions {
 
 // The file as one stream of the layout (channel names the layout's, units the file's) and its
 // annotations as ground-truth labels (class = the text trimmed, region "all", annotator
-// "import", [onset, onset + duration)). Metadata: imported_from, edf_format, edf_signals (the
-// labels read, in order), start_time (ISO 8601, as the file states it, no time zone) and the
-// patient and recording fields the file fills. Throws tactile::Error naming the file and the
-// place (byte offset, signal, annotation) and what is wrong.
+// "import", [onset, onset + duration) clipped to the data's end). An annotation at or after the
+// data's end ("Recording ends" at the last instant), or one clipped to less than a sample, is
+// no label: it is dropped and named in the metadata "dropped_labels". Metadata: imported_from,
+// edf_format, edf_signals (the labels read, in order), start_time (ISO 8601, as the file states
+// it, no time zone) and the patient and recording fields the file fills. Throws tactile::Error
+// naming the file and the place (byte offset, signal, annotation) and what is wrong, with the
+// header's bytes quoted printable (\xFE for a byte that is no text).
 ImportedRecording import_edf(const std::string& path, const SkinLayout& layout,
                              const EdfImportOptions& options = {});
 

@@ -45,7 +45,8 @@ struct XdfStreamInfo {
   int64_t channels = 0;
   double rate_hz = 0.0;  // nominal; 0: irregular (markers)
   int64_t samples = 0;   // in all its sample chunks
-  // (collection time, offset value), by collection time.
+  // (collection time, offset value), in the file's order (a clock reset sends the collection
+  // times back: clock_corrected_stamps splits them there).
   std::vector<std::pair<double, double>> clock_offsets;
   // Where its sample chunks are: byte offset and size of each whole chunk.
   std::vector<std::pair<uint64_t, uint64_t>> sample_chunks;
@@ -71,15 +72,40 @@ struct XdfMarker {
 //   "none" or "" opens nothing (it only closes the label before).
 // A plain marker or another start while a "start" label is open, and an "end" that closes
 // nothing, are refused naming the markers. An unclosed plain label ends at `end_time`, an
-// unclosed "start" is refused. Labels are clipped to [0, end_time); empty ones are dropped.
-// `where` names the stream in refusals.
-std::vector<Label> labels_from_markers(const std::vector<XdfMarker>& markers, double end_time,
-                                       const std::string& where);
+// unclosed "start" is refused. Labels are clipped to the data [0, end_time); one that then
+// holds less than one sample (`sample_seconds`: a marker at the data's end, two markers at one
+// instant, one before the data) is no label: it is dropped and said in `dropped` ("marker 7
+// "stop" at 0.8999999999999986 s: ..."). `where` names the stream in refusals.
+struct XdfMarkerLabels {
+  std::vector<Label> labels;
+  std::vector<std::string> dropped;
+};
+XdfMarkerLabels labels_from_markers(const std::vector<XdfMarker>& markers, double end_time,
+                                    double sample_seconds, const std::string& where);
 
 // The time stamps' clock correction as XDF's ClockOffset chunks say: a stamp t gets the
 // offset measured around it added, interpolated linearly between the two measurements whose
 // collection times enclose t, the first (last) measurement's before (after) them.
 double clock_corrected(double stamp, const std::vector<std::pair<double, double>>& offsets);
+
+// A device's clock reset mid-recording (a restart, a clock set) sends its stamps back (or
+// forward) by hours at one sample, and the offsets measured after it differ by as much: one
+// interpolation across the reset is nonsense. As pyxdf's handle_clock_resets finds them, a
+// reset lies between two successive measurements (in the file's order) whose collection time
+// goes back, or forward more than kXdfResetSeconds beyond the usual interval (the median), and
+// whose offset changes more than kXdfResetOffsetSeconds beyond the usual change. Returns the
+// index of the first measurement after each reset; none with fewer than 3 measurements.
+inline constexpr double kXdfResetSeconds = 5.0;
+inline constexpr double kXdfResetOffsetSeconds = 1.0;
+std::vector<size_t> xdf_clock_resets(const std::vector<std::pair<double, double>>& offsets);
+
+// A stream's stamps (in the file's order) on the recorder's clock: the offsets (in the file's
+// order) split at the resets into segments, each sample corrected (clock_corrected) by the
+// segment it was sent in. The samples move on to the next segment at the sample whose stamp
+// jumps as the offsets did (by about minus the offset's jump), or at the first that lies nearer
+// the next segment's measurements than the current one's; never back.
+std::vector<double> clock_corrected_stamps(const std::vector<double>& stamps,
+                                           const std::vector<std::pair<double, double>>& offsets);
 
 // Samples with irregular stamps (rows: samples, non-decreasing stamps) onto a grid from the
 // first stamp at 1/rate_hz: each grid point takes the linear interpolation of the two
