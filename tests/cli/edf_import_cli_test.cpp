@@ -62,6 +62,21 @@ TEST_F(EdfImportCli, ImportWritesTheRecordingAndTheAnnotationsAsGroundTruth) {
   EXPECT_EQ(verify.exit_code, 0) << verify.out << verify.err;
 }
 
+// EDFbrowser closes a file with "Recording ends" at its last instant: no label is made of it,
+// and the import's line says so instead of leaving it to `tactile info`.
+TEST_F(EdfImportCli, AnAnnotationAtTheEndIsNamedAsNoLabelInTheImportsLine) {
+  testing::EdfTestFile spec = testing::edf_test_plus_file();
+  spec.annotations = {{0.5, 0.25, "Tap"}, {3.0, -1.0, "Recording ends"}};
+  testing::write_edf_test_file(edf, spec);
+  const std::string out = folder.file("ends.h5");
+  const auto result = tactile("import " + edf + four + " --out " + out);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find(", 1 labels; no label made of: annotation 2 at 3 s \"Recording "
+                            "ends\": at or after the data's end (3 s)"),
+            std::string::npos)
+      << result.out;
+}
+
 TEST_F(EdfImportCli, AnnotatorStoresTheLabelsAsThatPersonsAndASecondImportReplacesThem) {
   const std::string arguments = "import " + bdf + " --layout strip:2 --annotator maria --out " +
                                 folder.file("p.h5") + " --labels " + folder.file("labels.db");

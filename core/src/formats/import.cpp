@@ -66,6 +66,7 @@ std::string imported_file_line(const ImportedFile& file) {
        << ", " << file.samples << " samples x " << file.channels << " channels at " << file.rate_hz
        << " Hz";
   if (file.labels > 0) line << ", " << file.labels << " labels";
+  if (!file.dropped_labels.empty()) line << "; no label made of: " << file.dropped_labels;
   return line.str();
 }
 
@@ -133,7 +134,10 @@ FileImportReport import_file(const FileImportOptions& options,
                       stream.sample_count(),
                       stream.channel_count(),
                       stream.rate_hz,
-                      imported.labels.size()};
+                      imported.labels.size(),
+                      recording.metadata.count("dropped_labels")
+                          ? recording.metadata.at("dropped_labels")
+                          : std::string()};
     if (written) written(file);
     result.files.push_back(std::move(file));
     result.labels += imported.labels.size();

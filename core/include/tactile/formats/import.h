@@ -44,10 +44,13 @@ struct ImportedFile {
   int64_t samples = 0, channels = 0;
   double rate_hz = 0.0;
   size_t labels = 0;  // ground-truth labels read for it
+  // Annotations or markers of the file that made no label (at or after the data's end, under
+  // one sample), as the reader named them; "" when none (the recording's "dropped_labels").
+  std::string dropped_labels;
 };
 
-// "wrote OUT: recording ID, layout L, N samples x C channels at R Hz[, K labels]", the line
-// `tactile import` prints per file.
+// "wrote OUT: recording ID, layout L, N samples x C channels at R Hz[, K labels][; no label
+// made of: ...]", the line `tactile import` prints per file.
 std::string imported_file_line(const ImportedFile& file);
 
 struct FileImportReport {
