@@ -56,6 +56,7 @@ class Hdf5Walker {
     const uint64_t fields_at = superblock + (version == 0 ? 24 : 28);
     const std::vector<uint8_t> fields = bytes(fields_at, 32 + 40, "the HDF5 superblock");
     check_end(fields_at, number(fields, 0), number(fields, 16));
+    driver_info(number(fields, 24), fields_at + 24);
     // The root group's symbol-table entry: its object header, and the B-tree and heap it caches
     // (walked, not listed: the object header's own symbol table is what the listing follows).
     const uint64_t root_header = address(number(fields, 40), fields_at + 40, 16);
@@ -98,6 +99,18 @@ class Hdf5Walker {
     uint64_t value = 0;
     for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(bytes[at + k]) << (8 * k);
     return value;
+  }
+
+  // The driver information block (format spec, "Driver Info Block"), when the superblock names
+  // one: libhdf5 1.10 allocates the size it declares before reading it (4 GB under the fuzzer:
+  // tests/fuzz/regressions/hdf5/driver-info-size-makes-libhdf5-allocate-4-gb.h5).
+  void driver_info(uint64_t relative, uint64_t named_at) {
+    if (relative == UINT64_MAX) return;  // the undefined address: no block
+    const uint64_t at = address(relative, named_at, 16);
+    const std::vector<uint8_t> block = bytes(at, 16, "the driver information block");
+    if (block[0] != 0)
+      fail(at, "a driver information block of version " + std::to_string(block[0]));
+    address(relative + 16, at + 4, number(block, 4, 4));
   }
 
   // The end of file as libmatio's files store it counts the 512-byte block before the

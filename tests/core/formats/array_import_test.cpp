@@ -16,6 +16,7 @@
 #include "tactile/error.h"
 #include "tactile/formats/array_files.h"
 #include "tactile/formats/csv_files.h"
+#include "tactile/io/hdf5_file.h"
 #include "test_paths.h"
 
 namespace tactile {
@@ -351,6 +352,23 @@ TEST(ArrayImport, ADamagedHdf5FileIsRefusedByTheWalkNamingItsByte) {
   EXPECT_NE(refusal_of([&] { hdf5_datasets(path); }).find(expected), std::string::npos);
   const std::string refusal = refusal_of([&] { read_hdf5_dataset(path, "/sensors/pressure"); });
   EXPECT_NE(refusal.find(path + ": " + expected), std::string::npos) << refusal;
+}
+
+TEST(ArrayImport, ADriverInformationBlockPastTheEndIsRefusedBeforeLibhdf5AllocatesIt) {
+  // The fuzzer's finding: a superblock naming a driver information block at byte 255, whose
+  // declared size libhdf5 1.10.8 allocated (4 GB) before reading it.
+  const std::string path =
+      tactile::test::test_data_dir() +
+      "/../fuzz/regressions/hdf5/driver-info-size-makes-libhdf5-allocate-4-gb.h5";
+  const std::string walked = refusal_of([&] { hdf5_datasets(path); });
+  EXPECT_NE(walked.find("byte 259: an address 271"), std::string::npos) << walked;
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<uint8_t> image((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  const std::string recording = refusal_of([&] { RecordingFile::from_image(image, "image.h5"); });
+  EXPECT_NE(recording.find("image.h5: byte 48: a driver information block past the end"),
+            std::string::npos)
+      << recording;
 }
 
 TEST(CsvTable, AClassColumnAndGroupColumnsMakeRecordingsWithLabels) {

@@ -184,7 +184,7 @@ TEST(MatAsMatlabWrites, AV73StructFieldIsReadBesideASparseField) {
   const std::string path = directory.file("struct73.mat");
   // data.sparse = sparse([1 3], [1 3], [5 7], 3, 3); data.dense = [1 2 3; 4 5 6];
   // save('struct73.mat', 'data', '-v7.3') writes a group "data" holding a sparse group (ir, jc,
-  // data datasets and a MATLAB_sparse attribute) and a dataset; libmatio writes the same.
+  // data datasets and a MATLAB_sparse attribute) and a dataset; libmatio follows that layout.
   mat_t* mat = Mat_CreateVer(path.c_str(), nullptr, MAT_FT_MAT73);
   ASSERT_NE(mat, nullptr);
   const char* fields[] = {"sparse", "dense"};
