@@ -4,6 +4,7 @@
 // 4) files, which have no 128-byte header and may be shorter than it.
 #include <gtest/gtest.h>
 #include <matio.h>
+#include <zlib.h>
 
 #include <cstring>
 #include <fstream>
@@ -175,6 +176,29 @@ TEST(MatAsMatlabWrites, AStringObjectIsListedAndRefusedByItsNameAndClass) {
   EXPECT_NE(refusal.find("cellstr(label)"), std::string::npos) << refusal;
   const std::string field = refusal_of([&] { read_mat_variable(path, "s.name"); });
   EXPECT_NE(field.find("s.name string object is not read"), std::string::npos) << field;
+}
+
+TEST(MatAsMatlabWrites, AStringObjectInACompressedVariableIsListedByItsClass) {
+  // save('with_string.mat', 'samples', 'label') (-v7, MATLAB's default): each variable's
+  // miMATRIX deflated into an miCOMPRESSED element (type 15, not padded).
+  testing::TemporaryDirectory directory;
+  const std::string path = directory.file("compressed_string.mat");
+  const Bytes label = string_object("label");
+  uLongf deflated_size = compressBound(label.size());
+  Bytes deflated(deflated_size);
+  ASSERT_EQ(compress(deflated.data(), &deflated_size, label.data(), label.size()), Z_OK);
+  deflated.resize(deflated_size);
+  Bytes compressed;
+  append_word(compressed, 15);
+  append_word(compressed, static_cast<uint32_t>(deflated.size()));
+  append_bytes(compressed, deflated.data(), deflated.size());
+  write_bytes(path, joined({v5_header(0), double_matrix("samples"), compressed}));
+  EXPECT_EQ(mat_variable_names(path), (std::vector<std::string>{"samples", "label"}));
+  EXPECT_EQ(read_mat_variable(path, "samples").values, (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  EXPECT_NE(refusal_of([&] {
+              read_mat_variable(path, "label");
+            }).find("a MATLAB string object of the MCOS type system"),
+            std::string::npos);
 }
 
 //---- a v7.3 struct of a sparse and a dense field
