@@ -71,6 +71,37 @@ TEST_F(ImportMat, TheOneArrayOfAFileNeedsNoName) {
   EXPECT_EQ(read_recording(out).streams.front().samples(5, 3), 604);
 }
 
+TEST_F(ImportMat, AMatlab4FileBecomesARecording) {
+  // x = reshape(1:24, 6, 4) + 100 * (1:6)' ...: samples(t, c) = 100 t + c, and fs = 250, as
+  // MATLAB's save('x4.mat', 'samples', 'fs', '-v4') lays them out: per variable a 20-byte
+  // header (type 0: IEEE little-endian doubles, a numeric matrix; rows; columns; no imaginary
+  // part; the name's length with its NUL), the name, the values column-major. No file header.
+  std::string bytes;
+  auto variable = [&](const std::string& name, int32_t rows, int32_t columns,
+                      const std::vector<double>& values) {
+    for (const int32_t field : {0, rows, columns, 0, static_cast<int32_t>(name.size() + 1)})
+      bytes.append(reinterpret_cast<const char*>(&field), 4);
+    bytes.append(name.c_str(), name.size() + 1);
+    for (const double value : values) bytes.append(reinterpret_cast<const char*>(&value), 8);
+  };
+  std::vector<double> samples;
+  for (int c = 1; c <= 4; ++c)
+    for (int t = 1; t <= 6; ++t) samples.push_back(100 * t + c);
+  variable("samples", 6, 4, samples);
+  variable("fs", 1, 1, {250});
+  const std::string path = folder.file("x4.mat");
+  std::ofstream(path, std::ios::binary) << bytes;
+  const std::string out = folder.file("x4.h5");
+  const auto result =
+      tactile("import " + path + " --layout grid:2x2 --rate-variable fs --out " + out);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const Recording recording = read_recording(out);
+  const Stream& stream = recording.streams.front();
+  EXPECT_EQ(stream.rate_hz, 250);
+  ASSERT_EQ(stream.sample_count(), 6);
+  EXPECT_EQ(stream.samples(4, 2), 503);
+}
+
 TEST_F(ImportMat, BadFlagsAndDamagedFilesAreRefusedAndWriteNothing) {
   // A file cut in its second variable.
   const std::string cut = folder.file("cut.mat");

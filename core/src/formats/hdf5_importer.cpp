@@ -1,4 +1,5 @@
-// HDF5: one dataset of a file any program wrote (formats/array_files.h).
+// HDF5: one dataset of a file any program wrote (formats/array_files.h), its structure walked
+// first as a MATLAB v7.3 file's is.
 #include <optional>
 
 #include "array_importers.h"
@@ -24,8 +25,15 @@ class Hdf5Importer : public ArrayImporter {
                   const ImportValues& values) const override {
     const double rate_hz = required_rate(values);
     const std::string dataset = values.text("--dataset");
-    if (dataset.empty())
-      throw Error("--dataset", "names the dataset of " + path + " to read (e.g. /data/pressure)");
+    if (dataset.empty()) {
+      // The walk that checks the file lists its datasets (a damaged file is refused here).
+      std::string known;
+      for (const Hdf5Dataset& readable : hdf5_datasets(path))
+        known += (known.empty() ? "" : ", ") + readable.described;
+      throw Error("--dataset", "names the dataset of " + path + " to read (" +
+                                   (known.empty() ? "e.g. /data/pressure" : "it holds " + known) +
+                                   ")");
+    }
     const ImportedArray array = read_hdf5_dataset(path, dataset);
     std::optional<ImportedArray> classes;
     if (!values.text("--class-array").empty())

@@ -40,22 +40,42 @@ using MatVarHandle = std::unique_ptr<matvar_t, MatVarFreer>;
 // zlib's largest ratio is about 1032:1; HDF5's deflated chunks cannot hold more than this.
 constexpr uint64_t kMatMostInflation = 1032;
 
-// The file, its structure checked before libmatio is given it.
-MatHandle open_mat(const std::string& path) {
+// The file opened by libmatio, its structure checked first, and the opaque objects of a v5
+// file (which libmatio lists without their names).
+struct OpenMat {
+  MatHandle mat;
+  MatFileVersion version = MatFileVersion::v5;
+  std::vector<MatOpaqueVariable> opaque;
+};
+
+OpenMat open_mat(const std::string& path) {
   quiet_matio();
-  const MatFileVersion version = mat_file_version(path);
-  if (version == MatFileVersion::v5)
-    check_mat_v5_structure(path);
-  else
+  OpenMat opened;
+  opened.version = mat_file_version(path);
+  mat_ft expected = MAT_FT_MAT5;
+  if (opened.version == MatFileVersion::v4) {
+    check_mat_v4_structure(path);
+    expected = MAT_FT_MAT4;
+  } else if (opened.version == MatFileVersion::v5) {
+    opened.opaque = check_mat_v5_structure(path);
+  } else {
     check_mat_v73_structure(path);
+    expected = MAT_FT_MAT73;
+  }
   mat_message.clear();
-  MatHandle mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
-  if (!mat)
+  opened.mat.reset(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
+  if (!opened.mat)
     throw Error(path, "libmatio cannot open it" + (mat_message.empty() ? "" : ": " + mat_message));
-  const mat_ft expected = version == MatFileVersion::v5 ? MAT_FT_MAT5 : MAT_FT_MAT73;
-  if (Mat_GetVersion(mat.get()) != expected)
+  if (Mat_GetVersion(opened.mat.get()) != expected)
     throw Error(path, "libmatio reads it as another MAT-file version than its header declares");
-  return mat;
+  return opened;
+}
+
+// "string object" for the opaque object the walk met under `name`.
+std::string opaque_type(const std::vector<MatOpaqueVariable>& opaque, const std::string& name) {
+  for (const MatOpaqueVariable& object : opaque)
+    if (object.name == name) return object.class_name + " object";
+  return "opaque object";
 }
 
 size_t mat_count(const matvar_t& variable) {
@@ -122,12 +142,16 @@ std::string mat_type_of(const matvar_t& variable) {
 // (A v5 file has been walked whole already; this is what guards a v7.3 file, whose chunks
 // may be unallocated or deflated, and it costs nothing on a v5 one.)
 void check_mat_sizes(const matvar_t& variable, const std::string& path, const std::string& name,
-                     uint64_t file_bytes, int depth) {
+                     uint64_t file_bytes, MatFileVersion version, int depth) {
   if (depth > 16) throw Error(path, "variable " + name + ": nested more than 16 deep");
-  // libmatio reads a struct or cell whole, and a sparse array inside one made it ask for 4 GB
-  // (the fuzzer's regressions/mat/sparse-field-makes-libmatio-allocate-4-gb.mat).
-  if (depth > 0 && variable.class_type == MAT_C_SPARSE)
-    throw Error(path, "variable " + name + ": a sparse array inside a struct or cell is not read");
+  // libmatio reads a struct or cell whole, and in a v5 file a sparse array inside one made it
+  // ask for 4 GB (the fuzzer's regressions/mat/sparse-field-makes-libmatio-allocate-4-gb.mat).
+  // A v7.3 sparse array is three datasets whose sizes the HDF5 walk has bounded by the file's
+  // bytes: a sparse field beside the one asked for is read and dropped, not refused.
+  if (version == MatFileVersion::v5 && depth > 0 && variable.class_type == MAT_C_SPARSE)
+    throw Error(path, "variable " + name +
+                          ": a sparse array inside a struct or cell of a v5 file is not read (nor "
+                          "are its struct's other fields: libmatio reads the struct whole)");
   uint64_t count = 1;
   for (int axis = 0; axis < variable.rank; ++axis) {
     const uint64_t extent = variable.dims[axis];
@@ -147,14 +171,14 @@ void check_mat_sizes(const matvar_t& variable, const std::string& path, const st
     for (uint64_t index = 0; index < count; ++index)
       if (cells[index])
         check_mat_sizes(*cells[index], path, name + "{" + std::to_string(index + 1) + "}",
-                        file_bytes, depth + 1);
+                        file_bytes, version, depth + 1);
   } else if (variable.class_type == MAT_C_STRUCT) {
     const unsigned fields = Mat_VarGetNumberOfFields(const_cast<matvar_t*>(&variable));
     auto** members = static_cast<matvar_t**>(variable.data);
     for (uint64_t index = 0; index < count * fields; ++index)
       if (members[index])
         check_mat_sizes(*members[index], path, name + "." + std::to_string(index), file_bytes,
-                        depth + 1);
+                        version, depth + 1);
   }
 }
 
@@ -180,18 +204,22 @@ std::string mat_dims_text(const std::vector<int64_t>& dims) {
   return text;
 }
 
-MatVariable describe_mat(const matvar_t& variable, const std::string& name) {
+// `opaque`: the walk's opaque objects, whose class libmatio does not give.
+MatVariable describe_mat(const matvar_t& variable, const std::string& name,
+                         const std::vector<MatOpaqueVariable>& opaque = {}) {
   MatVariable described;
   described.name = name;
   for (int axis = 0; axis < variable.rank; ++axis)
     described.dims.push_back(static_cast<int64_t>(variable.dims[axis]));
-  described.type = mat_type_of(variable);
+  described.type =
+      variable.class_type == MAT_C_OPAQUE ? opaque_type(opaque, name) : mat_type_of(variable);
   return described;
 }
 
-void list_mat(const matvar_t& variable, const std::string& name, std::vector<MatVariable>& out,
+void list_mat(const matvar_t& variable, const std::string& name,
+              const std::vector<MatOpaqueVariable>& opaque, std::vector<MatVariable>& out,
               int depth) {
-  out.push_back(describe_mat(variable, name));
+  out.push_back(describe_mat(variable, name, opaque));
   if (variable.class_type != MAT_C_STRUCT || mat_count(variable) != 1 || !variable.data ||
       depth > 16)
     return;
@@ -200,7 +228,7 @@ void list_mat(const matvar_t& variable, const std::string& name, std::vector<Mat
   auto** members = static_cast<matvar_t**>(variable.data);
   for (unsigned field = 0; field < fields; ++field)
     if (members[field] && field_names && field_names[field])
-      list_mat(*members[field], name + "." + field_names[field], out, depth + 1);
+      list_mat(*members[field], name + "." + field_names[field], opaque, out, depth + 1);
 }
 
 // The named field of a 1x1 struct (`name` for messages).
@@ -330,9 +358,9 @@ std::vector<std::string> mat_rows(const matvar_t& variable, const std::string& p
   return texts;
 }
 
-ImportedArray mat_array(const matvar_t& variable, const std::string& path,
-                        const std::string& name) {
-  const MatVariable described = describe_mat(variable, name);
+ImportedArray mat_array(const matvar_t& variable, const std::string& path, const std::string& name,
+                        const std::vector<MatOpaqueVariable>& opaque) {
+  const MatVariable described = describe_mat(variable, name, opaque);
   ImportedArray array;
   if (variable.class_type == MAT_C_CHAR) {
     array.text = true;
@@ -353,7 +381,7 @@ ImportedArray mat_array(const matvar_t& variable, const std::string& path,
       }
       if (element->class_type != MAT_C_CHAR || element->rank != 2 || element->dims[0] != 1)
         throw Error(path, "variable " + cell + " is a " +
-                              mat_variable_line(describe_mat(*element, cell)) +
+                              mat_variable_line(describe_mat(*element, cell, opaque)) +
                               ", not a char vector (a cell array of names is read as text)");
       array.strings.push_back(mat_rows(*element, path, cell).front());
     }
@@ -384,16 +412,29 @@ bool MatVariable::numeric() const {
 }
 
 std::string mat_variable_line(const MatVariable& variable) {
+  // An opaque object has no dimensions of its own (they are in MATLAB's subsystem data).
+  if (variable.dims.empty()) return variable.name + " " + variable.type;
   return variable.name + " " + mat_dims_text(variable.dims) + " " + variable.type;
 }
 
 std::vector<MatVariable> mat_variables(const std::string& path) {
-  MatHandle mat = open_mat(path);
+  OpenMat opened = open_mat(path);
   std::vector<MatVariable> variables;
+  size_t opaque_met = 0;
   while (true) {
-    MatVarHandle variable(Mat_VarReadNextInfo(mat.get()));
+    MatVarHandle variable(Mat_VarReadNextInfo(opened.mat.get()));
     if (!variable) break;
-    list_mat(*variable, variable->name ? variable->name : "", variables, 0);
+    std::string name = variable->name ? variable->name : "";
+    // libmatio gives an opaque object no name: the walk met the same objects in the same order.
+    if (variable->class_type == MAT_C_OPAQUE) {
+      while (opaque_met < opened.opaque.size() && !opened.opaque[opaque_met].top_level)
+        ++opaque_met;
+      if (opaque_met < opened.opaque.size()) name = opened.opaque[opaque_met++].name;
+    }
+    // MATLAB's subsystem data (the last variable of a file holding objects) has no name, and
+    // no name can ask for it.
+    if (name.empty()) continue;
+    list_mat(*variable, name, opened.opaque, variables, 0);
   }
   return variables;
 }
@@ -406,8 +447,18 @@ std::vector<std::string> mat_variable_names(const std::string& path) {
 
 ImportedArray read_mat_variable(const std::string& path, const std::string& name) {
   const std::vector<std::string> parts = mat_name_parts(name);
-  MatHandle mat = open_mat(path);
-  MatVarHandle info(Mat_VarReadInfo(mat.get(), parts.front().c_str()));
+  OpenMat opened = open_mat(path);
+  mat_t* mat = opened.mat.get();
+  for (const MatOpaqueVariable& object : opened.opaque)
+    if (object.top_level && object.name == parts.front())
+      throw Error(path, "variable " + object.name + " (a MATLAB " + object.class_name +
+                            " object of the " + object.type_system +
+                            " type system) is not read: only real, dense numeric or logical "
+                            "arrays, char matrices and cell arrays of char vectors are" +
+                            (object.class_name == "string"
+                                 ? " (save it as cellstr(" + object.name + ") instead)"
+                                 : ""));
+  MatVarHandle info(Mat_VarReadInfo(mat, parts.front().c_str()));
   if (!info) {
     std::string known;
     for (const MatVariable& variable : mat_variables(path)) {
@@ -420,14 +471,14 @@ ImportedArray read_mat_variable(const std::string& path, const std::string& name
   std::error_code error;
   const uint64_t file_bytes = std::filesystem::file_size(path, error);
   // The declared sizes of the whole variable (every field) before libmatio reads its data.
-  check_mat_sizes(*info, path, parts.front(), error ? 0 : file_bytes, 0);
+  check_mat_sizes(*info, path, parts.front(), error ? 0 : file_bytes, opened.version, 0);
   const matvar_t* checked = info.get();
   std::string reached = parts.front();
   for (size_t part = 1; part < parts.size(); ++part) {
     checked = &mat_field(*checked, parts[part], path, reached);
     reached += "." + parts[part];
   }
-  const MatVariable described = describe_mat(*checked, name);
+  const MatVariable described = describe_mat(*checked, name, opened.opaque);
   if (checked->class_type != MAT_C_CHAR && checked->class_type != MAT_C_CELL &&
       !described.numeric())
     throw Error(path, "variable " + mat_variable_line(described) +
@@ -435,14 +486,14 @@ ImportedArray read_mat_variable(const std::string& path, const std::string& name
                           "matrices and cell arrays of char vectors are");
   info.reset();
   mat_message.clear();
-  MatVarHandle whole(Mat_VarRead(mat.get(), parts.front().c_str()));
+  MatVarHandle whole(Mat_VarRead(mat, parts.front().c_str()));
   if (!whole)
     throw Error(path, "variable " + parts.front() + ": libmatio cannot read it" +
                           (mat_message.empty() ? "" : ": " + mat_message));
   const matvar_t* variable = whole.get();
   for (size_t part = 1; part < parts.size(); ++part)
     variable = &mat_field(*variable, parts[part], path, name);
-  return mat_array(*variable, path, name);
+  return mat_array(*variable, path, name, opened.opaque);
 }
 
 }  // namespace tactile

@@ -46,6 +46,7 @@ enum : uint32_t {
   kMxSparse = 5,
   kMxDouble = 6,
   kMxUint64 = 15,
+  kMxOpaque = 17,
   kMxLastClass = 17,
 };
 
@@ -222,6 +223,7 @@ class MatWalker {
     const std::vector<uint8_t> flags = payload(stream, flags_tag, end, given_name);
     const uint32_t array_class = word(flags.data()) & 0xff;
     const bool complex = (word(flags.data()) >> 8) & 0x08;
+    if (array_class == kMxOpaque) return opaque(stream, end, given_name, depth);
     MatTag dims_tag = tag(stream, end, given_name);
     if (dims_tag.type != kMiInt32 || dims_tag.small || dims_tag.bytes < 8 ||
         dims_tag.bytes % 4 != 0 || dims_tag.bytes / 4 > kMatMaxRank)
@@ -252,14 +254,15 @@ class MatWalker {
     const auto elements = static_cast<uint64_t>(count);
     if (array_class == 0 || array_class > kMxLastClass)
       refuse(stream, flags_tag.at, name, "unknown array class " + std::to_string(array_class));
-    // libmatio reads objects, function handles and opaque classes by rules of its own (a
-    // function handle whose bytes lie made it ask for 1.6 GB: the fuzzer's
+    // libmatio reads objects and function handles by rules of its own (a function handle
+    // whose bytes lie made it ask for 1.6 GB: the fuzzer's
     // regressions/mat/function-handle-makes-libmatio-allocate-1.6-gb.mat), and they are no
-    // recording: the file is refused rather than handed over.
-    if (array_class == 3 || array_class >= 16)
+    // recording: the file is refused rather than handed over. (Opaque objects, class 17, are
+    // walked above: libmatio only steps over them.)
+    if (array_class == 3 || array_class == 16)
       refuse(stream, flags_tag.at, name,
              "array class " + std::to_string(array_class) +
-                 " (an object, function handle or opaque object) is not read");
+                 (array_class == 3 ? " (an object)" : " (a function handle)") + " is not read");
     if (array_class == kMxCell) {
       for (uint64_t index = 0; index < elements; ++index)
         child(stream, end, name + "{" + std::to_string(index + 1) + "}", depth);
@@ -287,7 +290,7 @@ class MatWalker {
   }
 
   // The top-level elements, from byte 128 to the end of the file.
-  void file(std::ifstream& in, uint64_t size) {
+  std::vector<MatOpaqueVariable> file(std::ifstream& in, uint64_t size) {
     MatFileStream stream(in, size);
     stream.seek(128);
     while (stream.offset() < size) {
@@ -313,6 +316,7 @@ class MatWalker {
       const uint64_t padding = element.type == kMiMatrix ? (8 - element.bytes % 8) % 8 : 0;
       stream.seek(std::min(size, end + padding));
     }
+    return opaque_;
   }
 
  private:
@@ -371,6 +375,50 @@ class MatWalker {
     if (element.small) return;
     const uint64_t padding = (8 - element.bytes % 8) % 8;
     stream.skip(std::min(padding, end - stream.offset()));
+  }
+
+  // An opaque object, as MATLAB 2017b+ writes a `string` (and `table`, `datetime`, ...): after
+  // the array flags come no dimensions but its name, the type system's name ("MCOS") and the
+  // class name ("string"), each miINT8 text, then the object's metadata as one miMATRIX (for
+  // MCOS a uint32 array referring into the subsystem data MATLAB writes as a last, nameless
+  // variable). It holds no array to read: it is recorded, to be listed and refused by name.
+  void opaque(MatByteStream& stream, uint64_t end, const std::string& given_name, int depth) {
+    const std::string own_name = text(stream, end, given_name, "the array name");
+    const std::string name = given_name.empty() ? own_name : given_name;
+    MatOpaqueVariable object;
+    object.name = name;
+    object.type_system = printable(text(stream, end, name, "the type system name"));
+    object.class_name = printable(text(stream, end, name, "the class name"));
+    object.top_level = given_name.empty();
+    if (object.class_name.empty())
+      refuse(stream, stream.offset(), name, "an opaque object of no class name");
+    child(stream, end, name, depth);
+    opaque_.push_back(std::move(object));
+    if (!stream.skip(end - stream.offset()))
+      refuse(stream, stream.offset(), name, "ends before its declared end");
+  }
+
+  // An miINT8 (or miUINT8) text element of at most kMatMaxNameBytes, trailing NULs dropped.
+  std::string text(MatByteStream& stream, uint64_t end, const std::string& name,
+                   const std::string& what) {
+    const MatTag text_tag = tag(stream, end, name);
+    if (text_tag.type != kMiInt8 && text_tag.type != kMiUint8)
+      refuse(stream, text_tag.at, name, what + " is not miINT8 text");
+    if (text_tag.bytes > kMatMaxNameBytes)
+      refuse(stream, text_tag.at, name,
+             what + " declares " + std::to_string(text_tag.bytes) + " bytes");
+    const std::vector<uint8_t> bytes = payload(stream, text_tag, end, name);
+    std::string result(bytes.begin(), bytes.end());
+    while (!result.empty() && result.back() == '\0') result.pop_back();
+    return result;
+  }
+
+  // Names said in refusals: printable ASCII, anything else as '?'.
+  static std::string printable(std::string text) {
+    for (char& character : text)
+      if (static_cast<uint8_t>(character) < 0x20 || static_cast<uint8_t>(character) >= 0x7f)
+        character = '?';
+    return text;
   }
 
   // A cell's or field's miMATRIX.
@@ -446,6 +494,7 @@ class MatWalker {
 
   std::string path_;
   bool swap_;
+  std::vector<MatOpaqueVariable> opaque_;
 };
 
 }  // namespace
@@ -458,8 +507,8 @@ MatHeader read_mat_header(const std::string& path) {
   if (!in || error) throw Error(path, "cannot open");
   std::array<uint8_t, 128> header{};
   if (size < header.size() || !in.read(reinterpret_cast<char*>(header.data()), header.size()))
-    throw Error(
-        path, "shorter than a MATLAB file's 128-byte header (" + std::to_string(size) + " bytes)");
+    throw Error(path, "shorter than a v5 or v7.3 file's 128-byte header (" + std::to_string(size) +
+                          " bytes), and its first bytes are no MATLAB 4 variable header");
   MatHeader result;
   result.size = size;
   if (header[126] == 'I' && header[127] == 'M') {
@@ -469,13 +518,25 @@ MatHeader read_mat_header(const std::string& path) {
     result.version = static_cast<uint16_t>(header[124] << 8 | header[125]);
   } else {
     throw Error(path,
-                "not a MATLAB v5 or v7.3 file (no IM/MI byte-order mark at byte 126; v4 files "
-                "are not read: save them again with save -v7)");
+                "not a MATLAB v5 or v7.3 file (no IM/MI byte-order mark at byte 126) nor a "
+                "MATLAB 4 file (its first bytes are no Level 4 variable header)");
   }
   return result;
 }
 
 MatFileVersion mat_file_version(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(path, "no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "cannot open");
+  std::array<uint8_t, 128> first{};
+  in.read(reinterpret_cast<char*>(first.data()), first.size());
+  const auto read = static_cast<uint64_t>(in.gcount());
+  // A v5 or v7.3 header's byte-order mark first: its text ("MATLAB 5.0 MAT-file") is no
+  // Level 4 header in either byte order.
+  const bool marked = read == first.size() && ((first[126] == 'I' && first[127] == 'M') ||
+                                               (first[126] == 'M' && first[127] == 'I'));
+  if (!marked && looks_like_mat_v4(first.data(), read)) return MatFileVersion::v4;
   const MatHeader header = read_mat_header(path);
   if (header.version == 0x0100) return MatFileVersion::v5;
   if (header.version == 0x0200) return MatFileVersion::v73;
@@ -483,11 +544,11 @@ MatFileVersion mat_file_version(const std::string& path) {
                         " (v5 is 256, v7.3 is 512)");
 }
 
-void check_mat_v5_structure(const std::string& path) {
+std::vector<MatOpaqueVariable> check_mat_v5_structure(const std::string& path) {
   const MatHeader header = read_mat_header(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open");
-  MatWalker(path, header.swap).file(in, header.size);
+  return MatWalker(path, header.swap).file(in, header.size);
 }
 
 }  // namespace tactile

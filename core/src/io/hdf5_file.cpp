@@ -301,6 +301,8 @@ RecordingFile RecordingFile::from_image(std::span<const uint8_t> image, const st
     throw Error(name, "cannot hand the file image to HDF5 (" + hdf5::last_error() + ")");
   // HDF5 hands out the file already open under the same name instead of opening a second
   // one, so every image gets a name of its own.
+  if (const std::optional<std::string> problem = hdf5::superblock_driver_info_problem(image))
+    throw Error(name, *problem);
   static std::atomic<uint64_t> images{0};
   const std::string unique = name + "#image" + std::to_string(images++);
   Object file_handle(H5Fopen(unique.c_str(), H5F_ACC_RDONLY, access.id()), H5Fclose);

@@ -452,6 +452,36 @@ std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
   return {};
 }
 
+std::optional<std::string> superblock_driver_info_problem(std::span<const uint8_t> image) {
+  static const uint8_t kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+  auto little_endian = [&](uint64_t at, size_t size) -> std::optional<uint64_t> {
+    if (at > image.size() || image.size() - at < size) return {};
+    uint64_t value = 0;
+    for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
+    return value;
+  };
+  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at) {
+    if (!std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
+      continue;
+    const uint8_t version = image[at + 8];
+    // Versions 2 and 3 have no driver information block (a superblock extension instead).
+    if ((version != 0 && version != 1) || image[at + 13] != 8) return {};
+    const size_t fields_at = at + (version == 0 ? 24 : 28);
+    const auto base = little_endian(fields_at, 8);
+    const auto driver = little_endian(fields_at + 24, 8);
+    if (!base || !driver || *driver == UINT64_MAX) return {};
+    const std::string place = "byte " + std::to_string(fields_at + 24) + ": ";
+    if (*base > image.size() || *driver > image.size() - *base ||
+        image.size() - *base - *driver < 16)
+      return place + "a driver information block past the end of the file";
+    const auto size = little_endian(*base + *driver + 4, 4);
+    if (!size || *size > image.size() - (*base + *driver + 16))
+      return place + "a driver information block past the end of the file";
+    return {};
+  }
+  return {};
+}
+
 bool pad_to_declared_end(const std::string& path) {
   std::vector<uint8_t> head(4096);
   FILE* file = std::fopen(path.c_str(), "rb");

@@ -5,15 +5,18 @@
 #include <gtest/gtest.h>
 #include <hdf5/serial/hdf5.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "io_test_files.h"
 #include "tactile/error.h"
 #include "tactile/formats/array_files.h"
 #include "tactile/formats/csv_files.h"
+#include "tactile/io/hdf5_file.h"
 #include "test_paths.h"
 
 namespace tactile {
@@ -279,6 +282,93 @@ TEST(ArrayImport, HdfDatasetsNameWhatIsMissing) {
   EXPECT_NE(
       refusal_of([&] { read_hdf5_dataset(kData + "frames.npy", "/x"); }).find("not an HDF5 file"),
       std::string::npos);
+}
+
+//---- other programs' .h5 files, walked as MATLAB v7.3 files are
+
+std::string listed_hdf5(const std::string& path) {
+  std::string listed;
+  for (const Hdf5Dataset& dataset : hdf5_datasets(path))
+    listed += (listed.empty() ? "" : ", ") + dataset.described;
+  return listed;
+}
+
+TEST(ArrayImport, AnHdf5FileIsWalkedAndItsDatasetsListedBeforeLibhdf5ReadsThem) {
+  // foreign.h5: what h5py writes by default (superblock 0, groups of symbol tables).
+  EXPECT_EQ(listed_hdf5(kData + "foreign.h5"),
+            "/sensors/gesture 50 string, /sensors/pressure 50x4x4 float32");
+  const std::string missing =
+      refusal_of([&] { read_hdf5_dataset(kData + "foreign.h5", "/pressure"); });
+  EXPECT_NE(missing.find("/pressure: no such dataset (the file holds /sensors/gesture 50 string, "
+                         "/sensors/pressure 50x4x4 float32)"),
+            std::string::npos)
+      << missing;
+  // A compound dataset (a table of records) is walked, and refused by name before libhdf5 reads.
+  testing::TemporaryDirectory directory;
+  const std::string path = directory.file("table.h5");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t record = H5Tcreate(H5T_COMPOUND, 16);
+  H5Tinsert(record, "time", 0, H5T_IEEE_F64LE);
+  H5Tinsert(record, "force", 8, H5T_IEEE_F64LE);
+  const hsize_t rows[1] = {3};
+  const hid_t space = H5Screate_simple(1, rows, nullptr);
+  const hid_t table =
+      H5Dcreate2(file, "/table", record, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t counts =
+      H5Dcreate2(file, "/counts", H5T_STD_I16LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const int16_t values[3] = {-3, 7, 300};
+  ASSERT_GE(H5Dwrite(counts, H5T_NATIVE_INT16, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), 0);
+  for (hid_t id : {table, counts}) H5Dclose(id);
+  H5Sclose(space);
+  H5Tclose(record);
+  H5Fclose(file);
+  EXPECT_EQ(listed_hdf5(path), "/counts 3 int16");
+  const std::string compound = refusal_of([&] { read_hdf5_dataset(path, "table"); });
+  EXPECT_NE(
+      compound.find("the dataset /table 3 compound is not read: only numbers and strings are"),
+      std::string::npos)
+      << compound;
+  EXPECT_EQ(read_hdf5_dataset(path, "counts").values, (std::vector<double>{-3, 7, 300}));
+}
+
+TEST(ArrayImport, ADamagedHdf5FileIsRefusedByTheWalkNamingItsByte) {
+  testing::TemporaryDirectory directory;
+  const std::string path = directory.file("damaged.h5");
+  std::ifstream in(kData + "foreign.h5", std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+  // The root group's B-tree: its first child (a symbol-table node) pointed past the end.
+  const uint8_t tree[] = {'T', 'R', 'E', 'E'};
+  const auto found = std::search(bytes.begin(), bytes.end(), std::begin(tree), std::end(tree));
+  ASSERT_NE(found, bytes.end());
+  const size_t child_at = static_cast<size_t>(found - bytes.begin()) + 24 + 8;
+  std::memset(bytes.data() + child_at, 0xff, 8);
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
+  }
+  const std::string expected = "byte " + std::to_string(child_at) + ": an address";
+  EXPECT_NE(refusal_of([&] { hdf5_datasets(path); }).find(expected), std::string::npos);
+  const std::string refusal = refusal_of([&] { read_hdf5_dataset(path, "/sensors/pressure"); });
+  EXPECT_NE(refusal.find(path + ": " + expected), std::string::npos) << refusal;
+}
+
+TEST(ArrayImport, ADriverInformationBlockPastTheEndIsRefusedBeforeLibhdf5AllocatesIt) {
+  // The fuzzer's finding: a superblock naming a driver information block at byte 255, whose
+  // declared size libhdf5 1.10.8 allocated (4 GB) before reading it.
+  const std::string path =
+      tactile::test::test_data_dir() +
+      "/../fuzz/regressions/hdf5/driver-info-size-makes-libhdf5-allocate-4-gb.h5";
+  const std::string walked = refusal_of([&] { hdf5_datasets(path); });
+  EXPECT_NE(walked.find("byte 259: an address 271"), std::string::npos) << walked;
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<uint8_t> image((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  const std::string recording = refusal_of([&] { RecordingFile::from_image(image, "image.h5"); });
+  EXPECT_NE(recording.find("image.h5: byte 48: a driver information block past the end"),
+            std::string::npos)
+      << recording;
 }
 
 TEST(CsvTable, AClassColumnAndGroupColumnsMakeRecordingsWithLabels) {

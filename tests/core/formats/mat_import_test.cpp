@@ -267,16 +267,19 @@ TEST(MatImport, DimensionsThatLieAreRefusedBeforeLibmatioReads) {
             std::string::npos);
 }
 
-TEST(MatImport, FilesThatAreNotV5OrV73AreRefused) {
+TEST(MatImport, FilesThatAreNotMatlab4V5OrV73AreRefused) {
   testing::TemporaryDirectory directory;
   const std::string path = directory.file("no.mat");
   testing::write_text(path, "short");
-  EXPECT_NE(refusal_of([&] { read_mat_variable(path, "x"); }).find("128-byte header"),
-            std::string::npos);
+  const std::string short_refusal = refusal_of([&] { read_mat_variable(path, "x"); });
+  EXPECT_NE(short_refusal.find("128-byte header (5 bytes), and its first bytes are no MATLAB 4 "
+                               "variable header"),
+            std::string::npos)
+      << short_refusal;
   std::vector<uint8_t> bytes = mat_bytes(kV6);
   bytes[126] = 'X';
   write_mat_bytes(path, bytes);
-  EXPECT_NE(refusal_of([&] { read_mat_variable(path, "samples"); }).find("v4 files"),
+  EXPECT_NE(refusal_of([&] { read_mat_variable(path, "samples"); }).find("nor a MATLAB 4 file"),
             std::string::npos);
   bytes = mat_bytes(kV7);
   bytes[125] = 3;

@@ -49,8 +49,19 @@ ImportedArray read_npz(const std::string& path, const std::string& name);
 ImportedArray read_json_array(const std::string& path, const std::string& key,
                               const std::string& member = "");
 // One dataset of an HDF5 file written by any program (numbers, or fixed or variable-length
-// strings).
+// strings). The file's structure is walked first, as a MATLAB v7.3 file's is (groups and object
+// headers within the file; formats/hdf5_structure.h), and the dataset named is checked against
+// what the walk found before libhdf5 reads it.
 ImportedArray read_hdf5_dataset(const std::string& path, const std::string& dataset);
+// A dataset of an HDF5 file: its path and how refusals describe it.
+struct Hdf5Dataset {
+  std::string path;       // "/sensors/pressure"
+  std::string described;  // "/sensors/pressure 6x4 float64" (printable)
+};
+// The file's readable datasets (numbers or strings), walked as read_hdf5_dataset walks them;
+// empty when the file's groups are of the new style (HDF5 1.8+ superblocks of version 2 or 3),
+// which the walk checks but does not list.
+std::vector<Hdf5Dataset> hdf5_datasets(const std::string& path);
 
 struct ArrayRecordingOptions {
   double rate_hz = 0.0;  // required

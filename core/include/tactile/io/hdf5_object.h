@@ -37,6 +37,12 @@ std::string last_error();
 // 1024, ...) or its fields do not fit.
 std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image);
 
+// A version 0 or 1 superblock's driver information block, when it names one, within the image:
+// libhdf5 1.10 allocates the size the block declares before it reads it (4 GB under the
+// fuzzer: tests/fuzz/regressions/hdf5/driver-info-size-makes-libhdf5-allocate-4-gb.h5). What
+// is wrong ("byte N: ..."), or nothing.
+std::optional<std::string> superblock_driver_info_problem(std::span<const uint8_t> image);
+
 // A file whose writer failed to write its last allocations (a full disk) is shorter than its
 // superblock declares, and HDF5 refuses to open it. Extends it (sparse: no room needed) to the
 // declared end; the missing bytes read as zeros, which the checksums of what they held refuse.
