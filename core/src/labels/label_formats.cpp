@@ -26,11 +26,12 @@ class OurCsvFormat : public LabelFormat {
              const std::function<const std::string&()>&) const override {
     return extension == ".csv";
   }
-  std::vector<Label> read(const std::string& path, const InteropImport&) const override {
+  std::vector<Label> read(const std::string& path, const InteropImport&,
+                          std::vector<std::string>&) const override {
     return read_labels_csv(path);
   }
-  std::string write(const std::vector<Label>& labels,
-                    const std::vector<std::string>&) const override {
+  std::string write(const std::vector<Label>& labels, const std::vector<std::string>&,
+                    const InteropExport&) const override {
     return labels_csv(labels);
   }
 };
@@ -45,11 +46,12 @@ class OurJsonFormat : public LabelFormat {
              const std::function<const std::string&()>& text) const override {
     return extension == ".json" && !is_label_studio_json(text());
   }
-  std::vector<Label> read(const std::string& path, const InteropImport&) const override {
+  std::vector<Label> read(const std::string& path, const InteropImport&,
+                          std::vector<std::string>&) const override {
     return read_labels_json(path);
   }
-  std::string write(const std::vector<Label>& labels,
-                    const std::vector<std::string>&) const override {
+  std::string write(const std::vector<Label>& labels, const std::vector<std::string>&,
+                    const InteropExport&) const override {
     return labels_json(labels);
   }
 };

@@ -36,18 +36,35 @@ struct LabelExport {
 // whether that fails.
 LabelExport export_label_file(const std::string& database, const std::string& out,
                               const std::string& format, const LabelFilter& filter = {},
-                              const std::vector<std::string>& vocabulary = {});
+                              const std::vector<std::string>& vocabulary = {},
+                              const InteropExport& interop = {});
+
+struct LabelImport {
+  size_t labels = 0;                  // added
+  std::vector<std::string> left_out;  // what the file holds besides labels, one line per kind
+};
 
 // The labels of a file of any label format (label_format_of), checked whole and added in one
 // transaction (the store is created when missing), with `options` (recording, tier and
-// annotator mappings) for the formats that take them. Returns how many.
-size_t import_label_file(const std::string& database, const std::string& file,
-                         const InteropImport& options = {});
+// annotator mappings) for the formats that take them. Label Studio's epoch milliseconds are
+// placed by the recording's start, read from RECORDING.h5 in options.recordings (default: the
+// store's folder) unless options.clock is given.
+LabelImport import_label_file(const std::string& database, const std::string& file,
+                              const InteropImport& options = {});
+// Where RECORDING.h5 puts its first sample: on its own clock, and as a Unix time when its
+// clock is a Unix clock (first sample at 1e9 s or later) or its metadata start_time is an ISO
+// 8601 date-time with a zone ("2020-06-15T19:52:31.951Z", "...+02:00"). found = false when
+// there is no such file.
+RecordingClock recording_clock(const std::string& folder, const std::string& recording);
+// An ISO 8601 date-time with a zone as a Unix time in milliseconds: "2020-06-15T19:52:31.951Z",
+// "2020-06-15 21:52:31+02:00"; none for any other text (a local time without zone).
+std::optional<double> unix_milliseconds(const std::string& text);
 // The tiers (ELAN) or annotators and models (Label Studio) of a file import_label_file reads
 // through `options`; format "" for a file of our own CSV or JSON, which has none to choose.
 InteropSources interop_sources(const std::string& file);
-// "imported N label(s) into DB", as `tactile labels import` prints it.
-std::string imported_labels_line(size_t labels, const std::string& database);
+// "imported N label(s) into DB", as `tactile labels import` prints it, and what was left out:
+// "; left out 1 result that is no time span: 1 choices from 'quality'".
+std::string imported_labels_line(const LabelImport& imported, const std::string& database);
 
 // Two lanes of a store compared (`tactile labels agreement`).
 struct AgreementQuery {
