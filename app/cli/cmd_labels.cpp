@@ -1,13 +1,14 @@
 // `tactile labels`: read a label database from the command line.
 //   tactile labels export DB --csv OUT | --json OUT | --eaf OUT | --label-studio OUT
-//                            [--recording R] [--source S] [--skin S]
+//                            [--recording R] [--source S] [--skin S] [--member NAME=ID|EMAIL]...
 //   tactile labels import DB FILE.csv|.json|.eaf [--recording R] [--tier T[=LANE]]...
-//                            [--annotator USER=LANE]...
+//                            [--annotator USER=LANE]... [--start-ms MS] [--recordings DIR]
 //   tactile labels list DB [--recording R] [--json]
 //   tactile labels classes DB SKIN
 // Every subcommand opens an existing database only: a mistyped path must not
 // leave a new empty database behind.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -34,8 +35,9 @@ namespace {
 struct LabelsOptions {
   std::string database, recording, source, skin, file;
   std::map<std::string, std::string> outputs;  // `export`: the file of each label format's flag
-  std::vector<std::string> tiers, annotators;
+  std::vector<std::string> tiers, annotators, members;
   std::string a, b, recordings;
+  std::string start_ms;
   double iou = 0.5;
   bool as_json = false;
 };
@@ -116,6 +118,16 @@ void run_export(const LabelsOptions& options) {
   }
   if (given != 1)
     throw Error(joined(flags, "/"), "give exactly one of " + joined(flags) + " with its file");
+  // --member NAME=ID|EMAIL: Label Studio's completed_by of an annotator.
+  InteropExport interop;
+  if (!options.members.empty() && chosen->name() != "Label Studio")
+    throw Error("--member", "only for --label-studio (Label Studio's project members)");
+  for (const std::string& member : options.members) {
+    const size_t equals = member.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == member.size())
+      throw Error("--member", "expected NAME=ID or NAME=EMAIL, got '" + member + "'");
+    interop.members[member.substr(0, equals)] = member.substr(equals + 1);
+  }
   std::vector<std::string> vocabulary;
   if (!options.skin.empty()) {
     const LabelStore store(options.database, LabelStore::OpenMode::kExisting);
@@ -124,8 +136,8 @@ void run_export(const LabelsOptions& options) {
       throw Error("--skin",
                   "no class vocabulary for skin '" + options.skin + "' in " + options.database);
   }
-  const LabelExport written =
-      export_label_file(options.database, out, chosen->name(), filter_from(options), vocabulary);
+  const LabelExport written = export_label_file(options.database, out, chosen->name(),
+                                                filter_from(options), vocabulary, interop);
   report_damage(options.database, written.damaged);
 }
 
@@ -156,6 +168,19 @@ void run_import(const LabelsOptions& options) {
       throw Error("--annotator", "expected USER=LANE, got '" + annotator + "'");
     interop.annotators[annotator.substr(0, equals)] = annotator.substr(equals + 1);
   }
+  if (!options.start_ms.empty()) {
+    double start = std::nan("");
+    size_t used = 0;
+    try {
+      start = std::stod(options.start_ms, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != options.start_ms.size() || !std::isfinite(start))
+      throw Error("--start-ms",
+                  "'" + options.start_ms + "' is not a Unix time in milliseconds (1592250751951)");
+    interop.start_ms = start;
+  }
+  interop.recordings = options.recordings;
   std::cout << imported_labels_line(import_label_file(options.database, options.file, interop),
                                     options.database)
             << "\n";
@@ -243,6 +268,10 @@ void register_labels(CLI::App& app) {
   export_command->add_option("--recording", options->recording, "Only this recording's labels");
   export_command->add_option("--source", options->source,
                              "Only labels from manual, segmenter, model or ground-truth");
+  export_command->add_option("--member", options->members,
+                             "Label Studio: NAME=ID or NAME=EMAIL, the project member whose "
+                             "completed_by an annotator's annotations get (unmapped: none); "
+                             "repeat");
   export_command->callback([options] { run_export(*options); });
 
   CLI::App* list_command = labels->add_subcommand("list", "Print labels as a table or as JSON");
@@ -270,8 +299,16 @@ void register_labels(CLI::App& app) {
                              "annotator, segmenter:METHOD, model:NAME); repeat; default every "
                              "top-level tier");
   import_command->add_option("--annotator", options->annotators,
-                             "Label Studio: USER=LANE, a user (completed_by id or email) or "
-                             "model_version mapped to a lane; repeat");
+                             "Label Studio: USER=LANE, a user (completed_by id or email; none: "
+                             "an annotation without completed_by) or model_version mapped to a "
+                             "lane; repeat");
+  import_command->add_option("--start-ms", options->start_ms,
+                             "Label Studio: the Unix time in milliseconds of the recording's "
+                             "first sample, for a TimeSeries whose time column holds dates "
+                             "(default: the recording's own start, else the task's first time)");
+  import_command->add_option("--recordings", options->recordings,
+                             "Label Studio: folder of RECORDING.h5 whose start places epoch "
+                             "milliseconds (default: the database's)");
   import_command->callback([options] { run_import(*options); });
 
   CLI::App* check_command = labels->add_subcommand(

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "cli_test_support.h"
+#include "tactile/io/hdf5_file.h"
 #include "tactile/labelstore/label_store.h"
 #include "test_paths.h"
 
@@ -124,7 +126,9 @@ TEST_F(LabelsInteropCommandTest, ImportMapsTiersAndUsersAndRefusesUnalignedAnnot
                 "label_studio.json' --annotator 1=ana --annotator 2=ben"),
             0)
       << result_.err;
-  EXPECT_EQ(result_.out, "imported 5 labels into " + other + "\n");
+  // The quality choice beside the labels is named, not dropped in silence.
+  EXPECT_EQ(result_.out, "imported 5 labels into " + other +
+                             "; left out what is no time span: 1 choices from 'quality'\n");
   EXPECT_EQ(store_content_of(other),
             "s07|0.120000|0.870000|all|stroke|ana|manual|1.000000|\n"
             "s07|0.140500|0.905000|all|stroke|ben|ground-truth|1.000000|\n"
@@ -154,6 +158,122 @@ TEST_F(LabelsInteropCommandTest, ALabelFileGivenToImportIsSentToLabelsImport) {
         << result_.err;
     EXPECT_FALSE(std::filesystem::exists(out));
   }
+}
+
+// Label Studio's import refuses a completed_by that is no member of the project: members are
+// mapped by name, the others have none, and our own import still knows every name.
+TEST_F(LabelsInteropCommandTest, LabelStudioExportGivesCompletedByToMappedMembersOnly) {
+  const std::string json = (directory_ / "tasks.json").string();
+  ASSERT_EQ(run("labels export '" + database_ + "' --label-studio '" + json +
+                "' --member ana=7 --member protocol=lead@lab.org"),
+            0)
+      << result_.err;
+  const nlohmann::json tasks = nlohmann::json::parse(test::read_text(json));
+  std::vector<std::string> written;
+  for (const nlohmann::json& task : tasks)
+    for (const nlohmann::json& annotation : task["annotations"])
+      written.push_back(annotation["tactile_annotator"].get<std::string>() + ":" +
+                        (annotation.contains("completed_by") ? annotation["completed_by"].dump()
+                                                             : std::string("-")));
+  std::sort(written.begin(), written.end());
+  EXPECT_EQ(written,
+            (std::vector<std::string>{"ana:7", "ben:-", "protocol:{\"email\":\"lead@lab.org\"}"}));
+  const std::string copy = (directory_ / "copy.db").string();
+  ASSERT_EQ(run("labels import '" + copy + "' '" + json + "'"), 0) << result_.err;
+  EXPECT_EQ(store_content_of(copy), store_content_of(database_));
+  EXPECT_EQ(run("labels export '" + database_ + "' --label-studio '" + json + "' --member anna=7"),
+            1);
+  EXPECT_NE(result_.err.find("--member: 'anna' is no annotator of the labels exported (ana, "
+                             "ben, protocol)"),
+            std::string::npos)
+      << result_.err;
+  EXPECT_EQ(run("labels export '" + database_ + "' --eaf '" + json +
+                "' --recording nao/s01 --member ana=7"),
+            1);
+  EXPECT_NE(result_.err.find("--member: only for --label-studio"), std::string::npos)
+      << result_.err;
+}
+
+// A task as Label Studio's own time-series example writes it: no completed_by, start and end
+// in epoch milliseconds (a time column of dates; Label Studio 1.x JSON export).
+TEST_F(LabelsInteropCommandTest, LabelStudioExampleTaskOfDatesImportsWithNoneAndTheStart) {
+  const std::string json = (directory_ / "example.json").string();
+  std::ofstream(json) << R"([{"id": 1, "data": {"csv_url": "/data/upload/1/a1b2c3d4-s07.csv"},
+    "annotations": [{"result": [
+      {"value": {"start": 1592250751951.8074, "end": 1592251071946.638, "instant": false,
+                 "timeserieslabels": ["Run"]},
+       "id": "S1DkU7FSku", "from_name": "label", "to_name": "ts", "type": "timeserieslabels"}]}],
+    "predictions": []}])";
+  const std::string copy = (directory_ / "copy.db").string();
+  EXPECT_EQ(run("labels import '" + copy + "' '" + json + "'"), 1);
+  EXPECT_NE(result_.err.find("task 1 annotation 1: no completed_by: map it with --annotator "
+                             "none=NAME"),
+            std::string::npos)
+      << result_.err;
+  EXPECT_EQ(run("labels import '" + copy + "' '" + json + "' --annotator none=ana"), 1);
+  EXPECT_NE(result_.err.find("result 'S1DkU7FSku': start 1592250751951.8074 is in epoch "
+                             "milliseconds"),
+            std::string::npos)
+      << result_.err;
+  EXPECT_NE(result_.err.find("(no " + (directory_ / "s07.h5").string()), std::string::npos)
+      << result_.err;
+  EXPECT_NE(result_.err.find("give --start-ms"), std::string::npos) << result_.err;
+  EXPECT_FALSE(std::filesystem::exists(copy));
+  ASSERT_EQ(run("labels import '" + copy + "' '" + json +
+                "' --annotator none=ana --start-ms 1592250751000"),
+            0)
+      << result_.err;
+  EXPECT_EQ(store_content_of(copy), "s07|0.951807|320.946638|all|Run|ana|manual|1.000000|\n");
+  // With the recording beside the store on a Unix clock, its start is known.
+  Recording recording;
+  recording.id = "s07";
+  recording.layout_id = "grid:1x1";
+  Stream stream;
+  stream.name = "skin";
+  stream.rate_hz = 10.0;
+  stream.start_time = 1592250750.0;
+  stream.channels = {"c0"};
+  stream.units = {""};
+  stream.samples = SampleMatrix::Zero(3300, 1);  // 330 s: the labels must lie inside it
+  recording.streams.push_back(std::move(stream));
+  write_recording((directory_ / "s07.h5").string(), recording);
+  const std::string other = (directory_ / "other.db").string();
+  ASSERT_EQ(run("labels import '" + other + "' '" + json + "' --annotator none=ground-truth"), 0)
+      << result_.err;
+  EXPECT_EQ(store_content_of(other),
+            "s07|1592250751.951807|1592251071.946638|all|Run||ground-truth|1.000000|\n");
+  EXPECT_EQ(run("labels import '" + other + "' '" + json + "' --start-ms soon"), 1);
+  EXPECT_NE(result_.err.find("--start-ms: 'soon' is not a Unix time in milliseconds"),
+            std::string::npos)
+      << result_.err;
+}
+
+// An audio project's regions (Label Studio 1.x JSON export, <Labels> over <Audio>) are spans in
+// seconds; a project of image boxes only holds no label and is refused by what it holds.
+TEST_F(LabelsInteropCommandTest, LabelStudioAudioRegionsImportAndBoxesAloneAreRefused) {
+  const std::string audio = (directory_ / "audio.json").string();
+  std::ofstream(audio) << R"([{"id": 7, "data": {"audio": "/data/upload/2/0f1e2d3c-s09.wav"},
+    "annotations": [{"id": 31, "completed_by": 1, "result": [
+      {"value": {"start": 1.25, "end": 3.75, "channel": 0, "labels": ["stroke"]},
+       "id": "wavesurfer_4qkd", "from_name": "label", "to_name": "audio", "type": "labels"},
+      {"value": {"choices": ["clean"]}, "id": "q1", "from_name": "quality", "to_name": "audio",
+       "type": "choices"}]}]}])";
+  const std::string copy = (directory_ / "copy.db").string();
+  ASSERT_EQ(run("labels import '" + copy + "' '" + audio + "' --annotator 1=ana"), 0)
+      << result_.err;
+  EXPECT_EQ(result_.out, "imported 1 label into " + copy +
+                             "; left out what is no time span: 1 choices from 'quality'\n");
+  EXPECT_EQ(store_content_of(copy), "s09|1.250000|3.750000|all|stroke|ana|manual|1.000000|\n");
+  const std::string boxes = (directory_ / "boxes.json").string();
+  std::ofstream(boxes) << R"([{"id": 8, "data": {"image": "/data/upload/2/frame.png"},
+    "annotations": [{"id": 32, "completed_by": 1, "result": [
+      {"value": {"x": 10, "y": 20, "width": 30, "height": 40, "rectanglelabels": ["hand"]},
+       "id": "b1", "from_name": "box", "to_name": "frame", "type": "rectanglelabels"}]}]}])";
+  EXPECT_EQ(run("labels import '" + copy + "' '" + boxes + "'"), 1);
+  EXPECT_NE(result_.err.find("boxes.json: no time spans, only 1 result of other controls (1 "
+                             "rectanglelabels from 'box')"),
+            std::string::npos)
+      << result_.err;
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <utility>
 
@@ -192,6 +194,7 @@ void open_labels_import_dialog(WorkbenchState& state, const std::string& file) {
   dialog.failure.clear();
   dialog.choices.clear();
   dialog.recording = {};
+  dialog.start_ms = {};
   // Read on a worker: the file may be large or on a disk that hangs.
   JobExtras quiet;
   quiet.logged = false;
@@ -236,6 +239,17 @@ void draw_labels_import_dialog(WorkbenchState& state) {
                              dialog.recording.size());
     remember_item(state, "input:import-labels/--recording",
                   "The recording the labels belong to (empty: the one the file names)");
+    if (!elan) {
+      ImGui::AlignTextToFramePadding();
+      ImGui::TextUnformatted("--start-ms");
+      ImGui::SameLine(150);
+      ImGui::SetNextItemWidth(280);
+      ImGui::InputTextWithHint("##start-ms", "default: the recording's own start",
+                               dialog.start_ms.data(), dialog.start_ms.size());
+      remember_item(state, "input:import-labels/--start-ms",
+                    "A TimeSeries of dates gives epoch milliseconds: the Unix time in "
+                    "milliseconds of the recording's first sample");
+    }
     ImGui::TextDisabled(elan ? "Each chosen tier goes to the lane given (--tier NAME=LANE):"
                              : "Each annotator and model goes to the lane given (--annotator):");
     const ImGuiTableFlags flags =
@@ -282,8 +296,15 @@ void draw_labels_import_dialog(WorkbenchState& state) {
       if (elan && dialog.choices[k].chosen) options.tiers[source.name] = lane;
       if (!elan && lane != source.lane) options.annotators[source.name] = lane;
     }
+    const std::string start_ms = trimmed_field(dialog.start_ms.data());
+    char* end = nullptr;
+    const double start = start_ms.empty() ? 0.0 : std::strtod(start_ms.c_str(), &end);
+    if (!start_ms.empty() && end && *end == '\0' && std::isfinite(start)) options.start_ms = start;
     if (elan && options.tiers.empty()) {
       state.error = "import labels: no tier chosen";
+    } else if (!start_ms.empty() && !options.start_ms) {
+      state.error = "import labels: --start-ms: '" + start_ms +
+                    "' is not a Unix time in milliseconds (1592250751951)";
     } else {
       start_labels_import(state, dialog.file, options);
       dialog.open = false;

@@ -173,10 +173,14 @@ void start_labels_import(WorkbenchState& state, const std::string& file,
                          const InteropImport& options) {
   if (!state.document) return;
   const std::string database = label_store_path(state);
-  start_file_job(state, "import labels", [database, file, options](JobProgress& progress) {
+  // Label Studio's epoch milliseconds: the open recording's folder holds its start.
+  InteropImport reading = options;
+  if (reading.recordings.empty())
+    reading.recordings = fs::path(state.document->path).parent_path().string();
+  start_file_job(state, "import labels", [database, file, reading](JobProgress& progress) {
     progress.report(0.0, "reading " + file);
     FileOutcome outcome;
-    outcome.notice = imported_labels_line(import_label_file(database, file, options), database);
+    outcome.notice = imported_labels_line(import_label_file(database, file, reading), database);
     outcome.reload_labels = true;
     return outcome;
   });

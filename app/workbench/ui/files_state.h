@@ -72,6 +72,7 @@ struct LabelsImportDialog {
   };
   std::vector<Choice> choices;  // one per source
   std::array<char, 256> recording{};
+  std::array<char, 32> start_ms{};  // Label Studio: --start-ms
 };
 
 // File > Export features...: `tactile features` for the open recording or its workspace.

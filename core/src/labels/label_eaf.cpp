@@ -485,15 +485,16 @@ class ElanFormat : public LabelFormat {
              const std::function<const std::string&()>&) const override {
     return extension == ".eaf";
   }
-  std::vector<Label> read(const std::string& path, const InteropImport& options) const override {
+  std::vector<Label> read(const std::string& path, const InteropImport& options,
+                          std::vector<std::string>&) const override {
     return parse_eaf(read_interop_text(path), path, options);
   }
   InteropSources sources(const std::string& path) const override {
     return eaf_sources(read_interop_text(path), path);
   }
   // One recording: refused naming --recording and the recordings when the labels hold several.
-  std::string write(const std::vector<Label>& labels,
-                    const std::vector<std::string>& vocabulary) const override {
+  std::string write(const std::vector<Label>& labels, const std::vector<std::string>& vocabulary,
+                    const InteropExport&) const override {
     std::vector<std::string> recordings;
     for (const Label& label : labels)
       if (std::find(recordings.begin(), recordings.end(), label.recording) == recordings.end())

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -52,7 +53,75 @@ std::vector<Label> labels_of_lane(const LabelStore& store, const std::string& re
   return labels;
 }
 
+// days since 1970-01-01 of a date of the proleptic Gregorian calendar (Howard Hinnant's
+// days_from_civil).
+int64_t days_from_civil(int64_t year, int64_t month, int64_t day) {
+  year -= month <= 2;
+  const int64_t era = (year >= 0 ? year : year - 399) / 400;
+  const int64_t year_of_era = year - era * 400;
+  const int64_t day_of_year = (153 * (month + (month > 2 ? -3 : 9)) + 2) / 5 + day - 1;
+  const int64_t day_of_era = year_of_era * 365 + year_of_era / 4 - year_of_era / 100 + day_of_year;
+  return era * 146097 + day_of_era - 719468;
+}
+
 }  // namespace
+
+std::optional<double> unix_milliseconds(const std::string& text) {
+  // YYYY-MM-DD(T| )hh:mm:ss[.fraction](Z|+hh:mm|-hh:mm|+hhmm|-hhmm)
+  size_t at = 0;
+  auto digits = [&](size_t count, int64_t& value) {
+    if (at + count > text.size()) return false;
+    value = 0;
+    for (size_t k = 0; k < count; ++k) {
+      const char c = text[at + k];
+      if (c < '0' || c > '9') return false;
+      value = value * 10 + (c - '0');
+    }
+    at += count;
+    return true;
+  };
+  auto literal = [&](const char* options) {
+    if (at >= text.size() || text[at] == '\0' || !std::strchr(options, text[at])) return false;
+    ++at;
+    return true;
+  };
+  int64_t year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  if (!digits(4, year) || !literal("-") || !digits(2, month) || !literal("-") || !digits(2, day) ||
+      !literal("T ") || !digits(2, hour) || !literal(":") || !digits(2, minute) || !literal(":") ||
+      !digits(2, second))
+    return std::nullopt;
+  double fraction = 0.0;
+  if (at < text.size() && (text[at] == '.' || text[at] == ',')) {
+    ++at;
+    double scale = 0.1;
+    const size_t first = at;
+    while (at < text.size() && text[at] >= '0' && text[at] <= '9') {
+      fraction += scale * (text[at] - '0');
+      scale /= 10.0;
+      ++at;
+    }
+    if (at == first) return std::nullopt;
+  }
+  int64_t offset_minutes = 0;
+  if (literal("Zz")) {
+  } else if (at < text.size() && (text[at] == '+' || text[at] == '-')) {
+    const int sign = text[at] == '-' ? -1 : 1;
+    ++at;
+    int64_t hours = 0, minutes = 0;
+    if (!digits(2, hours)) return std::nullopt;
+    if (at < text.size() && text[at] == ':') ++at;
+    if (!digits(2, minutes) || hours > 23 || minutes > 59) return std::nullopt;
+    offset_minutes = sign * (hours * 60 + minutes);
+  } else {
+    return std::nullopt;  // no zone: a local time of somewhere
+  }
+  if (at != text.size()) return std::nullopt;
+  if (month < 1 || month > 12 || day < 1 || day > 31 || hour > 23 || minute > 59 || second > 60)
+    return std::nullopt;
+  const int64_t seconds = days_from_civil(year, month, day) * 86400 + hour * 3600 + minute * 60 +
+                          second - offset_minutes * 60;
+  return static_cast<double>(seconds) * 1000.0 + fraction * 1000.0;
+}
 
 LabelSource label_source_option(const std::string& text, const std::string& option) {
   try {
@@ -71,7 +140,8 @@ std::vector<std::string> damage_lines(const LabelStore& store) {
 
 LabelExport export_label_file(const std::string& database, const std::string& out,
                               const std::string& format, const LabelFilter& filter,
-                              const std::vector<std::string>& vocabulary) {
+                              const std::vector<std::string>& vocabulary,
+                              const InteropExport& interop) {
   const LabelFormat* chosen = label_format_named(format);
   if (!chosen) {
     std::vector<std::string> names;
@@ -80,7 +150,8 @@ LabelExport export_label_file(const std::string& database, const std::string& ou
   }
   const LabelStore store(database, LabelStore::OpenMode::kExisting);
   const std::vector<Label> labels = store.list(filter);
-  write_file_atomically(out, chosen->write(labels, vocabulary), chosen->name() + " export");
+  write_file_atomically(out, chosen->write(labels, vocabulary, interop),
+                        chosen->name() + " export");
   LabelExport written;
   written.labels = labels.size();
   written.damaged = damage_lines(store);
@@ -89,6 +160,40 @@ LabelExport export_label_file(const std::string& database, const std::string& ou
 
 InteropSources interop_sources(const std::string& file) {
   return label_format_of(file).sources(file);
+}
+
+RecordingClock recording_clock(const std::string& folder, const std::string& recording) {
+  RecordingClock clock;
+  const std::filesystem::path file = std::filesystem::path(folder) / (recording + ".h5");
+  clock.file = file.string();
+  std::error_code error;
+  if (recording.empty() || !std::filesystem::exists(file, error)) return clock;
+  const RecordingFile opened(clock.file);
+  clock.found = true;
+  if (opened.streams().empty()) {
+    clock.missing = "has no stream";
+    return clock;
+  }
+  // The first stream's first sample, as `labels agreement` takes a recording's span.
+  const StreamInfo& stream = opened.streams().front();
+  clock.first_sample = stream.has_timestamps ? stream.first_timestamp : stream.start_time;
+  // A clock at 1e9 s or later (2001-09-09) counts from 1970: nothing else runs that long.
+  if (clock.first_sample >= 1e9) {
+    clock.start_ms = clock.first_sample * 1000.0;
+    return clock;
+  }
+  const auto start = opened.metadata().find("start_time");
+  if (start == opened.metadata().end()) {
+    clock.missing = "starts at " + shortest_text(clock.first_sample) +
+                    " s on a clock of its own and has no start_time";
+    return clock;
+  }
+  clock.start_ms = unix_milliseconds(start->second);
+  if (!clock.start_ms)
+    clock.missing = "has start_time '" + start->second +
+                    "', not an ISO 8601 date-time with a time zone (EDF gives the recorder's "
+                    "local time, which names none)";
+  return clock;
 }
 
 std::map<std::string, RecordingSpan> recording_spans(const std::vector<Label>& labels,
@@ -121,11 +226,19 @@ bool same_label(const Label& held, const Label& label) {
 
 }  // namespace
 
-LabelFileImport import_label_file(const std::string& database, const std::string& file,
-                                  const InteropImport& options) {
+LabelImport import_label_file(const std::string& database, const std::string& file,
+                              const InteropImport& options) {
+  const std::string folder = !options.recordings.empty()
+                                 ? options.recordings
+                                 : std::filesystem::path(database).parent_path().string();
+  InteropImport reading = options;
+  if (!reading.clock)
+    reading.clock = [folder](const std::string& recording) {
+      return recording_clock(folder, recording);
+    };
   // All or nothing: the file is read and checked whole, then added in one transaction.
-  const std::vector<Label> labels = label_format_of(file).read(file, options);
-  const std::string folder = std::filesystem::path(database).parent_path().string();
+  LabelImport imported;
+  const std::vector<Label> labels = label_format_of(file).read(file, reading, imported.left_out);
   const std::map<std::string, RecordingSpan> spans = recording_spans(labels, folder);
   for (const Label& label : labels) {
     const auto span = spans.find(label.recording);
@@ -137,7 +250,6 @@ LabelFileImport import_label_file(const std::string& database, const std::string
   }
   LabelStore store(database);
   std::map<std::string, std::vector<Label>> held;
-  LabelFileImport imported;
   std::vector<Label> added;
   for (const Label& label : labels) {
     if (!held.count(label.recording)) {
@@ -157,11 +269,13 @@ LabelFileImport import_label_file(const std::string& database, const std::string
   return imported;
 }
 
-std::string imported_labels_line(const LabelFileImport& imported, const std::string& database) {
+std::string imported_labels_line(const LabelImport& imported, const std::string& database) {
   std::string line = "imported " + std::to_string(imported.added) +
                      (imported.added == 1 ? " label" : " labels") + " into " + database;
   if (imported.already > 0)
     line += "; " + std::to_string(imported.already) + " already there, not added again";
+  if (!imported.left_out.empty())
+    line += "; left out what is no time span: " + joined(imported.left_out);
   return line;
 }
 

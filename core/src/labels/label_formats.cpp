@@ -27,11 +27,12 @@ class OurCsvFormat : public LabelFormat {
     return extension == ".csv";
   }
   bool reads_any_of_its_extension() const override { return true; }
-  std::vector<Label> read(const std::string& path, const InteropImport&) const override {
+  std::vector<Label> read(const std::string& path, const InteropImport&,
+                          std::vector<std::string>&) const override {
     return read_labels_csv(path);
   }
-  std::string write(const std::vector<Label>& labels,
-                    const std::vector<std::string>&) const override {
+  std::string write(const std::vector<Label>& labels, const std::vector<std::string>&,
+                    const InteropExport&) const override {
     return labels_csv(labels);
   }
 };
@@ -47,11 +48,12 @@ class OurJsonFormat : public LabelFormat {
     return extension == ".json" && !is_label_studio_json(text());
   }
   bool reads_any_of_its_extension() const override { return true; }
-  std::vector<Label> read(const std::string& path, const InteropImport&) const override {
+  std::vector<Label> read(const std::string& path, const InteropImport&,
+                          std::vector<std::string>&) const override {
     return read_labels_json(path);
   }
-  std::string write(const std::vector<Label>& labels,
-                    const std::vector<std::string>&) const override {
+  std::string write(const std::vector<Label>& labels, const std::vector<std::string>&,
+                    const InteropExport&) const override {
     return labels_json(labels);
   }
 };

@@ -48,10 +48,12 @@ TEST(LabelFormats, ReadBackWhatTheyWriteAndTellTheTwoJsonShapesApart) {
     SCOPED_TRACE(format->name());
     const std::string path =
         folder.file("labels-" + std::to_string(format->flag().size()) + format->extension());
-    std::ofstream(path, std::ios::binary) << format->write(two_labels(), {"tap", "stroke"});
+    std::ofstream(path, std::ios::binary) << format->write(two_labels(), {"tap", "stroke"}, {});
     // The file is recognised as this format, and its labels come back.
     EXPECT_EQ(&label_format_of(path), format);
-    const std::vector<Label> read = format->read(path, {});
+    std::vector<std::string> left_out;
+    const std::vector<Label> read = format->read(path, {}, left_out);
+    EXPECT_TRUE(left_out.empty());
     ASSERT_EQ(read.size(), 2u);
     EXPECT_EQ(read[0].class_name, "tap");
     EXPECT_EQ(read[1].class_name, "stroke");
@@ -61,7 +63,7 @@ TEST(LabelFormats, ReadBackWhatTheyWriteAndTellTheTwoJsonShapesApart) {
   std::vector<Label> labels = two_labels();
   labels[1].recording = "r2";
   EXPECT_NE(test::refusal_of([&] {
-              label_format_named("ELAN")->write(labels, {});
+              label_format_named("ELAN")->write(labels, {}, {});
             }).find("--recording: one .eaf holds one recording"),
             std::string::npos);
   std::ofstream(folder.file("notes.txt")) << "x";

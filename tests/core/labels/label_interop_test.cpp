@@ -5,6 +5,8 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -327,12 +329,290 @@ TEST_F(LabelStoreTest, LabelStudioMalformedResultsAreRefusedNamingTaskAndId) {
   EXPECT_FALSE(is_label_studio_json(R"({"labels": []})"));
 }
 
+//---- Label Studio as it writes its own files
+
+// A task of Label Studio 1.x's JSON export of a TimeSeries project whose time column holds
+// dates: the results are those of Label Studio's time-series documentation ("Output format
+// example" of the Time Series Labeling template), start and end in epoch milliseconds, and
+// like its example tasks the annotation has no completed_by. The CSV's name is an upload's.
+std::string studio_dates_task(
+    const std::string& annotation_keys = "",
+    const std::string& data = R"({"csv_url": "/data/upload/1/a1b2c3d4-s07.csv"})") {
+  return R"([{"id": 1, "data": )" + data + R"(, "annotations": [{)" + annotation_keys +
+         R"("result": [
+    {"value": {"start": 1592250751951.8074, "end": 1592251071946.638, "instant": false,
+               "timeserieslabels": ["Run"]},
+     "id": "S1DkU7FSku", "from_name": "label", "to_name": "ts", "type": "timeserieslabels"},
+    {"value": {"start": 1592251231975.601, "end": 1592251461993.5276, "instant": false,
+               "timeserieslabels": ["Run"]},
+     "id": "XvagJo87mr", "from_name": "label", "to_name": "ts", "type": "timeserieslabels"}]}],
+    "predictions": []}])";
+}
+
+TEST_F(LabelStoreTest, LabelStudioTaskWithoutCompletedByIsRefusedUntilNoneIsMapped) {
+  EXPECT_EQ(test::refusal_of([] {
+              InteropImport known;
+              known.start_ms = 1592250751000.0;
+              parse_label_studio(studio_dates_task(), "ls.json", known);
+            }),
+            "ls.json task 1 annotation 1: no completed_by: map it with --annotator none=NAME (a "
+            "name, or a lane: ground-truth, model:NAME, ...)");
+  InteropImport options;
+  options.start_ms = 1592250751000.0;
+  options.annotators = {{"none", "ana"}};
+  std::vector<Label> labels = parse_label_studio(studio_dates_task(), "ls.json", options);
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_EQ(labels[0].annotator, "ana");
+  EXPECT_EQ(labels[0].source, LabelSource::kManual);
+  EXPECT_EQ(labels[0].recording, "s07");
+  // A lane: the ground truth (which needs no person).
+  options.annotators = {{"none", "ground-truth"}};
+  labels = parse_label_studio(studio_dates_task(), "ls.json", options);
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_EQ(labels[1].source, LabelSource::kGroundTruth);
+  EXPECT_EQ(labels[1].annotator, "");
+  // "none" maps only annotations that name nobody: a user stays who it is.
+  options.annotators = {{"none", "ana"}};
+  labels = parse_label_studio(studio_dates_task(R"("completed_by": 4, )"), "ls.json", options);
+  EXPECT_EQ(labels[0].annotator, "label-studio:4");
+  // Listed for the workbench's dialog as "none", with no lane until one is typed.
+  const InteropSources sources = label_studio_sources(studio_dates_task(), "ls.json");
+  ASSERT_EQ(sources.sources.size(), 1u);
+  EXPECT_EQ(sources.sources[0].name, "none");
+  EXPECT_EQ(sources.sources[0].lane, "");
+  EXPECT_EQ(sources.sources[0].labels, 2u);
+}
+
+TEST_F(LabelStoreTest, LabelStudioEpochMillisecondsArePlacedOnTheRecordingsClock) {
+  InteropImport options;
+  options.annotators = {{"none", "ana"}};
+  // Nothing says when the recording started: refused naming the label and what to give.
+  EXPECT_EQ(test::refusal_of([&] { parse_label_studio(studio_dates_task(), "ls.json", options); }),
+            "ls.json task 1 annotation 1 result 'S1DkU7FSku': start 1592250751951.8074 is in "
+            "epoch milliseconds (a TimeSeries whose time column holds dates), and the start of "
+            "recording 's07' is not known (no recording file was looked for, and the task's "
+            "data holds no column of epoch milliseconds): give --start-ms, the Unix time in "
+            "milliseconds of its first sample");
+  // --start-ms: the first sample's Unix time; a recording of its own clock starts at 0.
+  options.start_ms = 1592250751000.0;
+  std::vector<Label> labels = parse_label_studio(studio_dates_task(), "ls.json", options);
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_NEAR(labels[0].t0, 0.9518074, 1e-6);
+  EXPECT_NEAR(labels[0].t1, 320.946638, 1e-6);
+  EXPECT_NEAR(labels[1].t0, 480.975601, 1e-6);
+  EXPECT_NEAR(labels[1].t1, 710.9935276, 1e-6);
+  // The recording's own start: its first sample at 2.5 s on its clock is 1592250750000 ms.
+  options.start_ms.reset();
+  options.clock = [](const std::string& recording) {
+    RecordingClock clock;
+    clock.found = recording == "s07";
+    clock.first_sample = 2.5;
+    clock.start_ms = 1592250750000.0;
+    return clock;
+  };
+  labels = parse_label_studio(studio_dates_task(), "ls.json", options);
+  EXPECT_NEAR(labels[0].t0, 4.4518074, 1e-6);
+  // --start-ms goes before it.
+  options.start_ms = 1592250751000.0;
+  labels = parse_label_studio(studio_dates_task(), "ls.json", options);
+  EXPECT_NEAR(labels[0].t0, 3.4518074, 1e-6);
+  // The task's first time value, when the task holds its series (valueType="json").
+  options.start_ms.reset();
+  options.clock = [](const std::string&) {
+    RecordingClock clock;
+    clock.found = true;
+    clock.file = "ws/s07.h5";
+    clock.missing = "starts at 0 s on a clock of its own and has no start_time";
+    return clock;
+  };
+  labels = parse_label_studio(
+      studio_dates_task("", R"({"recording": "s07", "ts": {"time": [1592250750951.8074,
+          1592250750961.8074], "c0": [0.5, 0.25]}})"),
+      "ls.json", options);
+  EXPECT_NEAR(labels[0].t0, 1.0, 1e-6);
+  EXPECT_NEAR(labels[1].t1, 711.0417202, 1e-6);
+  // Without it, the recording file's reason is named.
+  EXPECT_NE(test::refusal_of([&] { parse_label_studio(studio_dates_task(), "ls.json", options); })
+                .find("(ws/s07.h5 starts at 0 s on a clock of its own and has no start_time, and "
+                      "the task's data holds no column of epoch milliseconds)"),
+            std::string::npos);
+  // One end in milliseconds and the other not: refused.
+  const std::string task =
+      R"([{"id": 2, "data": {"recording": "r"}, "annotations": [{"completed_by": 1, "result": [
+      {"id": "m", "type": "timeserieslabels", "value": {"start": 1592250751951.8, "end": 3,
+      "timeserieslabels": ["pat"]}}]}]}])";
+  EXPECT_EQ(test::refusal_of([&] { parse_label_studio(task, "ls.json", options); }),
+            "ls.json task 2 annotation 1 result 'm': start 1592250751951.8 and end 3 are not "
+            "both epoch milliseconds");
+}
+
+TEST_F(LabelStoreTest, RecordingClockIsTheRecordingsUnixClockOrItsStartTimeWithAZone) {
+  auto write = [&](const std::string& id, double start_time, const Metadata& metadata) {
+    Recording recording;
+    recording.id = id;
+    recording.layout_id = "grid:1x1";
+    recording.metadata = metadata;
+    Stream stream;
+    stream.name = "skin";
+    stream.rate_hz = 10.0;
+    stream.start_time = start_time;
+    stream.channels = {"c0"};
+    stream.units = {""};
+    stream.samples = SampleMatrix::Zero(8000, 1);  // 800 s: the labels lie inside it
+    recording.streams.push_back(std::move(stream));
+    write_recording((directory_ / (id + ".h5")).string(), recording);
+  };
+  const std::string folder = directory_.string();
+  // A recording on a Unix clock (a sender's stamps): its first sample is its start.
+  write("unix", 1592250750.5, {});
+  RecordingClock clock = recording_clock(folder, "unix");
+  EXPECT_TRUE(clock.found);
+  EXPECT_EQ(clock.first_sample, 1592250750.5);
+  ASSERT_TRUE(clock.start_ms);
+  EXPECT_EQ(*clock.start_ms, 1592250750500.0);
+  // Its own clock from 0, and a start_time with a zone.
+  write("zoned", 0.0, {{"start_time", "2020-06-15T21:52:30.5+02:00"}});
+  clock = recording_clock(folder, "zoned");
+  ASSERT_TRUE(clock.start_ms);
+  EXPECT_EQ(*clock.start_ms, 1592250750500.0);
+  EXPECT_EQ(clock.first_sample, 0.0);
+  // EDF's start_time is the recorder's local time: no zone, so no Unix time.
+  write("edf", 0.0, {{"start_time", "2020-06-15T19:52:30"}});
+  clock = recording_clock(folder, "edf");
+  EXPECT_TRUE(clock.found);
+  EXPECT_FALSE(clock.start_ms);
+  EXPECT_EQ(clock.missing,
+            "has start_time '2020-06-15T19:52:30', not an ISO 8601 date-time with a time zone "
+            "(EDF gives the recorder's local time, which names none)");
+  write("own", 3.0, {});
+  EXPECT_EQ(recording_clock(folder, "own").missing,
+            "starts at 3 s on a clock of its own and has no start_time");
+  EXPECT_FALSE(recording_clock(folder, "absent").found);
+  EXPECT_EQ(recording_clock(folder, "absent").file, (directory_ / "absent.h5").string());
+  EXPECT_EQ(unix_milliseconds("2020-06-15T19:52:31.951Z"), 1592250751951.0);
+  EXPECT_EQ(unix_milliseconds("2020-06-15 14:52:31-0500"), 1592250751000.0);
+  EXPECT_EQ(unix_milliseconds("1969-12-31T23:59:59Z"), -1000.0);
+  EXPECT_FALSE(unix_milliseconds("2020-06-15T19:52:31"));
+  EXPECT_FALSE(unix_milliseconds("2020-13-15T19:52:31Z"));
+  EXPECT_FALSE(unix_milliseconds("15.06.2020 19:52:31 UTC"));
+  // import_label_file looks in the store's folder: the recording's Unix clock places them.
+  const std::string file = (directory_ / "tasks.json").string();
+  std::ofstream(file) << studio_dates_task("",
+                                           R"({"csv_url": "/data/upload/1/a1b2c3d4-unix.csv"})");
+  InteropImport options;
+  options.annotators = {{"none", "ana"}};
+  const LabelImport imported = import_label_file(path_, file, options);
+  EXPECT_EQ(imported.added, 2u);
+  EXPECT_TRUE(imported.left_out.empty());
+  const std::vector<Label> stored = LabelStore(path_).list();
+  ASSERT_EQ(stored.size(), 2u);
+  EXPECT_EQ(stored[0].recording, "unix");
+  EXPECT_NEAR(stored[0].t0, 1592250751.9518074, 1e-6);
+}
+
+// Label Studio 1.x's JSON export of an audio project (<Labels> over <Audio>): each region a
+// "labels" result in seconds with its channel; beside it a Choices control, a text's named
+// entity (a "labels" result over <Text>: character offsets with the text) and an image box.
+TEST_F(LabelStoreTest, LabelStudioAudioRegionsAreSpansAndOtherControlsAreCountedByKind) {
+  const std::string audio = R"([{"id": 7, "data": {"audio": "/data/upload/2/0f1e2d3c-s09.wav"},
+    "annotations": [{"id": 31, "completed_by": 1, "ground_truth": false, "was_cancelled": false,
+      "result": [
+        {"value": {"start": 1.225, "end": 3.7, "channel": 0, "labels": ["stroke"]},
+         "id": "wavesurfer_4qkd", "from_name": "label", "to_name": "audio", "type": "labels",
+         "origin": "manual"},
+        {"value": {"start": 5.5, "end": 6.125, "channel": 0, "labels": ["pat"]},
+         "id": "wavesurfer_9xa1", "from_name": "label", "to_name": "audio", "type": "labels",
+         "origin": "manual", "meta": {"text": ["soft"]}},
+        {"value": {"choices": ["clean"]}, "id": "q1", "from_name": "quality",
+         "to_name": "audio", "type": "choices", "origin": "manual"},
+        {"value": {"choices": ["loud"]}, "id": "q2", "from_name": "quality",
+         "to_name": "audio", "type": "choices", "origin": "manual"},
+        {"value": {"start": 0, "end": 5, "text": "Touch", "labels": ["verb"]}, "id": "t1",
+         "from_name": "ner", "to_name": "transcript", "type": "labels", "origin": "manual"},
+        {"value": {"x": 10, "y": 20, "width": 30, "height": 40, "rotation": 0,
+                   "rectanglelabels": ["hand"]}, "id": "b1", "from_name": "box",
+         "to_name": "frame", "type": "rectanglelabels", "origin": "manual"}]}],
+    "predictions": []}])";
+  std::vector<std::string> left_out;
+  const std::vector<Label> labels = parse_label_studio(audio, "audio.json", {}, &left_out);
+  ASSERT_EQ(labels.size(), 2u);
+  EXPECT_EQ(labels[0].recording, "s09");
+  EXPECT_EQ(labels[0].class_name, "stroke");
+  EXPECT_EQ(labels[0].t0, 1.225);
+  EXPECT_EQ(labels[0].t1, 3.7);
+  EXPECT_EQ(labels[0].annotator, "label-studio:1");
+  EXPECT_EQ(labels[1].class_name, "pat");
+  EXPECT_EQ(labels[1].note, "soft");
+  EXPECT_EQ(left_out,
+            (std::vector<std::string>{"2 choices from 'quality'",
+                                      "1 labels from 'ner' (spans of a text, not of time)",
+                                      "1 rectanglelabels from 'box'"}));
+  // Audio regions count as the annotator's labels in the dialog's list.
+  const InteropSources sources = label_studio_sources(audio, "audio.json");
+  ASSERT_EQ(sources.sources.size(), 1u);
+  EXPECT_EQ(sources.sources[0].labels, 2u);
+  // A file of other controls only is refused, not read as "0 labels".
+  const std::string boxes = R"([{"id": 8, "data": {"image": "/data/upload/2/frame.png"},
+    "annotations": [{"id": 32, "completed_by": 1, "result": [
+        {"value": {"x": 10, "y": 20, "width": 30, "height": 40,
+                   "rectanglelabels": ["hand"]}, "id": "b1", "from_name": "box",
+         "to_name": "frame", "type": "rectanglelabels"},
+        {"value": {"ranges": [{"start": 3, "end": 40}], "timelinelabels": ["touch"]},
+         "id": "v1", "from_name": "timeline", "to_name": "video", "type": "timelinelabels"}]}]}])";
+  EXPECT_EQ(test::refusal_of([&] { parse_label_studio(boxes, "boxes.json"); }),
+            "boxes.json: no time spans, only 2 results of other controls (1 rectanglelabels "
+            "from 'box', 1 timelinelabels from 'timeline' (video frames, not seconds)): a label "
+            "is a TimeSeriesLabels span or an Audio Labels region");
+  // An audio region's time is seconds: one past 1e11 s is no audio's.
+  const std::string far = R"([{"id": 9, "data": {"audio": "a.wav"}, "annotations": [{
+      "completed_by": 1, "result": [{"id": "w", "type": "labels", "value": {"start": 2e11,
+      "end": 3e11, "labels": ["pat"]}}]}]}])";
+  EXPECT_EQ(test::refusal_of([&] { parse_label_studio(far, "far.json"); }),
+            "far.json task 9 annotation 1 result 'w': a time of 2e+11 s is beyond any "
+            "recording (times are seconds of the audio)");
+}
+
+TEST_F(LabelStoreTest, LabelStudioExportGivesCompletedByToMembersOnly) {
+  const std::vector<Label> labels = every_lane();
+  InteropExport options;
+  options.members = {{"ana", "7"}, {"ben", "ben@lab.org"}};
+  const nlohmann::json tasks = nlohmann::json::parse(labels_label_studio(labels, options));
+  ASSERT_EQ(tasks.size(), 1u);
+  std::map<std::string, nlohmann::json> by_name;
+  for (const nlohmann::json& annotation : tasks[0]["annotations"])
+    by_name[annotation["tactile_annotator"].get<std::string>()] = annotation;
+  ASSERT_EQ(by_name.size(), 3u);
+  // A user id as a number, an e-mail as Label Studio's import resolves it; nothing for the
+  // unmapped "protocol" (Label Studio gives it to whoever imports).
+  EXPECT_EQ(by_name["ana"]["completed_by"], 7);
+  EXPECT_EQ(by_name["ben"]["completed_by"], (nlohmann::json{{"email", "ben@lab.org"}}));
+  EXPECT_FALSE(by_name["protocol"].contains("completed_by"));
+  // Our own import still gives each label its annotator.
+  LabelStore first((directory_ / "a.db").string()), second((directory_ / "b.db").string());
+  first.add_many(labels);
+  second.add_many(parse_label_studio(labels_label_studio(labels, options), "export.json"));
+  expect_same_labels(first.list(), second.list(), 0.0);
+  // Nor an invented number without members.
+  EXPECT_EQ(labels_label_studio(labels).find("completed_by"), std::string::npos);
+  options.members = {{"anna", "7"}};
+  EXPECT_EQ(test::refusal_of([&] { labels_label_studio(labels, options); }),
+            "--member: 'anna' is no annotator of the labels exported (ana, ben, protocol)");
+  options.members = {{"ana", "Ana"}};
+  EXPECT_EQ(test::refusal_of([&] { labels_label_studio(labels, options); }),
+            "--member: 'ana=Ana': a member is a Label Studio user id (a number) or e-mail");
+}
+
 //---- Into a store, all or nothing
 
 TEST_F(LabelStoreTest, InteropImportAddsAllOrNothing) {
   EXPECT_EQ(import_label_file(path_, kInteropData + "session.eaf").added, 5u);
   EXPECT_THROW(import_label_file(path_, kInteropData + "unaligned.eaf"), Error);
-  EXPECT_EQ(import_label_file(path_, kInteropData + "label_studio.json").added, 5u);
+  const LabelImport studio = import_label_file(path_, kInteropData + "label_studio.json");
+  EXPECT_EQ(studio.added, 5u);
+  EXPECT_EQ(studio.left_out, std::vector<std::string>{"1 choices from 'quality'"});
+  EXPECT_EQ(imported_labels_line(studio, "labels.db"),
+            "imported 5 labels into labels.db; left out what is no time span: 1 choices from "
+            "'quality'");
   LabelStore store(path_);
   EXPECT_EQ(store.count(), 10);
   EXPECT_EQ(store.count("s08"), 1);
@@ -341,10 +621,10 @@ TEST_F(LabelStoreTest, InteropImportAddsAllOrNothing) {
 // The same file imported again changes nothing: each label the store holds already is left
 // as it is and counted, so a second import of a session does not double its labels.
 TEST_F(LabelStoreTest, ImportingTheSameLabelFileTwiceChangesNothing) {
-  const LabelFileImport first = import_label_file(path_, kInteropData + "session.eaf");
+  const LabelImport first = import_label_file(path_, kInteropData + "session.eaf");
   EXPECT_EQ(first.added, 5u);
   EXPECT_EQ(first.already, 0u);
-  const LabelFileImport again = import_label_file(path_, kInteropData + "session.eaf");
+  const LabelImport again = import_label_file(path_, kInteropData + "session.eaf");
   EXPECT_EQ(again.added, 0u);
   EXPECT_EQ(again.already, 5u);
   EXPECT_EQ(LabelStore(path_).count(), 5);

@@ -38,27 +38,40 @@ struct LabelExport {
 // whether that fails.
 LabelExport export_label_file(const std::string& database, const std::string& out,
                               const std::string& format, const LabelFilter& filter = {},
-                              const std::vector<std::string>& vocabulary = {});
+                              const std::vector<std::string>& vocabulary = {},
+                              const InteropExport& interop = {});
+
+struct LabelImport {
+  size_t added = 0;
+  size_t already = 0;                 // in the store before, left as they were
+  std::vector<std::string> left_out;  // what the file holds besides labels, one line per kind
+};
 
 // The labels of a file of any label format (label_format_of), checked whole and added in one
 // transaction (the store is created when missing), with `options` (recording, tier and
-// annotator mappings) for the formats that take them. A label whose recording is beside the
-// store (DB's folder/<id>.h5) and that lies outside it or is shorter than one of its samples
-// refuses the whole file. A label the store holds already (same recording, times, region,
-// class, annotator, lane, confidence and note) is not added again: importing a file twice
-// changes nothing.
-struct LabelFileImport {
-  size_t added = 0;
-  size_t already = 0;  // in the store before, left as they were
-};
-LabelFileImport import_label_file(const std::string& database, const std::string& file,
-                                  const InteropImport& options = {});
+// annotator mappings) for the formats that take them. Label Studio's epoch milliseconds are
+// placed by the recording's start, read from RECORDING.h5 in options.recordings (default: the
+// store's folder) unless options.clock is given. A label whose recording is in that folder and
+// that lies outside it or is shorter than one of its samples refuses the whole file. A label the
+// store holds already (same recording, times, region, class, annotator, lane, confidence and
+// note) is not added again: importing a file twice changes nothing.
+LabelImport import_label_file(const std::string& database, const std::string& file,
+                              const InteropImport& options = {});
+// Where RECORDING.h5 puts its first sample: on its own clock, and as a Unix time when its
+// clock is a Unix clock (first sample at 1e9 s or later) or its metadata start_time is an ISO
+// 8601 date-time with a zone ("2020-06-15T19:52:31.951Z", "...+02:00"). found = false when
+// there is no such file.
+RecordingClock recording_clock(const std::string& folder, const std::string& recording);
+// An ISO 8601 date-time with a zone as a Unix time in milliseconds: "2020-06-15T19:52:31.951Z",
+// "2020-06-15 21:52:31+02:00"; none for any other text (a local time without zone).
+std::optional<double> unix_milliseconds(const std::string& text);
 // The tiers (ELAN) or annotators and models (Label Studio) of a file import_label_file reads
 // through `options`; format "" for a file of our own CSV or JSON, which has none to choose.
 InteropSources interop_sources(const std::string& file);
-// "imported N label(s) into DB" (and "; M already there, not added again"), as `tactile labels
-// import` prints it.
-std::string imported_labels_line(const LabelFileImport& imported, const std::string& database);
+// "imported N label(s) into DB", as `tactile labels import` prints it, with the labels already
+// there ("; 5 already there, not added again") and what was left out ("; left out what is no
+// time span: 1 choices from 'quality'").
+std::string imported_labels_line(const LabelImport& imported, const std::string& database);
 
 // The spans of the recordings `labels` name whose files are in `folder` as <id>.h5 (the others
 // are left out: their labels cannot be checked against them).

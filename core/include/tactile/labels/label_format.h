@@ -32,15 +32,20 @@ class LabelFormat {
   virtual bool reads(const std::string& extension,
                      const std::function<const std::string&()>& text) const = 0;
   // The labels of the file, checked whole (`options`: the recording, and the tiers or
-  // annotators mapped to lanes). Throws tactile::Error naming the file and the element.
-  virtual std::vector<Label> read(const std::string& path, const InteropImport& options) const = 0;
+  // annotators mapped to lanes). Throws tactile::Error naming the file and the element. What
+  // the file holds that is not a label and is not refused goes to `left_out`, one line per kind
+  // ("2 choices from 'quality'").
+  virtual std::vector<Label> read(const std::string& path, const InteropImport& options,
+                                  std::vector<std::string>& left_out) const = 0;
   // The sources a user chooses among before an import (ELAN's tiers, Label Studio's
   // annotators); format "" when there is nothing to choose (our own files).
   virtual InteropSources sources(const std::string& path) const;
   // The labels as the file's text; `vocabulary` is the skin's classes (ELAN's controlled
-  // vocabulary). Throws tactile::Error naming the option when the format cannot hold them.
+  // vocabulary), `options` what other tools' formats take (Label Studio's project members).
+  // Throws tactile::Error naming the option when the format cannot hold them.
   virtual std::string write(const std::vector<Label>& labels,
-                            const std::vector<std::string>& vocabulary) const = 0;
+                            const std::vector<std::string>& vocabulary,
+                            const InteropExport& options) const = 0;
 };
 
 // Adds a format, or replaces the one of the same name. Register at start-up.
