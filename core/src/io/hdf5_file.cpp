@@ -257,6 +257,8 @@ RecordingFile::RecordingFile(const std::string& path)
     hdf5::last_error();
     throw Error(path, "not an HDF5 file");
   }
+  if (const std::optional<std::string> problem = hdf5::file_driver_info_problem(path))
+    throw Error(path, *problem);
   Object file_handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file_handle.valid()) {
     const std::string why = hdf5::last_error();

@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace tactile::hdf5 {
 
@@ -422,64 +425,101 @@ std::vector<std::string> read_strings(hid_t location, const std::string& name,
 // The end of file address of an HDF5 superblock (format spec, "Superblock": versions 0-3),
 // absolute; nothing when no superblock is found where HDF5 looks for one (offset 0, 512,
 // 1024, ...) or its fields do not fit.
-std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
+namespace {
+
+// A little-endian number of `size` (1 to 8) bytes at `at`; none when it lies past the image.
+std::optional<uint64_t> little_endian_at(std::span<const uint8_t> image, uint64_t at, size_t size) {
+  if (size == 0 || size > 8 || at > image.size() || image.size() - at < size) return {};
+  uint64_t value = 0;
+  for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
+  return value;
+}
+
+// Where the superblock starts: at 0, or after a user block of 512, 1024, 2048... bytes.
+std::optional<size_t> superblock_at(std::span<const uint8_t> image) {
   static const uint8_t kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
-  auto little_endian = [&](size_t at, size_t size) -> std::optional<uint64_t> {
-    if (size == 0 || size > 8 || at > image.size() || image.size() - at < size) return {};
-    uint64_t value = 0;
-    for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
-    return value;
-  };
-  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at) {
-    if (!std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
-      continue;
-    const uint8_t version = image[at + 8];
-    size_t offsets = 0, base_at = 0;
-    if (version == 0 || version == 1) {
-      offsets = image[at + 13];
-      base_at = at + (version == 0 ? 24 : 28);
-    } else if (version == 2 || version == 3) {
-      offsets = image[at + 9];
-      base_at = at + 12;
-    } else {
-      return {};
-    }
-    const auto base = little_endian(base_at, offsets);
-    const auto end = little_endian(base_at + 2 * offsets, offsets);
-    if (!base || !end || *end > UINT64_MAX - *base) return {};
-    return *base + *end;
-  }
+  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at)
+    if (std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
+      return at;
   return {};
 }
 
-std::optional<std::string> superblock_driver_info_problem(std::span<const uint8_t> image) {
-  static const uint8_t kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
-  auto little_endian = [&](uint64_t at, size_t size) -> std::optional<uint64_t> {
-    if (at > image.size() || image.size() - at < size) return {};
-    uint64_t value = 0;
-    for (size_t k = 0; k < size; ++k) value |= static_cast<uint64_t>(image[at + k]) << (8 * k);
-    return value;
-  };
-  for (size_t at = 0; at + 16 <= image.size(); at = at == 0 ? 512 : 2 * at) {
-    if (!std::equal(kSignature, kSignature + 8, image.begin() + static_cast<std::ptrdiff_t>(at)))
-      continue;
-    const uint8_t version = image[at + 8];
-    // Versions 2 and 3 have no driver information block (a superblock extension instead).
-    if ((version != 0 && version != 1) || image[at + 13] != 8) return {};
-    const size_t fields_at = at + (version == 0 ? 24 : 28);
-    const auto base = little_endian(fields_at, 8);
-    const auto driver = little_endian(fields_at + 24, 8);
-    if (!base || !driver || *driver == UINT64_MAX) return {};
-    const std::string place = "byte " + std::to_string(fields_at + 24) + ": ";
-    if (*base > image.size() || *driver > image.size() - *base ||
-        image.size() - *base - *driver < 16)
-      return place + "a driver information block past the end of the file";
-    const auto size = little_endian(*base + *driver + 4, 4);
-    if (!size || *size > image.size() - (*base + *driver + 16))
-      return place + "a driver information block past the end of the file";
+}  // namespace
+
+std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image) {
+  const std::optional<size_t> at = superblock_at(image);
+  if (!at) return {};
+  const uint8_t version = image[*at + 8];
+  size_t offsets = 0, base_at = 0;
+  if (version == 0 || version == 1) {
+    offsets = image[*at + 13];
+    base_at = *at + (version == 0 ? 24 : 28);
+  } else if (version == 2 || version == 3) {
+    offsets = image[*at + 9];
+    base_at = *at + 12;
+  } else {
     return {};
   }
+  const auto base = little_endian_at(image, base_at, offsets);
+  const auto end = little_endian_at(image, base_at + 2 * offsets, offsets);
+  if (!base || !end || *end > UINT64_MAX - *base) return {};
+  return *base + *end;
+}
+
+namespace {
+
+// A little-endian number of `size` bytes at `at` of a file or image; none past its end.
+using ByteReader = std::function<std::optional<uint64_t>(uint64_t at, size_t size)>;
+
+// The driver information block of the version 0 or 1 superblock at `superblock` checked against
+// a file of `file_size` bytes read through `read`.
+std::optional<std::string> driver_info_problem(uint64_t superblock, uint64_t file_size,
+                                               const ByteReader& read) {
+  const auto version = read(superblock + 8, 1);
+  const auto offsets = read(superblock + 13, 1);
+  // Versions 2 and 3 have no driver information block (a superblock extension instead).
+  if (!version || !offsets || (*version != 0 && *version != 1) || *offsets != 8) return {};
+  const uint64_t fields_at = superblock + (*version == 0 ? 24 : 28);
+  const auto base = read(fields_at, 8);
+  const auto driver = read(fields_at + 24, 8);
+  if (!base || !driver || *driver == UINT64_MAX) return {};
+  const std::string past_end = "byte " + std::to_string(fields_at + 24) +
+                               ": a driver information block past the end of the file";
+  if (*base > file_size || *driver > file_size - *base || file_size - *base - *driver < 16)
+    return past_end;
+  const auto size = read(*base + *driver + 4, 4);
+  if (!size || *size > file_size - (*base + *driver + 16)) return past_end;
   return {};
+}
+
+}  // namespace
+
+std::optional<std::string> superblock_driver_info_problem(std::span<const uint8_t> image) {
+  const std::optional<size_t> at = superblock_at(image);
+  if (!at) return {};
+  return driver_info_problem(*at, image.size(), [&](uint64_t where, size_t size) {
+    return little_endian_at(image, where, size);
+  });
+}
+
+std::optional<std::string> file_driver_info_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code error;
+  const uintmax_t file_size = std::filesystem::file_size(path, error);
+  if (!in || error) return {};  // opening it says what is wrong
+  std::vector<uint8_t> head(4096);
+  in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  const std::optional<size_t> at = superblock_at(head);
+  if (!at) return {};
+  return driver_info_problem(*at, file_size, [&](uint64_t where, size_t size) {
+    std::vector<uint8_t> bytes(size);
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(where));
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+      return std::optional<uint64_t>();
+    return little_endian_at(bytes, 0, size);
+  });
 }
 
 bool pad_to_declared_end(const std::string& path) {

@@ -369,6 +369,10 @@ TEST(ArrayImport, ADriverInformationBlockPastTheEndIsRefusedBeforeLibhdf5Allocat
   EXPECT_NE(recording.find("image.h5: byte 48: a driver information block past the end"),
             std::string::npos)
       << recording;
+  // The same file on disk, as `tactile info` or the workbench open it.
+  const std::string on_disk = refusal_of([&] { RecordingFile{path}; });
+  EXPECT_NE(on_disk.find("byte 48: a driver information block past the end"), std::string::npos)
+      << on_disk;
 }
 
 TEST(CsvTable, AClassColumnAndGroupColumnsMakeRecordingsWithLabels) {

@@ -42,6 +42,8 @@ std::optional<uint64_t> superblock_end_of_file(std::span<const uint8_t> image);
 // fuzzer: tests/fuzz/regressions/hdf5/driver-info-size-makes-libhdf5-allocate-4-gb.h5). What
 // is wrong ("byte N: ..."), or nothing.
 std::optional<std::string> superblock_driver_info_problem(std::span<const uint8_t> image);
+// The same of a file on disk (its superblock within the first 4 KiB), before libhdf5 opens it.
+std::optional<std::string> file_driver_info_problem(const std::string& path);
 
 // A file whose writer failed to write its last allocations (a full disk) is shorter than its
 // superblock declares, and HDF5 refuses to open it. Extends it (sparse: no room needed) to the
