@@ -49,10 +49,10 @@ void run_stream_listen(const StreamListenOptions& options) {
   packet_format_info(options.skin);                     // refuses a skin without a packet format
   PacketCollector collector(load_layout(options.skin), !options.out.empty());
   UdpSocket socket = UdpSocket::bind_to(local);
-  // Said once the socket listens, so a sender started after the file appears loses nothing.
-  if (!options.bound_to.empty())
-    write_file_atomically(options.bound_to,
-                          UdpEndpoint{local.host, socket.local_port()}.url() + "\n");
+  // The address listened on, with the port the system gave when port 0 was asked for. Said once
+  // the socket listens, so a sender started after the file appears loses nothing.
+  const std::string listening = UdpEndpoint{local.host, socket.local_port()}.url();
+  if (!options.bound_to.empty()) write_file_atomically(options.bound_to, listening + "\n");
 
   using Clock = std::chrono::steady_clock;
   const Clock::time_point end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
@@ -113,7 +113,7 @@ void run_stream_listen(const StreamListenOptions& options) {
   } else {
     std::ostringstream out;
     out << std::fixed << std::setprecision(3);
-    out << "stream-listen: " << options.skin << " on " << local.url() << "\n"
+    out << "stream-listen: " << options.skin << " on " << listening << "\n"
         << "datagrams: " << sequence.received() << "\n"
         << "bytes: " << collector.bytes() << "\n"
         << "samples: " << collector.samples() << " (stream time " << collector.first_time()
