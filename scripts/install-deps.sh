@@ -11,6 +11,7 @@ packages=(
   libhdf5-dev libsqlite3-dev zlib1g-dev libsvm-dev
   libtinyxml2-dev  # ELAN .eaf label files (docs/INTEROP.md)
   libmatio-dev libedf-dev libxdf-dev  # MATLAB .mat, EDF+/BDF+ and XDF recordings (docs/IMPORT.md)
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev libavdevice-dev  # video (docs/VIDEO.md)
   libxgboost-dev  # the boosted-trees preset (XGBoost's C API)
   libimgui-dev libstb-dev libglfw3-dev libgl-dev libgl1-mesa-dri libosmesa6-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev

@@ -1,0 +1,53 @@
+#pragma once
+// Proposing a video's offset: the video's motion energy (mean absolute difference of
+// consecutive frames, optionally within a region) correlated with the skin's activity over a
+// range of lags. The best lag is offered with a confidence; the user accepts or rejects it.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tactile {
+
+class VideoFile;
+class SampleSource;
+
+// A region of the picture in fractions of its width and height.
+struct VideoRegion {
+  double x = 0, y = 0, width = 1, height = 1;
+};
+
+// A series sampled on a regular grid: value k at start + k / rate.
+struct ActivitySeries {
+  double start = 0;
+  double rate = 0;
+  std::vector<double> values;
+};
+
+// The video's motion energy at `rate` samples per second of video time (`video` opened grey and
+// small: VideoOpenOptions{.max_width = 160, .grey = true}). `progress(fraction)` is called now
+// and then (JobProgress::steps); a job's cancel (cancel_requested()) stops it with an Error.
+ActivitySeries motion_energy(VideoFile& video, double rate, std::optional<VideoRegion> region,
+                             const std::function<void(double)>& progress = {});
+
+// The skin's activity at `rate` samples per second of recording time: over every channel, the
+// summed absolute change between consecutive samples, per grid step, each channel scaled by its
+// own noise so that one loud channel does not drown the rest.
+ActivitySeries skin_activity(const SampleSource& source, double rate,
+                             const std::function<void(double)>& progress = {});
+
+struct SyncProposal {
+  double offset = 0;       // the proposed VideoAttachment::offset (rate 1)
+  double correlation = 0;  // normalised cross-correlation at the best lag, -1..1
+  double confidence = 0;   // 0..1: how far the best peak stands above the next one
+  bool sure = false;       // confidence high enough to offer the offset without a warning
+  std::string why;         // when not sure: what is missing ("the video shows no motion", ...)
+};
+
+// The offset in [centre - max_lag, centre + max_lag] at which the skin's activity and the
+// video's motion energy agree best.
+SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& motion,
+                            double centre, double max_lag);
+
+}  // namespace tactile
