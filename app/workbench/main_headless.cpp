@@ -15,9 +15,9 @@
 int main(int argc, char** argv) {
   tactile::WorkbenchArgs args;
   if (auto code = tactile::parse_workbench_args(argc, argv, args)) return *code;
-  if (args.screenshot.empty() && args.script.empty()) {
-    std::cerr << "tactile-workbench-headless: --screenshot OUT.png or --script FILE is required "
-                 "without a display\n";
+  if (args.screenshot.empty() && args.script.empty() && args.clip.label < 0) {
+    std::cerr << "tactile-workbench-headless: --screenshot OUT.png, --script FILE or --clip-label "
+                 "ID is required without a display\n";
     return 2;
   }
   try {

@@ -12,6 +12,7 @@
 #include "tactile/io/atomic_file.h"
 #include "tactile/labels/label_format.h"
 #include "tactile/text.h"
+#include "video.h"
 #include "views.h"
 
 namespace tactile {
@@ -164,6 +165,8 @@ void take_browser_choice(WorkbenchState& state, const BrowseChoice& choice) {
     // A file with sources to choose (ELAN tiers, Label Studio annotators) opens the dialog;
     // one of our own formats is imported at once (open_labels_import_dialog).
     open_labels_import_dialog(state, choice.path);
+  } else if (purpose == "attach video") {
+    attach_video(state, choice.path);
   } else if (purpose == "verify") {
     start_verify(state, {choice.path});
   } else if (purpose == "upgrade") {

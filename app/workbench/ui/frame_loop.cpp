@@ -9,10 +9,12 @@ FrameLoop::FrameLoop(Workbench& workbench, const WorkbenchArgs& args)
     : workbench_(workbench), args_(args) {
   if (!args.script.empty())
     player_ = std::make_unique<ScriptPlayer>(read_script(args.script), args.script);
+  if (args.clip.label >= 0) clip_ = std::make_unique<ClipRecorder>(args.clip);
 }
 
 double FrameLoop::begin(double wall_seconds) {
   ++frame_;
+  if (clip_) return clip_->before_frame(workbench_);
   return player_ ? player_->before_frame(workbench_) : wall_seconds;
 }
 
@@ -28,6 +30,17 @@ bool FrameLoop::end(const std::function<Image()>& grab) {
                                                    static_cast<int>(std::floor(area.y0)),
                                                    static_cast<int>(std::ceil(area.width())),
                                                    static_cast<int>(std::ceil(area.height()))));
+  }
+  if (clip_) {
+    clip_->after_frame(workbench_, image);
+    if (!clip_->done()) return true;
+    if (!clip_->error().empty()) {
+      std::cerr << "tactile-workbench: " << clip_->error() << "\n";
+      exit_code_ = 1;
+    } else {
+      std::cout << "wrote " << args_.clip.out << ": " << clip_->frames_written() << " frames\n";
+    }
+    return false;
   }
   if (player_) {
     player_->after_frame(workbench_, image);

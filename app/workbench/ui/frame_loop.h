@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 
+#include "clip.h"
 #include "script.h"
 #include "workbench.h"
 #include "workbench_args.h"
@@ -26,6 +27,7 @@ class FrameLoop {
   Workbench& workbench_;
   const WorkbenchArgs& args_;
   std::unique_ptr<ScriptPlayer> player_;
+  std::unique_ptr<ClipRecorder> clip_;
   int frame_ = 0;
   int exit_code_ = 0;
 };

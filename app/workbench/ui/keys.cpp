@@ -8,6 +8,7 @@
 #include "labelling.h"
 #include "live.h"
 #include "results.h"
+#include "video.h"
 #include "views.h"
 
 namespace tactile {
@@ -195,6 +196,35 @@ std::vector<KeyBinding> make_bindings() {
        "land on the segment selected in the list",
        enter_lands,
        [](S& s, int) { land_on_selected_segment(s); }},
+      {"Video",
+       {",", "."},
+       "step one frame of the selected video back / on (the cursor moves to it)",
+       has_videos,
+       [](S& s, int k) { step_video_frame(s, k == 0 ? -1 : 1); },
+       true},
+      {"Video",
+       {"Alt+Left", "Alt+Right"},
+       "nudge the selected video one frame earlier / later against the skin (Ctrl+Z undoes)",
+       has_videos,
+       [](S& s, int k) { nudge_video(s, (k == 0 ? -1.0 : 1.0) * video_frame_seconds(s)); },
+       true},
+      {"Video",
+       {"Alt+Shift+Left", "Alt+Shift+Right"},
+       "nudge the selected video a tenth of a second earlier / later",
+       has_videos,
+       [](S& s, int k) { nudge_video(s, k == 0 ? -0.1 : 0.1); },
+       true},
+      {"Video",
+       {"M"},
+       "mark an instant where the video and the skin show the same event; a second mark sets "
+       "offset and rate from both",
+       has_videos,
+       [](S& s, int) { mark_video_instant(s); }},
+      {"Video",
+       {"V"},
+       "choose the next video for these keys",
+       has_videos,
+       [](S& s, int) { s.video.selected = (s.video.selected + 1) % s.video.videos.size(); }},
       {"Live",
        {"Ctrl+R"},
        "start / stop recording (with the pre-trigger's seconds)",

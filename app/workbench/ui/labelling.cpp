@@ -22,6 +22,7 @@
 #include "tactile/segment/segmenter.h"
 #include "tactile/signal/taxel_values.h"
 #include "tactile/text.h"
+#include "video.h"
 #include "views.h"
 
 namespace tactile {
@@ -326,6 +327,9 @@ void show_span(WorkbenchState& state, double t0, double t1) {
 
 bool undo_edit(WorkbenchState& state, bool redo) {
   if (!state.document) return false;
+  // A video's offset edited after the newest label edit is taken back first (video.h).
+  if (undo_video_edit(state, redo)) return true;
+  state.video.redo_is_video = false;
   LabellingState& labelling = state.labelling;
   // While a segmenter run goes on, Ctrl+Z stops it: the newest thing the operator did is that
   // run, not the label before it.

@@ -14,6 +14,7 @@
 #include "jobs.h"
 #include "script_commands.h"
 #include "tactile/error.h"
+#include "video.h"
 
 namespace tactile {
 
@@ -407,6 +408,11 @@ void ScriptPlayer::wait_training(const ScriptStep& step) {
 void ScriptPlayer::wait_jobs(const ScriptStep& step) {
   draw_until([](Workbench& workbench) { return !workbench.jobs_running(); },
              "a view's job still running after 10 minutes", step);
+}
+
+void ScriptPlayer::wait_video(const ScriptStep& step) {
+  draw_until([](Workbench& workbench) { return videos_caught_up(workbench.state()); },
+             "a video does not show the frame at the cursor after 10 minutes", step);
 }
 
 void ScriptPlayer::wait_labels(const ScriptStep& step) {

@@ -72,6 +72,7 @@ class ScriptPlayer {
   void wait_training(const ScriptStep& step);
   void wait_jobs(const ScriptStep& step);
   void wait_labels(const ScriptStep& step);
+  void wait_video(const ScriptStep& step);
   void wait_results(const ScriptStep& step);
   void play_recording(const ScriptStep& step);
   void sleep_wall_clock(const ScriptStep& step);

@@ -57,6 +57,8 @@ inline constexpr size_t kAnyWords = std::numeric_limits<size_t>::max();
     1, 1, nullptr, wait_training)                                                                  \
   X("wait jobs", "keep drawing frames until no job runs and every result is applied",              \
     1, 1, nullptr, wait_jobs)                                                                      \
+  X("wait video", "keep drawing frames until every video shows the frame at the cursor",          \
+    1, 1, nullptr, wait_video)                                                                     \
   X("wait labels N", "keep drawing frames until the open recording shows N labels",                \
     2, 2, check_script_one_number, wait_labels)                                                    \
   X("wait results N", "keep drawing frames until the model panel's results hold N rows",           \

@@ -25,6 +25,8 @@ constexpr ViewSpec kViews[] = {
     {"scatter", "Scatter", false, draw_scatter_view, "scatter"},
     {"som", "SOM", false, draw_som_view, "som"},
     {"somatosensory", "Somatosensory map", true, draw_somatosensory_view, "somatosensory"},
+    {"video", "Video", true, draw_video_view, "video sync"},
+    {"clip", "Clip (skin, video, signals, lanes)", true, draw_clip_view},
 };
 
 }  // namespace

@@ -35,6 +35,8 @@ void draw_confusion_view(WorkbenchState& state, ImVec2 size);
 void draw_scatter_view(WorkbenchState& state, ImVec2 size);
 void draw_som_view(WorkbenchState& state, ImVec2 size);
 void draw_somatosensory_view(WorkbenchState& state, ImVec2 size);
+void draw_video_view(WorkbenchState& state, ImVec2 size);
+void draw_clip_view(WorkbenchState& state, ImVec2 size);
 
 // Every view, in menu order.
 std::span<const ViewSpec> all_views();

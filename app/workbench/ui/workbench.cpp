@@ -24,6 +24,7 @@
 #include "tactile/skins/skin.h"
 #include "tactile/skins/workspace.h"
 #include "tactile/text.h"
+#include "video.h"
 #include "views.h"
 
 namespace tactile {
@@ -37,6 +38,7 @@ constexpr float kMinimumPanel = 80.0f;
 // A label longer than this is searched for its peak only in its first part.
 constexpr int64_t kPeakSearchSamples = 20000;
 constexpr double kOpeningSpanSeconds = 60.0;  // the plot's span when a recording opens
+constexpr float kVideoShare = 0.5f;  // of the skin's panel, for the videos when there are any
 
 // A bar between two panels; dragging it moves the boundary. Returns true while dragged.
 bool splitter(WorkbenchState& state, const char* id, bool vertical, float length, float& value,
@@ -244,6 +246,7 @@ void Workbench::frame_work(double seconds) {
     until = -1.0;
   }
   poll_jobs(state_);
+  update_videos(state_);
   follow_other_writers(state_);
   apply_dragged_bounds(state_);
   // A dialog or the file browser with the keyboard keeps its keys (Escape, Enter, digits).
@@ -393,7 +396,15 @@ void Workbench::draw_arrangement(ImVec2 area) {
     const float top_height = area.y - sizes.timeline_height - kSplitterThickness;
     const float skin_width = std::floor(right_width * sizes.skin_fraction);
     ImGui::BeginChild("skin_frame", ImVec2(skin_width, top_height), true);
-    draw_view("skin", ImGui::GetContentRegionAvail());
+    if (has_videos(state_)) {
+      // The videos under the skin, so the hand and the taxels it lights are seen together.
+      const ImVec2 room = ImGui::GetContentRegionAvail();
+      const float video_height = std::floor(room.y * kVideoShare);
+      draw_view("skin", ImVec2(room.x, room.y - video_height - ImGui::GetStyle().ItemSpacing.y));
+      draw_view("video", ImVec2(room.x, video_height));
+    } else {
+      draw_view("skin", ImGui::GetContentRegionAvail());
+    }
     ImGui::EndChild();
     ImGui::SameLine(0.0f, 0.0f);
     float skin_pixels = skin_width;

@@ -65,6 +65,7 @@ class Workbench {
   DocumentOptions document_options(const std::string& stream) const;
   void choose_default_view();
   void draw_menu_bar();
+  void draw_video_menu();
   // A tab bar of views; a view asked for by state.analysis.tab_request comes to front.
   void draw_tabs(std::initializer_list<const char*> names);
   void open_analysis_files();

@@ -62,8 +62,25 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
       ->check(CLI::Range(0.0, 600.0));
   app.add_option("--settings", args.options.settings_path,
                  "Settings file (default: ~/.config/tactile-workbench/settings.json)");
+  app.add_option("--clip-label", args.clip.label,
+                 "Encode a clip of this label (its id) to --clip-out, then exit (`tactile clip`)");
+  app.add_option("--clip-out", args.clip.out, "The clip's file (.mp4, .mkv, .avi, .webm)");
+  app.add_option("--clip-video", args.clip.video,
+                 "The attached video the clip shows (default all)");
+  app.add_option("--clip-margin", args.clip.margin,
+                 "Seconds before and after the label (default 1)")
+      ->check(CLI::Range(0.0, 600.0));
+  app.add_option("--clip-rate", args.clip.rate, "Frames per second of the clip (default 30)")
+      ->check(CLI::Range(1.0, 120.0));
   try {
     app.parse(argc, argv);
+    if (args.clip.label >= 0) {
+      if (args.clip.out.empty()) throw CLI::ValidationError("--clip-out", "a clip needs its file");
+      if (args.options.open_path.empty())
+        throw CLI::ValidationError("--clip-label", "a clip needs the recording it is of");
+      args.options.only_view = "clip";
+      args.options.clip_video = args.clip.video;
+    }
     if (!args.options.connect.empty() && !args.options.open_path.empty())
       throw CLI::ValidationError("--connect",
                                  "opens a live source; give a recording or --connect, not both");

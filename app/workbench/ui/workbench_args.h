@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "clip.h"
 #include "workbench_state.h"
 
 namespace tactile {
@@ -15,7 +16,8 @@ struct WorkbenchArgs {
   bool headless = false;   // render with OSMesa, no window system
   int width = 1600;
   int height = 900;
-  int frames = 4;  // frames drawn before a screenshot, so the layout settles
+  int frames = 4;    // frames drawn before a screenshot, so the layout settles
+  ClipRequest clip;  // --clip-label: encode a clip of that label (clip.h), then exit
 };
 
 // Parses argv; on --help or an error prints and returns the exit code to use.

@@ -12,6 +12,7 @@
 #include "tactile/segment/segmenter.h"
 #include "tactile/skins/skin.h"
 #include "tactile/text.h"
+#include "video.h"
 #include "views.h"
 #include "workbench.h"
 
@@ -113,6 +114,7 @@ void Workbench::draw_menu_bar() {
       ImGui::EndMenu();
     }
     remember_item(state_, "menu:Labels");
+    draw_video_menu();
     if (ImGui::BeginMenu("Help")) {
       if (ImGui::MenuItem("Keys", "F1", state_.help.keys_open))
         state_.help.keys_open = !state_.help.keys_open;
@@ -160,6 +162,34 @@ void Workbench::draw_status_bar() {
   } else {
     ImGui::TextDisabled("Tactile Workbench");
   }
+}
+
+}  // namespace tactile
+
+namespace tactile {
+
+void Workbench::draw_video_menu() {
+  const bool recording = state_.document && !state_.live.connected;
+  if (ImGui::BeginMenu("Video", recording)) {
+    if (ImGui::MenuItem("Attach video..."))
+      state_.file_browser.open({BrowseMode::kOpenFile,
+                                "attach video",
+                                "Attach video",
+                                state_.workspace,
+                                {".mp4", ".mkv", ".mov", ".avi", ".webm"},
+                                ""});
+    remember_item(state_, "menu:Video/Attach video...",
+                  "A video of this recording (any file FFmpeg reads), shown under the skin");
+    const bool any = has_videos(state_);
+    if (ImGui::MenuItem("Propose offset", nullptr, false, any)) propose_video_offset(state_);
+    remember_item(state_, "menu:Video/Propose offset",
+                  "Correlate the selected video's motion with the skin's activity");
+    if (ImGui::MenuItem("Detach selected video", nullptr, false, any))
+      detach_video(state_, state_.video.selected);
+    remember_item(state_, "menu:Video/Detach selected video");
+    ImGui::EndMenu();
+  }
+  remember_item(state_, "menu:Video");
 }
 
 }  // namespace tactile

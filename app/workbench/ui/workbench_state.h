@@ -33,6 +33,9 @@
 #include "tactile/segment/fit.h"
 #include "tactile/segment/scoring.h"
 #include "tactile/signal/display_scale.h"
+#include "tactile/video/attachments.h"
+#include "tactile/video/video_player.h"
+#include "tactile/video/video_sync.h"
 #include "tactile/widgets/class_colours.h"
 #include "tactile/widgets/signal_plot.h"
 #include "tactile/widgets/skin_view.h"
@@ -290,6 +293,44 @@ struct LiveState {
   std::optional<std::string> classify_request;  // a model file
 };
 
+// The videos attached to the open recording (video.h), each shown by a player on a worker.
+struct VideoState {
+  struct Shown {
+    VideoAttachment attachment;
+    std::string path;  // the file as opened
+    std::unique_ptr<VideoPlayer> player;
+    uint32_t texture = 0;  // the shown frame as uploaded (gl_texture.h); 0: none yet
+    int64_t texture_frame = -1;
+    int texture_width = 0, texture_height = 0;
+  };
+  std::string recording;  // the recording whose attachments these are
+  std::vector<Shown> videos;
+  std::string problem;  // why the attachments file could not be read
+  size_t selected = 0;  // the video the keys, the marks and the proposal act on
+  // An edit: the attachments before it, and the label store's newest journal row then (an undo
+  // takes back the newer of a video edit and a label edit).
+  struct Edit {
+    std::vector<VideoAttachment> before;
+    int64_t journal = 0;
+    std::string what;
+  };
+  std::vector<Edit> undo, redo;
+  bool redo_is_video = false;  // the last undo was a video's: Ctrl+Shift+Z redoes it
+  // An instant where the video and the skin agree (M): recording time and video time.
+  std::optional<std::pair<double, double>> mark;
+  // The offset proposed from the picture's motion, for the video named `proposal_for`.
+  std::optional<SyncProposal> proposal;
+  std::string proposal_for;
+  std::optional<VideoRegion> region;  // where the motion is looked for (none: the whole picture)
+  // A drag over a video nudges its offset: the offset it had at the press.
+  std::optional<double> drag_from;
+  // A proposal's result: which video and recording it was for.
+  struct Proposed {
+    std::string recording, video;
+    SyncProposal proposal;
+  };
+};
+
 struct WorkbenchOptions {
   std::string open_path;    // a recording, or a folder (workspace) whose first recording opens
   std::string labels_path;  // label database; default labels.db beside the recording
@@ -299,6 +340,7 @@ struct WorkbenchOptions {
   std::string settings_path;                // "" = the user's settings file
   std::string annotator;                    // "" = the settings' or $USER
   std::string only_view;                    // draw just this view over the whole window
+  std::string clip_video;                   // the one video the video view shows ("" = all)
   std::string evaluation_path;              // --evaluation RESULT.json
   std::string model_path;                   // --model MODEL.json (a SOM's map)
   std::string features_path;                // --features TABLE.csv (the scatter)
@@ -395,6 +437,7 @@ struct WorkbenchState {
     bool keys_open = false;   // the sheet of keys (F1, Help > Keys)
     bool about_open = false;  // Help > Getting started
   } help;
+  VideoState video;
   FilesState files;  // File > Open folder, Import, Export, Verify, Upgrade (files.h)
 };
 

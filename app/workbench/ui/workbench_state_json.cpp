@@ -19,6 +19,61 @@ namespace tactile {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The videos: each one's attachment, what it shows now and why it cannot show more.
+nlohmann::json videos_json(const WorkbenchState& state) {
+  nlohmann::json videos = nlohmann::json::array();
+  for (const VideoState::Shown& shown : state.video.videos) {
+    const VideoAttachment& attachment = shown.attachment;
+    const double video_time = attachment.video_time(state.clock.time());
+    nlohmann::json entry = {{"name", attachment.name},
+                            {"path", attachment.path},
+                            {"file", shown.path},
+                            {"offset", attachment.offset},
+                            {"rate", attachment.rate},
+                            {"video_time", video_time},
+                            {"wanted_frame", shown.player->wanted()},
+                            {"frame", nullptr},
+                            {"frame_time", nullptr},
+                            {"drawn_frame", shown.texture_frame},
+                            {"problem", shown.player->problem()}};
+    if (const std::shared_ptr<const VideoFrame> frame = shown.player->shown()) {
+      entry["frame"] = frame->index;
+      entry["frame_time"] = frame->time;
+    }
+    if (const std::shared_ptr<const VideoInfo> info = shown.player->info()) {
+      entry["codec"] = info->codec;
+      entry["width"] = info->width;
+      entry["height"] = info->height;
+      entry["duration"] = info->duration;
+      entry["frames"] = info->frame_count;
+      entry["rate_fps"] = info->mean_rate;
+      entry["variable_rate"] = info->variable_rate;
+      if (entry["problem"] == "")
+        entry["problem"] = video_time_problem(*info, video_time, attachment.offset);
+    }
+    videos.push_back(std::move(entry));
+  }
+  nlohmann::json json = {{"list", videos},
+                         {"selected", state.video.selected},
+                         {"problem", state.video.problem},
+                         {"undo", state.video.undo.size()},
+                         {"mark", nullptr},
+                         {"proposal", nullptr}};
+  if (state.video.mark) json["mark"] = {state.video.mark->first, state.video.mark->second};
+  if (const std::optional<SyncProposal>& proposal = state.video.proposal)
+    json["proposal"] = {{"video", state.video.proposal_for},
+                        {"offset", proposal->offset},
+                        {"correlation", proposal->correlation},
+                        {"confidence", proposal->confidence},
+                        {"sure", proposal->sure},
+                        {"why", proposal->why}};
+  return json;
+}
+
+}  // namespace
+
 bool Workbench::jobs_running() const {
   // Until its result is applied on the window's thread: a job that has just ended is still
   // "running" for a screenshot, whose frame must show the result, not the progress.
@@ -146,6 +201,7 @@ nlohmann::json Workbench::state_json() const {
                      {"touches_merged", touches.merged}};
   json["analysis"] = analysis_json();
   json["live"] = live_json(state_);
+  json["videos"] = videos_json(state_);
   json["workspace"] = state_.workspace;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : state_.workspace_files)

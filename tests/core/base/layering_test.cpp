@@ -16,9 +16,9 @@ namespace {
 
 // Bottom to top. "base" is core's own top folder (error.h, text.h, parameters.h).
 const std::vector<std::string> kAreaOrder = {
-    "base",    "jobs",   "stats", "layout",  "io",          "shards", "labelstore",
-    "verify",  "signal", "video", "dsp",   "segment", "features",    "ml",     "labels",
-    "formats", "sim",    "skins", "live",    "experiments", "cluster"};
+    "base",   "jobs",    "stats", "layout", "io",      "shards",      "labelstore",
+    "verify", "signal",  "video", "dsp",    "segment", "features",    "ml",
+    "labels", "formats", "sim",   "skins",  "live",    "experiments", "cluster"};
 
 // The area a file of core/ belongs to: the folder under include/tactile/ or src/.
 std::string area_of(const std::filesystem::path& relative) {

@@ -14,12 +14,12 @@ namespace tactile {
 // What the file holds, read when it is opened (the packets are indexed, not decoded).
 struct VideoInfo {
   std::string path;
-  std::string container;     // libavformat's name: "mov,mp4,m4a,3gp,3g2,mj2", "matroska,webm"
-  std::string codec;         // libavcodec's name: "h264", "hevc", "vp9", "mjpeg", "mpeg4"
-  int width = 0;             // as coded
+  std::string container;  // libavformat's name: "mov,mp4,m4a,3gp,3g2,mj2", "matroska,webm"
+  std::string codec;      // libavcodec's name: "h264", "hevc", "vp9", "mjpeg", "mpeg4"
+  int width = 0;          // as coded
   int height = 0;
-  double duration = 0;       // seconds: from the first frame's time to the last frame's end
-  double mean_rate = 0;      // frames per second over the whole file
+  double duration = 0;         // seconds: from the first frame's time to the last frame's end
+  double mean_rate = 0;        // frames per second over the whole file
   bool variable_rate = false;  // frame intervals differ by more than 1 % of their median
   int64_t frame_count = 0;
 };
@@ -35,9 +35,9 @@ struct VideoFrame {
 };
 
 struct VideoOpenOptions {
-  int max_width = 0;      // scale frames down (aspect kept) to at most this width; 0: as coded
-  bool grey = false;      // one byte per pixel (luma) instead of RGBA: for motion energy
-  int cache_frames = 8;   // decoded frames kept (the cache holds at most this many)
+  int max_width = 0;     // scale frames down (aspect kept) to at most this width; 0: as coded
+  bool grey = false;     // one byte per pixel (luma) instead of RGBA: for motion energy
+  int cache_frames = 8;  // decoded frames kept (the cache holds at most this many)
 };
 
 class VideoFile {

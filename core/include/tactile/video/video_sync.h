@@ -47,7 +47,7 @@ struct SyncProposal {
 
 // The offset in [centre - max_lag, centre + max_lag] at which the skin's activity and the
 // video's motion energy agree best.
-SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& motion,
-                            double centre, double max_lag);
+SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& motion, double centre,
+                            double max_lag);
 
 }  // namespace tactile

@@ -1,0 +1,214 @@
+// Video view: the attached videos side by side, each at the frame the time cursor shows, with
+// the selected one's synchronisation: nudges, two-instant marks, the proposed offset.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "gl_texture.h"
+#include "jobs.h"
+#include "tactile/text.h"
+#include "video.h"
+#include "views.h"
+
+namespace tactile {
+
+namespace {
+
+constexpr double kDragSecondsPerPixel = 0.01;  // a drag over a video nudges its offset
+
+bool small_button(WorkbenchState& state, const char* label, const std::string& item,
+                  const std::string& tip, bool enabled = true) {
+  if (!enabled) ImGui::BeginDisabled();
+  const bool pressed = ImGui::SmallButton(label);
+  if (!enabled) ImGui::EndDisabled();
+  remember_item(state, item, tip);
+  ImGui::SameLine();
+  return pressed && enabled;
+}
+
+void draw_controls(WorkbenchState& state) {
+  VideoState& video = state.video;
+  const double frame = video_frame_seconds(state);
+  if (small_button(state, "Attach...", "button:video:attach", "Attach a video file (Video menu)"))
+    state.file_browser.open({BrowseMode::kOpenFile,
+                             "attach video",
+                             "Attach video",
+                             state.workspace,
+                             {".mp4", ".mkv", ".mov", ".avi", ".webm"},
+                             ""});
+  const bool any = !video.videos.empty();
+  if (small_button(state, "<<", "button:video:nudge-earlier",
+                   "Show the selected video one frame earlier against the skin (Alt+Left)", any))
+    nudge_video(state, -frame);
+  if (small_button(state, ">>", "button:video:nudge-later",
+                   "Show the selected video one frame later against the skin (Alt+Right)", any))
+    nudge_video(state, frame);
+  if (small_button(state, video.mark ? "Mark 2" : "Mark", "button:video:mark",
+                   "Where the video and the skin show the same event: mark it (M); two marks set "
+                   "offset and rate",
+                   any))
+    mark_video_instant(state);
+  AnyJob* job = running_job(state, "video sync");
+  if (small_button(state, "Propose offset", "button:video:propose",
+                   "Correlate the video's motion with the skin's activity and propose an offset",
+                   any && !job))
+    propose_video_offset(state);
+  if (small_button(state, "Detach", "button:video:detach",
+                   "Detach the selected video (its file is kept; Ctrl+Z brings it back)", any))
+    detach_video(state, video.selected);
+  ImGui::NewLine();
+  if (job) draw_job(state, job, nullptr, "proposing an offset");
+  if (video.proposal) {
+    const SyncProposal& proposal = *video.proposal;
+    ImGui::TextColored(
+        proposal.sure ? ImVec4(0.5f, 0.9f, 0.5f, 1.0f) : ImVec4(1.0f, 0.75f, 0.4f, 1.0f),
+        "%s: offset %s s, confidence %s%s%s", video.proposal_for.c_str(),
+        fixed_text(proposal.offset, 3).c_str(), fixed_text(proposal.confidence, 2).c_str(),
+        proposal.sure ? "" : " - not sure: ", proposal.why.c_str());
+    remember_item(state, "video:proposal");
+    ImGui::SameLine();
+    if (small_button(state, "Accept", "button:video:accept", "Take the proposed offset"))
+      accept_video_proposal(state);
+    if (small_button(state, "Reject", "button:video:reject", "Keep the offset as it is"))
+      reject_video_proposal(state);
+    ImGui::NewLine();
+  }
+}
+
+// The picture of one video in `size`, with its caption above. A drag released over it: the
+// offset it was dragged to (written by the caller, once the videos are no longer drawn).
+std::optional<double> draw_one(WorkbenchState& state, size_t index, ImVec2 size) {
+  std::optional<double> dragged;
+  VideoState& video = state.video;
+  VideoState::Shown& shown = video.videos[index];
+  const VideoAttachment& attachment = shown.attachment;
+  const std::shared_ptr<const VideoFrame> frame = shown.player->shown();
+  const std::shared_ptr<const VideoInfo> info = shown.player->info();
+  const double video_time = attachment.video_time(state.clock.time());
+  const bool is_selected = index == video.selected;
+  ImGui::PushID(static_cast<int>(index));
+  ImGui::BeginGroup();
+  const ImVec4 caption_colour =
+      is_selected ? ImVec4(1.0f, 0.85f, 0.45f, 1.0f) : ImVec4(0.75f, 0.75f, 0.75f, 1.0f);
+  std::string caption = attachment.name + "  offset " + fixed_text(attachment.offset, 3) + " s";
+  if (attachment.rate != 1.0) caption += " x" + significant_text(attachment.rate, 7);
+  if (frame)
+    caption +=
+        "  frame " + std::to_string(frame->index) + " at " + fixed_text(frame->time, 3) + " s";
+  ImGui::TextColored(caption_colour, "%s", caption.c_str());
+  remember_item(state, "video:caption:" + attachment.name);
+  const float caption_height = ImGui::GetFrameHeightWithSpacing();
+  const ImVec2 area(size.x, std::max(20.0f, size.y - caption_height));
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  ImGui::InvisibleButton("picture", area);
+  remember_item(state, "video:" + attachment.name,
+                "Click to choose this video for the keys; drag sideways to nudge its offset");
+  if (ImGui::IsItemActivated()) video.selected = index;
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
+    // The picture follows the drag; the offset is written as one edit on release.
+    if (!video.drag_from) video.drag_from = attachment.offset;
+    shown.attachment.offset += ImGui::GetIO().MouseDelta.x * kDragSecondsPerPixel;
+  }
+  if (ImGui::IsItemDeactivated() && video.drag_from) {
+    dragged = shown.attachment.offset;
+    shown.attachment.offset = *std::exchange(video.drag_from, std::nullopt);
+  }
+  const ImVec2 end(origin.x + area.x, origin.y + area.y);
+  draw->AddRectFilled(origin, end, IM_COL32(12, 12, 14, 255));
+  if (frame && frame->width > 0) {
+    if (frame->index != shown.texture_frame || shown.texture == 0) {
+      const bool same =
+          frame->width == shown.texture_width && frame->height == shown.texture_height;
+      shown.texture =
+          upload_rgba_texture(shown.texture, frame->width, frame->height, frame->rgba.data(), same);
+      shown.texture_frame = frame->index;
+      shown.texture_width = frame->width;
+      shown.texture_height = frame->height;
+    }
+    const float scale = std::min(area.x / static_cast<float>(frame->width),
+                                 area.y / static_cast<float>(frame->height));
+    const ImVec2 picture(frame->width * scale, frame->height * scale);
+    const ImVec2 at(origin.x + 0.5f * (area.x - picture.x), origin.y + 0.5f * (area.y - picture.y));
+    draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shown.texture)), at,
+                   ImVec2(at.x + picture.x, at.y + picture.y));
+    remember_box(state, "video:picture:" + attachment.name, at,
+                 ImVec2(at.x + picture.x, at.y + picture.y));
+  }
+  // Why no picture (or a stale one) is shown, over the picture.
+  std::string words = shown.player->problem();
+  if (words.empty() && shown.player->opening()) words = "opening " + shown.path + "...";
+  if (words.empty() && info) words = video_time_problem(*info, video_time, attachment.offset);
+  if (!words.empty()) {
+    ImGui::SetCursorScreenPos(ImVec2(origin.x + 6.0f, origin.y + 6.0f));
+    ImGui::PushTextWrapPos(origin.x + area.x - 6.0f);
+    ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.45f, 1.0f), "%s", words.c_str());
+    ImGui::PopTextWrapPos();
+    remember_item(state, "video:problem:" + attachment.name);
+  }
+  if (is_selected && video.videos.size() > 1)
+    draw->AddRect(origin, end, IM_COL32(255, 215, 110, 200), 0.0f, 0, 2.0f);
+  ImGui::SetCursorScreenPos(ImVec2(origin.x, end.y));
+  ImGui::EndGroup();
+  ImGui::PopID();
+  return dragged;
+}
+
+}  // namespace
+
+void draw_video_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("video_view", size, false,
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  VideoState& video = state.video;
+  if (state.options.only_view != "clip") draw_controls(state);
+  if (!video.problem.empty())
+    ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", video.problem.c_str());
+  if (video.videos.empty()) {
+    ImGui::TextDisabled("No video attached to this recording: Attach... (docs/VIDEO.md).");
+    ImGui::EndChild();
+    return;
+  }
+  const ImVec2 room = ImGui::GetContentRegionAvail();
+  // A clip of one video (`tactile clip --video NAME`) shows that one alone.
+  const std::string& only = state.options.clip_video;
+  std::vector<size_t> drawn;
+  for (size_t index = 0; index < video.videos.size(); ++index)
+    if (only.empty() || video.videos[index].attachment.name == only) drawn.push_back(index);
+  const size_t count = std::max<size_t>(1, drawn.size());
+  const float gap = 6.0f;
+  const float width = (room.x - gap * static_cast<float>(count - 1)) / static_cast<float>(count);
+  std::optional<std::pair<size_t, double>> dragged;
+  for (size_t index : drawn) {
+    if (index != drawn.front()) ImGui::SameLine(0.0f, gap);
+    if (auto offset = draw_one(state, index, ImVec2(std::max(20.0f, width), room.y)))
+      dragged = {index, *offset};
+  }
+  ImGui::EndChild();
+  if (dragged) {
+    const auto [index, offset] = *dragged;
+    const VideoAttachment& attachment = video.videos[index].attachment;
+    set_video_sync(state, index, offset, attachment.rate,
+                   "dragged " + seconds_text(offset - attachment.offset) + " s");
+  }
+}
+
+// A label as a talk shows it: the skin and the video side by side, under them the signals with
+// the cursor and the lanes (`tactile clip`).
+void draw_clip_view(WorkbenchState& state, ImVec2 size) {
+  ImGui::BeginChild("clip_view", size, false,
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  const float spacing = ImGui::GetStyle().ItemSpacing.y;
+  const float top = std::floor(size.y * 0.55f);
+  const float signals = std::floor(size.y * 0.25f);
+  const float lanes = size.y - top - signals - 2 * spacing;
+  const float half = std::floor(size.x * 0.5f);
+  draw_skin_panel_view(state, ImVec2(half - 4.0f, top));
+  ImGui::SameLine(0.0f, 8.0f);
+  draw_video_view(state, ImVec2(size.x - half - 4.0f, top));
+  draw_signals_view(state, ImVec2(size.x, signals));
+  draw_timeline_view(state, ImVec2(size.x, lanes));
+  ImGui::EndChild();
+}
+
+}  // namespace tactile
