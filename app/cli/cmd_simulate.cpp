@@ -21,6 +21,7 @@ struct SimulateArgs {
   std::string demo;
   SimulationOptions options;
   bool json = false;
+  bool video = false;  // a simulated camera beside each recording
   ShardArgs shard;
 };
 
@@ -52,6 +53,8 @@ void run_simulate(const SimulateArgs& args) {
                 "must be stationary or moving, not '" + args.options.condition + "'");
   if (!args.demo.empty() && !args.shard.shard.empty())
     throw Error("--shard", "the demo workspace does not shard: give --skin ID --out DIR");
+  if (args.video && !args.shard.shard.empty())
+    throw Error("--video", "not with --shard: film the merged folder's recordings");
   const ShardPlan plan =
       shard_plan(args.shard, (std::filesystem::path(args.out) / "simulate").string());
   ProgressBar bar(args.demo.empty() ? "simulate " + args.skin : "demo workspace");
@@ -67,6 +70,15 @@ void run_simulate(const SimulateArgs& args) {
       args.demo.empty() ? write_simulation(args.out, args.skin, args.options, progress)
                         : write_demo_workspace(args.demo, args.options.seed, progress);
   bar.finish();
+  if (args.video) {
+    ProgressBar filming("filming");
+    const std::vector<std::string> videos =
+        write_camera_videos(summary.files, args.options.seed,
+                            [&](int done, int total) { filming.update(done, total); });
+    filming.finish();
+    if (!args.json)
+      std::cout << "wrote " << videos.size() << " camera videos, attached as \"camera\"\n";
+  }
   print_summary(summary, args.demo.empty() ? args.out : args.demo, args.json, !args.demo.empty());
 }
 
@@ -109,6 +121,9 @@ void register_simulate(CLI::App& app) {
                    "(docs/SIMULATION.md)")
       ->capture_default_str();
   command->add_flag("--json", args->json, "Print a machine-readable summary");
+  command->add_flag("--video", args->video,
+                    "Film each recording with a simulated camera (a hand reaching each touch) and "
+                    "attach the video as \"camera\" (docs/VIDEO.md)");
   add_shard_options(command, args->shard);
   command->callback([args] { run_simulate(*args); });
 }

@@ -327,13 +327,14 @@ bool undo_video_edit(WorkbenchState& state, bool redo) {
 }
 
 bool videos_caught_up(const WorkbenchState& state) {
-  // Decoded, and drawn: the view uploads a frame the frame after the worker has it.
-  return std::all_of(state.video.videos.begin(), state.video.videos.end(),
-                     [](const VideoState::Shown& shown) {
-                       if (!shown.player->caught_up()) return false;
-                       const std::shared_ptr<const VideoFrame> frame = shown.player->shown();
-                       return !frame || frame->index == shown.texture_frame;
-                     });
+  // Decoded, and drawn where it is drawn: the view uploads a frame the frame after the worker
+  // has it.
+  return std::all_of(
+      state.video.videos.begin(), state.video.videos.end(), [&](const VideoState::Shown& shown) {
+        if (!shown.player->caught_up()) return false;
+        const std::shared_ptr<const VideoFrame> frame = shown.player->shown();
+        return !frame || shown.drawn_at != state.frame || frame->index == shown.texture_frame;
+      });
 }
 
 }  // namespace tactile

@@ -87,6 +87,7 @@ std::optional<double> draw_one(WorkbenchState& state, size_t index, ImVec2 size)
   const std::shared_ptr<const VideoInfo> info = shown.player->info();
   const double video_time = attachment.video_time(state.clock.time());
   const bool is_selected = index == video.selected;
+  shown.drawn_at = state.frame;
   ImGui::PushID(static_cast<int>(index));
   ImGui::BeginGroup();
   const ImVec4 caption_colour =

@@ -302,6 +302,7 @@ struct VideoState {
     uint32_t texture = 0;  // the shown frame as uploaded (gl_texture.h); 0: none yet
     int64_t texture_frame = -1;
     int texture_width = 0, texture_height = 0;
+    int64_t drawn_at = -1;  // the window's frame that last drew it
   };
   std::string recording;  // the recording whose attachments these are
   std::vector<Shown> videos;

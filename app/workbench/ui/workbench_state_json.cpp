@@ -12,6 +12,7 @@
 #include "results.h"
 #include "tactile/signal/taxel_values.h"
 #include "tactile/skins/skin.h"
+#include "video.h"
 #include "views.h"
 #include "workbench.h"
 
@@ -77,7 +78,8 @@ nlohmann::json videos_json(const WorkbenchState& state) {
 bool Workbench::jobs_running() const {
   // Until its result is applied on the window's thread: a job that has just ended is still
   // "running" for a screenshot, whose frame must show the result, not the progress.
-  return !pending_jobs(state_).empty();
+  // A video's frame at the cursor is decoded on its player's worker: shown once drawn.
+  return !pending_jobs(state_).empty() || !videos_caught_up(state_);
 }
 
 nlohmann::json Workbench::state_json() const {

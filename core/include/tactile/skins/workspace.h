@@ -62,4 +62,11 @@ SimulationSummary merge_simulation_parts(const std::vector<Part>& parts, const s
 SimulationSummary write_demo_workspace(const std::string& folder, uint64_t seed = 1,
                                        const SimulationProgress& progress = {});
 
+// A simulated camera beside each of `files` (sim/touch_video.h), showing its ground-truth
+// touches from labels.db in its folder: RECORDING-camera.mp4, attached to it as "camera" with the
+// offset 0 (video/attachments.h; `tactile simulate --video`). Returns the videos written. Throws
+// tactile::Error naming the recording.
+std::vector<std::string> write_camera_videos(const std::vector<std::string>& files, uint64_t seed,
+                                             const SimulationProgress& progress = {});
+
 }  // namespace tactile
