@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <utility>
 
+#include "gl_texture.h"
 #include "tactile/error.h"
 #include "tactile/io/disk_room.h"
 #include "tactile/signal/display_scale.h"
@@ -164,6 +165,56 @@ void classify(WorkbenchState& state, LiveServices& services) {
     state.notice = "online model: " + failure;
 }
 
+// The camera beside the skin: opened with the live source; a camera that cannot be opened is
+// named and the skin goes on without it.
+void open_camera(WorkbenchState& state, LiveServices& services, const std::string& url) {
+  LiveState::CameraShown shown;
+  shown.url = url;
+  try {
+    CameraOptions options;
+    options.url = url;
+    options.pre_trigger = state.live.pretrigger_seconds;
+    services.camera =
+        std::make_unique<Camera>(options, [clock = services.clock] { return clock->now(); });
+  } catch (const std::exception& failure) {
+    shown.error = failure.what();
+    state.error = "camera: " + shown.error;
+  }
+  state.live.camera = std::move(shown);
+}
+
+void poll_camera(WorkbenchState& state, LiveServices& services) {
+  if (!services.camera || !state.live.camera) return;
+  LiveState::CameraShown& shown = *state.live.camera;
+  shown.received = services.camera->frames_received();
+  if (std::optional<VideoFrame> frame = services.camera->latest();
+      frame && (!shown.frame || frame->time != shown.frame->time))
+    shown.frame = std::move(frame);
+  if (const std::string failure = services.camera->error();
+      !failure.empty() && failure != shown.error) {
+    shown.error = failure;
+    state.error = "camera: " + failure;
+  }
+}
+
+// The camera's video beside a recording that starts now, its pre-trigger frames first, attached
+// to the recording with the offset of its first frame on the recording's clock.
+void record_camera(WorkbenchState& state, LiveServices& services, const std::string& recording) {
+  if (!services.camera || !state.live.camera) return;
+  const fs::path file(recording);
+  const std::string video = (file.parent_path() / (file.stem().string() + "-camera.mp4")).string();
+  try {
+    VideoAttachment attachment;
+    attachment.name = "camera";
+    attachment.path = kept_video_path(recording, video);
+    attachment.offset = services.camera->start_recording(video);
+    write_attachments(recording, {attachment});
+    state.live.camera->recording = video;
+  } catch (const std::exception& failure) {
+    state.error = "camera not recorded: " + std::string(failure.what());
+  }
+}
+
 }  // namespace
 
 bool load_online_model(WorkbenchState& state, LiveServices& services, const std::string& path) {
@@ -231,6 +282,8 @@ bool connect_live(WorkbenchState& state, LiveServices& services, const std::stri
     state.clock.pause();
     state.error.clear();
     state.notice = "connected to " + url;
+    services.clock = std::make_shared<LiveClock>();
+    if (!state.options.camera.empty()) open_camera(state, services, state.options.camera);
     return true;
   } catch (const std::exception& failure) {
     state.error = std::string("cannot connect: ") + failure.what();
@@ -241,6 +294,9 @@ bool connect_live(WorkbenchState& state, LiveServices& services, const std::stri
 void disconnect_live(WorkbenchState& state, LiveServices& services) {
   if (!services.receiver) return;
   if (services.recorder) stop_recording(state, services);
+  services.camera.reset();
+  if (state.live.camera) delete_texture(state.live.camera->texture);
+  state.live.camera.reset();
   services.online.reset();
   services.receiver->stop();
   services.receiver.reset();
@@ -274,6 +330,8 @@ void poll_live(WorkbenchState& state, LiveServices& services) {
   services.receiver->ring().drain(
       [&](double time, std::span<const float> values) { source.add(time, values); });
   live.counters = services.receiver->counters();
+  if (source.sample_count() > 0) services.clock->set(source.end_time());
+  poll_camera(state, services);
   if (const std::string failure = services.receiver->failure();
       !failure.empty() && live.failure != failure) {
     live.failure = failure;
@@ -342,6 +400,7 @@ bool start_recording(WorkbenchState& state, LiveServices& services, const std::s
                             services.detector->state() == ContactDetector::State::kContact;
   live.recording = services.recorder->path();
   live.recorded_samples = 0;
+  record_camera(state, services, path);
   // Labels made from now on belong to this recording, in the label database beside it.
   Document& document = *state.document;
   document.path = fs::absolute(path).lexically_normal().string();
@@ -367,6 +426,10 @@ bool stop_recording(WorkbenchState& state, LiveServices& services) {
   }
   live.recorded.push_back(path);
   services.recorder.reset();
+  if (services.camera && live.camera && !live.camera->recording.empty()) {
+    services.camera->stop_recording();
+    live.camera->recording.clear();
+  }
   live.recording.clear();
   // Labels stay possible for what was just recorded until the next recording starts: the
   // document keeps the path and recording id of the last one.
@@ -520,6 +583,14 @@ nlohmann::json live_json(const WorkbenchState& state) {
                      : 0;
   json["follow"] = live.follow;
   json["buffer_seconds"] = live.buffer_seconds;
+  json["camera"] = nullptr;
+  if (const std::optional<LiveState::CameraShown>& camera = live.camera)
+    json["camera"] = {{"url", camera->url},
+                      {"received", camera->received},
+                      {"frame_time", camera->frame ? nlohmann::json(camera->frame->time)
+                                                   : nlohmann::json(nullptr)},
+                      {"error", camera->error},
+                      {"recording", camera->recording}};
   json["newest"] = state.document && state.document->source->sample_count() > 0
                        ? nlohmann::json(state.document->source->time_of(
                              state.document->source->sample_count() - 1))

@@ -117,7 +117,9 @@ std::string offset_words(const VideoAttachment& attachment) {
 
 }  // namespace
 
-bool has_videos(const WorkbenchState& state) { return !state.video.videos.empty(); }
+bool has_videos(const WorkbenchState& state) {
+  return !state.video.videos.empty() || (state.live.connected && state.live.camera);
+}
 
 void update_videos(WorkbenchState& state) {
   VideoState& video = state.video;

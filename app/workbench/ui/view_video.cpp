@@ -156,11 +156,62 @@ std::optional<double> draw_one(WorkbenchState& state, size_t index, ImVec2 size)
   return dragged;
 }
 
+// The live camera's newest frame, stamped on the stream's clock.
+void draw_camera(WorkbenchState& state, LiveState::CameraShown& camera, ImVec2 size) {
+  std::string caption = "camera " + camera.url;
+  if (camera.frame)
+    caption += "  at " + fixed_text(camera.frame->time, 3) + " s, " +
+               std::to_string(camera.received) + " frames";
+  if (!camera.recording.empty()) caption += "  recording";
+  ImGui::TextColored(ImVec4(0.75f, 0.75f, 0.75f, 1.0f), "%s", caption.c_str());
+  remember_item(state, "video:caption:camera");
+  const ImVec2 room = ImGui::GetContentRegionAvail();
+  const ImVec2 area(size.x, std::max(20.0f, room.y));
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(origin, ImVec2(origin.x + area.x, origin.y + area.y),
+                      IM_COL32(12, 12, 14, 255));
+  if (camera.frame && camera.frame->width > 0) {
+    const VideoFrame& frame = *camera.frame;
+    if (frame.time != camera.texture_time || camera.texture == 0) {
+      const bool same =
+          frame.width == camera.texture_width && frame.height == camera.texture_height;
+      camera.texture =
+          upload_rgba_texture(camera.texture, frame.width, frame.height, frame.rgba.data(), same);
+      camera.texture_time = frame.time;
+      camera.texture_width = frame.width;
+      camera.texture_height = frame.height;
+    }
+    const float scale = std::min(area.x / static_cast<float>(frame.width),
+                                 area.y / static_cast<float>(frame.height));
+    const ImVec2 picture(frame.width * scale, frame.height * scale);
+    const ImVec2 at(origin.x + 0.5f * (area.x - picture.x), origin.y + 0.5f * (area.y - picture.y));
+    draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(camera.texture)), at,
+                   ImVec2(at.x + picture.x, at.y + picture.y));
+    remember_box(state, "video:picture:camera", at, ImVec2(at.x + picture.x, at.y + picture.y));
+  }
+  if (!camera.error.empty()) {
+    ImGui::SetCursorScreenPos(ImVec2(origin.x + 6.0f, origin.y + 6.0f));
+    ImGui::PushTextWrapPos(origin.x + area.x - 6.0f);
+    ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.45f, 1.0f), "%s", camera.error.c_str());
+    ImGui::PopTextWrapPos();
+  }
+  ImGui::Dummy(area);
+}
+
 }  // namespace
 
 void draw_video_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("video_view", size, false,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  if (state.live.connected) {
+    if (state.live.camera)
+      draw_camera(state, *state.live.camera, ImGui::GetContentRegionAvail());
+    else
+      ImGui::TextDisabled("No camera: --camera URL beside --connect (docs/VIDEO.md).");
+    ImGui::EndChild();
+    return;
+  }
   VideoState& video = state.video;
   if (state.options.only_view != "clip") draw_controls(state);
   if (!video.problem.empty())

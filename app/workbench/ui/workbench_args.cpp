@@ -50,6 +50,10 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
   app.add_option("--connect", args.options.connect,
                  "Live source: udp://:PORT (loopback; udp://0.0.0.0:PORT for every interface), "
                  "serial:///dev/ttyUSB0?baud=921600, sim://SKIN?rate=X, replay:///FILE.h5?speed=X");
+  app.add_option("--camera", args.options.camera,
+                 "Live: a camera shown and recorded beside the skin, v4l2:/dev/video0 or an FFmpeg "
+                 "input device and its input, e.g. lavfi:testsrc2=size=320x240:rate=30 "
+                 "(docs/VIDEO.md)");
   app.add_option("--skin", args.options.skin,
                  "Skin of a udp:// or serial:// source: " + joined(packet_skin_ids()));
   app.add_option("--record", args.options.record_path,
@@ -84,6 +88,8 @@ std::optional<int> parse_workbench_args(int argc, char** argv, WorkbenchArgs& ar
     if (!args.options.connect.empty() && !args.options.open_path.empty())
       throw CLI::ValidationError("--connect",
                                  "opens a live source; give a recording or --connect, not both");
+    if (!args.options.camera.empty() && args.options.connect.empty())
+      throw CLI::ValidationError("--camera", "films beside a live source: give --connect too");
     if (!args.options.record_path.empty() && args.options.connect.empty())
       throw CLI::ValidationError("--record", "records a live source: give --connect too");
     if (!size.empty()) {

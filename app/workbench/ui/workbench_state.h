@@ -287,6 +287,19 @@ struct LiveState {
   std::array<char, 512> model_input{};
   std::vector<OnlineDecision> decisions;
   std::optional<OnlineDecision> shown;  // the one written large over the skin
+  // The camera beside the skin (--camera URL): its newest frame as uploaded for the video view,
+  // its counters, why it stopped, and the video being recorded beside the recording.
+  struct CameraShown {
+    std::string url;
+    std::optional<VideoFrame> frame;
+    uint32_t texture = 0;
+    double texture_time = -1.0;
+    int texture_width = 0, texture_height = 0;
+    int64_t received = 0;
+    std::string error;
+    std::string recording;  // the video file being written ("" when not recording)
+  };
+  std::optional<CameraShown> camera;
   // Requests (the live bar, Ctrl+R).
   bool record_request = false;                  // start recording, or stop when recording
   bool clear_request = false;                   // drop what the buffer holds
@@ -346,6 +359,7 @@ struct WorkbenchOptions {
   std::string model_path;                   // --model MODEL.json (a SOM's map)
   std::string features_path;                // --features TABLE.csv (the scatter)
   std::string connect;                      // --connect URL (live mode)
+  std::string camera;                       // --camera URL: a camera beside the live skin
   std::string skin;                         // --skin ID (for udp:// and serial://)
   std::string record_path;                  // --record FILE.h5: record from the start
   double buffer_seconds = 600.0;            // --buffer
