@@ -4,6 +4,7 @@
 // decoded on demand (seek to the key frame before it, decode forward), and a small cache.
 // One VideoFile is used by one thread at a time; a view's worker owns its own.
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -35,7 +36,8 @@ struct VideoFrame {
 };
 
 struct VideoOpenOptions {
-  int max_width = 0;     // scale frames down (aspect kept) to at most this width; 0: as coded
+  int max_width = 0;     // scale frames down (aspect kept) to at most this width; 0: as coded;
+                         // either way rounded to even sizes
   bool grey = false;     // one byte per pixel (luma) instead of RGBA: for motion energy
   int cache_frames = 8;  // decoded frames kept (the cache holds at most this many)
 };
@@ -44,7 +46,7 @@ class VideoFile {
  public:
   // Opens, probes and indexes the file. Throws tactile::Error naming the path and what is wrong:
   // missing, unreadable, not a video, no video stream, a codec this FFmpeg cannot decode, cut
-  // short (no frame decodes).
+  // short (no frame decodes: frame 0 is decoded here, to know).
   explicit VideoFile(const std::string& path, VideoOpenOptions options = {});
   ~VideoFile();
   VideoFile(const VideoFile&) = delete;
@@ -59,7 +61,14 @@ class VideoFile {
   // Decodes frame `index` (0 <= index < frame_count): reads forward from the current position
   // when it lies ahead within a few key frames, else seeks. Throws tactile::Error naming the
   // file and frame when the data there is corrupt.
+  // The reference stays valid until the next call of frame().
   const VideoFrame& frame(int64_t index);
+
+  // What the decoding has cost so far, for tests and benchmarks: the seeks frame() made (the
+  // one at opening not counted), the frames the decoder gave out, the bytes the cache holds.
+  int64_t seek_count() const;
+  int64_t decoded_frame_count() const;
+  size_t cached_bytes() const;
 
  private:
   struct Impl;
