@@ -28,7 +28,7 @@ std::string time_view(const ScriptStep& step, size_t index) {
   return "signals";
 }
 
-std::string seconds_text(double t) {
+std::string seconds_with_unit(double t) {
   char text[32];
   std::snprintf(text, sizeof text, "%g s", t);
   return text;
@@ -45,8 +45,8 @@ std::optional<ImVec2> time_point(Workbench& workbench, const std::string& view, 
   }
   const TimeAxis& axis = found->second;
   if (t < axis.t0 || t > axis.t1) {
-    problem = "time " + seconds_text(t) + " is outside the visible range [" +
-              seconds_text(axis.t0) + ", " + seconds_text(axis.t1) + "] of " + view;
+    problem = "time " + seconds_with_unit(t) + " is outside the visible range [" +
+              seconds_with_unit(axis.t0) + ", " + seconds_with_unit(axis.t1) + "] of " + view;
     return std::nullopt;
   }
   const float x =
