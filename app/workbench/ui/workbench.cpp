@@ -226,9 +226,12 @@ void Workbench::choose_default_view() {
 void Workbench::frame(double seconds) {
   const auto started = std::chrono::steady_clock::now();
   frame_work(seconds);
-  state_.longest_frame_seconds =
-      std::max(state_.longest_frame_seconds,
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  state_.longest_frame_seconds = std::max(state_.longest_frame_seconds, took);
+  constexpr size_t kFramesKept = 100000;
+  if (state_.frame_seconds.size() < kFramesKept)
+    state_.frame_seconds.push_back(static_cast<float>(took));
 }
 
 void Workbench::frame_work(double seconds) {

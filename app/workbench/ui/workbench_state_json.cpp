@@ -224,6 +224,13 @@ nlohmann::json Workbench::state_json() const {
   json["labels_read_only"] = document ? document->labels_read_only : std::string();
   json["labels_path"] = document ? document->labels_path : std::string();
   json["longest_frame_seconds"] = state_.longest_frame_seconds;
+  // Every frame's building time so far: the median beside the longest.
+  if (!state_.frame_seconds.empty()) {
+    std::vector<float> sorted = state_.frame_seconds;
+    const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+    std::nth_element(sorted.begin(), middle, sorted.end());
+    json["median_frame_seconds"] = *middle;
+  }
   json["frame"] = state_.frame;
   nlohmann::json jobs = nlohmann::json::array();
   for (const WorkbenchState::JobRecord& record : state_.job_log)
