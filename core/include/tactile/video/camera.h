@@ -19,8 +19,8 @@ struct CameraOptions {
   // "v4l2:/dev/video0", "lavfi:testsrc2=size=320x240:rate=30" (FFmpeg's device name, a colon,
   // its input). Throws at open when the device cannot be opened, naming it.
   std::string url;
-  int max_width = 640;          // frames shown and recorded at most this wide
-  double pre_trigger = 5;       // seconds of frames kept before recording starts
+  int max_width = 640;     // frames shown and recorded at most this wide
+  double pre_trigger = 5;  // seconds of frames kept before recording starts
 };
 
 class Camera {

@@ -37,6 +37,24 @@ ActivitySeries motion_energy(VideoFile& video, double rate, std::optional<VideoR
 ActivitySeries skin_activity(const SampleSource& source, double rate,
                              const std::function<void(double)>& progress = {});
 
+// When propose_offset is sure (docs/VIDEO.md, "Synchronising"):
+// - the video's motion energy (luma levels, 0..255) varies by at least kMinMotion (standard
+//   deviation over the overlap): a still picture's codec noise stays far below it;
+// - some step of the skin's activity reaches kTouchOverMedian times its median (the noise of
+//   the quiet skin summed over its channels);
+// - the overlap at the best offset lasts kMinOverlapSeconds;
+// - the correlation at the best offset reaches kMinCorrelation, and the confidence
+//   (best - rival) / (1 - rival), the rival the best other peak beyond kSeparateSeconds,
+//   reaches kSureConfidence.
+inline constexpr double kMinMotion = 0.05;
+inline constexpr double kTouchOverMedian = 3.0;
+inline constexpr double kMinOverlapSeconds = 10.0;
+inline constexpr double kMinCorrelation = 0.25;
+inline constexpr double kSureConfidence = 0.2;
+inline constexpr double kSeparateSeconds = 1.0;
+// A channel's noise in skin_activity is floored at this fraction of the median channel's.
+inline constexpr double kNoiseFloorOfTypical = 0.25;
+
 struct SyncProposal {
   double offset = 0;       // the proposed VideoAttachment::offset (rate 1)
   double correlation = 0;  // normalised cross-correlation at the best lag, -1..1
@@ -47,7 +65,7 @@ struct SyncProposal {
 
 // The offset in [centre - max_lag, centre + max_lag] at which the skin's activity and the
 // video's motion energy agree best.
-SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& motion,
-                            double centre, double max_lag);
+SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& motion, double centre,
+                            double max_lag);
 
 }  // namespace tactile
