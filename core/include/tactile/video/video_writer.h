@@ -10,13 +10,13 @@
 namespace tactile {
 
 struct VideoWriterOptions {
-  int width = 0;   // even numbers: the encoders' 4:2:0 chroma needs them
+  int width = 0;  // even numbers: the encoders' 4:2:0 chroma needs them
   int height = 0;
-  double rate = 30;    // the nominal frame rate (the stream's time base is 1/(rate*100))
+  double rate = 30;  // the nominal frame rate (the stream's time base is 1/(rate*100))
   // libavcodec encoder name; "" chooses by the file's extension: .mp4/.mov/.mkv H.264
   // (libx264) when this FFmpeg has it, else MPEG-4 part 2; .avi MJPEG; .webm VP9.
   std::string codec;
-  int quality = 23;    // constant quality where the encoder has one (lower is better)
+  int quality = 23;  // constant quality where the encoder has one (lower is better)
 };
 
 class VideoWriter {
