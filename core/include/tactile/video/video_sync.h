@@ -25,9 +25,13 @@ struct ActivitySeries {
   std::vector<double> values;
 };
 
-// The video's motion energy at `rate` samples per second of video time (`video` opened grey and
-// small: VideoOpenOptions{.max_width = 160, .grey = true}). `progress(fraction)` is called now
-// and then (JobProgress::steps); a job's cancel (cancel_requested()) stops it with an Error.
+// The video's motion energy at `rate` samples per second of video time: per pair of
+// consecutive frames the mean absolute difference of their luma (within `region`) beyond the
+// pair's median absolute difference (the still pixels' noise, a key frame's re-encoding, an
+// exposure step), in luma levels (0..255), placed at the later frame's time; per grid step the
+// mean of the pairs ending in it. `video` opened grey and small (VideoOpenOptions{.max_width =
+// 160, .grey = true}). `progress(fraction)` is called now and then (JobProgress::steps); a job's
+// cancel (cancel_requested()) stops it with an Error.
 ActivitySeries motion_energy(VideoFile& video, double rate, std::optional<VideoRegion> region,
                              const std::function<void(double)>& progress = {});
 
