@@ -14,15 +14,13 @@
 #include "tactile/signal/display_scale.h"
 #include "tactile/signal/sample_source.h"
 #include "tactile/stats/statistics.h"
+#include "tactile/text.h"
 
 namespace tactile {
 namespace {
 
-std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f s", seconds);
-  return text;
-}
+// "12.34 s": the proposal's words.
+std::string lag_text(double seconds) { return fixed_text(seconds, 2) + " s"; }
 
 // `series` on a grid of `rate`, starting where it starts: each new step the mean of the old
 // steps whose time falls in it (a step without any takes the previous step's value).
@@ -186,7 +184,7 @@ SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& mo
       best = j;
   if (best == lags) {
     proposal.why = "the video and the recording do not overlap at offsets within " +
-                   seconds_text(max_lag) + " of " + seconds_text(centre);
+                   lag_text(max_lag) + " of " + lag_text(centre);
     return proposal;
   }
   auto offset_of = [&](double j) { return d + (static_cast<double>(lag_first) + j) / rate; };
@@ -233,7 +231,7 @@ SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& mo
   } else if (shows_no_touches(a.values.data() + s0, static_cast<size_t>(overlap))) {
     proposal.why = "the skin shows no touches in the overlap";
   } else if (static_cast<double>(overlap) / rate < kMinOverlapSeconds) {
-    proposal.why = "the overlap at the best offset is under " + seconds_text(kMinOverlapSeconds);
+    proposal.why = "the overlap at the best offset is under " + lag_text(kMinOverlapSeconds);
   } else if (proposal.correlation < kMinCorrelation) {
     char text[160];
     std::snprintf(text, sizeof text,
@@ -242,8 +240,8 @@ SyncProposal propose_offset(const ActivitySeries& skin, const ActivitySeries& mo
                   proposal.correlation);
     proposal.why = text;
   } else if (proposal.confidence < kSureConfidence) {
-    proposal.why = "two offsets fit about equally: " + seconds_text(proposal.offset) + " and " +
-                   seconds_text(offset_of(static_cast<double>(second)));
+    proposal.why = "two offsets fit about equally: " + lag_text(proposal.offset) + " and " +
+                   lag_text(offset_of(static_cast<double>(second)));
   }
   proposal.sure = proposal.why.empty();
   return proposal;
