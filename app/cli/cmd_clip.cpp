@@ -2,17 +2,14 @@
 // talk shows it. The drawing is the workbench's own (its "clip" view, rendered off-screen with
 // OSMesa), so this command runs tactile-workbench-headless, installed beside `tactile`, and
 // keeps the command line itself free of ImGui.
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "commands.h"
+#include "tactile/cluster/slurm.h"
 #include "tactile/error.h"
 #include "tactile/text.h"
 
@@ -30,50 +27,39 @@ struct ClipArgs {
   int width = 1280, height = 720;
 };
 
-std::string renderer_path() {
-  std::error_code error;
-  const fs::path self = fs::read_symlink("/proc/self/exe", error);
-  const fs::path beside = self.parent_path() / "tactile-workbench-headless";
-  if (error || !fs::exists(beside))
-    throw Error("tactile clip",
-                "the clip is drawn by tactile-workbench-headless, which is not "
-                "beside this program (" +
-                    beside.string() + ")");
-  return beside.string();
-}
-
 void run_clip(const ClipArgs& args) {
   const std::string extension = fs::path(args.out).extension().string();
   if (extension != ".mp4" && extension != ".mkv" && extension != ".mov" && extension != ".avi" &&
       extension != ".webm")
     throw Error("--out", in_quotes(args.out) + ": a clip is .mp4, .mkv, .mov, .avi or .webm");
-  std::vector<std::string> words = {renderer_path(), args.recording,
-                                    "--clip-label",  std::to_string(args.label),
-                                    "--clip-out",    args.out,
-                                    "--clip-margin", shortest_text(args.margin),
-                                    "--clip-rate",   shortest_text(args.rate),
-                                    "--width",       std::to_string(args.width),
-                                    "--height",      std::to_string(args.height)};
+  std::vector<std::string> words = {cluster::program_beside_this_one("tactile-workbench-headless"),
+                                    args.recording,
+                                    "--clip-label",
+                                    std::to_string(args.label),
+                                    "--clip-out",
+                                    args.out,
+                                    "--clip-margin",
+                                    shortest_text(args.margin),
+                                    "--clip-rate",
+                                    shortest_text(args.rate),
+                                    "--width",
+                                    std::to_string(args.width),
+                                    "--height",
+                                    std::to_string(args.height)};
   if (!args.video.empty()) words.insert(words.end(), {"--clip-video", args.video});
   if (!args.labels.empty()) words.insert(words.end(), {"--labels", args.labels});
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  const pid_t child = fork();
-  if (child < 0) throw Error("tactile clip", system_error("cannot start the renderer"));
-  if (child == 0) {
-    execv(argv[0], argv.data());
-    _exit(127);
+  const cluster::ProgramOutput drawn = cluster::run_captured(words);
+  if (drawn.exit_code != 0) {
+    std::string said = drawn.out;
+    while (!said.empty() && said.back() == '\n') said.pop_back();
+    // The renderer's own line ("tactile-workbench: clip: ... has no label 99") says what.
+    const size_t last = said.rfind('\n');
+    throw Error("tactile clip",
+                "no clip written: " + (said.empty() ? "the renderer failed (exit " +
+                                                          std::to_string(drawn.exit_code) + ")"
+                                                    : said.substr(last + 1)));
   }
-  int status = 0;
-  while (waitpid(child, &status, 0) < 0)
-    if (errno != EINTR) throw Error("tactile clip", system_error("waiting for the renderer"));
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw Error(
-        "tactile clip",
-        "no clip written: the renderer (" + words[0] + ") " +
-            (WIFEXITED(status) ? "ended with exit code " + std::to_string(WEXITSTATUS(status))
-                               : "was killed by signal " + std::to_string(WTERMSIG(status))));
+  std::cout << drawn.out;
 }
 
 }  // namespace

@@ -167,6 +167,8 @@ void take_browser_choice(WorkbenchState& state, const BrowseChoice& choice) {
     open_labels_import_dialog(state, choice.path);
   } else if (purpose == "attach video") {
     attach_video(state, choice.path);
+  } else if (purpose == "export clip") {
+    export_clip(state, choice.path);
   } else if (purpose == "verify") {
     start_verify(state, {choice.path});
   } else if (purpose == "upgrade") {

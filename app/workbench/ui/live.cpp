@@ -295,7 +295,7 @@ void disconnect_live(WorkbenchState& state, LiveServices& services) {
   if (!services.receiver) return;
   if (services.recorder) stop_recording(state, services);
   services.camera.reset();
-  if (state.live.camera) delete_texture(state.live.camera->texture);
+  if (state.live.camera) delete_texture(state.live.camera->texture.id);
   state.live.camera.reset();
   services.online.reset();
   services.receiver->stop();

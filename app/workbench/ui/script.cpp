@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -164,37 +165,52 @@ void ScriptPlayer::click_named(const std::string& name, const std::string& missi
 void ScriptPlayer::drag(bool taxels, const ScriptStep& step) {
   const double a = std::stod(step.words[1]), b = std::stod(step.words[2]);
   const std::string view = taxels ? "skin" : time_view(step, 3);
+  drag_between(
+      [a, b, taxels, view](Workbench& workbench,
+                           std::string& problem) -> std::optional<std::pair<ImVec2, ImVec2>> {
+        auto point = [&](double value) -> std::optional<ImVec2> {
+          if (!taxels) return time_point(workbench, view, value, problem);
+          const auto& centres = workbench.state().targets.taxels;
+          const auto found = centres.find(static_cast<int64_t>(value));
+          if (found == centres.end()) {
+            problem =
+                "no taxel " + std::to_string(static_cast<int64_t>(value)) + " in the skin view";
+            return std::nullopt;
+          }
+          return ImVec2(found->second.first, found->second.second);
+        };
+        const auto from = point(a);
+        const auto to = from ? point(b) : std::nullopt;
+        if (!from || !to) return std::nullopt;
+        std::pair<ImVec2, ImVec2> ends{*from, *to};
+        if (taxels) {
+          // A rectangle that holds both centres: corners 3 pixels beyond them (ImGui
+          // floors mouse positions to whole pixels).
+          auto outward = [](float& low, float& high) {
+            const float sign = high >= low ? 1.0f : -1.0f;
+            low -= 3.0f * sign;
+            high += 3.0f * sign;
+          };
+          outward(ends.first.x, ends.second.x);
+          outward(ends.first.y, ends.second.y);
+        }
+        return ends;
+      },
+      step);
+}
+
+// Presses where `find` says, moves to its second point in 8 steps, releases.
+void ScriptPlayer::drag_between(Ends find, const ScriptStep& step) {
   auto ends = std::make_shared<std::pair<ImVec2, ImVec2>>();
-  actions_.push_back([this, step, a, b, taxels, view, ends](Workbench& workbench, ImGuiIO& io) {
+  actions_.push_back([this, step, find, ends](Workbench& workbench, ImGuiIO& io) {
     std::string problem;
-    auto point = [&](double value) -> std::optional<ImVec2> {
-      if (!taxels) return time_point(workbench, view, value, problem);
-      const auto& centres = workbench.state().targets.taxels;
-      const auto found = centres.find(static_cast<int64_t>(value));
-      if (found == centres.end()) {
-        problem = "no taxel " + std::to_string(static_cast<int64_t>(value)) + " in the skin view";
-        return std::nullopt;
-      }
-      return ImVec2(found->second.first, found->second.second);
-    };
-    const auto from = point(a);
-    const auto to = from ? point(b) : std::nullopt;
-    if (!from || !to) {
+    const std::optional<std::pair<ImVec2, ImVec2>> found = find(workbench, problem);
+    if (!found && workbench.state().frame < 1) return false;
+    if (!found) {
       fail(step, problem);
       return true;
     }
-    *ends = {*from, *to};
-    if (taxels) {
-      // A rectangle that holds both centres: corners 3 pixels beyond them (ImGui
-      // floors mouse positions to whole pixels).
-      auto outward = [](float& low, float& high) {
-        const float sign = high >= low ? 1.0f : -1.0f;
-        low -= 3.0f * sign;
-        high += 3.0f * sign;
-      };
-      outward(ends->first.x, ends->second.x);
-      outward(ends->first.y, ends->second.y);
-    }
+    *ends = *found;
     io.MousePos = ends->first;
     io.MouseDown[0] = false;
     return true;
@@ -298,6 +314,28 @@ void ScriptPlayer::click_time(const ScriptStep& step) {
 }
 
 void ScriptPlayer::drag_time(const ScriptStep& step) { drag(false, step); }
+
+void ScriptPlayer::drag_item(const ScriptStep& step) {
+  const std::string name = step.words[1];
+  std::array<float, 4> at{};
+  for (size_t k = 0; k < 4; ++k) at[k] = static_cast<float>(std::stod(step.words[2 + k]));
+  drag_between(
+      [name, at](Workbench& workbench,
+                 std::string& problem) -> std::optional<std::pair<ImVec2, ImVec2>> {
+        const auto& items = workbench.state().targets.items;
+        const auto found = items.find(name);
+        if (found == items.end()) {
+          problem = "no item " + name + " drawn";
+          return std::nullopt;
+        }
+        const ScreenRect& box = found->second;
+        auto point = [&](float x, float y) {
+          return ImVec2(box.x0 + x * box.width(), box.y0 + y * box.height());
+        };
+        return std::pair{point(at[0], at[1]), point(at[2], at[3])};
+      },
+      step);
+}
 
 void ScriptPlayer::drag_taxels(const ScriptStep& step) { drag(true, step); }
 

@@ -49,6 +49,12 @@ class ScriptPlayer {
   void mouse_frame(std::function<ImVec2()> position, bool down);
   void click_named(const std::string& name, const std::string& missing, const ScriptStep& step);
   void drag(bool taxels, const ScriptStep& step);
+  // The two points of a drag, found on the frame it starts; nothing (and `problem`) when a
+  // target is not drawn.
+  using Ends =
+      std::function<std::optional<std::pair<ImVec2, ImVec2>>(Workbench&, std::string& problem)>;
+  void drag_between(Ends find, const ScriptStep& step);
+  void drag_item(const ScriptStep& step);
   static std::vector<std::string> menu_parts(const std::string& path);  // "File/Open..."
   void open_menus(const std::vector<std::string>& parts, const ScriptStep& step);
   void draw_until(std::function<bool(Workbench&)> finished, const std::string& timeout,

@@ -164,6 +164,11 @@ void check_script_two_numbers(const ScriptStep& step, const std::string& where) 
   parse_number(step, 1, where), parse_number(step, 2, where);
 }
 
+// drag item NAME X0 Y0 X1 Y1: four fractions after the name.
+void check_script_four_numbers(const ScriptStep& step, const std::string& where) {
+  for (size_t k = 2; k < 6; ++k) parse_number(step, k, where);
+}
+
 //---- The table
 
 using ScriptCheck = void (*)(const ScriptStep&, const std::string& where);

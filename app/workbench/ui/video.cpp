@@ -6,6 +6,7 @@
 
 #include "gl_texture.h"
 #include "jobs.h"
+#include "tactile/cluster/slurm.h"
 #include "tactile/error.h"
 #include "tactile/text.h"
 #include "tactile/video/video_file.h"
@@ -36,7 +37,7 @@ std::vector<VideoAttachment> attachments_of(const VideoState& video) {
 }
 
 void release(VideoState& video) {
-  for (VideoState::Shown& shown : video.videos) delete_texture(shown.texture);
+  for (VideoState::Shown& shown : video.videos) delete_texture(shown.texture.id);
   video.videos.clear();
 }
 
@@ -247,7 +248,8 @@ void propose_video_offset(WorkbenchState& state) {
   video.proposal.reset();
   start_job<VideoState::Proposed>(
       state, "video sync", "propose offset of " + shown->attachment.name,
-      [open = source_for_job(*state.document), path = shown->path, region = video.region,
+      [open = source_for_job(*state.document), path = shown->path,
+       region = video.region_for == shown->attachment.name ? video.region : std::nullopt,
        centre = shown->attachment.offset, recording = video.recording,
        name = shown->attachment.name](JobProgress& progress) {
         VideoOpenOptions options;
@@ -292,6 +294,64 @@ void reject_video_proposal(WorkbenchState& state) {
   state.notice = "video " + state.video.proposal_for + ": proposed offset rejected";
 }
 
+namespace {
+
+// The one label selected, or a refusal on the status bar.
+std::optional<Label> selected_label(WorkbenchState& state) {
+  if (!state.document) return fail(state, "export clip: open a recording first"), std::nullopt;
+  if (state.selection.labels.size() != 1)
+    return fail(state, "export clip: select one label (click it in the lanes or the table)"),
+           std::nullopt;
+  for (const Label& label : state.document->labels)
+    if (label.id == state.selection.labels.front()) return label;
+  return fail(state, "export clip: the selected label is not in this recording"), std::nullopt;
+}
+
+}  // namespace
+
+void ask_clip_file(WorkbenchState& state) {
+  const std::optional<Label> label = selected_label(state);
+  if (!label) return;
+  const fs::path recording(state.document->path);
+  state.file_browser.open(
+      {BrowseMode::kSaveFile,
+       "export clip",
+       "Export clip",
+       recording.parent_path().string(),
+       {".mp4", ".mkv", ".mov", ".avi", ".webm"},
+       recording.stem().string() + "-label-" + std::to_string(label->id) + ".mp4"});
+}
+
+void export_clip(WorkbenchState& state, const std::string& out) {
+  const std::optional<Label> label = selected_label(state);
+  if (!label) return;
+  std::vector<std::string> words;
+  try {
+    words = {cluster::program_beside_this_one("tactile"),
+             "clip",
+             state.document->path,
+             "--label",
+             std::to_string(label->id),
+             "--out",
+             out};
+  } catch (const Error& failure) {
+    return void(fail(state, "export clip: " + std::string(failure.what())));
+  }
+  if (!state.document->labels_path.empty())
+    words.insert(words.end(), {"--labels", state.document->labels_path});
+  start_job<std::string>(
+      state, "clip", "export clip of label " + std::to_string(label->id),
+      [words, out](JobProgress&) {
+        const cluster::ProgramOutput made = cluster::run_captured(words);
+        if (made.exit_code != 0) throw Error(out, made.out);
+        return out;
+      },
+      [](WorkbenchState& window, Job<std::string>& job) {
+        if (std::optional<std::string> written = job_result(window, job))
+          window.notice = "wrote clip " + *written;
+      });
+}
+
 bool video_edit_is_newest(const WorkbenchState& state) {
   const VideoState& video = state.video;
   if (video.undo.empty()) return false;
@@ -331,12 +391,13 @@ bool undo_video_edit(WorkbenchState& state, bool redo) {
 bool videos_caught_up(const WorkbenchState& state) {
   // Decoded, and drawn where it is drawn: the view uploads a frame the frame after the worker
   // has it.
-  return std::all_of(
-      state.video.videos.begin(), state.video.videos.end(), [&](const VideoState::Shown& shown) {
-        if (!shown.player->caught_up()) return false;
-        const std::shared_ptr<const VideoFrame> frame = shown.player->shown();
-        return !frame || shown.drawn_at != state.frame || frame->index == shown.texture_frame;
-      });
+  return std::all_of(state.video.videos.begin(), state.video.videos.end(),
+                     [&](const VideoState::Shown& shown) {
+                       if (!shown.player->caught_up()) return false;
+                       const std::shared_ptr<const VideoFrame> frame = shown.player->shown();
+                       return !frame || shown.drawn_at != state.frame ||
+                              static_cast<double>(frame->index) == shown.texture.key;
+                     });
 }
 
 }  // namespace tactile

@@ -30,6 +30,10 @@ void mark_video_instant(WorkbenchState& state);
 void propose_video_offset(WorkbenchState& state);
 void accept_video_proposal(WorkbenchState& state);
 void reject_video_proposal(WorkbenchState& state);
+// View > Export clip: asks where, for the selected label (one label selected, else refused).
+void ask_clip_file(WorkbenchState& state);
+// Encodes the clip of the selected label into `out` as a job (`tactile clip`, docs/VIDEO.md).
+void export_clip(WorkbenchState& state, const std::string& out);
 // Ctrl+Z / Ctrl+Shift+Z, when the newest edit is a video's: true when one was undone/redone.
 bool undo_video_edit(WorkbenchState& state, bool redo);
 // Whether the newest edit to undo is a video's (it is newer than the label store's).

@@ -49,6 +49,14 @@ void draw_controls(WorkbenchState& state) {
                    "offset and rate",
                    any))
     mark_video_instant(state);
+  if (small_button(state, video.drawing_region ? "Drawing..." : "Region", "button:video:region",
+                   "Draw, with a drag over the selected video, the part of the picture where its "
+                   "motion is looked for (a hand near the skin, not people walking by)",
+                   any))
+    video.drawing_region = !video.drawing_region;
+  if (video.region && small_button(state, "Whole picture", "button:video:whole",
+                                   "Look for motion in the whole picture again"))
+    video.region.reset();
   AnyJob* job = running_job(state, "video sync");
   if (small_button(state, "Propose offset", "button:video:propose",
                    "Correlate the video's motion with the skin's activity and propose an offset",
@@ -76,10 +84,55 @@ void draw_controls(WorkbenchState& state) {
   }
 }
 
-// The picture of one video in `size`, with its caption above. A drag released over it: the
-// offset it was dragged to (written by the caller, once the videos are no longer drawn).
-std::optional<double> draw_one(WorkbenchState& state, size_t index, ImVec2 size) {
-  std::optional<double> dragged;
+// A frame fitted into `area` at `origin` (uploaded when `texture` holds another one): the
+// picture's box on the screen, also kept as the box `name`.
+ScreenRect draw_picture(WorkbenchState& state, VideoTexture& texture, const VideoFrame& frame,
+                        double key, ImVec2 origin, ImVec2 area, const std::string& name) {
+  if (key != texture.key || texture.id == 0) {
+    const bool same = frame.width == texture.width && frame.height == texture.height;
+    texture.id =
+        upload_rgba_texture(texture.id, frame.width, frame.height, frame.rgba.data(), same);
+    texture.key = key;
+    texture.width = frame.width;
+    texture.height = frame.height;
+  }
+  const float scale =
+      std::min(area.x / static_cast<float>(frame.width), area.y / static_cast<float>(frame.height));
+  const ImVec2 picture(frame.width * scale, frame.height * scale);
+  const ImVec2 at(origin.x + 0.5f * (area.x - picture.x), origin.y + 0.5f * (area.y - picture.y));
+  const ImVec2 end(at.x + picture.x, at.y + picture.y);
+  ImGui::GetWindowDrawList()->AddImage(
+      reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture.id)), at, end);
+  remember_box(state, name, at, end);
+  return to_rect(at, end);
+}
+
+// Words over a picture: why it is not (or not newly) shown.
+void draw_words_over(WorkbenchState& state, ImVec2 origin, float width, const std::string& words,
+                     const std::string& item) {
+  if (words.empty()) return;
+  ImGui::SetCursorScreenPos(ImVec2(origin.x + 6.0f, origin.y + 6.0f));
+  ImGui::PushTextWrapPos(origin.x + width - 6.0f);
+  ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.45f, 1.0f), "%s", words.c_str());
+  ImGui::PopTextWrapPos();
+  remember_item(state, item);
+}
+
+// A point of the screen as fractions of a picture's box, clamped to it.
+ImVec2 fraction_in(const ScreenRect& box, ImVec2 point) {
+  return ImVec2(std::clamp((point.x - box.x0) / std::max(1.0f, box.width()), 0.0f, 1.0f),
+                std::clamp((point.y - box.y0) / std::max(1.0f, box.height()), 0.0f, 1.0f));
+}
+
+// What a drag over a picture did, for the caller to write once the videos are drawn.
+struct PictureDrag {
+  std::optional<double> offset;       // nudged to
+  std::optional<VideoRegion> region;  // drawn
+};
+
+// The picture of one video in `size`, with its caption above.
+PictureDrag draw_one(WorkbenchState& state, size_t index, ImVec2 size) {
+  PictureDrag done;
   VideoState& video = state.video;
   VideoState::Shown& shown = video.videos[index];
   const VideoAttachment& attachment = shown.attachment;
@@ -94,6 +147,8 @@ std::optional<double> draw_one(WorkbenchState& state, size_t index, ImVec2 size)
       is_selected ? ImVec4(1.0f, 0.85f, 0.45f, 1.0f) : ImVec4(0.75f, 0.75f, 0.75f, 1.0f);
   std::string caption = attachment.name + "  offset " + fixed_text(attachment.offset, 3) + " s";
   if (attachment.rate != 1.0) caption += " x" + significant_text(attachment.rate, 7);
+  if (attachment.offset < 0.0)
+    caption += " (starts " + fixed_text(-attachment.offset, 1) + " s before the recording)";
   if (frame)
     caption +=
         "  frame " + std::to_string(frame->index) + " at " + fixed_text(frame->time, 3) + " s";
@@ -102,58 +157,60 @@ std::optional<double> draw_one(WorkbenchState& state, size_t index, ImVec2 size)
   const float caption_height = ImGui::GetFrameHeightWithSpacing();
   const ImVec2 area(size.x, std::max(20.0f, size.y - caption_height));
   const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 end(origin.x + area.x, origin.y + area.y);
   ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(origin, end, IM_COL32(12, 12, 14, 255));
+  std::optional<ScreenRect> picture;
+  if (frame && frame->width > 0)
+    picture = draw_picture(state, shown.texture, *frame, static_cast<double>(frame->index), origin,
+                           area, "video:picture:" + attachment.name);
+  ImGui::SetCursorScreenPos(origin);
   ImGui::InvisibleButton("picture", area);
   remember_item(state, "video:" + attachment.name,
-                "Click to choose this video for the keys; drag sideways to nudge its offset");
+                "Click to choose this video for the keys; drag sideways to nudge its offset "
+                "(after Region: drag to draw where the motion is looked for)");
+  const bool drawing = video.drawing_region && is_selected && picture;
   if (ImGui::IsItemActivated()) video.selected = index;
-  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
+  if (drawing && ImGui::IsItemActive()) {
+    const ImVec2 from = ImGui::GetIO().MouseClickedPos[0], to = ImGui::GetIO().MousePos;
+    draw->AddRect(ImVec2(std::min(from.x, to.x), std::min(from.y, to.y)),
+                  ImVec2(std::max(from.x, to.x), std::max(from.y, to.y)),
+                  IM_COL32(255, 215, 110, 255), 0.0f, 0, 2.0f);
+  } else if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f)) {
     // The picture follows the drag; the offset is written as one edit on release.
     if (!video.drag_from) video.drag_from = attachment.offset;
     shown.attachment.offset += ImGui::GetIO().MouseDelta.x * kDragSecondsPerPixel;
   }
-  if (ImGui::IsItemDeactivated() && video.drag_from) {
-    dragged = shown.attachment.offset;
+  if (ImGui::IsItemDeactivated() && drawing) {
+    const ImVec2 a = fraction_in(*picture, ImGui::GetIO().MouseClickedPos[0]);
+    const ImVec2 b = fraction_in(*picture, ImGui::GetIO().MousePos);
+    done.region = VideoRegion{std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x),
+                              std::abs(b.y - a.y)};
+  } else if (ImGui::IsItemDeactivated() && video.drag_from) {
+    done.offset = shown.attachment.offset;
     shown.attachment.offset = *std::exchange(video.drag_from, std::nullopt);
   }
-  const ImVec2 end(origin.x + area.x, origin.y + area.y);
-  draw->AddRectFilled(origin, end, IM_COL32(12, 12, 14, 255));
-  if (frame && frame->width > 0) {
-    if (frame->index != shown.texture_frame || shown.texture == 0) {
-      const bool same =
-          frame->width == shown.texture_width && frame->height == shown.texture_height;
-      shown.texture =
-          upload_rgba_texture(shown.texture, frame->width, frame->height, frame->rgba.data(), same);
-      shown.texture_frame = frame->index;
-      shown.texture_width = frame->width;
-      shown.texture_height = frame->height;
-    }
-    const float scale = std::min(area.x / static_cast<float>(frame->width),
-                                 area.y / static_cast<float>(frame->height));
-    const ImVec2 picture(frame->width * scale, frame->height * scale);
-    const ImVec2 at(origin.x + 0.5f * (area.x - picture.x), origin.y + 0.5f * (area.y - picture.y));
-    draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(shown.texture)), at,
-                   ImVec2(at.x + picture.x, at.y + picture.y));
-    remember_box(state, "video:picture:" + attachment.name, at,
-                 ImVec2(at.x + picture.x, at.y + picture.y));
+  // The region the proposal looks in, over the video it was drawn on.
+  if (picture && video.region && video.region_for == attachment.name) {
+    const VideoRegion& region = *video.region;
+    const ScreenRect& box = *picture;
+    const ImVec2 low(box.x0 + static_cast<float>(region.x) * box.width(),
+                     box.y0 + static_cast<float>(region.y) * box.height());
+    const ImVec2 high(low.x + static_cast<float>(region.width) * box.width(),
+                      low.y + static_cast<float>(region.height) * box.height());
+    draw->AddRect(low, high, IM_COL32(255, 215, 110, 220), 0.0f, 0, 1.5f);
+    remember_box(state, "video:region:" + attachment.name, low, high);
   }
-  // Why no picture (or a stale one) is shown, over the picture.
   std::string words = shown.player->problem();
   if (words.empty() && shown.player->opening()) words = "opening " + shown.path + "...";
   if (words.empty() && info) words = video_time_problem(*info, video_time, attachment.offset);
-  if (!words.empty()) {
-    ImGui::SetCursorScreenPos(ImVec2(origin.x + 6.0f, origin.y + 6.0f));
-    ImGui::PushTextWrapPos(origin.x + area.x - 6.0f);
-    ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.45f, 1.0f), "%s", words.c_str());
-    ImGui::PopTextWrapPos();
-    remember_item(state, "video:problem:" + attachment.name);
-  }
+  draw_words_over(state, origin, area.x, words, "video:problem:" + attachment.name);
   if (is_selected && video.videos.size() > 1)
     draw->AddRect(origin, end, IM_COL32(255, 215, 110, 200), 0.0f, 0, 2.0f);
   ImGui::SetCursorScreenPos(ImVec2(origin.x, end.y));
   ImGui::EndGroup();
   ImGui::PopID();
-  return dragged;
+  return done;
 }
 
 // The live camera's newest frame, stamped on the stream's clock.
@@ -165,37 +222,15 @@ void draw_camera(WorkbenchState& state, LiveState::CameraShown& camera, ImVec2 s
   if (!camera.recording.empty()) caption += "  recording";
   ImGui::TextColored(ImVec4(0.75f, 0.75f, 0.75f, 1.0f), "%s", caption.c_str());
   remember_item(state, "video:caption:camera");
-  const ImVec2 room = ImGui::GetContentRegionAvail();
-  const ImVec2 area(size.x, std::max(20.0f, room.y));
+  const ImVec2 area(size.x, std::max(20.0f, ImGui::GetContentRegionAvail().y));
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  ImDrawList* draw = ImGui::GetWindowDrawList();
-  draw->AddRectFilled(origin, ImVec2(origin.x + area.x, origin.y + area.y),
-                      IM_COL32(12, 12, 14, 255));
-  if (camera.frame && camera.frame->width > 0) {
-    const VideoFrame& frame = *camera.frame;
-    if (frame.time != camera.texture_time || camera.texture == 0) {
-      const bool same =
-          frame.width == camera.texture_width && frame.height == camera.texture_height;
-      camera.texture =
-          upload_rgba_texture(camera.texture, frame.width, frame.height, frame.rgba.data(), same);
-      camera.texture_time = frame.time;
-      camera.texture_width = frame.width;
-      camera.texture_height = frame.height;
-    }
-    const float scale = std::min(area.x / static_cast<float>(frame.width),
-                                 area.y / static_cast<float>(frame.height));
-    const ImVec2 picture(frame.width * scale, frame.height * scale);
-    const ImVec2 at(origin.x + 0.5f * (area.x - picture.x), origin.y + 0.5f * (area.y - picture.y));
-    draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(camera.texture)), at,
-                   ImVec2(at.x + picture.x, at.y + picture.y));
-    remember_box(state, "video:picture:camera", at, ImVec2(at.x + picture.x, at.y + picture.y));
-  }
-  if (!camera.error.empty()) {
-    ImGui::SetCursorScreenPos(ImVec2(origin.x + 6.0f, origin.y + 6.0f));
-    ImGui::PushTextWrapPos(origin.x + area.x - 6.0f);
-    ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.45f, 1.0f), "%s", camera.error.c_str());
-    ImGui::PopTextWrapPos();
-  }
+  ImGui::GetWindowDrawList()->AddRectFilled(origin, ImVec2(origin.x + area.x, origin.y + area.y),
+                                            IM_COL32(12, 12, 14, 255));
+  if (camera.frame && camera.frame->width > 0)
+    draw_picture(state, camera.texture, *camera.frame, camera.frame->time, origin, area,
+                 "video:picture:camera");
+  draw_words_over(state, origin, area.x, camera.error, "video:problem:camera");
+  ImGui::SetCursorScreenPos(origin);
   ImGui::Dummy(area);
 }
 
@@ -230,18 +265,26 @@ void draw_video_view(WorkbenchState& state, ImVec2 size) {
   const size_t count = std::max<size_t>(1, drawn.size());
   const float gap = 6.0f;
   const float width = (room.x - gap * static_cast<float>(count - 1)) / static_cast<float>(count);
-  std::optional<std::pair<size_t, double>> dragged;
+  std::optional<std::pair<size_t, PictureDrag>> dragged;
   for (size_t index : drawn) {
     if (index != drawn.front()) ImGui::SameLine(0.0f, gap);
-    if (auto offset = draw_one(state, index, ImVec2(std::max(20.0f, width), room.y)))
-      dragged = {index, *offset};
+    PictureDrag done = draw_one(state, index, ImVec2(std::max(20.0f, width), room.y));
+    if (done.offset || done.region) dragged = {index, done};
   }
   ImGui::EndChild();
   if (dragged) {
-    const auto [index, offset] = *dragged;
+    const auto& [index, done] = *dragged;
     const VideoAttachment& attachment = video.videos[index].attachment;
-    set_video_sync(state, index, offset, attachment.rate,
-                   "dragged " + seconds_text(offset - attachment.offset) + " s");
+    if (done.offset)
+      set_video_sync(state, index, *done.offset, attachment.rate,
+                     "dragged " + seconds_text(*done.offset - attachment.offset) + " s");
+    if (done.region) {
+      video.region = *done.region;
+      video.region_for = attachment.name;
+      video.drawing_region = false;
+      video.proposal.reset();
+      state.notice = "video " + attachment.name + ": its motion is looked for in the region drawn";
+    }
   }
 }
 

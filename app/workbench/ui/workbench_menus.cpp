@@ -70,6 +70,12 @@ void Workbench::draw_menu_bar() {
             state_.plot.view_t0 + std::max(1e-3, state_.document->samples().duration());
       }
       remember_item(state_, "menu:View/Fit time axis");
+      if (ImGui::MenuItem("Export clip...", nullptr, false,
+                          state_.document && !state_.live.connected))
+        ask_clip_file(state_);
+      remember_item(state_, "menu:View/Export clip...",
+                    "The selected label as a video: the skin and the videos replaying, the "
+                    "signals and the lanes (tactile clip)");
       if (ImGui::MenuItem("Reset panel sizes")) {
         state_.sizes = PanelSizes{};
         save_settings();

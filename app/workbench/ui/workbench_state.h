@@ -257,6 +257,14 @@ struct AnalysisState {
   std::string tab_request;  // a view tab to bring to front next frame
 };
 
+// A video's frame as uploaded for ImGui to draw (gl_texture.h): which frame it holds (its index,
+// or a camera frame's time), and its size.
+struct VideoTexture {
+  uint32_t id = 0;  // 0: none yet
+  double key = -1.0;
+  int width = 0, height = 0;
+};
+
 // Live mode (live.h), as data: what the services (services.h) report each frame, the user's
 // settings, and the requests of the live bar and its keys, carried out at the next frame's start.
 struct LiveState {
@@ -292,9 +300,7 @@ struct LiveState {
   struct CameraShown {
     std::string url;
     std::optional<VideoFrame> frame;
-    uint32_t texture = 0;
-    double texture_time = -1.0;
-    int texture_width = 0, texture_height = 0;
+    VideoTexture texture;  // key: the frame's time
     int64_t received = 0;
     std::string error;
     std::string recording;  // the video file being written ("" when not recording)
@@ -312,9 +318,7 @@ struct VideoState {
     VideoAttachment attachment;
     std::string path;  // the file as opened
     std::unique_ptr<VideoPlayer> player;
-    uint32_t texture = 0;  // the shown frame as uploaded (gl_texture.h); 0: none yet
-    int64_t texture_frame = -1;
-    int texture_width = 0, texture_height = 0;
+    VideoTexture texture;   // the frame drawn (key: its index)
     int64_t drawn_at = -1;  // the window's frame that last drew it
   };
   std::string recording;  // the recording whose attachments these are
@@ -336,6 +340,8 @@ struct VideoState {
   std::optional<SyncProposal> proposal;
   std::string proposal_for;
   std::optional<VideoRegion> region;  // where the motion is looked for (none: the whole picture)
+  std::string region_for;             // the video it was drawn on
+  bool drawing_region = false;        // the next drag over the selected video draws the region
   // A drag over a video nudges its offset: the offset it had at the press.
   std::optional<double> drag_from;
   // A proposal's result: which video and recording it was for.
@@ -431,7 +437,7 @@ struct WorkbenchState {
   // Every frame's building time (the first 100000): the state JSON's median of them, beside the
   // longest, for benchmarks of a view's cost.
   std::vector<float> frame_seconds;
-  UiTargets targets;                   // last frame's
+  UiTargets targets;  // last frame's
   int64_t frame = 0;
   // The jobs, newest last: when each started and when it was applied, by frame.
   struct JobRecord {

@@ -37,7 +37,7 @@ nlohmann::json videos_json(const WorkbenchState& state) {
                             {"wanted_frame", shown.player->wanted()},
                             {"frame", nullptr},
                             {"frame_time", nullptr},
-                            {"drawn_frame", shown.texture_frame},
+                            {"drawn_frame", static_cast<int64_t>(shown.texture.key)},
                             {"problem", shown.player->problem()}};
     if (const std::shared_ptr<const VideoFrame> frame = shown.player->shown()) {
       entry["frame"] = frame->index;

@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -130,6 +131,15 @@ ProgramOutput run_captured(const std::vector<std::string>& words) {
   }
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+std::string program_beside_this_one(const std::string& program) {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  const std::filesystem::path beside = self.parent_path() / program;
+  if (error || access(beside.c_str(), X_OK) != 0)
+    throw Error(program, "not found beside this program (" + beside.string() + ")");
+  return beside.string();
 }
 
 bool on_path(const std::string& program) {

@@ -137,13 +137,12 @@ std::string kept_video_path(const std::string& recording_path, const std::string
   return inside ? relative.string() : absolute.string();
 }
 
-void sync_from_two_points(VideoAttachment& attachment, double r1, double v1, double r2,
-                          double v2) {
+void sync_from_two_points(VideoAttachment& attachment, double r1, double v1, double r2, double v2) {
   if (!std::isfinite(r1) || !std::isfinite(r2) || !std::isfinite(v1) || !std::isfinite(v2))
     throw Error("video sync", "the two points' times must be finite numbers");
   if (r1 == r2)
-    throw Error("video sync", "the two points are at the same recording time (" +
-                                  seconds_text(r1) + " s): they cannot give a rate");
+    throw Error("video sync", "the two points are at the same recording time (" + seconds_text(r1) +
+                                  " s): they cannot give a rate");
   const double rate = (v2 - v1) / (r2 - r1);
   if (!(rate > 0))
     throw Error("video sync", "the two points give a rate of " + significant_text(rate, 4) +

@@ -36,6 +36,9 @@ ProgramOutput run_captured(const std::vector<std::string>& words);
 
 // Whether `program` is an executable file on PATH.
 bool on_path(const std::string& program);
+// `program` in the folder of the running program (tactile beside tactile-workbench, ...).
+// Throws tactile::Error naming where it looked when it is not there.
+std::string program_beside_this_one(const std::string& program);
 
 // The job id that `sbatch --parsable` printed ("1234" of "1234" or "1234;cluster"), from its
 // last non-empty line. Throws tactile::Error naming sbatch and its output otherwise.
