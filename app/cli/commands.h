@@ -29,6 +29,7 @@ void register_verify(CLI::App& app);
 void register_predict(CLI::App& app);
 void register_merge(CLI::App& app);
 void register_cluster(CLI::App& app);
+void register_video(CLI::App& app);
 
 // Files as given; folders expanded to their .h5 files, sorted, so runs are repeatable.
 // Throws tactile::Error naming an input that is neither, or a folder with no recording.
