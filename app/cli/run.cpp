@@ -30,9 +30,7 @@ int run(int argc, char** argv) {
   register_predict(app);
   register_merge(app);
   register_cluster(app);
-  // `tactile video`: until cmd_video.cpp (video-core) registers it with attach|list|detach, a
-  // command of `sync` alone; then register_video calls register_video_sync(*video) instead.
-  register_video_sync(*app.add_subcommand("video", "Videos attached to a recording"));
+  register_video(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -24,16 +24,9 @@ fs::path recording_folder(const std::string& recording_path) {
   return fs::absolute(fs::path(recording_path)).lexically_normal().parent_path();
 }
 
-bool valid_name(const std::string& name) {
-  if (name.empty()) return false;
-  for (unsigned char c : name)
-    if (!std::isalnum(c) && c != '-' && c != '_' && c != '.') return false;
-  return true;
-}
-
 // The checks every attachment passes, read or written; "" when it passes.
 std::string attachment_problem(const VideoAttachment& attachment) {
-  if (!valid_name(attachment.name))
+  if (!valid_attachment_name(attachment.name))
     return "the name " + in_quotes(attachment.name) +
            " may hold only letters, digits, '-', '_' and '.'";
   if (attachment.path.empty()) return "the path is empty";
@@ -44,6 +37,13 @@ std::string attachment_problem(const VideoAttachment& attachment) {
 }
 
 }  // namespace
+
+bool valid_attachment_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (unsigned char c : name)
+    if (!std::isalnum(c) && c != '-' && c != '_' && c != '.') return false;
+  return true;
+}
 
 std::string attachments_path(const std::string& recording_path) {
   return recording_path + ".videos.json";
@@ -137,13 +137,12 @@ std::string kept_video_path(const std::string& recording_path, const std::string
   return inside ? relative.string() : absolute.string();
 }
 
-void sync_from_two_points(VideoAttachment& attachment, double r1, double v1, double r2,
-                          double v2) {
+void sync_from_two_points(VideoAttachment& attachment, double r1, double v1, double r2, double v2) {
   if (!std::isfinite(r1) || !std::isfinite(r2) || !std::isfinite(v1) || !std::isfinite(v2))
     throw Error("video sync", "the two points' times must be finite numbers");
   if (r1 == r2)
-    throw Error("video sync", "the two points are at the same recording time (" +
-                                  seconds_text(r1) + " s): they cannot give a rate");
+    throw Error("video sync", "the two points are at the same recording time (" + seconds_text(r1) +
+                                  " s): they cannot give a rate");
   const double rate = (v2 - v1) / (r2 - r1);
   if (!(rate > 0))
     throw Error("video sync", "the two points give a rate of " + significant_text(rate, 4) +
