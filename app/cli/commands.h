@@ -29,6 +29,9 @@ void register_verify(CLI::App& app);
 void register_predict(CLI::App& app);
 void register_merge(CLI::App& app);
 void register_cluster(CLI::App& app);
+void register_video(CLI::App& app);
+// `tactile video sync` (cmd_video_sync.cpp), added to the `video` command by register_video.
+void register_video_sync(CLI::App& video);
 void register_clip(CLI::App& app);
 
 // Files as given; folders expanded to their .h5 files, sorted, so runs are repeatable.

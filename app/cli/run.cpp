@@ -30,6 +30,7 @@ int run(int argc, char** argv) {
   register_predict(app);
   register_merge(app);
   register_cluster(app);
+  register_video(app);
   register_clip(app);
   try {
     app.parse(argc, argv);

@@ -24,16 +24,9 @@ fs::path recording_folder(const std::string& recording_path) {
   return fs::absolute(fs::path(recording_path)).lexically_normal().parent_path();
 }
 
-bool valid_name(const std::string& name) {
-  if (name.empty()) return false;
-  for (unsigned char c : name)
-    if (!std::isalnum(c) && c != '-' && c != '_' && c != '.') return false;
-  return true;
-}
-
 // The checks every attachment passes, read or written; "" when it passes.
 std::string attachment_problem(const VideoAttachment& attachment) {
-  if (!valid_name(attachment.name))
+  if (!valid_attachment_name(attachment.name))
     return "the name " + in_quotes(attachment.name) +
            " may hold only letters, digits, '-', '_' and '.'";
   if (attachment.path.empty()) return "the path is empty";
@@ -44,6 +37,13 @@ std::string attachment_problem(const VideoAttachment& attachment) {
 }
 
 }  // namespace
+
+bool valid_attachment_name(const std::string& name) {
+  if (name.empty()) return false;
+  for (unsigned char c : name)
+    if (!std::isalnum(c) && c != '-' && c != '_' && c != '.') return false;
+  return true;
+}
 
 std::string attachments_path(const std::string& recording_path) {
   return recording_path + ".videos.json";

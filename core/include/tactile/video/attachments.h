@@ -38,6 +38,8 @@ void sync_from_two_points(VideoAttachment& attachment, double r1, double v1, dou
 // The attachment named `name`, or nullptr.
 const VideoAttachment* find_attachment(const std::vector<VideoAttachment>& attachments,
                                        const std::string& name);
+// Whether `name` may name an attachment: letters, digits, '-', '_' and '.' only, not empty.
+bool valid_attachment_name(const std::string& name);
 // A name not yet taken: the video file's stem, then "stem-2", ...
 std::string free_attachment_name(const std::vector<VideoAttachment>& attachments,
                                  const std::string& video);

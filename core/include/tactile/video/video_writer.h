@@ -10,9 +10,12 @@
 namespace tactile {
 
 struct VideoWriterOptions {
-  int width = 0;  // even numbers: the encoders' 4:2:0 chroma needs them
+  int width = 0;  // even numbers: the encoders' 4:2:0 chroma needs them (odd ones are refused)
   int height = 0;
-  double rate = 30;  // the nominal frame rate (the stream's time base is 1/(rate*100))
+  // The nominal frame rate: the stream's time base is 1/(rate*100) (Matroska keeps 1 ms; AVI,
+  // which has no time stamps, 1/rate: there each frame's time is rounded to a whole frame).
+  // Key frames every 2 s.
+  double rate = 30;
   // libavcodec encoder name; "" chooses by the file's extension: .mp4/.mov/.mkv H.264
   // (libx264) when this FFmpeg has it, else MPEG-4 part 2; .avi MJPEG; .webm VP9.
   std::string codec;
@@ -28,7 +31,8 @@ class VideoWriter {
   VideoWriter& operator=(const VideoWriter&) = delete;
 
   // One RGBA frame (top row first, width*height*4 bytes) shown from `time` seconds on; times
-  // increase. Throws tactile::Error naming the file.
+  // increase (also once rounded to the time base). A reader places the first frame at 0,
+  // whatever its time here. Throws tactile::Error naming the file (and the time).
   void write(const uint8_t* rgba, double time);
   // Flushes the encoder and writes the trailer. Throws tactile::Error naming the file.
   void finish();
