@@ -48,12 +48,6 @@ std::string rate_words(const VideoInfo& info) {
                             : fixed_text(info.mean_rate, 2) + " fps";
 }
 
-std::string attached_names(const std::vector<VideoAttachment>& attachments) {
-  std::vector<std::string> names;
-  for (const VideoAttachment& attachment : attachments) names.push_back(attachment.name);
-  return names.empty() ? "none" : joined(names);
-}
-
 //---- attach
 
 void run_attach(const VideoOptions& options) {
@@ -92,7 +86,8 @@ void run_attach(const VideoOptions& options) {
             << (attachment.rate != 1 ? ", rate " + shortest_text(attachment.rate) : "") << "\n";
   const double start = attachment.recording_time(0);
   const double end = attachment.recording_time(info.duration);
-  if (start < 0 || end < length)
+  // Said when the video leaves part of the recording without a picture, or begins before it.
+  if (start != 0 || end < length)
     std::cerr << "tactile: warning: the video covers " << fixed_text(start, 1) << "-"
               << fixed_text(end, 1) << " s of the recording's 0-" << fixed_text(length, 1)
               << " s\n";
@@ -145,11 +140,8 @@ void run_list(const VideoOptions& options) {
 void run_detach(const VideoOptions& options) {
   require_recording(options.recording);
   std::vector<VideoAttachment> attachments = read_attachments(options.recording);
-  const auto found = std::find_if(attachments.begin(), attachments.end(),
-                                  [&](const VideoAttachment& a) { return a.name == options.name; });
-  if (found == attachments.end())
-    throw Error("NAME", "no video named " + in_quotes(options.name) + " is attached to " +
-                            options.recording + " (attached: " + attached_names(attachments) + ")");
+  const auto found = attachments.begin() + static_cast<std::ptrdiff_t>(attachment_index(
+                                               attachments, options.name, options.recording));
   const std::string path = found->path;
   attachments.erase(found);
   write_attachments(options.recording, attachments);

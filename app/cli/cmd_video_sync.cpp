@@ -77,13 +77,6 @@ std::string seconds(double value) {
   return text;
 }
 
-std::string attached_names(const std::vector<VideoAttachment>& attachments) {
-  std::string names;
-  for (const VideoAttachment& attachment : attachments)
-    names += (names.empty() ? "" : ", ") + attachment.name;
-  return names.empty() ? "none" : names;
-}
-
 // The proposal for `attachment` around its present offset; prints it.
 SyncProposal propose(const VideoSyncOptions& options, const VideoAttachment& attachment,
                      double max_lag) {
@@ -130,12 +123,8 @@ void run_video_sync(const VideoSyncOptions& options) {
   if (options.force && !options.accept) throw Error("--force", "only with --accept");
 
   std::vector<VideoAttachment> attachments = read_attachments(options.recording);
-  VideoAttachment* attachment = nullptr;
-  for (VideoAttachment& candidate : attachments)
-    if (candidate.name == options.name) attachment = &candidate;
-  if (!attachment)
-    throw Error(options.recording, "no video named '" + options.name + "' is attached (attached: " +
-                                       attached_names(attachments) + ")");
+  VideoAttachment* attachment =
+      &attachments[attachment_index(attachments, options.name, options.recording)];
 
   if (!options.offset.empty()) {
     attachment->offset = number_of(options.offset, "--offset", "a number of seconds");

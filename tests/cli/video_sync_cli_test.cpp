@@ -116,7 +116,7 @@ TEST(VideoSyncCli, BadValuesAreNamedByTheirOption) {
       {"front --auto --max-lag -1", "--max-lag"},
       {"front --offset 1 --accept", "--accept"},
       {"front --offset 1 --auto", "one of --offset, --points and --auto"},
-      {"back --offset 1", "no video named 'back'"},
+      {"back --offset 1", "no video named \"back\""},
   };
   for (const auto& [arguments, expected] : cases) {
     const auto result = sync(*fixture, arguments);

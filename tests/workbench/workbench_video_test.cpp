@@ -98,13 +98,14 @@ class WorkbenchVideo : public ::testing::Test {
     return static_cast<int64_t>(std::floor((time - offset) * kVideoRate + 1e-6));
   }
 
-  const nlohmann::json* video_named(const nlohmann::json& shot_state, const std::string& name) {
+  static const nlohmann::json* video_named(const nlohmann::json& shot_state,
+                                           const std::string& name) {
     for (const nlohmann::json& video : shot_state["videos"]["list"])
       if (video["name"] == name) return &video;
     return nullptr;
   }
 
-  TempFolder folder;
+  test::TempFolder folder;
   std::vector<std::string> recordings;
 };
 

@@ -53,6 +53,7 @@ void show(WorkbenchState& state, const std::vector<VideoAttachment>& list) {
     VideoState::Shown entry;
     if (same != video.videos.end()) {
       entry = std::move(*same);
+      same->texture = VideoTexture{};  // the texture goes with the entry, not to release()
     } else {
       entry.path = path;
       entry.player = std::make_unique<VideoPlayer>(path, shown_options());

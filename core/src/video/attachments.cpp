@@ -159,6 +159,17 @@ const VideoAttachment* find_attachment(const std::vector<VideoAttachment>& attac
   return nullptr;
 }
 
+size_t attachment_index(const std::vector<VideoAttachment>& attachments, const std::string& name,
+                        const std::string& recording_path) {
+  std::vector<std::string> names;
+  for (size_t index = 0; index < attachments.size(); ++index) {
+    if (attachments[index].name == name) return index;
+    names.push_back(attachments[index].name);
+  }
+  throw Error(recording_path, "no video named " + in_quotes(name) + " is attached (attached: " +
+                                  (names.empty() ? "none" : joined(names)) + ")");
+}
+
 std::string free_attachment_name(const std::vector<VideoAttachment>& attachments,
                                  const std::string& video) {
   std::string stem = fs::path(video).stem().string();

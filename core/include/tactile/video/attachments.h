@@ -40,6 +40,10 @@ const VideoAttachment* find_attachment(const std::vector<VideoAttachment>& attac
                                        const std::string& name);
 // Whether `name` may name an attachment: letters, digits, '-', '_' and '.' only, not empty.
 bool valid_attachment_name(const std::string& name);
+// The index of the attachment named `name`; throws tactile::Error naming the recording and the
+// names attached when there is none.
+size_t attachment_index(const std::vector<VideoAttachment>& attachments, const std::string& name,
+                        const std::string& recording_path);
 // A name not yet taken: the video file's stem, then "stem-2", ...
 std::string free_attachment_name(const std::vector<VideoAttachment>& attachments,
                                  const std::string& video);
