@@ -23,6 +23,8 @@
 #include "tactile/live/packets.h"
 #include "tactile/sim/simulator.h"
 #include "tactile/skins/skin.h"
+#include "tactile/video/attachments.h"
+#include "tactile/video/video_file.h"
 
 namespace tactile {
 namespace {
@@ -163,6 +165,57 @@ TEST_F(WorkbenchLive, TheLiveColourScaleIsTheReplaysOfTheSameSamples) {
       << live_top << " live, " << replay_top << " replayed";
   EXPECT_NEAR(replay["time"].get<double>(), time, 1e-3);
   EXPECT_EQ(live["skin"]["touched"], replay["skin"]["touched"]);
+}
+
+// A camera beside the live skin (FFmpeg's lavfi test source standing in for a device): shown in
+// the video view, stamped on the stream's clock, and recorded beside the recording from its
+// pre-trigger on, attached with the offset of its first frame (docs/VIDEO.md, "Live camera").
+TEST_F(WorkbenchLive, ACameraIsShownAndRecordedBesideTheSkinOnTheStreamsClock) {
+  const CommandResult shown = run_program(
+      "tactile-workbench-headless",
+      "--connect sim://fur?seed=3 --camera lavfi:testsrc2=size=160x120:rate=15,realtime "
+      "--pretrigger 1 --size 1280x720 --settings " +
+          folder.file("settings.json") + " --script " +
+          script("sleep 3\nstate @live.json\nscreenshot @live.png\nkey Ctrl+R\nsleep 3\n"
+                 "key Ctrl+R\nwait 2\nstate @stopped.json\n"),
+      folder);
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  const nlohmann::json live = state("live.json");
+  const nlohmann::json& camera = live["live"]["camera"];
+  ASSERT_FALSE(camera.is_null()) << live["live"];
+  EXPECT_EQ(camera["error"], "");
+  EXPECT_GT(camera["received"].get<int>(), 10);
+  // Stamped on the stream's clock: the newest frame is within a second of the newest sample.
+  ASSERT_FALSE(camera["frame_time"].is_null());
+  EXPECT_NEAR(camera["frame_time"].get<double>(), live["live"]["newest"].get<double>(), 1.0);
+  // Drawn: testsrc2's colour bars fill the camera's picture.
+  const nlohmann::json box = live["boxes"]["video:picture:camera"];
+  ASSERT_FALSE(box.is_null());
+  const Png png = read_png(folder.file("live.png"));
+  ASSERT_TRUE(png.pixels);
+  EXPECT_GT(colours_in(png, static_cast<int>(box["x"].get<double>()) + 1,
+                       static_cast<int>(box["y"].get<double>()) + 1,
+                       static_cast<int>(box["x"].get<double>() + box["width"].get<double>()) - 1,
+                       static_cast<int>(box["y"].get<double>() + box["height"].get<double>()) - 1),
+            6u);
+
+  // The recording has its camera video beside it, which begins with the pre-trigger.
+  const nlohmann::json stopped = state("stopped.json");
+  ASSERT_EQ(stopped["live"]["recorded"].size(), 1u) << stopped["error"];
+  const std::string recording = stopped["live"]["recorded"][0];
+  const std::vector<VideoAttachment> attachments = read_attachments(recording);
+  ASSERT_EQ(attachments.size(), 1u);
+  EXPECT_EQ(attachments[0].name, "camera");
+  const RecordingFile file(recording);
+  const StreamInfo& stream = file.streams().front();
+  VideoFile video(video_path(recording, attachments[0]));
+  EXPECT_GT(video.info().frame_count, 30);
+  // Its first frame is no later than the recording's first sample (the pre-trigger's frames
+  // come first), and it lasts to about the recording's end.
+  EXPECT_LE(attachments[0].offset, stream.start_time + 0.2);
+  EXPECT_GE(attachments[0].offset, stream.start_time - 1.5);
+  EXPECT_NEAR(attachments[0].offset + video.info().duration,
+              stream.start_time + stream.duration(), 0.7);
 }
 
 // While following, the plot moves to the channels being touched (a simulated NAO touches one
