@@ -214,8 +214,8 @@ TEST_F(WorkbenchLive, ACameraIsShownAndRecordedBesideTheSkinOnTheStreamsClock) {
   // come first), and it lasts to about the recording's end.
   EXPECT_LE(attachments[0].offset, stream.start_time + 0.2);
   EXPECT_GE(attachments[0].offset, stream.start_time - 1.5);
-  EXPECT_NEAR(attachments[0].offset + video.info().duration,
-              stream.start_time + stream.duration(), 0.7);
+  EXPECT_NEAR(attachments[0].offset + video.info().duration, stream.start_time + stream.duration(),
+              0.7);
 }
 
 // While following, the plot moves to the channels being touched (a simulated NAO touches one

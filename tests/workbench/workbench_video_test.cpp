@@ -223,6 +223,25 @@ TEST_F(WorkbenchVideo, StepsFramesAndSaysWhereTheVideoDoesNotReach) {
   }
 }
 
+TEST_F(WorkbenchVideo, ALiveReplayPlaysTheRecordingsVideoWithIt) {
+  const std::string recording = recordings[0];
+  const std::string video = make_video("replayed.mp4", duration(recording));
+  ASSERT_EQ(
+      test::run_program("tactile", "video attach " + recording + " " + video, folder).exit_code, 0);
+  const auto run =
+      test::run_program("tactile-workbench-headless",
+                        "--connect replay://" + recording + " --size 1400x800 --settings " +
+                            folder.file("settings.json") + " --script " +
+                            test::write_script(folder, "sleep 2\nwait video\nstate @replay.json\n"),
+                        folder);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json replay = state("replay.json");
+  ASSERT_EQ(replay["videos"]["list"].size(), 1u) << replay["videos"];
+  const double time = replay["time"];
+  EXPECT_GT(time, 1.0);
+  EXPECT_EQ(replay["videos"]["list"][0]["frame"], frame_at(time, 0.0));
+}
+
 TEST_F(WorkbenchVideo, AMissingOrCorruptVideoIsNamedAndTheRecordingStillWorks) {
   const std::string recording = recordings[0];
   const std::string video = make_video("gone.mp4", 2.0);

@@ -8,6 +8,7 @@
 #include "jobs.h"
 #include "tactile/cluster/slurm.h"
 #include "tactile/error.h"
+#include "tactile/live/live_input.h"
 #include "tactile/text.h"
 #include "tactile/video/video_file.h"
 
@@ -66,12 +67,25 @@ void show(WorkbenchState& state, const std::vector<VideoAttachment>& list) {
   if (video.selected >= video.videos.size()) video.selected = 0;
 }
 
-void load(WorkbenchState& state) {
+// The recording whose videos are shown: the open one, or the one a live replay streams (its
+// samples keep the file's clock, so its videos play with it); "" for other live sources.
+std::string shown_recording(const WorkbenchState& state) {
+  if (!state.document) return {};
+  if (!state.live.connected) return state.document->path;
+  try {
+    const LiveAddress address = parse_live_address(state.live.url, "--connect");
+    if (address.scheme == "replay") return fs::absolute(address.path).lexically_normal().string();
+  } catch (const Error&) {
+  }
+  return {};
+}
+
+void load(WorkbenchState& state, const std::string& recording) {
   VideoState& video = state.video;
   release(video);
   video = VideoState{};
-  if (!state.document || state.live.connected) return;
-  video.recording = state.document->path;
+  if (recording.empty()) return;
+  video.recording = recording;
   try {
     show(state, read_attachments(video.recording));
   } catch (const Error& failure) {
@@ -125,16 +139,15 @@ bool has_videos(const WorkbenchState& state) {
 
 void update_videos(WorkbenchState& state) {
   VideoState& video = state.video;
-  const std::string recording =
-      state.document && !state.live.connected ? state.document->path : std::string();
-  if (recording != video.recording) load(state);
+  const std::string recording = shown_recording(state);
+  if (recording != video.recording) load(state, recording);
   const double time = state.clock.time();
   for (VideoState::Shown& shown : video.videos)
     shown.player->want(shown.attachment.video_time(time), state.clock.playing());
 }
 
 bool attach_video(WorkbenchState& state, const std::string& path) {
-  if (!state.document || state.video.recording.empty())
+  if (!state.document || state.video.recording.empty() || state.live.connected)
     return fail(state, "attach a video: open a recording first (a live stream records its camera)");
   // Opening indexes every packet: seconds for a long file, so a job; the attachment is written
   // only when the file reads as a video.

@@ -239,7 +239,7 @@ void draw_camera(WorkbenchState& state, LiveState::CameraShown& camera, ImVec2 s
 void draw_video_view(WorkbenchState& state, ImVec2 size) {
   ImGui::BeginChild("video_view", size, false,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
-  if (state.live.connected) {
+  if (state.live.connected && (state.live.camera || state.video.videos.empty())) {
     if (state.live.camera)
       draw_camera(state, *state.live.camera, ImGui::GetContentRegionAvail());
     else
