@@ -140,10 +140,11 @@ TEST(VideoAttachments, WritingRefusesDuplicateNamesBadNamesAndBadRates) {
               write_attachments(recording, {{"front", "a.mp4", 0, 1}, {"front", "b.mp4", 0, 1}});
             }).find("two videos are named \"front\""),
             std::string::npos);
-  EXPECT_NE(refusal_of([&] { write_attachments(recording, {{"front/1", "a.mp4", 0, 1}}); }),
-            "");
+  EXPECT_NE(refusal_of([&] { write_attachments(recording, {{"front/1", "a.mp4", 0, 1}}); }), "");
   EXPECT_NE(refusal_of([&] { write_attachments(recording, {{"front", "a.mp4", 0, 0}}); }), "");
-  EXPECT_NE(refusal_of([&] { write_attachments(recording, {{"front", "a.mp4", 0, INFINITY}}); }),
+  EXPECT_NE(refusal_of([&] {
+              write_attachments(recording, {{"front", "a.mp4", 0, INFINITY}});
+            }),
             "");
   EXPECT_NE(refusal_of([&] { write_attachments(recording, {{"front", "a.mp4", NAN, 1}}); }), "");
   EXPECT_EQ(folder.entry_count(), 0);
