@@ -18,8 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kShownWidth = 960;        // frames are decoded at most this wide for the view
-constexpr int kCachedFrames = 12;       // per video: its worker's cache of decoded frames
+constexpr int kShownWidth = 640;   // frames decoded at most this wide: the panel rarely is wider
+constexpr int kCachedFrames = 12;  // per video: its worker's cache of decoded frames
 constexpr double kProposalRate = 10.0;  // motion and skin activity, samples per second
 constexpr double kProposalLag = 30.0;   // seconds either side of the current offset
 constexpr double kMarksApart = 0.5;     // seconds between the two instants of a two-point sync

@@ -89,6 +89,9 @@ class Workbench {
   std::string settings_path() const;
 
   WorkbenchState state_;
+  // How many of state_.frame_seconds the last state_json() had seen: its `since_last_state`
+  // figures are of the frames after them (a benchmark's measured stretch).
+  mutable size_t frames_reported_ = 0;
   WorkbenchServices services_;  // after the state: destroyed first (a recording is finished)
   std::array<char, 256> connect_url_{"sim://nao"};
   std::array<char, 32> connect_skin_{};

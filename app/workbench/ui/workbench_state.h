@@ -434,8 +434,8 @@ struct WorkbenchState {
   // Why the open recording cannot be read now (its disk went away): shown while it lasts.
   std::string unavailable;
   double longest_frame_seconds = 0.0;  // the UI's slowest frame so far (building it, not drawing)
-  // Every frame's building time (the first 100000): the state JSON's median of them, beside the
-  // longest, for benchmarks of a view's cost.
+  // Every frame's building time (the first 100000): the state JSON's `since_last_state`, for
+  // benchmarks of a view's cost.
   std::vector<float> frame_seconds;
   UiTargets targets;  // last frame's
   int64_t frame = 0;

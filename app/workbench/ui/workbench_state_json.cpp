@@ -224,12 +224,18 @@ nlohmann::json Workbench::state_json() const {
   json["labels_read_only"] = document ? document->labels_read_only : std::string();
   json["labels_path"] = document ? document->labels_path : std::string();
   json["longest_frame_seconds"] = state_.longest_frame_seconds;
-  // Every frame's building time so far: the median beside the longest.
-  if (!state_.frame_seconds.empty()) {
-    std::vector<float> sorted = state_.frame_seconds;
-    const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
-    std::nth_element(sorted.begin(), middle, sorted.end());
-    json["median_frame_seconds"] = *middle;
+  // The frames built since the last state: how many, their median and their longest.
+  const std::vector<float>& all = state_.frame_seconds;
+  if (all.size() > frames_reported_) {
+    std::vector<float> recent(all.begin() + static_cast<std::ptrdiff_t>(frames_reported_),
+                              all.end());
+    const auto middle = recent.begin() + static_cast<std::ptrdiff_t>(recent.size() / 2);
+    std::nth_element(recent.begin(), middle, recent.end());
+    json["since_last_state"] = {
+        {"frames", recent.size()},
+        {"median_frame_seconds", *middle},
+        {"longest_frame_seconds", *std::max_element(recent.begin(), recent.end())}};
+    frames_reported_ = all.size();
   }
   json["frame"] = state_.frame;
   nlohmann::json jobs = nlohmann::json::array();

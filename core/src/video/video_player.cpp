@@ -32,6 +32,7 @@ void VideoPlayer::want(double video_time, bool playing) {
       wanted_ = (after == times.begin() || video_time >= info_->duration)
                     ? -1
                     : static_cast<int64_t>(after - times.begin()) - 1;
+      if (ahead_ && ahead_->index == wanted_) shown_ = std::exchange(ahead_, nullptr);
     }
   }
   wake_.notify_all();
@@ -122,12 +123,14 @@ void VideoPlayer::run(std::string path, VideoOpenOptions options) {
                read_ahead != index + 1) {
       read_ahead = index + 1;
       lock.unlock();
+      std::shared_ptr<const VideoFrame> next;
       try {
-        file->frame(read_ahead);
+        next = std::make_shared<const VideoFrame>(file->frame(read_ahead));
       } catch (const std::exception&) {
         // Named when it is shown.
       }
       lock.lock();
+      ahead_ = std::move(next);
       continue;
     }
     wake_.wait(lock);

@@ -1,7 +1,8 @@
 #pragma once
 // A video shown beside a recording: a worker thread owns the VideoFile, opens it (indexing
 // takes a moment on a long file) and decodes the frame the window asks for, so the window's
-// frame never waits for a decoder. While playing it reads the next frame ahead.
+// frame never waits for a decoder. While playing it decodes the next frame ahead, which is
+// shown the moment the time reaches it.
 
 #include <condition_variable>
 #include <cstdint>
@@ -51,6 +52,9 @@ class VideoPlayer {
   bool playing_ = false;
   int64_t wanted_ = -1;
   std::shared_ptr<const VideoFrame> shown_;
+  // While playing, the frame after the shown one, decoded before it falls due: want() shows it
+  // the moment the time reaches it, without waiting for the worker.
+  std::shared_ptr<const VideoFrame> ahead_;
   std::shared_ptr<const VideoInfo> info_;
   std::shared_ptr<const std::vector<double>> times_;
   std::string problem_;
