@@ -320,6 +320,20 @@ TEST_F(WorkbenchVideo, AClipShowsTheVideoTheSkinAndTheLanes) {
   const nlohmann::json box = state("clip-layout.json")["boxes"]["video:picture:front"];
   ASSERT_FALSE(box.is_null());
 
+  // The same from the window: View > Export clip of the label clicked in its lane.
+  const double middle = 0.5 * (label["t0"].get<double>() + label["t1"].get<double>());
+  const auto exported =
+      workbench(recording, "wait 2\nclick time " + std::to_string(middle) +
+                               " in lane:ground-truth\nwait 1\nmenu View/Export clip...\nwait 1\n"
+                               "state @asked.json\nclick item browser:OK\nwait jobs\n"
+                               "state @exported.json\n");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const nlohmann::json asked = state("asked.json");
+  ASSERT_EQ(asked["selection"]["labels"].size(), 1u) << asked["error"];
+  const std::string notice = state("exported.json")["notice"];
+  ASSERT_EQ(notice.rfind("wrote clip ", 0), 0u) << notice << state("exported.json")["error"];
+  EXPECT_GT(VideoFile(notice.substr(11)).info().frame_count, 10);
+
   VideoFile decoded(clip);
   const int64_t expected_frames =
       static_cast<int64_t>(std::floor((std::min(t1 + 0.5, duration(recording)) - start) * 10)) + 1;
