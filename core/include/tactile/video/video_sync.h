@@ -35,9 +35,10 @@ struct ActivitySeries {
 ActivitySeries motion_energy(VideoFile& video, double rate, std::optional<VideoRegion> region,
                              const std::function<void(double)>& progress = {});
 
-// The skin's activity at `rate` samples per second of recording time: over every channel, the
-// summed absolute change between consecutive samples, per grid step, each channel scaled by its
-// own noise so that one loud channel does not drown the rest.
+// The skin's activity at `rate` samples per second of recording time: per grid step, over every
+// channel, the summed absolute change of the channel's moving mean over a quarter of a step
+// (noise averages out, a touch's change stays whole), each channel scaled by its own noise so
+// that one loud channel does not drown the rest.
 ActivitySeries skin_activity(const SampleSource& source, double rate,
                              const std::function<void(double)>& progress = {});
 
