@@ -7,6 +7,6 @@ build_dir=${1:-build}
 demo_dir="$build_dir/demo"
 if [[ ! -f "$demo_dir/labels.db" ]]; then
   echo "run: creating the demo workspace in $demo_dir"
-  "$build_dir/bin/tactile" simulate --demo "$demo_dir"
+  "$build_dir/bin/tactile" simulate --demo "$demo_dir" --video  # each recording filmed (docs/VIDEO.md)
 fi
 exec "$build_dir/bin/tactile-workbench" "$demo_dir"
