@@ -208,10 +208,11 @@ TEST_F(WorkbenchScript, ArgumentsThatFitNoFormOfTheCommandNameTheFormsItHas) {
       {"wait 1\nclick taxel\n",
        "script.txt:2: click taxel: wrong number of arguments, expected 'click taxel ID'"},
       {"drag foo 1 2\n",
-       "script.txt:1: drag: expected 'drag time T0 T1 [in VIEW]' or 'drag taxel A B'"},
+       "script.txt:1: drag: expected 'drag time T0 T1 [in VIEW]', 'drag taxel A B' or 'drag item "
+       "NAME X0 Y0 X1 Y1'"},
       {"wait 1 2\n",
        "script.txt:1: wait: wrong number of arguments, expected 'wait N', 'wait training', "
-       "'wait jobs', 'wait labels N' or 'wait results N'"}};
+       "'wait jobs', 'wait video', 'wait labels N' or 'wait results N'"}};
   for (const auto& [text, error] : cases) {
     const auto result = run("--script " + script(text));
     EXPECT_NE(result.exit_code, 0) << text;

@@ -41,7 +41,8 @@ inline constexpr size_t kAnyWords = std::numeric_limits<size_t>::max();
     3, 5, check_script_two_numbers, drag_time)                                                     \
   X("drag taxel A B", "a left-drag over the skin from taxel A to taxel B",                         \
     3, 5, check_script_two_numbers, drag_taxels)                                                   \
-  X("drag item NAME X0 Y0 X1 Y1", "a left-drag over a named item, at fractions of its size",       \
+  X("drag item NAME X0 Y0 X1 Y1",                                                                  \
+    "a left-drag over a named item from fractions X0, Y0 of its size to X1, Y1",                   \
     6, 6, check_script_four_numbers, drag_item)                                                    \
   X("click recording NAME", "click a recording in the workspace list",                             \
     2, 2, nullptr, click_recording)                                                                \
