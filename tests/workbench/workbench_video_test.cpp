@@ -178,7 +178,8 @@ TEST_F(WorkbenchVideo, AttachNudgeUndoAndAConfusionClickShowTheVideoAtTheTouch) 
   EXPECT_EQ((*video_named(undone, "side"))["offset"], 0.0);
   std::ifstream kept(recordings[0] + ".videos.json");
   ASSERT_TRUE(kept) << "no " << recordings[0] << ".videos.json";
-  for (const nlohmann::json& entry : nlohmann::json::parse(kept)["videos"])
+  const nlohmann::json kept_videos = nlohmann::json::parse(kept);
+  for (const nlohmann::json& entry : kept_videos["videos"])
     EXPECT_EQ(entry["offset"], 0.0) << entry;
 
   // The click on a cell lands on the touch, whose recording's front video shows that instant.
