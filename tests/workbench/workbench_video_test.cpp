@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -81,6 +82,13 @@ class WorkbenchVideo : public ::testing::Test {
     const nlohmann::json& box = shot_state["boxes"]["video:picture:" + name];
     EXPECT_FALSE(box.is_null()) << name << " has no picture in " << png_name;
     if (!png.pixels || box.is_null()) return -1;
+    return number_in_box(box, [&](int x, int y) { return png.at(x, y); });
+  }
+
+  // The number shown inside a state's `box` of an image whose pixel (x, y) is `pixel(x, y)`
+  // (RGBA); the box's edge pixels, half covered, are left out.
+  static int number_in_box(const nlohmann::json& box,
+                           const std::function<const uint8_t*(int, int)>& pixel) {
     const int x0 = static_cast<int>(std::ceil(box["x"].get<double>()));
     const int y0 = static_cast<int>(std::ceil(box["y"].get<double>()));
     const int width = static_cast<int>(box["width"].get<double>()) - 1;
@@ -88,8 +96,7 @@ class WorkbenchVideo : public ::testing::Test {
     std::vector<uint8_t> picture(static_cast<size_t>(width) * height * 4);
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x)
-        for (int c = 0; c < 4; ++c)
-          picture[(static_cast<size_t>(y) * width + x) * 4 + c] = png.at(x0 + x, y0 + y)[c];
+        std::copy_n(pixel(x0 + x, y0 + y), 4, &picture[(static_cast<size_t>(y) * width + x) * 4]);
     return test::number_in_image(picture.data(), width, height, 4);
   }
 
@@ -343,18 +350,12 @@ TEST_F(WorkbenchVideo, AClipShowsTheVideoTheSkinAndTheLanes) {
   for (int64_t k : {int64_t{0}, decoded.info().frame_count / 2}) {
     const VideoFrame& frame = decoded.frame(k);
     const double at = start + static_cast<double>(k) / 10.0;
-    // The video's picture, cut out of the clip's frame.
-    const int x0 = static_cast<int>(std::ceil(box["x"].get<double>()));
-    const int y0 = static_cast<int>(std::ceil(box["y"].get<double>()));
-    const int width = static_cast<int>(box["width"].get<double>()) - 1;
-    const int height = static_cast<int>(box["height"].get<double>()) - 1;
-    std::vector<uint8_t> picture(static_cast<size_t>(width) * height * 4);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-        for (int c = 0; c < 4; ++c)
-          picture[(static_cast<size_t>(y) * width + x) * 4 + c] =
-              frame.rgba[(static_cast<size_t>(y0 + y) * frame.width + x0 + x) * 4 + c];
-    EXPECT_EQ(test::number_in_image(picture.data(), width, height, 4), frame_at(at, 0.0))
+    // The video's picture, read in the clip's frame.
+    EXPECT_EQ(number_in_box(box,
+                            [&](int x, int y) {
+                              return &frame.rgba[(static_cast<size_t>(y) * frame.width + x) * 4];
+                            }),
+              frame_at(at, 0.0))
         << "clip frame " << k;
     // The skin (left of the video) and the lanes (the bottom band) are drawn, not empty.
     std::set<uint32_t> skin_colours, lane_colours;
