@@ -267,6 +267,12 @@ TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
     widths.push_back(box["width"].get<double>());
   }
   ASSERT_EQ(widths.size(), 274u);
+  // The view says how far the map keeps the body: the state's figures, which the caption shows.
+  const nlohmann::json& agreement = drawn["analysis"]["somatosensory_agreement"];
+  ASSERT_FALSE(agreement.is_null());
+  EXPECT_EQ(agreement["neighbours"], 5);
+  EXPECT_GT(agreement["same_part_share"].get<double>(), agreement["chance_share"].get<double>());
+  EXPECT_TRUE(drawn["items"].dump().find("somatosensory:agreement") != std::string::npos);
   std::nth_element(widths.begin(), widths.begin() + 137, widths.end());
   EXPECT_GE(widths[137], 7.0);
   EXPECT_NEAR(0.5 * (left + right), view_x + 0.5 * view_width, 0.1 * view_width)

@@ -245,6 +245,16 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     drawn = &*state.analysis.somatosensory.layout;
     style.show_group_names = false;
     const SomatosensoryMap& map = *state.analysis.somatosensory.map;
+    SomatosensoryState& somatosensory = state.analysis.somatosensory;
+    if (somatosensory.agreement_key != somatosensory.key) {
+      somatosensory.agreement_key = somatosensory.key;
+      somatosensory.agreement.reset();
+      try {
+        somatosensory.agreement = map_body_agreement(map, state.document->layout);
+      } catch (const Error&) {
+        // Too few taxels to count neighbours: no figure.
+      }
+    }
     // In plain words, wrapped at the panel's edge; the method's terms in the tooltip.
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped(
@@ -261,6 +271,17 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
                     "map can hold (negative eigenvalues): %.2f",
                     map.taxels.size(), map.source.c_str(), map.negative_eigenvalue_ratio);
       view_tooltip(state, tip);
+    }
+    if (const std::optional<MapBodyAgreement>& agreement = somatosensory.agreement) {
+      ImGui::TextColored(ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled),
+                         "%d nearest on the map: %.0f %% on the same body part (random: %.0f %%); "
+                         "map vs body distance, rank correlation %.2f",
+                         agreement->neighbours, 100.0 * agreement->same_part_share,
+                         100.0 * agreement->chance_share, agreement->rank_correlation);
+      remember_item(state, "somatosensory:agreement",
+                    "How far the map keeps the body (Robovie's Fig. 8 gathers each body part): "
+                    "the share of each taxel's nearest neighbours on the map that lie on its body "
+                    "part, and Spearman's correlation of map and body-map distances");
     }
   } else if (state.analysis.somatosensory.shown) {
     // Computing: the body map meanwhile, the job's progress above it.

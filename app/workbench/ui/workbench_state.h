@@ -240,6 +240,9 @@ struct SomatosensoryState {
   std::optional<SomatosensoryMap> map;
   std::optional<SkinLayout> layout;  // the layout with its taxels moved onto the map
   std::string key;                   // recording path + modality it was made for
+  // How far the map keeps the body (ml/somatosensory.h), for `agreement_key`'s map.
+  std::optional<MapBodyAgreement> agreement;
+  std::string agreement_key;
   struct Made {
     std::string key;
     SomatosensoryMap map;

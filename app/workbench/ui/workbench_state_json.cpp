@@ -336,6 +336,14 @@ nlohmann::json Workbench::analysis_json() const {
                                                    {"neuron", analysis.som.neuron}})
                                  : nlohmann::json(nullptr)},
       {"somatosensory", analysis.somatosensory.shown},
+      {"somatosensory_agreement",
+       analysis.somatosensory.agreement
+           ? nlohmann::json{{"neighbours", analysis.somatosensory.agreement->neighbours},
+                            {"same_part_share", analysis.somatosensory.agreement->same_part_share},
+                            {"chance_share", analysis.somatosensory.agreement->chance_share},
+                            {"rank_correlation",
+                             analysis.somatosensory.agreement->rank_correlation}}
+           : nlohmann::json(nullptr)},
       {"somatosensory_taxels",
        analysis.somatosensory.map ? analysis.somatosensory.map->taxels.size() : 0}};
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,7 @@
 #include "tactile/io/atomic_file.h"
 #include "tactile/ml/mds.h"
 #include "tactile/signal/taxel_values.h"
+#include "tactile/stats/statistics.h"
 
 namespace tactile {
 
@@ -300,6 +302,59 @@ SkinLayout layout_on_map(const SkinLayout& layout, const SomatosensoryMap& map) 
         taxel.outline.clear();
       }
   return moved;
+}
+
+MapBodyAgreement map_body_agreement(const SomatosensoryMap& map, const SkinLayout& layout,
+                                    int neighbours) {
+  const size_t count = map.taxels.size();
+  if (neighbours < 1 || count < static_cast<size_t>(neighbours) + 1)
+    throw Error("somatosensory map", "needs more than " + std::to_string(neighbours) +
+                                         " taxels to count neighbours, has " +
+                                         std::to_string(count));
+  std::vector<const Taxel*> taxels;
+  for (int64_t id : map.taxels) {
+    const Taxel* taxel = layout.find_taxel(id);
+    if (!taxel)
+      throw Error("somatosensory map",
+                  "taxel " + std::to_string(id) + " is not in layout " + layout.id);
+    taxels.push_back(taxel);
+  }
+  MapBodyAgreement agreement;
+  agreement.neighbours = neighbours;
+  auto map_distance = [&](size_t i, size_t j) {
+    return std::hypot(map.positions[i].x - map.positions[j].x,
+                      map.positions[i].y - map.positions[j].y);
+  };
+  std::vector<double> on_map, on_body;
+  on_map.reserve(count * (count - 1) / 2);
+  on_body.reserve(count * (count - 1) / 2);
+  std::vector<std::pair<double, size_t>> nearest(count - 1);
+  double share = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    size_t k = 0;
+    for (size_t j = 0; j < count; ++j)
+      if (j != i) nearest[k++] = {map_distance(i, j), j};
+    std::partial_sort(nearest.begin(), nearest.begin() + neighbours, nearest.end());
+    int same = 0;
+    for (int n = 0; n < neighbours; ++n)
+      same += taxels[nearest[static_cast<size_t>(n)].second]->body_part == taxels[i]->body_part;
+    share += static_cast<double>(same) / neighbours;
+    for (size_t j = i + 1; j < count; ++j) {
+      on_map.push_back(map_distance(i, j));
+      on_body.push_back(std::hypot(taxels[i]->position.x - taxels[j]->position.x,
+                                   taxels[i]->position.y - taxels[j]->position.y));
+    }
+  }
+  agreement.same_part_share = share / static_cast<double>(count);
+  // At random, a taxel's neighbour is another taxel of its part with the share of those among
+  // the others.
+  std::map<std::string, double> parts;
+  for (const Taxel* taxel : taxels) parts[taxel->body_part] += 1.0;
+  double chance = 0.0;
+  for (const auto& [part, size] : parts) chance += size * (size - 1.0);
+  agreement.chance_share = chance / (static_cast<double>(count) * static_cast<double>(count - 1));
+  agreement.rank_correlation = stats::spearman(on_map, on_body);
+  return agreement;
 }
 
 }  // namespace tactile

@@ -193,3 +193,75 @@ TEST(SomatosensoryMap, ACorpusPoolsItsRecordingsAndItsCacheKnowsWhichOnes) {
 
 }  // namespace
 }  // namespace tactile
+
+namespace tactile {
+namespace {
+
+// Three body parts of six taxels in a row each (on the body map: parts side by side).
+SkinLayout three_parts() {
+  SkinLayout layout;
+  layout.id = "three-parts";
+  for (int64_t id = 0; id < 18; ++id) {
+    Taxel taxel;
+    taxel.id = id;
+    taxel.body_part = std::string(1, static_cast<char>('a' + id / 6));
+    taxel.position = {static_cast<double>(id), 0.0};
+    layout.taxels.push_back(taxel);
+  }
+  return layout;
+}
+
+SomatosensoryMap map_of(const SkinLayout& layout, const std::vector<Point2>& positions) {
+  SomatosensoryMap map;
+  for (const Taxel& taxel : layout.taxels) map.taxels.push_back(taxel.id);
+  map.positions = positions;
+  return map;
+}
+
+TEST(MapBodyAgreement, AMapThatGathersEachBodyPartScoresOneAndChanceIsTheirShare) {
+  const SkinLayout layout = three_parts();
+  std::vector<Point2> gathered;
+  for (int64_t id = 0; id < 18; ++id)  // each part a tight cluster, the clusters far apart
+    gathered.push_back({100.0 * static_cast<double>(id / 6) + 0.1 * static_cast<double>(id % 6),
+                        std::sin(static_cast<double>(id))});
+  const MapBodyAgreement agreement = map_body_agreement(map_of(layout, gathered), layout);
+  EXPECT_EQ(agreement.neighbours, 5);
+  EXPECT_DOUBLE_EQ(agreement.same_part_share, 1.0);
+  EXPECT_DOUBLE_EQ(agreement.chance_share, 3.0 * 6 * 5 / (18.0 * 17));
+  EXPECT_GT(agreement.rank_correlation, 0.8);
+}
+
+TEST(MapBodyAgreement, TheBodyMapItselfCorrelatesOneAndAShuffledMapAboutChance) {
+  const SkinLayout layout = three_parts();
+  std::vector<Point2> body;
+  for (const Taxel& taxel : layout.taxels) body.push_back(taxel.position);
+  EXPECT_DOUBLE_EQ(map_body_agreement(map_of(layout, body), layout).rank_correlation, 1.0);
+  // Taxels placed at random, over many draws: the share and correlation of chance.
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> place(0.0, 1.0);
+  double share = 0.0, correlation = 0.0;
+  constexpr int kDraws = 200;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    std::vector<Point2> scattered;
+    for (int k = 0; k < 18; ++k) scattered.push_back({place(random), place(random)});
+    const MapBodyAgreement agreement = map_body_agreement(map_of(layout, scattered), layout);
+    share += agreement.same_part_share / kDraws;
+    correlation += agreement.rank_correlation / kDraws;
+  }
+  EXPECT_NEAR(share, 3.0 * 6 * 5 / (18.0 * 17), 0.03);
+  EXPECT_NEAR(correlation, 0.0, 0.03);
+}
+
+TEST(MapBodyAgreement, TooFewTaxelsOrOneTheLayoutLacksIsRefused) {
+  const SkinLayout layout = three_parts();
+  SomatosensoryMap small = map_of(layout, std::vector<Point2>(18));
+  small.taxels.resize(5);
+  small.positions.resize(5);
+  EXPECT_THROW(map_body_agreement(small, layout), Error);
+  SomatosensoryMap stranger = map_of(layout, std::vector<Point2>(18));
+  stranger.taxels[3] = 99;
+  EXPECT_THROW(map_body_agreement(stranger, layout), Error);
+}
+
+}  // namespace
+}  // namespace tactile

@@ -56,6 +56,22 @@ SomatosensoryMap somatosensory_map(const SkinLayout& layout, int modality,
 SomatosensoryMap somatosensory_map(const SampleSource& source, const SkinLayout& layout,
                                    int modality, const std::function<void(double)>& step = {});
 
+// How far a map keeps the body (Robovie paper, Fig. 8: films of one body part lie together):
+// per taxel, the share of its `neighbours` nearest taxels on the map that lie on its own body
+// part (Taxel::body_part), averaged over the taxels; the share a map placing taxels at random
+// would reach; and Spearman's rank correlation, over every pair of taxels, between their
+// distance on the map and on the body map (Taxel::position).
+struct MapBodyAgreement {
+  int neighbours = 5;
+  double same_part_share = 0.0;
+  double chance_share = 0.0;
+  double rank_correlation = 0.0;
+};
+// Throws tactile::Error when the map has fewer taxels than neighbours + 1, or a taxel the
+// layout lacks.
+MapBodyAgreement map_body_agreement(const SomatosensoryMap& map, const SkinLayout& layout,
+                                    int neighbours = 5);
+
 nlohmann::json to_json(const SomatosensoryMap& map);
 SomatosensoryMap somatosensory_from_json(const nlohmann::json& document, const std::string& where);
 

@@ -1,0 +1,62 @@
+// The somatosensory map against the body (issue 46, Robovie's Fig. 8): Robovie simulated for 2,
+// 10 and 30 minutes (its trials end to end, subject 1), the map made by MDS of -ln|R| over the
+// films' signals, and how far it keeps the body: the share of each film's 5 nearest on the map
+// that lie on its body part (beside chance), Spearman's correlation of map and body distances,
+// and the share of distances no flat map holds. bench/SOMATOSENSORY.md holds a run.
+#include <chrono>
+#include <cstdio>
+
+#include "tactile/layout/skin_layout.h"
+#include "tactile/ml/somatosensory.h"
+#include "tactile/signal/sample_source.h"
+#include "tactile/sim/simulator.h"
+#include "tactile/skins/skin.h"
+
+namespace {
+
+// Robovie's trials of one subject end to end until `seconds` are simulated.
+tactile::Stream robovie_for(double seconds, const tactile::SkinLayout& layout) {
+  tactile::SimulationOptions options;
+  options.subjects = 1;
+  tactile::Stream whole;
+  for (int trial = 0; whole.rate_hz == 0.0 ||
+                      static_cast<double>(whole.samples.rows()) / whole.rate_hz < seconds;
+       ++trial) {
+    tactile::SimulatedTrial made = tactile::skin_record("robovie").simulate(layout, options, 0, trial);
+    const tactile::Stream& stream = made.recording.streams.front();
+    if (trial == 0) {
+      whole = stream;
+      continue;
+    }
+    const auto rows = whole.samples.rows();
+    whole.samples.conservativeResize(rows + stream.samples.rows(), Eigen::NoChange);
+    whole.samples.bottomRows(stream.samples.rows()) = stream.samples;
+  }
+  const auto keep = static_cast<Eigen::Index>(seconds * whole.rate_hz);
+  whole.samples.conservativeResize(std::min(keep, whole.samples.rows()), Eigen::NoChange);
+  return whole;
+}
+
+}  // namespace
+
+int main() {
+  const tactile::SkinLayout layout = tactile::load_layout("robovie");
+  const int modality = std::max(0, layout.modality_index(layout.display_modality));
+  std::printf("| minutes | films | same body part, 5 nearest | at random | rank correlation, map vs "
+              "body distance | no flat map holds | seconds |\n|---|---|---|---|---|---|---|\n");
+  for (double minutes : {2.0, 10.0, 30.0}) {
+    const auto started = std::chrono::steady_clock::now();
+    const tactile::MemorySampleSource source(robovie_for(60.0 * minutes, layout), layout.id,
+                                             "robovie");
+    const tactile::SomatosensoryMap map = tactile::somatosensory_map(source, layout, modality);
+    const tactile::MapBodyAgreement agreement = tactile::map_body_agreement(map, layout);
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::printf("| %.0f | %zu | %.0f %% | %.0f %% | %.2f | %.0f %% | %.0f |\n", minutes,
+                map.taxels.size(), 100.0 * agreement.same_part_share,
+                100.0 * agreement.chance_share, agreement.rank_correlation,
+                100.0 * map.negative_eigenvalue_ratio, took);
+    std::fflush(stdout);
+  }
+  return 0;
+}
