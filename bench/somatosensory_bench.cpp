@@ -19,10 +19,11 @@ tactile::Stream robovie_for(double seconds, const tactile::SkinLayout& layout) {
   tactile::SimulationOptions options;
   options.subjects = 1;
   tactile::Stream whole;
-  for (int trial = 0; whole.rate_hz == 0.0 ||
-                      static_cast<double>(whole.samples.rows()) / whole.rate_hz < seconds;
+  for (int trial = 0;
+       whole.rate_hz == 0.0 || static_cast<double>(whole.samples.rows()) / whole.rate_hz < seconds;
        ++trial) {
-    tactile::SimulatedTrial made = tactile::skin_record("robovie").simulate(layout, options, 0, trial);
+    tactile::SimulatedTrial made =
+        tactile::skin_record("robovie").simulate(layout, options, 0, trial);
     const tactile::Stream& stream = made.recording.streams.front();
     if (trial == 0) {
       whole = stream;
@@ -42,8 +43,9 @@ tactile::Stream robovie_for(double seconds, const tactile::SkinLayout& layout) {
 int main() {
   const tactile::SkinLayout layout = tactile::load_layout("robovie");
   const int modality = std::max(0, layout.modality_index(layout.display_modality));
-  std::printf("| minutes | films | same body part, 5 nearest | at random | rank correlation, map vs "
-              "body distance | no flat map holds | seconds |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| minutes | films | same body part, 5 nearest | at random | rank correlation, map vs "
+      "body distance | no flat map holds | seconds |\n|---|---|---|---|---|---|---|\n");
   for (double minutes : {2.0, 10.0, 30.0}) {
     const auto started = std::chrono::steady_clock::now();
     const tactile::MemorySampleSource source(robovie_for(60.0 * minutes, layout), layout.id,

@@ -15,6 +15,7 @@
 #include "tactile/error.h"
 #include "tactile/experiments/experiment.h"
 #include "tactile/experiments/repeats.h"
+#include "tactile/io/atomic_file.h"
 
 namespace tactile::cli {
 
@@ -112,7 +113,8 @@ void run(const ExperimentArgs& args) {
   if (!args.data.empty() && !std::filesystem::is_directory(args.data))
     throw Error("--data", args.data + " is not a folder");
   const std::vector<std::string> names = experiments::experiment_names();
-  if (std::find(names.begin(), names.end(), args.name) == names.end())
+  const bool all = args.name == "all";
+  if (!all && std::find(names.begin(), names.end(), args.name) == names.end())
     experiments::run_experiment(args.name, options);  // throws, listing the known names
   if (args.repeats < 1)
     throw Error("--repeats", "must be 1 or more, not " + std::to_string(args.repeats));
@@ -123,6 +125,8 @@ void run(const ExperimentArgs& args) {
     throw Error("--shard", "needs --out (the result the merge writes; parts go beside it)");
   if (sharded && args.json)
     throw Error("--json", "not with --shard: `tactile merge` prints the result");
+  if (all && sharded)
+    throw Error("--shard", "not with all: shard one experiment at a time (docs/CLUSTER.md)");
   const ShardPlan plan = shard_plan(args.shard, args.out);
   // A run simulates hundreds of MB; in a folder of its own choosing it cleans up after
   // itself unless asked to keep it (--keep), so repeated runs do not fill the disk.
@@ -149,6 +153,27 @@ void run(const ExperimentArgs& args) {
     bar->update(done, total);
   };
   const std::string kept_work_dir = cleanup ? "" : options.work_dir;  // only a folder that stays
+  if (all) {
+    // Every experiment over the same seeds, each in WORK/NAME; one table of the paper's figures.
+    std::vector<experiments::PaperRow> rows;
+    const std::string work = options.work_dir;
+    for (const std::string& name : names) {
+      options.work_dir = (std::filesystem::path(work) / name).string();
+      current_stage.clear();
+      const experiments::RepeatsJob job{name, args.seed, args.repeats, args.quick};
+      const std::vector<experiments::RepeatRun> runs =
+          experiments::run_repeats(job, options, {}, cleanup != nullptr);
+      if (bar) bar->finish();
+      bar.reset();
+      for (experiments::PaperRow& row : experiments::paper_rows(name, runs))
+        rows.push_back(std::move(row));
+    }
+    const nlohmann::json document = experiments::paper_rows_json(rows, args.repeats);
+    if (!args.out.empty()) write_file_atomically(args.out, document.dump(2) + "\n");
+    std::cout << (args.json ? document.dump(2) + "\n"
+                            : experiments::format_paper_rows(rows, args.repeats));
+    return;
+  }
   if (args.repeats == 1 && args.out.empty() && !sharded) {
     // One run, as before --repeats: simulated straight into the work folder.
     const experiments::ExperimentReport report = experiments::run_experiment(args.name, options);
@@ -190,7 +215,10 @@ void register_experiment(CLI::App& app) {
   auto args = std::make_shared<ExperimentArgs>();
   CLI::App* command = app.add_subcommand(
       "experiment", "rerun a paper's experiment end to end and compare with its figures");
-  command->add_option("name", args->name, "experiment name (see the error for the list)")
+  command
+      ->add_option("name", args->name,
+                   "experiment name (see the error for the list), or all: every experiment, "
+                   "one table of the figures the papers report")
       ->required();
   command->add_option("--data", args->data,
                       "recordings and labels.db of the skin (default: simulate)");

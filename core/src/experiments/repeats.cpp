@@ -267,4 +267,48 @@ RepeatRun repeat_from_item(const nlohmann::json& item) {
   return {item["seed"].get<uint64_t>(), report_from_json(item["report"])};
 }
 
+std::vector<PaperRow> paper_rows(const std::string& experiment,
+                                 const std::vector<RepeatRun>& runs) {
+  std::vector<PaperRow> rows;
+  for (RepeatFigure& figure : summarise_repeats(runs))
+    if (figure.paper) rows.push_back({experiment, std::move(figure)});
+  return rows;
+}
+
+std::string format_paper_rows(const std::vector<PaperRow>& rows, int repeats, double flag) {
+  // The reports' figures are fractions; the table says them in percent, as the papers do.
+  std::string text = "| experiment | figure | ours %, mean (sd) over " + std::to_string(repeats) +
+                     " runs | paper % | ours - paper (points) |\n|---|---|---|---|---|\n";
+  int far = 0;
+  for (const PaperRow& row : rows) {
+    const RepeatFigure& figure = row.figure;
+    const double difference = 100.0 * (figure.mean - *figure.paper);
+    const bool outside = std::abs(difference) > flag;
+    far += outside;
+    const std::string name =
+        figure.table == "headline" ? figure.title : figure.table + ": " + figure.title;
+    text += "| " + row.experiment + " | " + name + " | " + fixed_text(100.0 * figure.mean, 1) +
+            " (" + fixed_text(100.0 * figure.sd, 1) + ") | " +
+            fixed_text(100.0 * *figure.paper, 1) + " | " + (difference >= 0 ? "+" : "") +
+            fixed_text(difference, 1) + (outside ? " **" : "") + " |\n";
+  }
+  text += "\n" + std::to_string(rows.size()) + " figures; " + std::to_string(far) + " more than " +
+          fixed_text(flag, 0) + " points from the paper (**)\n";
+  return text;
+}
+
+nlohmann::json paper_rows_json(const std::vector<PaperRow>& rows, int repeats) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const PaperRow& row : rows)
+    list.push_back({{"experiment", row.experiment},
+                    {"table", row.figure.table},
+                    {"figure", row.figure.title},
+                    {"values", row.figure.values},
+                    {"mean", row.figure.mean},
+                    {"sd", row.figure.sd},
+                    {"paper", *row.figure.paper},
+                    {"difference", row.figure.mean - *row.figure.paper}});
+  return {{"repeats", repeats}, {"figures", list}};
+}
+
 }  // namespace tactile::experiments

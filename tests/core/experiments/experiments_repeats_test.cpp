@@ -68,6 +68,31 @@ TEST(ExperimentRepeats, SummaryIsMeanSampleDeviationAndRangeOfTheRunsFigures) {
   EXPECT_FALSE(row.paper.has_value());
 }
 
+TEST(ExperimentRepeats, AllExperimentsTableListsTheFiguresThePaperGivesInPercent) {
+  const std::vector<RepeatRun> runs = {
+      repeat_with(4, 0.5, 0.6, 0.25), repeat_with(5, 0.7, 0.6, 0.5), repeat_with(6, 0.9, 0.6, 1.0)};
+  // The row of classifier KNN has no paper figure: left out.
+  const std::vector<experiments::PaperRow> rows = experiments::paper_rows("made-up", runs);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].experiment, "made-up");
+  const std::string table = experiments::format_paper_rows(rows, 3);
+  // Headline 70 % (sd 20) against 90 %: 20 points off, marked; the table's 60 % against 80 %.
+  EXPECT_NE(table.find("| made-up | accuracy | 70.0 (20.0) | 90.0 | -20.0 ** |"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("| made-up | Table 1: made up: accuracy | 60.0 (0.0) | 80.0 | -20.0 ** |"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("2 figures; 2 more than 5 points from the paper"), std::string::npos);
+  // Within five points: not marked.
+  const std::string close = experiments::format_paper_rows(
+      experiments::paper_rows("close", {repeat_with(1, 0.88, 0.79, 0)}), 1);
+  EXPECT_NE(close.find("| close | accuracy | 88.0 (0.0) | 90.0 | -2.0 |"), std::string::npos)
+      << close;
+  const nlohmann::json document = experiments::paper_rows_json(rows, 3);
+  EXPECT_EQ(document["repeats"], 3);
+  EXPECT_DOUBLE_EQ(document["figures"][0]["difference"].get<double>(), 0.7 - 0.9);
+}
+
 TEST(ExperimentRepeats, FigureMissingFromARunIsSummarisedOverTheRunsThatGiveIt) {
   std::vector<RepeatRun> runs = {repeat_with(1, 0.5, 0.6, 0.2), repeat_with(2, 0.7, 0.6, 0.4)};
   runs[1].report.json["accuracy"] = std::nan("");  // written as null: no figure

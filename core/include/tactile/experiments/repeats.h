@@ -81,6 +81,19 @@ void write_repeats_file(const std::string& path, const nlohmann::json& document)
 // paper's.
 std::string format_repeats(const RepeatsJob& job, const std::vector<RepeatRun>& runs);
 
+// `tactile experiment all --repeats R`: every experiment's figures that the paper reports too,
+// over the same seeds, as one table.
+struct PaperRow {
+  std::string experiment;
+  RepeatFigure figure;  // figure.paper is set
+};
+// The rows of one experiment's runs (summarise_repeats), those with a paper's figure.
+std::vector<PaperRow> paper_rows(const std::string& experiment, const std::vector<RepeatRun>& runs);
+// "| experiment | figure | ours %, mean (sd) over N runs | paper % | ours - paper |" in Markdown
+// (the reports' fractions in percent), the rows more than `flag` points from the paper marked.
+std::string format_paper_rows(const std::vector<PaperRow>& rows, int repeats, double flag = 5.0);
+nlohmann::json paper_rows_json(const std::vector<PaperRow>& rows, int repeats);
+
 // A shard's `done` entry for a run ({"index", "seed", "report": report_to_json}) and back.
 nlohmann::json repeat_item(size_t index, const RepeatRun& run);
 RepeatRun repeat_from_item(const nlohmann::json& item);
