@@ -6,6 +6,7 @@
 // start, and the services' news (counters, the file being recorded) is copied into the state.
 // Jobs are handles in the state (jobs.h); the label store is the open document's.
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -27,13 +28,19 @@ class LiveClock {
     stream_time_ = stream_time;
     at_ = std::chrono::steady_clock::now();
   }
+  // Never earlier than a time it gave before: when samples arrive late, the newest one's time
+  // lies behind the clock's estimate, and a camera frame must not be stamped before the last.
   double now() const {
     std::lock_guard lock(mutex_);
-    return stream_time_ +
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - at_).count();
+    const double estimate =
+        stream_time_ +
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - at_).count();
+    given_ = std::max(given_, estimate);
+    return given_;
   }
 
  private:
+  mutable double given_ = -1e300;
   mutable std::mutex mutex_;
   double stream_time_ = 0.0;
   std::chrono::steady_clock::time_point at_ = std::chrono::steady_clock::now();

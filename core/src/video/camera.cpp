@@ -118,6 +118,7 @@ void Camera::Impl::read_loop() {
     Packet packet(av_packet_alloc());
     Frame decoded(av_frame_alloc());
     SwsContext* scale = nullptr;
+    double last_stamp = -1e300;  // the stamp of the frame before
     while (!stopping.load()) {
       const int code = av_read_frame(input.get(), packet.get());
       if (code == AVERROR(EAGAIN)) {
@@ -140,7 +141,10 @@ void Camera::Impl::read_loop() {
         break;
       }
       while (avcodec_receive_frame(decoder.get(), decoded.get()) == 0) {
-        const double stamp = clock();
+        // Strictly later than the frame before, by more than the writer's time base (a clock
+        // that stood still, or a frame that came in with the last, would be refused there).
+        const double stamp = std::max(clock(), last_stamp + 0.02 / rate);
+        last_stamp = stamp;
         const int width = decoded->width, height = decoded->height;
         int out_width = std::min(width, options.max_width > 0 ? options.max_width : width);
         int out_height = static_cast<int>(
