@@ -17,6 +17,7 @@
 
 #include "cli_test_support.h"
 #include "png_test_support.h"
+#include "tactile/video/attachments.h"
 #include "tactile/video/video_file.h"
 #include "temp_folder.h"
 #include "video_test_files.h"
@@ -229,6 +230,39 @@ TEST_F(WorkbenchVideo, StepsFramesAndSaysWhereTheVideoDoesNotReach) {
               std::string::npos)
         << outside["problem"];
   }
+}
+
+TEST_F(WorkbenchVideo, ADragNudgesAsOneEditThatCtrlZTakesBackAndARegionFeedsTheProposal) {
+  const std::string recording = recordings[0];
+  const std::string video = make_video("short.mp4", duration(recording));
+  ASSERT_EQ(test::run_program("tactile", "video attach " + recording + " " + video + " --offset 2",
+                              folder)
+                .exit_code,
+            0);
+  const auto run = workbench(
+      recording,
+      "wait 2\ntime 5\nwait video\ndrag item video:short 0.4 0.5 0.6 0.5\nwait video\n"
+      "state @dragged.json\nkey Ctrl+Z\nwait video\nstate @undone.json\n"
+      "click item button:video:region\nwait 1\ndrag item video:short 0.3 0.2 0.7 0.8\nwait 1\n"
+      "click item button:video:propose\nwait jobs\nstate @proposed.json\n");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Dragged right: shown later against the skin, by 10 ms a pixel; one edit.
+  const nlohmann::json dragged = state("dragged.json")["videos"];
+  EXPECT_GT(dragged["list"][0]["offset"].get<double>(), 2.5);
+  EXPECT_EQ(dragged["undo"], 1);
+  // Ctrl+Z: back to 2 exactly, in the window and in the file, and nothing left to undo.
+  const nlohmann::json undone = state("undone.json")["videos"];
+  EXPECT_EQ(undone["list"][0]["offset"], 2.0);
+  EXPECT_EQ(undone["undo"], 0);
+  EXPECT_EQ(read_attachments(recording).front().offset, 2.0);
+  // The region drawn is kept for the proposal, which the job makes.
+  const nlohmann::json proposed = state("proposed.json");
+  const nlohmann::json& region = proposed["videos"]["region"];
+  ASSERT_FALSE(region.is_null()) << proposed["videos"];
+  EXPECT_GT(region["width"].get<double>(), 0.1);
+  EXPECT_LE(region["x"].get<double>() + region["width"].get<double>(), 1.0);
+  ASSERT_FALSE(proposed["videos"]["proposal"].is_null()) << proposed["error"];
+  EXPECT_EQ(proposed["videos"]["proposal"]["video"], "short");
 }
 
 TEST_F(WorkbenchVideo, ALiveReplayPlaysTheRecordingsVideoWithIt) {

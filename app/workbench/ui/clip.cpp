@@ -40,14 +40,11 @@ double ClipRecorder::before_frame(Workbench& workbench) {
       done_ = true;
       return 0.0;
     }
-    if (!request_.video.empty() && !find_attachment(
-                                       [&] {
-                                         std::vector<VideoAttachment> list;
-                                         for (const VideoState::Shown& shown : state.video.videos)
-                                           list.push_back(shown.attachment);
-                                         return list;
-                                       }(),
-                                       request_.video)) {
+    const std::vector<VideoState::Shown>& videos = state.video.videos;
+    if (!request_.video.empty() &&
+        std::none_of(videos.begin(), videos.end(), [&](const VideoState::Shown& shown) {
+          return shown.attachment.name == request_.video;
+        })) {
       error_ = "clip: the recording has no video " + in_quotes(request_.video) +
                " (tactile video list shows them)";
       done_ = true;

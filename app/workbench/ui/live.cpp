@@ -187,9 +187,7 @@ void poll_camera(WorkbenchState& state, LiveServices& services) {
   if (!services.camera || !state.live.camera) return;
   LiveState::CameraShown& shown = *state.live.camera;
   shown.received = services.camera->frames_received();
-  if (std::optional<VideoFrame> frame = services.camera->latest();
-      frame && (!shown.frame || frame->time != shown.frame->time))
-    shown.frame = std::move(frame);
+  if (std::shared_ptr<const VideoFrame> frame = services.camera->latest()) shown.frame = frame;
   if (const std::string failure = services.camera->error();
       !failure.empty() && failure != shown.error) {
     shown.error = failure;

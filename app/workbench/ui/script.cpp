@@ -15,6 +15,7 @@
 #include "jobs.h"
 #include "script_commands.h"
 #include "tactile/error.h"
+#include "tactile/io/atomic_file.h"
 #include "video.h"
 
 namespace tactile {
@@ -550,9 +551,9 @@ void ScriptPlayer::after_frame(Workbench& workbench, const std::function<Image()
       if (screenshot) {
         write_png(path, grab());
       } else {
-        std::ofstream out(path);
-        out << workbench.state_json().dump(2) << "\n";
-        if (!out) throw Error(path, "cannot write the state");
+        // Whole or not at all: a test polls for the file while the script goes on (the live
+        // test read a state still being written, as empty JSON, under a sanitizer).
+        write_file_atomically(path, workbench.state_json().dump(2) + "\n");
       }
     } catch (const std::exception& failure) {
       if (error_.empty()) error_ = where_ + ": " + failure.what();

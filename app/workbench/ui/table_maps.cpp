@@ -39,8 +39,21 @@ void apply_map_made(WorkbenchState& state, Job<SomatosensoryState::Made>& job) {
   std::optional<SomatosensoryState::Made> made = job_result(state, job);
   if (made && made->key == analysis.somatosensory.key) {
     analysis.somatosensory.map = std::move(made->map);
+    analysis.somatosensory.agreement = made->agreement;
     analysis.somatosensory.layout.reset();
   }
+}
+
+// A job's map, with how far it keeps the body, measured on the worker too.
+SomatosensoryState::Made made_map(const std::string& key, SomatosensoryMap map,
+                                  const SkinLayout& layout) {
+  SomatosensoryState::Made made{key, std::move(map), std::nullopt};
+  try {
+    made.agreement = map_body_agreement(made.map, layout);
+  } catch (const Error&) {
+    // Too few taxels to count neighbours: no figure.
+  }
+  return made;
 }
 
 }  // namespace
@@ -124,6 +137,7 @@ bool ensure_somatosensory(WorkbenchState& state) {
   if (analysis.somatosensory.key == key) return analysis.somatosensory.map.has_value();
   analysis.somatosensory.key = key;
   analysis.somatosensory.map.reset();
+  analysis.somatosensory.agreement.reset();
   analysis.somatosensory.layout.reset();
   // On a worker, cache and all (8.3 s for 30 min of Robovie's 274 channels the first time); a
   // map asked for meanwhile (another modality, the corpus) replaces it.
@@ -145,18 +159,15 @@ bool ensure_somatosensory(WorkbenchState& state) {
             } catch (const Error&) {
             }
           }
-          SomatosensoryState::Made made{key, {}};
           if (std::optional<SomatosensoryMap> cached =
-                  read_somatosensory_corpus_cache(cache, same_skin)) {
-            made.map = std::move(*cached);
-            return made;
-          }
-          made.map = somatosensory_corpus_map(
+                  read_somatosensory_corpus_cache(cache, same_skin))
+            return made_map(key, std::move(*cached), layout);
+          SomatosensoryMap map = somatosensory_corpus_map(
               same_skin, layout, index,
               progress.steps("correlations over " + std::to_string(same_skin.size()) +
                              " recordings"));
-          write_somatosensory_corpus_cache(cache, same_skin, made.map);
-          return made;
+          write_somatosensory_corpus_cache(cache, same_skin, map);
+          return made_map(key, std::move(map), layout);
         },
         apply_map_made);
   } else if (!dynamic_cast<const FileSampleSource*>(&state.document->samples())) {
@@ -166,9 +177,11 @@ bool ensure_somatosensory(WorkbenchState& state) {
         [key, read = recording_for_job(*state.document, 0.0, 0.0), layout,
          index = state.modality](JobProgress& progress) {
           const Recording recording = read(progress);
-          return SomatosensoryState::Made{
-              key, somatosensory_map(MemorySampleSource(recording, recording.streams.front()),
-                                     layout, index, progress.steps("correlations of the taxels"))};
+          return made_map(
+              key,
+              somatosensory_map(MemorySampleSource(recording, recording.streams.front()), layout,
+                                index, progress.steps("correlations of the taxels")),
+              layout);
         },
         apply_map_made);
   } else {
@@ -176,21 +189,18 @@ bool ensure_somatosensory(WorkbenchState& state) {
         state, "somatosensory", "somatosensory map",
         [key, path = state.document->path, stream = state.document->samples().info().stream, layout,
          modality, index = state.modality](JobProgress& progress) {
-          SomatosensoryState::Made made{key, {}};
-          if (std::optional<SomatosensoryMap> cached = read_somatosensory_cache(path, modality)) {
-            made.map = std::move(*cached);
-            return made;
-          }
+          if (std::optional<SomatosensoryMap> cached = read_somatosensory_cache(path, modality))
+            return made_map(key, std::move(*cached), layout);
           FileSourceOptions options;
           options.stream = stream;
           options.cache_bytes = int64_t{8} << 20;
           options.damaged_chunks_as_gaps = true;
           progress.report(0.0, "opening the recording");
           const FileSampleSource source(path, options);
-          made.map = somatosensory_map(source, layout, index,
-                                       progress.steps("correlations of the taxels"));
-          write_somatosensory_cache(path, made.map);
-          return made;
+          SomatosensoryMap map = somatosensory_map(source, layout, index,
+                                                   progress.steps("correlations of the taxels"));
+          write_somatosensory_cache(path, map);
+          return made_map(key, std::move(map), layout);
         },
         apply_map_made);
   }

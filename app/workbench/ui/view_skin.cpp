@@ -245,16 +245,7 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
     drawn = &*state.analysis.somatosensory.layout;
     style.show_group_names = false;
     const SomatosensoryMap& map = *state.analysis.somatosensory.map;
-    SomatosensoryState& somatosensory = state.analysis.somatosensory;
-    if (somatosensory.agreement_key != somatosensory.key) {
-      somatosensory.agreement_key = somatosensory.key;
-      somatosensory.agreement.reset();
-      try {
-        somatosensory.agreement = map_body_agreement(map, state.document->layout);
-      } catch (const Error&) {
-        // Too few taxels to count neighbours: no figure.
-      }
-    }
+    const SomatosensoryState& somatosensory = state.analysis.somatosensory;
     // In plain words, wrapped at the panel's edge; the method's terms in the tooltip.
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped(

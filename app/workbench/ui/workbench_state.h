@@ -240,12 +240,12 @@ struct SomatosensoryState {
   std::optional<SomatosensoryMap> map;
   std::optional<SkinLayout> layout;  // the layout with its taxels moved onto the map
   std::string key;                   // recording path + modality it was made for
-  // How far the map keeps the body (ml/somatosensory.h), for `agreement_key`'s map.
+  // How far the map keeps the body (ml/somatosensory.h); none when too few taxels to tell.
   std::optional<MapBodyAgreement> agreement;
-  std::string agreement_key;
   struct Made {
     std::string key;
     SomatosensoryMap map;
+    std::optional<MapBodyAgreement> agreement;
   };
 };
 
@@ -302,8 +302,8 @@ struct LiveState {
   // its counters, why it stopped, and the video being recorded beside the recording.
   struct CameraShown {
     std::string url;
-    std::optional<VideoFrame> frame;
-    VideoTexture texture;  // key: the frame's time
+    std::shared_ptr<const VideoFrame> frame;  // the camera's newest, shared with it
+    VideoTexture texture;                     // key: the frame's time
     int64_t received = 0;
     std::string error;
     std::string recording;  // the video file being written ("" when not recording)

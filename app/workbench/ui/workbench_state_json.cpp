@@ -61,7 +61,14 @@ nlohmann::json videos_json(const WorkbenchState& state) {
                          {"problem", state.video.problem},
                          {"undo", state.video.undo.size()},
                          {"mark", nullptr},
+                         {"region", nullptr},
                          {"proposal", nullptr}};
+  if (const std::optional<VideoRegion>& region = state.video.region)
+    json["region"] = {{"video", state.video.region_for},
+                      {"x", region->x},
+                      {"y", region->y},
+                      {"width", region->width},
+                      {"height", region->height}};
   if (state.video.mark) json["mark"] = {state.video.mark->first, state.video.mark->second};
   if (const std::optional<SyncProposal>& proposal = state.video.proposal)
     json["proposal"] = {{"video", state.video.proposal_for},

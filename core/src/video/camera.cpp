@@ -35,8 +35,8 @@ struct Camera::Impl {
 
   mutable std::mutex mutex;  // guards everything below
   std::condition_variable arrived;
-  std::optional<VideoFrame> newest;
-  std::deque<VideoFrame> ring;  // the last pre_trigger seconds, oldest first
+  std::shared_ptr<const VideoFrame> newest;  // shared with latest()'s callers, never copied
+  std::deque<VideoFrame> ring;               // the last pre_trigger seconds, oldest first
   int64_t received = 0;
   std::string error;
   std::unique_ptr<VideoWriter> writer;
@@ -109,7 +109,7 @@ void Camera::Impl::deliver(VideoFrame frame) {
     writer->write(frame.rgba.data(), frame.time - origin);
   ring.push_back(frame);
   while (!ring.empty() && ring.front().time < frame.time - options.pre_trigger) ring.pop_front();
-  newest = std::move(frame);
+  newest = std::make_shared<const VideoFrame>(std::move(frame));
   arrived.notify_all();
 }
 
@@ -199,7 +199,7 @@ Camera::~Camera() {
   }
 }
 
-std::optional<VideoFrame> Camera::latest() const {
+std::shared_ptr<const VideoFrame> Camera::latest() const {
   const std::lock_guard lock(impl_->mutex);
   return impl_->newest;
 }

@@ -41,7 +41,7 @@ TEST(Camera, FramesArriveStampedOnTheLiveClockInOrder) {
   int64_t last_index = -1, seen = 0;
   for (int poll = 0; poll < 100 && seen < 10; ++poll) {
     wait_seconds(0.02);
-    const std::optional<VideoFrame> frame = camera.latest();
+    const std::shared_ptr<const VideoFrame> frame = camera.latest();
     if (!frame || frame->index == last_index) continue;
     EXPECT_GT(frame->time, last_time);
     EXPECT_GT(frame->index, last_index);

@@ -31,8 +31,9 @@ class Camera {
   Camera(const Camera&) = delete;
   Camera& operator=(const Camera&) = delete;
 
-  // The newest frame (time: its live-clock stamp), or nothing yet.
-  std::optional<VideoFrame> latest() const;
+  // The newest frame (time: its live-clock stamp), or null before the first: shared, so a
+  // window asking every frame copies no pixels.
+  std::shared_ptr<const VideoFrame> latest() const;
   // Frames received and dropped (the reader fell behind) so far.
   int64_t frames_received() const;
   // Starts writing to `path` with the pre-trigger frames first; returns the live-clock time of
