@@ -59,6 +59,12 @@ int main() {
                 100.0 * agreement.chance_share, agreement.rank_correlation,
                 100.0 * map.negative_eigenvalue_ratio, took);
     std::fflush(stdout);
+    if (minutes == 30.0) {
+      std::printf("\nPer body part at %.0f minutes (same body part among the 5 nearest):\n\n",
+                  minutes);
+      for (const auto& [part, share] : agreement.part_share)
+        std::printf("- %s: %.0f %%\n", part.c_str(), 100.0 * share);
+    }
   }
   return 0;
 }

@@ -273,6 +273,8 @@ TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
   EXPECT_EQ(agreement["neighbours"], 5);
   EXPECT_GT(agreement["same_part_share"].get<double>(), agreement["chance_share"].get<double>());
   EXPECT_TRUE(drawn["items"].dump().find("somatosensory:agreement") != std::string::npos);
+  // And per body part, the demo's films on every part of Robovie's body map.
+  EXPECT_EQ(agreement["part_share"].size(), 21u) << agreement.dump();
   std::nth_element(widths.begin(), widths.begin() + 137, widths.end());
   EXPECT_GE(widths[137], 7.0);
   EXPECT_NEAR(0.5 * (left + right), view_x + 0.5 * view_width, 0.1 * view_width)

@@ -2,6 +2,7 @@
 // selects it (shift: adds to the selection) and toggles its channel in the plot.
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -269,10 +270,19 @@ void draw_skin_panel_view(WorkbenchState& state, ImVec2 size) {
                          "map vs body distance, rank correlation %.2f",
                          agreement->neighbours, 100.0 * agreement->same_part_share,
                          100.0 * agreement->chance_share, agreement->rank_correlation);
+      std::vector<std::pair<double, std::string>> parts;
+      for (const auto& [part, share] : agreement->part_share) parts.emplace_back(share, part);
+      std::sort(parts.rbegin(), parts.rend());
+      std::string by_part;
+      for (const auto& [share, part] : parts)
+        by_part += (by_part.empty() ? "" : ", ") + part + " " +
+                   std::to_string(static_cast<int>(std::lround(100.0 * share))) + " %";
       remember_item(state, "somatosensory:agreement",
-                    "How far the map keeps the body (Robovie's Fig. 8 gathers each body part): "
-                    "the share of each taxel's nearest neighbours on the map that lie on its body "
-                    "part, and Spearman's correlation of map and body-map distances");
+                    "How far the map keeps the body (Robovie's Figs. 7 and 12 gather the films "
+                    "of a body part): the share of each taxel's nearest neighbours on the map "
+                    "that lie on its body part, and Spearman's correlation of map and body-map "
+                    "distances. By body part: " +
+                        by_part);
     }
   } else if (state.analysis.somatosensory.shown) {
     // Computing: the body map meanwhile, the job's progress above it.

@@ -349,7 +349,8 @@ nlohmann::json Workbench::analysis_json() const {
                             {"same_part_share", analysis.somatosensory.agreement->same_part_share},
                             {"chance_share", analysis.somatosensory.agreement->chance_share},
                             {"rank_correlation",
-                             analysis.somatosensory.agreement->rank_correlation}}
+                             analysis.somatosensory.agreement->rank_correlation},
+                            {"part_share", analysis.somatosensory.agreement->part_share}}
            : nlohmann::json(nullptr)},
       {"somatosensory_taxels",
        analysis.somatosensory.map ? analysis.somatosensory.map->taxels.size() : 0}};

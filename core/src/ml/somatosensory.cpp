@@ -339,6 +339,7 @@ MapBodyAgreement map_body_agreement(const SomatosensoryMap& map, const SkinLayou
     for (int n = 0; n < neighbours; ++n)
       same += taxels[nearest[static_cast<size_t>(n)].second]->body_part == taxels[i]->body_part;
     share += static_cast<double>(same) / neighbours;
+    agreement.part_share[taxels[i]->body_part] += static_cast<double>(same) / neighbours;
     for (size_t j = i + 1; j < count; ++j) {
       on_map.push_back(map_distance(i, j));
       on_body.push_back(std::hypot(taxels[i]->position.x - taxels[j]->position.x,
@@ -350,6 +351,7 @@ MapBodyAgreement map_body_agreement(const SomatosensoryMap& map, const SkinLayou
   // the others.
   std::map<std::string, double> parts;
   for (const Taxel* taxel : taxels) parts[taxel->body_part] += 1.0;
+  for (auto& [part, summed] : agreement.part_share) summed /= parts[part];
   double chance = 0.0;
   for (const auto& [part, size] : parts) chance += size * (size - 1.0);
   agreement.chance_share = chance / (static_cast<double>(count) * static_cast<double>(count - 1));

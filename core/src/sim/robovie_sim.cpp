@@ -77,6 +77,8 @@ SimulatedTrial simulate_robovie_trial(const SkinLayout& layout, const Simulation
                                 touched_part(films, skin.samples, rate, t0, t1)));
   }
 
+  // The labels above name the part the hands pressed; the rubber spreads it from here on.
+  spread_through_skin(films, skin.samples);
   const Robot robot = make_robot(films, options.seed);
   const Eigen::MatrixXf angles = joint_angles(session.moves, rate, samples);
   add_joint_load(robot, angles, skin.samples);

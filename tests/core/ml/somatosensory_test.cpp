@@ -231,6 +231,28 @@ TEST(MapBodyAgreement, AMapThatGathersEachBodyPartScoresOneAndChanceIsTheirShare
   EXPECT_GT(agreement.rank_correlation, 0.8);
 }
 
+TEST(MapBodyAgreement, EachPartsShareSaysWhichPartsGatherAndWhichAreMixed) {
+  // Part a gathered far off; parts b and c alternate along one line, b at even x, c at odd.
+  const SkinLayout layout = three_parts();
+  std::vector<Point2> positions;
+  for (int64_t id = 0; id < 6; ++id) positions.push_back({-500.0, static_cast<double>(id)});
+  for (int64_t id = 6; id < 18; ++id)
+    positions.push_back({id < 12 ? 2.0 * static_cast<double>(id - 6)          // b: 0, 2, ..., 10
+                                 : 2.0 * static_cast<double>(id - 12) + 1.0,  // c: 1, 3, ..., 11
+                         0.0});
+  const MapBodyAgreement agreement = map_body_agreement(map_of(layout, positions), layout);
+  ASSERT_EQ(agreement.part_share.size(), 3u);
+  EXPECT_DOUBLE_EQ(agreement.part_share.at("a"), 1.0);
+  EXPECT_LT(agreement.part_share.at("b"), 0.6);
+  EXPECT_LT(agreement.part_share.at("c"), 0.6);
+  // The whole share is the parts' shares weighted by their taxels (6 each here).
+  EXPECT_NEAR(
+      agreement.same_part_share,
+      (agreement.part_share.at("a") + agreement.part_share.at("b") + agreement.part_share.at("c")) /
+          3.0,
+      1e-12);
+}
+
 TEST(MapBodyAgreement, TheBodyMapItselfCorrelatesOneAndAShuffledMapAboutChance) {
   const SkinLayout layout = three_parts();
   std::vector<Point2> body;

@@ -219,6 +219,32 @@ TEST(SimRobovie, ConstantPressDecaysToZeroWithinASecond) {
   EXPECT_LT((x.segment(490, 30) - baseline).minCoeff(), -0.5 * onset_peak);
 }
 
+TEST(SimRobovie, TheRubberCarriesAPressToTheFilmsAroundItFallingWithDistance) {
+  // One newton on one film of the front: every film of the front carries 0.5 exp(-d / 40 mm)
+  // of it, the back nothing, the film itself all of it.
+  const Films films = sim::robovie::films_of(robovie_layout());
+  Eigen::Index pressed = 0;
+  while (films.view[pressed] != sim::robovie::View::kFront) ++pressed;
+  SampleMatrix load = SampleMatrix::Zero(2, films.count());
+  load(1, pressed) = 1.0f;
+  sim::robovie::spread_through_skin(films, load);
+  EXPECT_FLOAT_EQ(load(1, pressed), 1.0f);
+  EXPECT_EQ(load.row(0).cwiseAbs().maxCoeff(), 0.0f) << "a sample without load stays without";
+  int nearer = 0;
+  for (Eigen::Index film = 0; film < films.count(); ++film) {
+    if (film == pressed) continue;
+    if (films.view[film] != sim::robovie::View::kFront) {
+      EXPECT_EQ(load(1, film), 0.0f) << "film " << film << " lies on the back";
+      continue;
+    }
+    const double gap = std::hypot(films.center[film].x - films.center[pressed].x,
+                                  films.center[film].y - films.center[pressed].y);
+    EXPECT_NEAR(load(1, film), 0.5 * std::exp(-gap / 40.0), 1e-6) << "film " << film;
+    nearer += gap < 60.0;
+  }
+  EXPECT_GT(nearer, 0) << "the pressed film has neighbours within 60 mm";
+}
+
 TEST(SimRobovie, FilmsCarryNoDirectCurrentOverATrial) {
   // A high-pass output integrates to the load's net change, zero over a whole session.
   const SampleMatrix& samples = skin_of(cached_trial(2)).samples;

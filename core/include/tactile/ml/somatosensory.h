@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -66,6 +67,9 @@ struct MapBodyAgreement {
   double same_part_share = 0.0;
   double chance_share = 0.0;
   double rank_correlation = 0.0;
+  // same_part_share per body part (over that part's taxels), by part name: which parts
+  // gather and which lie scattered.
+  std::map<std::string, double> part_share;
 };
 // Throws tactile::Error when the map has fewer taxels than neighbours + 1, or a taxel the
 // layout lacks.

@@ -82,6 +82,11 @@ struct Contact {
 void add_contact_load(const Films& films, const Contact& contact, double rate_hz,
                       SampleMatrix& load);
 
+// The soft silicone the films are embedded in carries each film's contact load to the films
+// around it on the same side of the map (front or back), falling with distance: load becomes
+// load x S, S = I + 0.5 exp(-distance / 40 mm) between two films of one side.
+void spread_through_skin(const Films& films, SampleMatrix& load);
+
 // The robot's joints whose motion bends the skin.
 enum class Joint { kHead, kRightArm, kLeftArm, kWaist };
 constexpr int kJointCount = 4;
