@@ -60,6 +60,17 @@ void Standardizer::fit(const Matrix& x) {
   }
 }
 
+void Standardizer::fit_range(const Matrix& x) {
+  if (x.rows() < 1) throw Error("standardizer", "needs at least one row");
+  mean = x.colwise().minCoeff().transpose();
+  const Vector high = x.colwise().maxCoeff().transpose();
+  scale = Vector::Ones(x.cols());
+  for (Eigen::Index column = 0; column < x.cols(); ++column) {
+    const double range = high(column) - mean(column);
+    if (range > 1e-12 * std::max(1.0, std::abs(mean(column)))) scale(column) = range;
+  }
+}
+
 Matrix Standardizer::transform(const Matrix& x) const {
   if (x.cols() != mean.size())
     throw Error("standardizer", "expected " + std::to_string(mean.size()) + " features, got " +

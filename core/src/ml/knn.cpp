@@ -97,7 +97,8 @@ Parameters KnnClassifier::parameters() const {
   parameters.set("k", std::to_string(settings_.k));
   parameters.set("metric", metric_text(settings_.metric));
   parameters.set("weights", weights_text(settings_.weights));
-  parameters.set("standardize", settings_.standardize ? "true" : "false");
+  parameters.set("standardize",
+                 !settings_.standardize ? "false" : (settings_.range ? "range" : "true"));
   return parameters;
 }
 
@@ -107,7 +108,10 @@ void KnnClassifier::fit(const Matrix& x, const std::vector<int>& y, int class_co
   class_count_ = class_count;
   labels_ = y;
   if (settings_.standardize) {
-    standardizer_.fit(x);
+    if (settings_.range)
+      standardizer_.fit_range(x);
+    else
+      standardizer_.fit(x);
     samples_ = standardizer_.transform(x).transpose();
   } else {
     standardizer_ = Standardizer();
@@ -400,7 +404,14 @@ std::unique_ptr<Classifier> make_knn_from(const std::string& name, KnnSettings s
   else
     throw Error(parameters.where(),
                 "weights=" + weights + ": expected equal, inverse or squared-inverse");
-  settings.standardize = parameters.flag("standardize", settings.standardize);
+  // standardize=true (z-scores), false, or range (each feature's training range onto [0, 1]).
+  if (parameters.text("standardize", "") == "range") {
+    settings.standardize = true;
+    settings.range = true;
+  } else {
+    settings.standardize = parameters.flag("standardize", settings.standardize);
+    settings.range = false;
+  }
   return std::make_unique<KnnClassifier>(name, settings);
 }
 

@@ -71,7 +71,9 @@ const std::vector<ClassifierRow>& classifier_table() {
       {"coarse-gaussian-svm",
        "MATLAB Coarse Gaussian SVM: s = 4 sqrt(P); weights=balanced for rare classes",
        make_coarse_gaussian_svm_classifier},
-      {"knn", "k nearest neighbours (k, metric=euclidean|cosine, weights, standardize)",
+      {"knn",
+       "k nearest neighbours (k, metric=euclidean|cosine, weights, "
+       "standardize=false|true|range)",
        make_knn_classifier},
       {"cosine-knn", "MATLAB Cosine KNN: cosine distance, k=10, equal weights, standardised",
        make_cosine_knn_classifier},

@@ -158,6 +158,27 @@ TEST(KnnClassifier, StandardisingLetsASmallScaleFeatureCount) {
   EXPECT_EQ(standardised->predict(rows({{3, 0.01}}))[0], 1);
 }
 
+TEST(KnnClassifier, RangeScalingMapsEachFeaturesTrainingRangeOntoZeroToOne) {
+  // Weka's normalisation (spec §1.15): (x - min) / (max - min) of the training rows, a
+  // constant feature left as it is. Training {2, 10, 5}, {6, 30, 5} become {0, 0, 0}, {1, 1, 0};
+  // the query {3, 20, 5} becomes {0.25, 0.5, 0}.
+  auto classifier = make_classifier("knn:k=2,standardize=range");
+  EXPECT_EQ(classifier->parameters().text("standardize", ""), "range");
+  classifier->fit(rows({{2, 10, 5}, {6, 30, 5}}), {0, 1}, 2, 1);
+  const auto* knn = dynamic_cast<const KnnClassifier*>(classifier.get());
+  ASSERT_NE(knn, nullptr);
+  const auto nearest = knn->neighbours(rows({{3, 20, 5}}));
+  ASSERT_EQ(nearest[0].size(), 2u);
+  EXPECT_EQ(nearest[0][0].row, 0);
+  EXPECT_NEAR(nearest[0][0].distance, std::sqrt(0.25 * 0.25 + 0.5 * 0.5), 1e-12);
+  EXPECT_NEAR(nearest[0][1].distance, std::sqrt(0.75 * 0.75 + 0.5 * 0.5), 1e-12);
+  // Saved and loaded, the same scaling.
+  const auto restored = load_classifier(nlohmann::json::parse(save_classifier(*classifier).dump()));
+  EXPECT_EQ(specification_of(*restored), specification_of(*classifier));
+  EXPECT_EQ(restored->scores(rows({{3, 20, 5}})), classifier->scores(rows({{3, 20, 5}})));
+  EXPECT_THROW(make_classifier("knn:standardize=sometimes"), Error);
+}
+
 TEST(KnnClassifier, PresetsCarryTheirMatlabSettings) {
   const auto cosine = make_classifier("cosine-knn");
   EXPECT_EQ(cosine->parameters().text("metric", ""), "cosine");

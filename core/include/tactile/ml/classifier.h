@@ -105,6 +105,9 @@ struct Standardizer {
   Vector mean;
   Vector scale;  // 1 where the training std was 0
   void fit(const Matrix& x);
+  // mean = each column's minimum, scale = its range (1 where the column is constant): the
+  // training rows map onto [0, 1].
+  void fit_range(const Matrix& x);
   Matrix transform(const Matrix& x) const;
   nlohmann::json save() const;
   void load(const nlohmann::json& model);

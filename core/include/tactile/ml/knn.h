@@ -39,6 +39,9 @@ struct KnnSettings {
   KnnMetric metric = KnnMetric::kEuclidean;
   KnnWeights weights = KnnWeights::kEqual;
   bool standardize = false;
+  // With standardize: scale each feature by its training range onto [0, 1] (Weka's
+  // normalisation, parameter standardize=range) instead of by its standard deviation.
+  bool range = false;
 };
 
 // One neighbour of a query: training row and its distance.
