@@ -3,7 +3,9 @@
 // films' signals, and how far it keeps the body: the share of each film's 5 nearest on the map
 // that lie on its body part (beside chance), Spearman's correlation of map and body distances,
 // and the share of distances no flat map holds. bench/SOMATOSENSORY.md holds a run.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "tactile/layout/skin_layout.h"
@@ -38,6 +40,50 @@ tactile::Stream robovie_for(double seconds, const tactile::SkinLayout& layout) {
   return whole;
 }
 
+// Left against right (the paper's Fig. 7 reads two hands apart): over the films of parts named
+// "...-left" or "...-right", the share of each one's 5 nearest such films on the map that lie on
+// the other side, and the share a random placement gives.
+struct Sides {
+  double other_side = 0.0;
+  double at_random = 0.0;
+};
+
+Sides left_against_right(const tactile::SomatosensoryMap& map, const tactile::SkinLayout& layout) {
+  auto side_of = [](const std::string& part) {
+    if (part.ends_with("-left")) return -1;
+    if (part.ends_with("-right")) return 1;
+    return 0;
+  };
+  std::vector<size_t> lateral;
+  std::vector<int> side;
+  for (size_t k = 0; k < map.taxels.size(); ++k) {
+    const tactile::Taxel* taxel = layout.find_taxel(map.taxels[k]);
+    if (taxel == nullptr || side_of(taxel->body_part) == 0) continue;
+    lateral.push_back(k);
+    side.push_back(side_of(taxel->body_part));
+  }
+  const size_t count = lateral.size();
+  Sides sides;
+  if (count < 7) return sides;
+  double other = 0.0;
+  std::vector<std::pair<double, size_t>> nearest;
+  for (size_t i = 0; i < count; ++i) {
+    nearest.clear();
+    for (size_t j = 0; j < count; ++j)
+      if (j != i)
+        nearest.push_back({std::hypot(map.positions[lateral[i]].x - map.positions[lateral[j]].x,
+                                      map.positions[lateral[i]].y - map.positions[lateral[j]].y),
+                           j});
+    std::partial_sort(nearest.begin(), nearest.begin() + 5, nearest.end());
+    for (int n = 0; n < 5; ++n) other += side[nearest[static_cast<size_t>(n)].second] != side[i];
+  }
+  sides.other_side = other / (5.0 * static_cast<double>(count));
+  const double left = static_cast<double>(std::count(side.begin(), side.end(), -1));
+  const double right = static_cast<double>(count) - left;
+  sides.at_random = 2.0 * left * right / (static_cast<double>(count) * (count - 1.0));
+  return sides;
+}
+
 }  // namespace
 
 int main() {
@@ -45,7 +91,8 @@ int main() {
   const int modality = std::max(0, layout.modality_index(layout.display_modality));
   std::printf(
       "| minutes | films | same body part, 5 nearest | at random | rank correlation, map vs "
-      "body distance | no flat map holds | seconds |\n|---|---|---|---|---|---|---|\n");
+      "body distance | no flat map holds | other side among 5 nearest left/right films (random) "
+      "| seconds |\n|---|---|---|---|---|---|---|---|\n");
   for (double minutes : {2.0, 10.0, 30.0}) {
     const auto started = std::chrono::steady_clock::now();
     const tactile::MemorySampleSource source(robovie_for(60.0 * minutes, layout), layout.id,
@@ -54,10 +101,12 @@ int main() {
     const tactile::MapBodyAgreement agreement = tactile::map_body_agreement(map, layout);
     const double took =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    std::printf("| %.0f | %zu | %.0f %% | %.0f %% | %.2f | %.0f %% | %.0f |\n", minutes,
-                map.taxels.size(), 100.0 * agreement.same_part_share,
+    const Sides sides = left_against_right(map, layout);
+    std::printf("| %.0f | %zu | %.0f %% | %.0f %% | %.2f | %.0f %% | %.0f %% (%.0f %%) | %.0f |\n",
+                minutes, map.taxels.size(), 100.0 * agreement.same_part_share,
                 100.0 * agreement.chance_share, agreement.rank_correlation,
-                100.0 * map.negative_eigenvalue_ratio, took);
+                100.0 * map.negative_eigenvalue_ratio, 100.0 * sides.other_side,
+                100.0 * sides.at_random, took);
     std::fflush(stdout);
     if (minutes == 30.0) {
       std::printf("\nPer body part at %.0f minutes (same body part among the 5 nearest):\n\n",
