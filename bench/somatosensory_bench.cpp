@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "tactile/layout/skin_layout.h"
 #include "tactile/ml/somatosensory.h"
@@ -84,6 +86,46 @@ Sides left_against_right(const tactile::SomatosensoryMap& map, const tactile::Sk
   return sides;
 }
 
+// The regions the paper's Fig. 12 reads (the head apart; the front of the body, F-body; the
+// left and right flanks together), and the back: per region, the share of its films' 5 nearest
+// on the map that lie in the region, beside the share a random placement gives.
+void print_regions(const tactile::SomatosensoryMap& map, const tactile::SkinLayout& layout) {
+  auto region_of = [](const std::string& part) -> std::string {
+    if (part == "chest-upper" || part == "chest-lower") return "front of the body (chest)";
+    if (part == "side-left" || part == "side-right") return "flanks, left and right";
+    if (part == "back-upper" || part == "back-lower") return "back";
+    return part;
+  };
+  std::vector<std::string> region;
+  for (int64_t id : map.taxels) {
+    const tactile::Taxel* taxel = layout.find_taxel(id);
+    region.push_back(taxel ? region_of(taxel->body_part) : std::string());
+  }
+  std::printf("\nRegions at 30 minutes (share of the 5 nearest in the region, random):\n\n");
+  const size_t count = region.size();
+  std::vector<std::pair<double, size_t>> nearest;
+  for (const char* name : {"head", "front of the body (chest)", "back", "flanks, left and right"}) {
+    double share = 0.0;
+    size_t films = 0;
+    for (size_t i = 0; i < count; ++i) {
+      if (region[i] != name) continue;
+      ++films;
+      nearest.clear();
+      for (size_t j = 0; j < count; ++j)
+        if (j != i)
+          nearest.push_back({std::hypot(map.positions[i].x - map.positions[j].x,
+                                        map.positions[i].y - map.positions[j].y),
+                             j});
+      std::partial_sort(nearest.begin(), nearest.begin() + 5, nearest.end());
+      for (int n = 0; n < 5; ++n) share += region[nearest[static_cast<size_t>(n)].second] == name;
+    }
+    if (films == 0) continue;
+    std::printf("- %s (%zu films): %.0f %% (random %.0f %%)\n", name, films,
+                100.0 * share / (5.0 * static_cast<double>(films)),
+                100.0 * static_cast<double>(films - 1) / static_cast<double>(count - 1));
+  }
+}
+
 }  // namespace
 
 int main() {
@@ -113,6 +155,7 @@ int main() {
                   minutes);
       for (const auto& [part, share] : agreement.part_share)
         std::printf("- %s: %.0f %%\n", part.c_str(), 100.0 * share);
+      print_regions(map, layout);
     }
   }
   return 0;
