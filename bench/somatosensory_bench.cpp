@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -126,6 +127,45 @@ void print_regions(const tactile::SomatosensoryMap& map, const tactile::SkinLayo
   }
 }
 
+// Why left and right mix: for each part the body has twice ("upper-arm-left" and
+// "upper-arm-right"), the median |R| between two films of one side's part and between a film
+// of the left part and one of the right.
+void print_left_right_correlations(const tactile::SampleSource& source,
+                                   const tactile::SkinLayout& layout, int modality) {
+  std::vector<int> columns;
+  std::vector<std::string> parts;
+  for (const tactile::Taxel& taxel : layout.taxels) {
+    columns.push_back(taxel.channels[static_cast<size_t>(modality)]);
+    parts.push_back(taxel.body_part);
+  }
+  tactile::CorrelationSums sums(static_cast<int>(columns.size()));
+  sums.add(source, columns);
+  const Eigen::MatrixXd correlation = sums.correlation();
+  auto paired = [](const std::string& part) -> std::string {
+    for (const char* side : {"-left", "-right"})
+      if (part.ends_with(side)) return part.substr(0, part.size() - std::string(side).size());
+    return {};
+  };
+  std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> pairs;
+  for (size_t i = 0; i < parts.size(); ++i)
+    for (size_t j = i + 1; j < parts.size(); ++j) {
+      const std::string part = paired(parts[i]);
+      if (part.empty() || part != paired(parts[j])) continue;
+      const double r =
+          std::abs(correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+      (parts[i] == parts[j] ? pairs[part].first : pairs[part].second).push_back(r);
+    }
+  auto median = [](std::vector<double> values) {
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    return values[values.size() / 2];
+  };
+  std::printf(
+      "\nMedian |R| at 30 minutes, two films of one side's part / a left and a right film:\n\n");
+  for (const auto& [part, both] : pairs)
+    if (!both.first.empty() && !both.second.empty())
+      std::printf("- %s: %.2f / %.2f\n", part.c_str(), median(both.first), median(both.second));
+}
+
 }  // namespace
 
 int main() {
@@ -156,6 +196,7 @@ int main() {
       for (const auto& [part, share] : agreement.part_share)
         std::printf("- %s: %.0f %%\n", part.c_str(), 100.0 * share);
       print_regions(map, layout);
+      print_left_right_correlations(source, layout, modality);
     }
   }
   return 0;
