@@ -275,6 +275,10 @@ TEST_F(Newcomer, TheSomatosensoryMapFillsItsPanelWithDotsInColoursApart) {
   EXPECT_TRUE(drawn["items"].dump().find("somatosensory:agreement") != std::string::npos);
   // And per body part, the demo's films on every part of Robovie's body map.
   EXPECT_EQ(agreement["part_share"].size(), 21u) << agreement.dump();
+  // The caption's tooltip lists the parts, best gathered first.
+  const std::string tip = drawn["tips"].value("somatosensory:agreement", "");
+  EXPECT_NE(tip.find("By body part: "), std::string::npos) << tip;
+  EXPECT_NE(tip.find("head "), std::string::npos) << tip;
   std::nth_element(widths.begin(), widths.begin() + 137, widths.end());
   EXPECT_GE(widths[137], 7.0);
   EXPECT_NEAR(0.5 * (left + right), view_x + 0.5 * view_width, 0.1 * view_width)
