@@ -1,6 +1,6 @@
 // The live camera: libavdevice's input read on a thread of its own, each frame scaled to RGBA,
 // stamped on the live clock, kept as the newest and in the pre-trigger ring, and written while
-// recording by a second thread, so that neither the window nor the reader waits for the encoder.
+// recording.
 #include "tactile/video/camera.h"
 
 extern "C" {
@@ -32,52 +32,20 @@ struct Camera::Impl {
 
   std::atomic<bool> stopping{false};
   std::thread reader;
-  std::thread writing;
-
-  // What the writing thread does, in order: take a new recording's writer, write a frame at a
-  // time on it, or finish it.
-  struct Task {
-    std::unique_ptr<VideoWriter> open;
-    std::shared_ptr<const VideoFrame> frame;
-    double at = 0.0;  // the frame's time in the recording
-    bool finish = false;
-    static Task opening(std::unique_ptr<VideoWriter> writer) {
-      Task task;
-      task.open = std::move(writer);
-      return task;
-    }
-    static Task writing(std::shared_ptr<const VideoFrame> frame, double at) {
-      Task task;
-      task.frame = std::move(frame);
-      task.at = at;
-      return task;
-    }
-    static Task finishing() {
-      Task task;
-      task.finish = true;
-      return task;
-    }
-  };
 
   mutable std::mutex mutex;  // guards everything below
   std::condition_variable arrived;
-  std::condition_variable work;  // a task was queued, or the queue ran empty
-  using Shared = std::shared_ptr<const VideoFrame>;
-  Shared newest;            // shared with latest()'s callers and the ring, never copied
-  std::deque<Shared> ring;  // the last pre_trigger seconds, oldest first
+  std::shared_ptr<const VideoFrame> newest;  // shared with latest()'s callers, never copied
+  std::deque<VideoFrame> ring;               // the last pre_trigger seconds, oldest first
   int64_t received = 0;
   std::string error;
-  std::deque<Task> tasks;
-  bool busy = false;     // the writing thread is working on a task it took
-  bool closing = false;  // the writing thread ends once the tasks are done
-  bool recording = false;
+  std::unique_ptr<VideoWriter> writer;
   std::string writer_path;
   int writer_width = 0, writer_height = 0;
   double origin = 0;  // live time of the recording's first frame
 
   void open();
   void read_loop();
-  void write_loop();
   void deliver(VideoFrame frame);
   void fail(const std::string& message);
 };
@@ -129,58 +97,20 @@ void Camera::Impl::open() {
 void Camera::Impl::fail(const std::string& message) {
   const std::lock_guard lock(mutex);
   if (error.empty()) error = options.url + ": " + message;
-  if (recording) tasks.push_back(Task::finishing());  // the file so far is finished
-  recording = false;
+  writer.reset();  // the file so far is finished by the writer's destructor
   arrived.notify_all();
-  work.notify_all();
 }
 
 void Camera::Impl::deliver(VideoFrame frame) {
   const std::lock_guard lock(mutex);
   frame.index = received++;
-  newest = std::make_shared<const VideoFrame>(std::move(frame));
   // A frame of another size than the recording's (the device switched modes) is not written.
-  if (recording && newest->width == writer_width && newest->height == writer_height) {
-    tasks.push_back(Task::writing(newest, newest->time - origin));
-    work.notify_all();
-  }
-  ring.push_back(newest);
-  while (!ring.empty() && ring.front()->time < newest->time - options.pre_trigger) ring.pop_front();
+  if (writer && frame.width == writer_width && frame.height == writer_height)
+    writer->write(frame.rgba.data(), frame.time - origin);
+  ring.push_back(frame);
+  while (!ring.empty() && ring.front().time < frame.time - options.pre_trigger) ring.pop_front();
+  newest = std::make_shared<const VideoFrame>(std::move(frame));
   arrived.notify_all();
-}
-
-void Camera::Impl::write_loop() {
-  std::unique_ptr<VideoWriter> writer;  // of the recording being written
-  std::unique_lock lock(mutex);
-  while (true) {
-    work.wait(lock, [&] { return closing || !tasks.empty(); });
-    if (tasks.empty()) break;  // closing, and everything written
-    Task task = std::move(tasks.front());
-    tasks.pop_front();
-    busy = true;
-    lock.unlock();
-    std::string failure;
-    try {
-      if (task.open) writer = std::move(task.open);
-      if (task.frame && writer) writer->write(task.frame->rgba.data(), task.at);
-      if (task.finish && writer) {
-        std::unique_ptr<VideoWriter> done = std::move(writer);
-        done->finish();
-      }
-    } catch (const std::exception& problem) {
-      failure = problem.what();
-      writer.reset();  // the file so far is what there is
-    }
-    lock.lock();
-    busy = false;
-    if (!failure.empty()) {
-      if (error.empty()) error = options.url + ": writing " + writer_path + ": " + failure;
-      recording = false;
-      // Frames queued for the failed file have nowhere to go.
-      std::erase_if(tasks, [](const Task& queued) { return queued.frame && !queued.open; });
-    }
-    work.notify_all();
-  }
 }
 
 void Camera::Impl::read_loop() {
@@ -244,7 +174,7 @@ void Camera::Impl::read_loop() {
     }
     sws_freeContext(scale);
   } catch (const std::exception& failure) {
-    fail(failure.what());
+    fail(failure.what());  // a write to the recording failed: the reader ends, the error says so
   }
 }
 
@@ -253,21 +183,20 @@ Camera::Camera(CameraOptions options, std::function<double()> clock)
   impl_->options = std::move(options);
   impl_->clock = std::move(clock);
   impl_->open();
-  impl_->writing = std::thread([impl = impl_.get()] { impl->write_loop(); });
   impl_->reader = std::thread([impl = impl_.get()] { impl->read_loop(); });
 }
 
 Camera::~Camera() {
   impl_->stopping.store(true);
   if (impl_->reader.joinable()) impl_->reader.join();
-  {
-    const std::lock_guard lock(impl_->mutex);
-    if (impl_->recording) impl_->tasks.push_back(Impl::Task::finishing());
-    impl_->recording = false;
-    impl_->closing = true;
-    impl_->work.notify_all();
+  const std::lock_guard lock(impl_->mutex);
+  if (impl_->writer) {
+    try {
+      impl_->writer->finish();
+    } catch (const Error&) {
+      // Nothing to tell from a destructor; the file is as far as it got.
+    }
   }
-  if (impl_->writing.joinable()) impl_->writing.join();  // the recording finished
 }
 
 std::shared_ptr<const VideoFrame> Camera::latest() const {
@@ -282,44 +211,37 @@ int64_t Camera::frames_received() const {
 
 double Camera::start_recording(const std::string& path) {
   std::unique_lock lock(impl_->mutex);
-  if (impl_->recording)
-    throw Error(path, "the camera is already recording to " + impl_->writer_path);
+  if (impl_->writer) throw Error(path, "the camera is already recording to " + impl_->writer_path);
+  // The first frame gives the size: wait a little for it when the camera has just opened.
+  impl_->arrived.wait_for(lock, std::chrono::seconds(5),
+                          [&] { return !impl_->ring.empty() || !impl_->error.empty(); });
   if (!impl_->error.empty()) throw Error(path, "the camera stopped: " + impl_->error);
-  // No waiting here (the window calls this): a camera that has not sent a frame yet is said.
-  if (impl_->ring.empty())
-    throw Error(path, "the camera " + impl_->options.url + " has sent no frame yet");
-  const VideoFrame& first = *impl_->ring.front();
+  if (impl_->ring.empty()) throw Error(path, "the camera " + impl_->options.url + " sent no frame");
+  const VideoFrame& first = impl_->ring.front();
   VideoWriterOptions options;
   options.width = first.width;
   options.height = first.height;
   options.rate = impl_->rate;
-  // Opening the file and the encoder here says at once when it cannot be written; the
-  // encoding itself, pre-trigger frames first on their own stamps, is the writing thread's.
   auto writer = std::make_unique<VideoWriter>(path, options);
+  // The pre-trigger frames first, on their own stamps: the video's time 0 is the first.
   impl_->origin = first.time;
-  impl_->tasks.push_back(Impl::Task::opening(std::move(writer)));
-  for (const Impl::Shared& frame : impl_->ring)
-    if (frame->width == first.width && frame->height == first.height)
-      impl_->tasks.push_back(Impl::Task::writing(frame, frame->time - impl_->origin));
-  impl_->recording = true;
+  for (const VideoFrame& frame : impl_->ring)
+    if (frame.width == first.width && frame.height == first.height)
+      writer->write(frame.rgba.data(), frame.time - impl_->origin);
+  impl_->writer = std::move(writer);
   impl_->writer_path = path;
   impl_->writer_width = first.width;
   impl_->writer_height = first.height;
-  impl_->work.notify_all();
   return impl_->origin;
 }
 
 void Camera::stop_recording() {
-  const std::lock_guard lock(impl_->mutex);
-  if (!impl_->recording) return;
-  impl_->recording = false;
-  impl_->tasks.push_back(Impl::Task::finishing());
-  impl_->work.notify_all();
-}
-
-void Camera::wait_written() {
-  std::unique_lock lock(impl_->mutex);
-  impl_->work.wait(lock, [&] { return impl_->tasks.empty() && !impl_->busy; });
+  std::unique_ptr<VideoWriter> writer;
+  {
+    const std::lock_guard lock(impl_->mutex);
+    writer = std::move(impl_->writer);
+  }
+  if (writer) writer->finish();
 }
 
 std::string Camera::error() const {

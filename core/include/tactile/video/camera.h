@@ -37,16 +37,9 @@ class Camera {
   // Frames received and dropped (the reader fell behind) so far.
   int64_t frames_received() const;
   // Starts writing to `path` with the pre-trigger frames first; returns the live-clock time of
-  // the first frame written (the attachment's offset relative to the recording's start). Opens
-  // the file at once (throws tactile::Error when it cannot, or when no frame has come yet) and
-  // returns without waiting: a thread of the camera's own encodes the frames.
+  // the first frame written (the attachment's offset relative to the recording's start).
   double start_recording(const std::string& path);
-  // Ends the recording: the frames so far are written and the file finished on that thread,
-  // soon after (wait_written), or when the camera is destroyed at the latest.
   void stop_recording();
-  // Blocks until every frame handed to the writing thread is written and a stopped
-  // recording's file finished.
-  void wait_written();
   // An error that stopped the camera ("" while it runs).
   std::string error() const;
 
