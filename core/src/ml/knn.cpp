@@ -5,6 +5,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <set>
 
 #include "tactile/error.h"
 #include "tactile/ml/checks.h"
@@ -405,7 +406,12 @@ std::unique_ptr<Classifier> make_knn_from(const std::string& name, KnnSettings s
     throw Error(parameters.where(),
                 "weights=" + weights + ": expected equal, inverse or squared-inverse");
   // standardize=true (z-scores), false, or range (each feature's training range onto [0, 1]).
-  if (parameters.text("standardize", "") == "range") {
+  const std::string scaling = parameters.text("standardize", "");
+  static const std::set<std::string> kKnown = {"",  "range", "true", "false", "1",
+                                               "0", "yes",   "no",   "on",    "off"};
+  if (!kKnown.contains(scaling))
+    throw Error(parameters.where(), "standardize=" + scaling + ": expected true, false or range");
+  if (scaling == "range") {
     settings.standardize = true;
     settings.range = true;
   } else {
